@@ -1,0 +1,20 @@
+//! MR brake design: closed-form torque models of the thesis, coil and winding formulas, passivity
+//! conditions, and (later) brake specifications, the geometry builder and studies.
+
+pub mod formula;
+
+/// Errors of this crate.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum DesignError {
+    /// Invalid input (a field out of its allowed range), with a message naming the field.
+    #[error("{0}")]
+    Input(String),
+}
+
+impl DesignError {
+    /// True when the error comes from bad input (the CLI exits with code 2).
+    pub fn is_input_error(&self) -> bool {
+        matches!(self, Self::Input(_))
+    }
+}

@@ -1,0 +1,20 @@
+//! System identification from MR-brake test-rig logs.
+//!
+//! (Work in progress: see docs/ARCHITECTURE.md for the crate map.)
+
+/// Errors of this crate.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SysidError {
+    /// Invalid input (file, field, value) with a message naming what was expected.
+    #[error("{0}")]
+    Input(String),
+}
+
+impl SysidError {
+    /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
+    /// internal failures (exit code 1).
+    pub fn is_input_error(&self) -> bool {
+        matches!(self, Self::Input(_))
+    }
+}
