@@ -1,20 +1,42 @@
-//! Plots and atomic output files for mrbrake.
+//! Reports for mrbrake: plots (SVG via plotters) and atomic output files.
 //!
-//! (Work in progress: see docs/ARCHITECTURE.md for the crate map.)
+//! Brief overview: [`write_atomic`] writes any output file through a temporary file and a rename, so a
+//! reader never sees half a file; [`chart`] draws XY line/scatter charts (linear or log axes, one or
+//! several stacked panels) that the Bode, hysteresis, torque–current and time-history plots build on.
+
+pub mod atomic;
+pub mod bode;
+pub mod chart;
+pub mod field_map;
+pub mod haptic;
+pub mod hysteresis;
+
+pub use atomic::write_atomic;
 
 /// Errors of this crate.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ReportError {
-    /// Invalid input (file, field, value) with a message naming what was expected.
-    #[error("{0}")]
-    Input(String),
+    /// Writing an output file failed (directory missing, permission, disk full).
+    #[error("cannot write '{path}': {source}")]
+    Io {
+        /// The file that could not be written.
+        path: std::path::PathBuf,
+        /// The underlying I/O error.
+        source: std::io::Error,
+    },
+    /// The data cannot be plotted (empty, non-finite, or a non-positive value on a log axis).
+    #[error("cannot plot: {0}")]
+    Data(String),
+    /// The plotting backend failed.
+    #[error("plotting failed: {0}")]
+    Backend(String),
 }
 
 impl ReportError {
-    /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
-    /// internal failures (exit code 1).
+    /// True when the error comes from bad input (the CLI exits with code 2): an unwritable output
+    /// path or unplottable data.
     pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Input(_))
+        matches!(self, Self::Io { .. } | Self::Data(_))
     }
 }

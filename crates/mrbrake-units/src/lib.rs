@@ -49,7 +49,9 @@ impl Dimension {
     pub fn units(self) -> &'static [(&'static str, f64)] {
         use std::f64::consts::PI;
         match self {
-            Dimension::Length => &[("m", 1.0), ("cm", 1e-2), ("mm", 1e-3), ("um", 1e-6), ("µm", 1e-6)],
+            Dimension::Length => {
+                &[("m", 1.0), ("cm", 1e-2), ("mm", 1e-3), ("um", 1e-6), ("µm", 1e-6)]
+            }
             Dimension::FluxDensity => &[("T", 1.0), ("mT", 1e-3), ("G", 1e-4)],
             Dimension::FieldStrength => &[("A/m", 1.0), ("kA/m", 1e3), ("MA/m", 1e6)],
             Dimension::Stress => &[("Pa", 1.0), ("kPa", 1e3), ("MPa", 1e6)],
@@ -57,9 +59,14 @@ impl Dimension {
             Dimension::AngularVelocity => {
                 &[("rad/s", 1.0), ("rpm", 2.0 * PI / 60.0), ("deg/s", PI / 180.0), ("Hz", 2.0 * PI)]
             }
-            Dimension::Viscosity => {
-                &[("Pa.s", 1.0), ("Pa*s", 1.0), ("Pa·s", 1.0), ("Pas", 1.0), ("mPa.s", 1e-3), ("cP", 1e-3)]
-            }
+            Dimension::Viscosity => &[
+                ("Pa.s", 1.0),
+                ("Pa*s", 1.0),
+                ("Pa·s", 1.0),
+                ("Pas", 1.0),
+                ("mPa.s", 1e-3),
+                ("cP", 1e-3),
+            ],
             Dimension::Torque => &[("Nm", 1.0), ("N.m", 1.0), ("N·m", 1.0), ("mNm", 1e-3)],
             Dimension::TemperatureCelsius => &[("C", 1.0), ("°C", 1.0), ("degC", 1.0)],
             Dimension::Time => &[("s", 1.0), ("ms", 1e-3), ("us", 1e-6), ("min", 60.0)],
@@ -142,7 +149,12 @@ impl fmt::Display for UnitError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             UnitError::Empty { expected } => {
-                write!(f, "empty value: expected {} with unit {}", expected.describe(), expected.allowed_list())
+                write!(
+                    f,
+                    "empty value: expected {} with unit {}",
+                    expected.describe(),
+                    expected.allowed_list()
+                )
             }
             UnitError::NotANumber { text, expected } => write!(
                 f,
@@ -183,11 +195,9 @@ pub fn parse(text: &str, dim: Dimension) -> Result<f64, UnitError> {
     if unit.is_empty() {
         return Ok(value);
     }
-    dim.units()
-        .iter()
-        .find(|(u, _)| *u == unit)
-        .map(|(_, factor)| value * factor)
-        .ok_or_else(|| UnitError::WrongUnit { text: t.to_string(), unit: unit.to_string(), expected: dim })
+    dim.units().iter().find(|(u, _)| *u == unit).map(|(_, factor)| value * factor).ok_or_else(
+        || UnitError::WrongUnit { text: t.to_string(), unit: unit.to_string(), expected: dim },
+    )
 }
 
 /// Length of the leading numeric part (sign, digits, point, exponent) of `t`.

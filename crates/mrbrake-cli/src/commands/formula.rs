@@ -1,0 +1,421 @@
+//! `mrbrake formula …`: the thesis's closed-form models from the command line.
+//!
+//! Torque of a single disc (3.6)/(3.7), multi-disc (3.8), drum (3.9) and multi-drum (4.4)/(4.5) brake
+//! from a yield stress (given, or looked up from the fluid's τ_y(B) curve at a flux density), with the
+//! optional viscous term at a speed; and the coil of a winding window ((4.1)–(4.3), resistance, power).
+
+use clap::{Args, Subcommand};
+use mrbrake_design::formula::{self, BrakeTorque, Viscous};
+use mrbrake_materials::{CopperWire, library};
+use mrbrake_units::{Dimension, parse};
+use serde_json::{Value, json};
+
+use crate::exit::InputError;
+use crate::output::print_json;
+
+/// `mrbrake formula` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum FormulaCommand {
+    /// Single-disc brake torque, thesis (3.6) and (3.7): T = 4π τ_y (R2³ − R1³)/3 [+ viscous term].
+    SingleDisc(SingleDiscArgs),
+    /// Multi-disc brake torque, thesis (3.8): n times the single disc.
+    MultiDisc(MultiDiscArgs),
+    /// Drum brake torque, thesis (3.9): T = 4π τ_y R² h [+ viscous term].
+    Drum(DrumArgs),
+    /// Multi-drum brake torque, thesis (4.4) and (4.5): T = 2π h τ_y Σ R_k², R_k = R_(k−1) + d + g.
+    MultiDrum(MultiDrumArgs),
+    /// Coil in a winding window: turns (4.2)/(4.3), wire length, resistance, current density (4.1), power.
+    Coil(CoilArgs),
+}
+
+/// Where the yield stress comes from, and the optional viscous term.
+#[derive(Debug, Args)]
+pub struct FluidArgs {
+    /// Yield stress τ_y (e.g. 24.315kPa); or give --b to read it from the fluid's τ_y(B) curve.
+    #[arg(
+        long = "tau-y",
+        value_name = "STRESS",
+        allow_hyphen_values = true,
+        conflicts_with = "b",
+        required_unless_present = "b"
+    )]
+    tau_y: Option<String>,
+    /// Mean flux density in the fluid (e.g. 0.46T); τ_y is then read from the fluid's τ_y(B) curve.
+    #[arg(long, value_name = "FLUX_DENSITY", allow_hyphen_values = true)]
+    b: Option<String>,
+    /// MR fluid used for --b and for the default viscosity (see `mrbrake materials list`).
+    #[arg(long, default_value = "mrf-122eg")]
+    fluid: String,
+    /// Relative speed for the viscous term (e.g. 60rpm, 6.28rad/s); omitted: yield torque only.
+    #[arg(long, value_name = "SPEED", allow_hyphen_values = true)]
+    speed: Option<String>,
+    /// Newtonian (off-state) viscosity for the viscous term (e.g. 0.056Pa.s); default: the fluid's.
+    #[arg(long, value_name = "VISCOSITY", allow_hyphen_values = true)]
+    eta: Option<String>,
+    /// Print a JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Arguments of `formula single-disc`.
+#[derive(Debug, Args)]
+pub struct SingleDiscArgs {
+    /// Inner radius R1 of the fluid annulus (e.g. 22.5mm).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    r1: String,
+    /// Outer radius R2 of the fluid annulus (e.g. 27.5mm).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    r2: String,
+    /// Fluid gap g on each side of the disc (needed only with --speed).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    gap: Option<String>,
+    #[command(flatten)]
+    fluid: FluidArgs,
+}
+
+/// Arguments of `formula multi-disc`.
+#[derive(Debug, Args)]
+pub struct MultiDiscArgs {
+    /// Number of rotating discs n (each sheared on both faces).
+    #[arg(long, value_name = "N")]
+    discs: u32,
+    /// Inner radius R1 of the fluid annuli.
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    r1: String,
+    /// Outer radius R2 of the fluid annuli.
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    r2: String,
+    /// Fluid gap g on each side of each disc (needed only with --speed).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    gap: Option<String>,
+    #[command(flatten)]
+    fluid: FluidArgs,
+}
+
+/// Arguments of `formula drum`.
+#[derive(Debug, Args)]
+pub struct DrumArgs {
+    /// Radius R of the drum (both fluid faces are taken at R).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    r: String,
+    /// Height h of the drum.
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    h: String,
+    /// Fluid gap g on each side of the drum (needed only with --speed).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    gap: Option<String>,
+    #[command(flatten)]
+    fluid: FluidArgs,
+}
+
+/// Arguments of `formula multi-drum`.
+#[derive(Debug, Args)]
+pub struct MultiDrumArgs {
+    /// Radius R0 of the innermost fluid surface (e.g. 25mm).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    r0: String,
+    /// Height h of the cylinders (e.g. 9mm).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    h: String,
+    /// Cylinder wall thickness d (e.g. 1mm).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    d: String,
+    /// Fluid gap g (e.g. 0.5mm).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    g: String,
+    /// Number of fluid surfaces (radii R_0 … R_(n−1)); the thesis's final design has 4.
+    #[arg(long, value_name = "N")]
+    surfaces: u32,
+    #[command(flatten)]
+    fluid: FluidArgs,
+}
+
+/// Arguments of `formula coil`.
+#[derive(Debug, Args)]
+pub struct CoilArgs {
+    /// Radial width C_w of the winding window (e.g. 12mm).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    window_width: String,
+    /// Axial height C_h of the winding window (e.g. 12mm).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    window_height: String,
+    /// Wire gauge, AWG 18–32.
+    #[arg(long, conflicts_with = "wire_diameter", required_unless_present = "wire_diameter")]
+    awg: Option<u32>,
+    /// Bare wire diameter instead of a gauge (e.g. 0.5mm).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    wire_diameter: Option<String>,
+    /// Inner radius of the winding (default 5mm: the shaft radius of the thesis's Table 4.5, where
+    /// the concept design winds the coil directly on the shaft).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true, default_value = "5mm")]
+    inner_radius: String,
+    /// Number of turns; default: as many as fit the window by (4.2)/(4.3).
+    #[arg(long)]
+    turns: Option<u32>,
+    /// Coil current (e.g. 2A).
+    #[arg(long, value_name = "CURRENT", allow_hyphen_values = true, default_value = "2A")]
+    current: String,
+    /// Copper temperature for the resistance (e.g. 20C, 75C).
+    #[arg(long, value_name = "TEMPERATURE", allow_hyphen_values = true, default_value = "20C")]
+    temperature: String,
+    /// Print a JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs `mrbrake formula …`.
+pub fn run(command: FormulaCommand) -> anyhow::Result<()> {
+    match command {
+        FormulaCommand::SingleDisc(a) => {
+            let r1 = length("--r1", &a.r1)?;
+            let r2 = length("--r2", &a.r2)?;
+            let fluid = resolve_fluid(&a.fluid)?;
+            let viscous = fluid.viscous(a.gap.as_deref())?;
+            let t = formula::single_disc(r1, r2, fluid.tau_y_pa, viscous)?;
+            let inputs = json!({ "r1_m": r1, "r2_m": r2 });
+            report("single-disc", "(3.6)/(3.7)", inputs, &fluid, viscous, t, a.fluid.json)
+        }
+        FormulaCommand::MultiDisc(a) => {
+            let r1 = length("--r1", &a.r1)?;
+            let r2 = length("--r2", &a.r2)?;
+            let fluid = resolve_fluid(&a.fluid)?;
+            let viscous = fluid.viscous(a.gap.as_deref())?;
+            let t = formula::multi_disc(a.discs, r1, r2, fluid.tau_y_pa, viscous)?;
+            let inputs = json!({ "discs": a.discs, "r1_m": r1, "r2_m": r2 });
+            report("multi-disc", "(3.8)", inputs, &fluid, viscous, t, a.fluid.json)
+        }
+        FormulaCommand::Drum(a) => {
+            let r = length("--r", &a.r)?;
+            let h = length("--h", &a.h)?;
+            let fluid = resolve_fluid(&a.fluid)?;
+            let viscous = fluid.viscous(a.gap.as_deref())?;
+            let t = formula::drum(r, h, fluid.tau_y_pa, viscous)?;
+            let inputs = json!({ "r_m": r, "h_m": h });
+            report("drum", "(3.9)", inputs, &fluid, viscous, t, a.fluid.json)
+        }
+        FormulaCommand::MultiDrum(a) => {
+            let r0 = length("--r0", &a.r0)?;
+            let h = length("--h", &a.h)?;
+            let d = length("--d", &a.d)?;
+            let g = length("--g", &a.g)?;
+            let fluid = resolve_fluid(&a.fluid)?;
+            let eta_omega = fluid.speed.map(|w| (fluid.eta_pa_s, w));
+            let t = formula::multi_drum(r0, h, d, g, a.surfaces, fluid.tau_y_pa, eta_omega)?;
+            let radii = formula::multi_drum_radii(r0, d, g, a.surfaces);
+            let inputs = json!({
+                "r0_m": r0, "h_m": h, "d_m": d, "g_m": g, "surfaces": a.surfaces, "radii_m": radii,
+            });
+            let viscous =
+                fluid.speed.map(|w| Viscous { eta_pa_s: fluid.eta_pa_s, omega_rad_s: w, gap_m: g });
+            report("multi-drum", "(4.4)/(4.5)", inputs, &fluid, viscous, t, a.fluid.json)
+        }
+        FormulaCommand::Coil(a) => coil(a),
+    }
+}
+
+fn length(flag: &str, text: &str) -> anyhow::Result<f64> {
+    parse(text, Dimension::Length).map_err(|e| InputError(format!("{flag}: {e}")).into())
+}
+
+/// The yield stress (and where it came from) plus the viscous-term inputs.
+struct ResolvedFluid {
+    tau_y_pa: f64,
+    tau_y_source: String,
+    b_t: Option<f64>,
+    fluid: String,
+    eta_pa_s: f64,
+    eta_source: String,
+    speed: Option<f64>,
+}
+
+impl ResolvedFluid {
+    /// The viscous term for brakes whose gap is an extra option (disc, drum).
+    fn viscous(&self, gap: Option<&str>) -> anyhow::Result<Option<Viscous>> {
+        let Some(omega) = self.speed else { return Ok(None) };
+        let Some(gap) = gap else {
+            return Err(InputError(
+                "--speed needs --gap (the fluid gap sheared at that speed)".into(),
+            )
+            .into());
+        };
+        Ok(Some(Viscous {
+            eta_pa_s: self.eta_pa_s,
+            omega_rad_s: omega,
+            gap_m: length("--gap", gap)?,
+        }))
+    }
+}
+
+fn resolve_fluid(a: &FluidArgs) -> anyhow::Result<ResolvedFluid> {
+    let fluid = library::fluid(&a.fluid)?;
+    let (tau_y_pa, tau_y_source, b_t) = match (&a.tau_y, &a.b) {
+        (Some(t), _) => {
+            let tau =
+                parse(t, Dimension::Stress).map_err(|e| InputError(format!("--tau-y: {e}")))?;
+            if tau < 0.0 {
+                return Err(InputError(format!("--tau-y must be >= 0, got {t}")).into());
+            }
+            (tau, "given".to_string(), None)
+        }
+        (None, Some(b)) => {
+            let b_t =
+                parse(b, Dimension::FluxDensity).map_err(|e| InputError(format!("--b: {e}")))?;
+            if !(0.0..=3.0).contains(&b_t) {
+                return Err(InputError(format!("--b must be between 0 T and 3 T, got {b}")).into());
+            }
+            (fluid.tau_y_of_b(b_t), format!("{} tau_y(B) at {b_t} T", fluid.name()), Some(b_t))
+        }
+        (None, None) => return Err(InputError("give --tau-y or --b".into()).into()),
+    };
+    let speed = match &a.speed {
+        Some(s) => Some(
+            parse(s, Dimension::AngularVelocity)
+                .map_err(|e| InputError(format!("--speed: {e}")))?,
+        ),
+        None => None,
+    };
+    let (eta_pa_s, eta_source) = match &a.eta {
+        Some(e) => {
+            let eta = parse(e, Dimension::Viscosity)
+                .map_err(|err| InputError(format!("--eta: {err}")))?;
+            if eta < 0.0 {
+                return Err(InputError(format!("--eta must be >= 0, got {e}")).into());
+            }
+            (eta, "given".to_string())
+        }
+        None => (fluid.viscosity_pa_s(), format!("{} off-state viscosity", fluid.name())),
+    };
+    Ok(ResolvedFluid {
+        tau_y_pa,
+        tau_y_source,
+        b_t,
+        fluid: fluid.name().to_string(),
+        eta_pa_s,
+        eta_source,
+        speed,
+    })
+}
+
+fn report(
+    configuration: &str,
+    equation: &str,
+    mut inputs: Value,
+    fluid: &ResolvedFluid,
+    viscous: Option<Viscous>,
+    t: BrakeTorque,
+    as_json: bool,
+) -> anyhow::Result<()> {
+    inputs["tau_y_Pa"] = json!(fluid.tau_y_pa);
+    inputs["tau_y_source"] = json!(fluid.tau_y_source);
+    if let Some(b) = fluid.b_t {
+        inputs["B_T"] = json!(b);
+        inputs["fluid"] = json!(fluid.fluid);
+    }
+    if let Some(v) = viscous {
+        inputs["eta_Pa_s"] = json!(v.eta_pa_s);
+        inputs["eta_source"] = json!(fluid.eta_source);
+        inputs["omega_rad_s"] = json!(v.omega_rad_s);
+        inputs["gap_m"] = json!(v.gap_m);
+    }
+    if as_json {
+        return print_json(&json!({
+            "configuration": configuration,
+            "equation": equation,
+            "inputs": inputs,
+            "torque_Nm": t.total_nm,
+            "yield_torque_Nm": t.yield_nm,
+            "viscous_torque_Nm": t.viscous_nm,
+        }));
+    }
+    println!("{configuration} brake, thesis {equation}");
+    println!("  yield stress   tau_y = {:.4} kPa  ({})", fluid.tau_y_pa / 1e3, fluid.tau_y_source);
+    if let Some(v) = viscous {
+        println!(
+            "  viscous term   eta = {} Pa·s ({}), omega = {:.4} rad/s, g = {} mm",
+            v.eta_pa_s,
+            fluid.eta_source,
+            v.omega_rad_s,
+            v.gap_m * 1e3
+        );
+        println!("  yield torque   {:.4} N·m", t.yield_nm);
+        println!("  viscous torque {:.4} N·m", t.viscous_nm);
+    }
+    println!("  torque         T = {:.4} N·m", t.total_nm);
+    Ok(())
+}
+
+fn coil(a: CoilArgs) -> anyhow::Result<()> {
+    let cw = length("--window-width", &a.window_width)?;
+    let ch = length("--window-height", &a.window_height)?;
+    let inner = length("--inner-radius", &a.inner_radius)?;
+    let current =
+        parse(&a.current, Dimension::Current).map_err(|e| InputError(format!("--current: {e}")))?;
+    let temperature = parse(&a.temperature, Dimension::TemperatureCelsius)
+        .map_err(|e| InputError(format!("--temperature: {e}")))?;
+    let wire = match (a.awg, &a.wire_diameter) {
+        (Some(awg), _) => CopperWire::awg(awg)?,
+        (None, Some(d)) => CopperWire::from_diameter(length("--wire-diameter", d)?)?,
+        (None, None) => return Err(InputError("give --awg or --wire-diameter".into()).into()),
+    };
+    let window = formula::turns_in_window(cw, ch, wire.diameter_m / 2.0)?;
+    let turns = a.turns.unwrap_or(window.turns);
+    if turns > window.turns {
+        eprintln!(
+            "warning: {turns} turns do not fit the window by (4.2)/(4.3) (at most {} turns)",
+            window.turns
+        );
+    }
+    let mean_radius = inner + cw / 2.0;
+    let e = formula::coil_electrics(turns, mean_radius, &wire, current, temperature)?;
+    let rating = wire.thesis_current_rating_a;
+    if let Some(limit) = rating.filter(|&limit| current > limit) {
+        eprintln!("warning: {current} A exceeds the wire's rating of {limit} A (thesis Table 4.6)");
+    }
+    if a.json {
+        return print_json(&json!({
+            "inputs": {
+                "window_width_m": cw, "window_height_m": ch, "inner_radius_m": inner,
+                "wire_diameter_m": wire.diameter_m, "awg": wire.awg, "current_A": current,
+                "temperature_C": temperature,
+            },
+            "layers_i": window.layers_i,
+            "turns_fit": window.turns,
+            "turns_exact": window.turns_exact,
+            "turns": turns,
+            "mean_radius_m": mean_radius,
+            "wire_length_m": e.wire_length_m,
+            "resistance_20C_ohm": e.resistance_20c_ohm,
+            "resistance_ohm": e.resistance_ohm,
+            "current_density_A_per_mm2": e.current_density_a_per_mm2,
+            "conductor_current_density_A_per_mm2": e.conductor_current_density_a_per_mm2,
+            "power_W": e.power_w,
+            "voltage_V": e.voltage_v,
+            "wire_current_rating_A": rating,
+        }));
+    }
+    let gauge = wire.awg.map_or(String::new(), |g| format!("AWG {g}, "));
+    println!("coil, thesis (4.1)-(4.3)");
+    println!(
+        "  window         {:.3} mm (radial) × {:.3} mm (axial), inner radius {:.3} mm",
+        cw * 1e3,
+        ch * 1e3,
+        inner * 1e3
+    );
+    println!("  wire           {gauge}{:.4} mm bare copper", wire.diameter_m * 1e3);
+    println!(
+        "  layers i       {} (4.2); turns that fit N_c = {:.2} -> {} (4.3)",
+        window.layers_i, window.turns_exact, window.turns
+    );
+    println!("  turns used     {turns}");
+    println!("  wire length    {:.2} m (mean radius {:.3} mm)", e.wire_length_m, mean_radius * 1e3);
+    println!(
+        "  resistance     {:.3} Ω at 20 °C, {:.3} Ω at {temperature} °C",
+        e.resistance_20c_ohm, e.resistance_ohm
+    );
+    println!(
+        "  current        {current} A: J_D = {:.3} A/mm² (4.1), {:.3} A/mm² in the copper",
+        e.current_density_a_per_mm2, e.conductor_current_density_a_per_mm2
+    );
+    println!("  power          {:.3} W at {:.3} V", e.power_w, e.voltage_v);
+    Ok(())
+}

@@ -1,0 +1,70 @@
+//! Bode diagram: magnitude (dB, (5.4)) and phase (degrees) against frequency on a log axis, measured
+//! points and fitted models, in two stacked panels like the thesis's Figures 5.9 and 5.10.
+
+use std::path::Path;
+
+use crate::ReportError;
+use crate::chart::{Figure, Panel, Series};
+
+/// One frequency-response curve: (ω rad/s, magnitude dB, phase deg) per point.
+#[derive(Debug, Clone)]
+pub struct BodeCurve {
+    /// Legend label.
+    pub label: String,
+    /// (ω rad/s, magnitude dB, phase deg) per point, ascending ω.
+    pub points: Vec<(f64, f64, f64)>,
+    /// Markers (measured data) rather than a line (model).
+    pub markers: bool,
+}
+
+/// The Bode figure of `curves`.
+pub fn bode_figure(title: &str, curves: &[BodeCurve]) -> Figure {
+    let mut magnitude = Panel::new("frequency [rad/s]", "magnitude [dB]").log_x();
+    let mut phase = Panel::new("frequency [rad/s]", "phase [deg]").log_x();
+    for (k, c) in curves.iter().enumerate() {
+        let mag: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.1)).collect();
+        let ph: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.2)).collect();
+        let (m, p) = if c.markers {
+            (Series::points(c.label.clone(), mag), Series::points(c.label.clone(), ph))
+        } else {
+            (Series::line(c.label.clone(), mag), Series::line(c.label.clone(), ph))
+        };
+        magnitude = magnitude.series(m.color(k));
+        phase = phase.series(p.color(k));
+    }
+    Figure::new(title).panel(magnitude).panel(phase).size(900, 800)
+}
+
+/// Writes the Bode figure to `path` (SVG, or PNG for a `.png` name), atomically.
+pub fn save_bode(path: &Path, title: &str, curves: &[BodeCurve]) -> Result<(), ReportError> {
+    if curves.iter().all(|c| c.points.is_empty()) {
+        return Err(ReportError::Data("Bode plot: no frequency point".into()));
+    }
+    bode_figure(title, curves).save(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn renders_measured_and_model() {
+        let pts: Vec<(f64, f64, f64)> = (0..41)
+            .map(|k| {
+                let w = 0.1 * 10f64.powf(k as f64 / 10.0);
+                let (re, im) = (1.0, w / 63.0);
+                (w, -10.0 * (re * re + im * im).log10(), -im.atan2(re).to_degrees())
+            })
+            .collect();
+        let svg = bode_figure(
+            "Bode",
+            &[
+                BodeCurve { label: "measured".into(), points: pts.clone(), markers: true },
+                BodeCurve { label: "model".into(), points: pts, markers: false },
+            ],
+        )
+        .to_svg()
+        .unwrap();
+        assert!(svg.contains("magnitude") && svg.contains("phase"));
+    }
+}

@@ -1,0 +1,472 @@
+//! Generic XY charts: line and scatter series on linear or logarithmic axes, in one or several stacked
+//! panels, rendered to SVG (or PNG when the file name ends in `.png`).
+//!
+//! The domain plots (Bode diagram, hysteresis loop, torque–current curve, haptic time histories) are
+//! built from a [`Figure`] of [`Panel`]s so they all look alike.
+//!
+//! ```
+//! use mrbrake_report::chart::{Figure, Panel, Series};
+//! let fig = Figure::new("Torque–current").panel(
+//!     Panel::new("current [A]", "torque [N·m]")
+//!         .series(Series::line("T(I)", vec![(0.0, 0.15), (1.0, 2.1), (2.0, 3.84)])),
+//! );
+//! let svg = fig.to_svg().unwrap();
+//! assert!(svg.starts_with("<svg"));
+//! ```
+
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::coord::Shift;
+pub use plotters::prelude::SeriesLabelPosition;
+use plotters::prelude::*;
+
+use crate::ReportError;
+
+/// The font used for all text: DejaVu Sans (Bitstream Vera licence, see `fonts/LICENSE-DejaVu.txt`),
+/// embedded so that a plot renders the same on any machine without system fonts.
+static FONT: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
+static REGISTER_FONT: Once = Once::new();
+
+fn ensure_font() {
+    REGISTER_FONT.call_once(|| {
+        // The embedded font is a valid TrueType file; failing here would be a build defect.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mark {
+    /// A polyline through the points in order.
+    Line,
+    /// A dashed polyline (reference curves, limits).
+    Dashed,
+    /// A circle at each point.
+    Points,
+    /// A polyline with a circle at each point.
+    LinePoints,
+}
+
+/// A named set of (x, y) points.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend label (empty: no legend entry).
+    pub label: String,
+    /// The points, in drawing order.
+    pub points: Vec<(f64, f64)>,
+    /// How the points are drawn.
+    pub mark: Mark,
+    /// Colour index into the palette (None: the series' position in the panel).
+    pub color: Option<usize>,
+}
+
+impl Series {
+    /// A solid line.
+    pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { label: label.into(), points, mark: Mark::Line, color: None }
+    }
+    /// A dashed line.
+    pub fn dashed(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { label: label.into(), points, mark: Mark::Dashed, color: None }
+    }
+    /// Markers only.
+    pub fn points(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { label: label.into(), points, mark: Mark::Points, color: None }
+    }
+    /// A line with markers.
+    pub fn line_points(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { label: label.into(), points, mark: Mark::LinePoints, color: None }
+    }
+    /// Sets the palette colour index.
+    pub fn color(mut self, index: usize) -> Self {
+        self.color = Some(index);
+        self
+    }
+}
+
+/// Axis scale.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Scale {
+    /// Linear axis.
+    #[default]
+    Linear,
+    /// Base-10 logarithmic axis (all values must be positive).
+    Log,
+}
+
+/// One plotting area with its axes and series.
+#[derive(Clone)]
+pub struct Panel {
+    /// Optional panel caption.
+    pub caption: String,
+    /// X-axis label with unit.
+    pub x_label: String,
+    /// Y-axis label with unit.
+    pub y_label: String,
+    /// X scale.
+    pub x_scale: Scale,
+    /// Y scale.
+    pub y_scale: Scale,
+    /// Fixed x range (None: from the data).
+    pub x_range: Option<(f64, f64)>,
+    /// Fixed y range (None: from the data, with a margin).
+    pub y_range: Option<(f64, f64)>,
+    /// The series drawn in this panel.
+    pub series: Vec<Series>,
+    /// Where the legend box goes.
+    pub legend: SeriesLabelPosition,
+}
+
+impl Panel {
+    /// A panel with axis labels and no series yet.
+    pub fn new(x_label: impl Into<String>, y_label: impl Into<String>) -> Self {
+        Self {
+            caption: String::new(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            x_scale: Scale::Linear,
+            y_scale: Scale::Linear,
+            x_range: None,
+            y_range: None,
+            series: Vec::new(),
+            legend: SeriesLabelPosition::UpperLeft,
+        }
+    }
+    /// Moves the legend (e.g. `SeriesLabelPosition::LowerRight`) away from the data.
+    pub fn legend(mut self, position: SeriesLabelPosition) -> Self {
+        self.legend = position;
+        self
+    }
+    /// Sets the caption.
+    pub fn caption(mut self, caption: impl Into<String>) -> Self {
+        self.caption = caption.into();
+        self
+    }
+    /// Adds a series.
+    pub fn series(mut self, series: Series) -> Self {
+        self.series.push(series);
+        self
+    }
+    /// Logarithmic x axis.
+    pub fn log_x(mut self) -> Self {
+        self.x_scale = Scale::Log;
+        self
+    }
+    /// Logarithmic y axis.
+    pub fn log_y(mut self) -> Self {
+        self.y_scale = Scale::Log;
+        self
+    }
+    /// Fixes the x range.
+    pub fn x_range(mut self, lo: f64, hi: f64) -> Self {
+        self.x_range = Some((lo, hi));
+        self
+    }
+    /// Fixes the y range.
+    pub fn y_range(mut self, lo: f64, hi: f64) -> Self {
+        self.y_range = Some((lo, hi));
+        self
+    }
+
+    fn data_range(&self, axis: usize, scale: Scale) -> Result<(f64, f64), ReportError> {
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for s in &self.series {
+            for p in &s.points {
+                let v = if axis == 0 { p.0 } else { p.1 };
+                if !v.is_finite() || (scale == Scale::Log && v <= 0.0) {
+                    continue;
+                }
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+        if !lo.is_finite() || !hi.is_finite() {
+            return Err(ReportError::Data(format!(
+                "panel '{}' has no finite{} {} values",
+                if self.caption.is_empty() { &self.y_label } else { &self.caption },
+                if scale == Scale::Log { " positive" } else { "" },
+                if axis == 0 { "x" } else { "y" }
+            )));
+        }
+        Ok(pad_range(lo, hi, scale, axis == 1))
+    }
+}
+
+/// Widens a data range so that the curve does not touch the frame, and a flat range gets a height.
+fn pad_range(lo: f64, hi: f64, scale: Scale, pad: bool) -> (f64, f64) {
+    match scale {
+        Scale::Log => {
+            if hi / lo < 1.0 + 1e-9 {
+                (lo / 2.0, hi * 2.0)
+            } else if pad {
+                (lo / 1.2, hi * 1.2)
+            } else {
+                (lo, hi)
+            }
+        }
+        Scale::Linear => {
+            let span = hi - lo;
+            if span <= 1e-12 * (1.0 + hi.abs()) {
+                let d = if hi.abs() > 0.0 { 0.1 * hi.abs() } else { 1.0 };
+                (lo - d, hi + d)
+            } else if pad {
+                (lo - 0.05 * span, hi + 0.05 * span)
+            } else {
+                (lo, hi)
+            }
+        }
+    }
+}
+
+/// A whole picture: a title and panels laid out in a grid.
+#[derive(Clone)]
+pub struct Figure {
+    /// Title over the figure.
+    pub title: String,
+    /// Panels, filled row by row.
+    pub panels: Vec<Panel>,
+    /// Number of panel columns (rows follow from the panel count).
+    pub columns: usize,
+    /// Pixel size (width, height).
+    pub size: (u32, u32),
+}
+
+impl Figure {
+    /// An empty figure, 900 × 600 pixels, one column.
+    pub fn new(title: impl Into<String>) -> Self {
+        Self { title: title.into(), panels: Vec::new(), columns: 1, size: (900, 600) }
+    }
+    /// Adds a panel.
+    pub fn panel(mut self, panel: Panel) -> Self {
+        self.panels.push(panel);
+        self
+    }
+    /// Sets the number of panel columns.
+    pub fn columns(mut self, columns: usize) -> Self {
+        self.columns = columns.max(1);
+        self
+    }
+    /// Sets the size in pixels.
+    pub fn size(mut self, width: u32, height: u32) -> Self {
+        self.size = (width, height);
+        self
+    }
+
+    /// Renders the figure as an SVG document.
+    pub fn to_svg(&self) -> Result<String, ReportError> {
+        let mut buf = String::new();
+        {
+            let root = SVGBackend::with_string(&mut buf, self.size).into_drawing_area();
+            self.draw(&root)?;
+            root.present().map_err(|e| ReportError::Backend(e.to_string()))?;
+        }
+        Ok(buf)
+    }
+
+    /// Writes the figure to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
+    pub fn save(&self, path: &Path) -> Result<(), ReportError> {
+        let is_png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+        if !is_png {
+            return crate::write_atomic(path, self.to_svg()?.as_bytes());
+        }
+        // The bitmap backend encodes by file name, so render to a temporary .png beside the target
+        // and rename it into place (same directory, so the rename is atomic).
+        let tmp = crate::atomic::temp_path_for(path)?.with_extension("png");
+        let io_err = |source| ReportError::Io { path: path.to_path_buf(), source };
+        let drawn = (|| {
+            let root = BitMapBackend::new(&tmp, self.size).into_drawing_area();
+            self.draw(&root)?;
+            root.present().map_err(|e| ReportError::Backend(e.to_string()))
+        })();
+        if let Err(e) = drawn {
+            let _ = std::fs::remove_file(&tmp);
+            return Err(e);
+        }
+        std::fs::rename(&tmp, path).map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            io_err(e)
+        })
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ReportError> {
+        ensure_font();
+        let be = |e: DrawingAreaErrorKind<DB::ErrorType>| ReportError::Backend(e.to_string());
+        if self.panels.is_empty() {
+            return Err(ReportError::Data(format!("figure '{}' has no panel", self.title)));
+        }
+        root.fill(&WHITE).map_err(be)?;
+        let area = if self.title.is_empty() {
+            root.clone()
+        } else {
+            root.titled(&self.title, ("sans-serif", 22)).map_err(be)?
+        };
+        let rows = self.panels.len().div_ceil(self.columns);
+        let areas = area.split_evenly((rows, self.columns));
+        for (panel, sub) in self.panels.iter().zip(areas.iter()) {
+            draw_panel(panel, sub)?;
+        }
+        Ok(())
+    }
+}
+
+/// Palette: distinguishable colours (Okabe–Ito, colour-blind safe) then plotters' Palette99.
+pub fn palette(index: usize) -> RGBColor {
+    const OKABE_ITO: [RGBColor; 8] = [
+        RGBColor(0, 114, 178),
+        RGBColor(213, 94, 0),
+        RGBColor(0, 158, 115),
+        RGBColor(204, 121, 167),
+        RGBColor(230, 159, 0),
+        RGBColor(86, 180, 233),
+        RGBColor(0, 0, 0),
+        RGBColor(240, 228, 66),
+    ];
+    if index < OKABE_ITO.len() {
+        OKABE_ITO[index]
+    } else {
+        let c = Palette99::pick(index).to_rgba();
+        RGBColor(c.0, c.1, c.2)
+    }
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    panel: &Panel,
+    area: &DrawingArea<DB, Shift>,
+) -> Result<(), ReportError> {
+    let (x0, x1) = match panel.x_range {
+        Some(r) => r,
+        None => panel.data_range(0, panel.x_scale)?,
+    };
+    let (y0, y1) = match panel.y_range {
+        Some(r) => r,
+        None => panel.data_range(1, panel.y_scale)?,
+    };
+    // The four scale combinations are four chart types in plotters; a macro keeps them one body.
+    macro_rules! with_chart {
+        ($xr:expr, $yr:expr) => {{
+            let mut builder = ChartBuilder::on(area);
+            builder.margin(12).x_label_area_size(42).y_label_area_size(64);
+            if !panel.caption.is_empty() {
+                builder.caption(&panel.caption, ("sans-serif", 17));
+            }
+            let mut chart = builder
+                .build_cartesian_2d($xr, $yr)
+                .map_err(|e| ReportError::Backend(e.to_string()))?;
+            chart
+                .configure_mesh()
+                .x_desc(panel.x_label.as_str())
+                .y_desc(panel.y_label.as_str())
+                .label_style(("sans-serif", 13))
+                .light_line_style(RGBColor(235, 235, 235))
+                .draw()
+                .map_err(|e| ReportError::Backend(e.to_string()))?;
+            let mut any_label = false;
+            for (i, s) in panel.series.iter().enumerate() {
+                let color = palette(s.color.unwrap_or(i));
+                let pts: Vec<(f64, f64)> = s
+                    .points
+                    .iter()
+                    .copied()
+                    .filter(|(x, y)| {
+                        x.is_finite()
+                            && y.is_finite()
+                            && (panel.x_scale == Scale::Linear || *x > 0.0)
+                            && (panel.y_scale == Scale::Linear || *y > 0.0)
+                    })
+                    .collect();
+                let style = ShapeStyle::from(&color).stroke_width(2);
+                if s.mark == Mark::LinePoints {
+                    chart
+                        .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                        .map_err(|e| ReportError::Backend(e.to_string()))?;
+                }
+                let anno = match s.mark {
+                    Mark::Line | Mark::LinePoints => chart
+                        .draw_series(LineSeries::new(pts.iter().copied(), style))
+                        .map_err(|e| ReportError::Backend(e.to_string()))?,
+                    Mark::Dashed => chart
+                        .draw_series(DashedLineSeries::new(pts.iter().copied(), 6, 4, style))
+                        .map_err(|e| ReportError::Backend(e.to_string()))?,
+                    Mark::Points => chart
+                        .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                        .map_err(|e| ReportError::Backend(e.to_string()))?,
+                };
+                if !s.label.is_empty() {
+                    any_label = true;
+                    anno.label(s.label.as_str()).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+                    });
+                }
+            }
+            if any_label {
+                chart
+                    .configure_series_labels()
+                    .background_style(WHITE.mix(0.85))
+                    .border_style(RGBColor(180, 180, 180))
+                    .label_font(("sans-serif", 13))
+                    .position(panel.legend.clone())
+                    .draw()
+                    .map_err(|e| ReportError::Backend(e.to_string()))?;
+            }
+        }};
+    }
+    match (panel.x_scale, panel.y_scale) {
+        (Scale::Linear, Scale::Linear) => with_chart!(x0..x1, y0..y1),
+        (Scale::Log, Scale::Linear) => with_chart!((x0..x1).log_scale(), y0..y1),
+        (Scale::Linear, Scale::Log) => with_chart!(x0..x1, (y0..y1).log_scale()),
+        (Scale::Log, Scale::Log) => with_chart!((x0..x1).log_scale(), (y0..y1).log_scale()),
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> Figure {
+        Figure::new("test")
+            .panel(
+                Panel::new("ω [rad/s]", "gain [dB]")
+                    .log_x()
+                    .series(Series::points(
+                        "measured",
+                        vec![(0.1, 0.0), (10.0, -1.0), (1000.0, -40.0)],
+                    ))
+                    .series(Series::line("model", vec![(0.1, 0.0), (10.0, -1.2), (1000.0, -41.0)])),
+            )
+            .panel(
+                Panel::new("ω [rad/s]", "phase [°]")
+                    .log_x()
+                    .series(Series::dashed("", vec![(0.1, 0.0), (1000.0, -170.0)])),
+            )
+    }
+
+    #[test]
+    fn renders_svg_with_labels() {
+        let svg = sample().to_svg().unwrap();
+        assert!(svg.contains("gain [dB]"));
+        assert!(svg.contains("measured"));
+    }
+
+    #[test]
+    fn saves_png_and_svg_atomically() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in ["fig.png", "fig.svg"] {
+            let p = dir.path().join(name);
+            sample().save(&p).unwrap();
+            let bytes = std::fs::read(&p).unwrap();
+            assert!(bytes.len() > 1000, "{name} too small");
+        }
+        let png = std::fs::read(dir.path().join("fig.png")).unwrap();
+        assert_eq!(&png[1..4], b"PNG");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2, "no temporary files left");
+    }
+
+    #[test]
+    fn empty_panel_is_a_data_error() {
+        let fig = Figure::new("x").panel(Panel::new("a", "b"));
+        assert!(matches!(fig.to_svg(), Err(ReportError::Data(_))));
+    }
+}

@@ -1,0 +1,324 @@
+//! Field map of an axisymmetric magnetostatic solution: |B| as colour on the (r, z) triangles, flux
+//! lines as contours of the flux function `ψ = r A_phi`, and region outlines.
+//!
+//! In axisymmetry the flux through the disc of radius r at height z is `Φ = 2π r A_phi`, so B is
+//! tangent to the level lines of `ψ = r A_phi` and equally spaced levels of ψ give flux lines that
+//! carry equal flux (their density shows |B|). Contours are traced triangle by triangle on the
+//! piecewise-linear interpolant of ψ ("marching triangles"). The map knows no FEM types: it takes
+//! plain node, triangle and value arrays. SVG by default, PNG when the file name ends in `.png`.
+
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use crate::ReportError;
+
+static FONT: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
+static REGISTER_FONT: Once = Once::new();
+
+/// The data of a field map.
+#[derive(Debug, Clone, Copy)]
+pub struct FieldMap<'a> {
+    /// Title drawn above the map.
+    pub title: &'a str,
+    /// Node coordinates `[r, z]` (m).
+    pub nodes: &'a [[f64; 2]],
+    /// Triangles (node indices).
+    pub triangles: &'a [[usize; 3]],
+    /// Region tag per triangle (outlines are drawn where it changes).
+    pub region_tags: &'a [u32],
+    /// |B| per triangle (T).
+    pub b_abs_t: &'a [f64],
+    /// Flux function `r A_phi` per node (Wb/rad).
+    pub flux_function: &'a [f64],
+    /// Number of flux lines.
+    pub flux_lines: usize,
+}
+
+/// Image size in pixels for a map: width fixed, height from the aspect ratio of the mesh (plus the
+/// colour bar and margins).
+fn size_for(map: &FieldMap<'_>) -> (u32, u32) {
+    let (lo, hi) = bounds(map.nodes);
+    let aspect = ((hi[1] - lo[1]) / (hi[0] - lo[0]).max(1e-300)).clamp(0.2, 5.0);
+    let plot_w = 640.0;
+    (plot_w as u32 + 170, (plot_w * aspect) as u32 + 110)
+}
+
+fn bounds(nodes: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for p in nodes {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// Perceptually ordered colour map (an approximation of matplotlib's "viridis" by 5 anchors).
+fn colour(t: f64) -> RGBColor {
+    const ANCHORS: [(f64, f64, f64); 5] = [
+        (68.0, 1.0, 84.0),
+        (59.0, 82.0, 139.0),
+        (33.0, 145.0, 140.0),
+        (94.0, 201.0, 98.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let x = t * 4.0;
+    let i = (x.floor() as usize).min(3);
+    let f = x - i as f64;
+    let (a, b) = (ANCHORS[i], ANCHORS[i + 1]);
+    let mix = |u: f64, v: f64| (u + f * (v - u)).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+fn check(map: &FieldMap<'_>) -> Result<(), ReportError> {
+    let n = map.nodes.len();
+    if map.triangles.is_empty() || n == 0 {
+        return Err(ReportError::Data("field map: empty mesh".into()));
+    }
+    if map.b_abs_t.len() != map.triangles.len()
+        || map.region_tags.len() != map.triangles.len()
+        || map.flux_function.len() != n
+    {
+        return Err(ReportError::Data(format!(
+            "field map: {} triangles but {} |B| values and {} tags; {n} nodes but {} flux values",
+            map.triangles.len(),
+            map.b_abs_t.len(),
+            map.region_tags.len(),
+            map.flux_function.len()
+        )));
+    }
+    if map.triangles.iter().any(|t| t.iter().any(|&v| v >= n)) {
+        return Err(ReportError::Data("field map: a triangle references a missing node".into()));
+    }
+    Ok(())
+}
+
+/// Segments `[(r, z), (r, z)]` of the contour `ψ = level` in every triangle.
+pub fn contour_segments(
+    nodes: &[[f64; 2]],
+    triangles: &[[usize; 3]],
+    psi: &[f64],
+    level: f64,
+) -> Vec<[(f64, f64); 2]> {
+    let mut segments = Vec::new();
+    for tri in triangles {
+        let mut crossing = Vec::with_capacity(2);
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let (fa, fb) = (psi[a] - level, psi[b] - level);
+            if (fa < 0.0) != (fb < 0.0) {
+                let s = fa / (fa - fb);
+                crossing.push((
+                    nodes[a][0] + s * (nodes[b][0] - nodes[a][0]),
+                    nodes[a][1] + s * (nodes[b][1] - nodes[a][1]),
+                ));
+            }
+        }
+        if crossing.len() == 2 {
+            segments.push([crossing[0], crossing[1]]);
+        }
+    }
+    segments
+}
+
+/// Edges shared by triangles of different regions, and boundary edges.
+fn outline_edges(map: &FieldMap<'_>) -> Vec<[usize; 2]> {
+    let mut seen: HashMap<(usize, usize), (u32, bool)> =
+        HashMap::with_capacity(3 * map.triangles.len() / 2);
+    let mut outline = Vec::new();
+    for (t, tri) in map.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            match seen.get_mut(&key) {
+                Some(entry) => {
+                    entry.1 = true;
+                    if entry.0 != map.region_tags[t] {
+                        outline.push([a, b]);
+                    }
+                }
+                None => {
+                    seen.insert(key, (map.region_tags[t], false));
+                }
+            }
+        }
+    }
+    outline.extend(seen.iter().filter(|(_, v)| !v.1).map(|(k, _)| [k.0, k.1]));
+    outline
+}
+
+fn draw<DB: DrawingBackend>(
+    map: &FieldMap<'_>,
+    root: &DrawingArea<DB, Shift>,
+) -> Result<(), ReportError> {
+    REGISTER_FONT.call_once(|| {
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+    let be = |e: DrawingAreaErrorKind<DB::ErrorType>| ReportError::Backend(e.to_string());
+    root.fill(&WHITE).map_err(be)?;
+    let (width, _) = root.dim_in_pixel();
+    let (plot_area, bar_area) = root.split_horizontally(width.saturating_sub(150));
+    let (lo, hi) = bounds(map.nodes);
+    let mm = 1e3;
+    let b_max =
+        map.b_abs_t.iter().cloned().filter(|b| b.is_finite()).fold(0.0, f64::max).max(1e-12);
+    let mut chart = ChartBuilder::on(&plot_area)
+        .caption(map.title, ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(55)
+        .build_cartesian_2d(lo[0] * mm..hi[0] * mm, lo[1] * mm..hi[1] * mm)
+        .map_err(be)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("r [mm]")
+        .y_desc("z [mm]")
+        .label_style(("sans-serif", 13))
+        .draw()
+        .map_err(be)?;
+    chart
+        .draw_series(map.triangles.iter().zip(map.b_abs_t).map(|(tri, b)| {
+            let points: Vec<(f64, f64)> =
+                tri.iter().map(|&v| (map.nodes[v][0] * mm, map.nodes[v][1] * mm)).collect();
+            let c = colour(b / b_max);
+            // Stroke with the fill colour so no hairline gaps show between triangles.
+            Polygon::new(points, c.filled().stroke_width(1))
+        }))
+        .map_err(be)?;
+    let (psi_lo, psi_hi) = map
+        .flux_function
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+    if psi_hi > psi_lo && map.flux_lines > 0 {
+        for k in 1..=map.flux_lines {
+            let level = psi_lo + (psi_hi - psi_lo) * (k as f64 - 0.5) / map.flux_lines as f64;
+            let segments = contour_segments(map.nodes, map.triangles, map.flux_function, level);
+            chart
+                .draw_series(segments.iter().map(|s| {
+                    PathElement::new(
+                        vec![(s[0].0 * mm, s[0].1 * mm), (s[1].0 * mm, s[1].1 * mm)],
+                        WHITE.mix(0.9).stroke_width(1),
+                    )
+                }))
+                .map_err(be)?;
+        }
+    }
+    let outline = outline_edges(map);
+    chart
+        .draw_series(outline.iter().map(|e| {
+            PathElement::new(
+                vec![
+                    (map.nodes[e[0]][0] * mm, map.nodes[e[0]][1] * mm),
+                    (map.nodes[e[1]][0] * mm, map.nodes[e[1]][1] * mm),
+                ],
+                BLACK.stroke_width(1),
+            )
+        }))
+        .map_err(be)?;
+    // Colour bar.
+    let mut bar = ChartBuilder::on(&bar_area)
+        .margin_top(40)
+        .margin_bottom(50)
+        .margin_right(60)
+        .y_label_area_size(0)
+        .right_y_label_area_size(50)
+        .caption("|B| [T]", ("sans-serif", 14))
+        .build_cartesian_2d(0.0..1.0, 0.0..b_max)
+        .map_err(be)?;
+    bar.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_labels(6)
+        .label_style(("sans-serif", 12))
+        .draw()
+        .map_err(be)?;
+    let steps = 64;
+    bar.draw_series((0..steps).map(|i| {
+        let (y0, y1) = (b_max * i as f64 / steps as f64, b_max * (i + 1) as f64 / steps as f64);
+        Rectangle::new([(0.0, y0), (1.0, y1)], colour((i as f64 + 0.5) / steps as f64).filled())
+    }))
+    .map_err(be)?;
+    Ok(())
+}
+
+/// Renders the map as an SVG document.
+pub fn field_map_svg(map: &FieldMap<'_>) -> Result<String, ReportError> {
+    check(map)?;
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, size_for(map)).into_drawing_area();
+        draw(map, &root)?;
+        root.present().map_err(|e| ReportError::Backend(e.to_string()))?;
+    }
+    Ok(buf)
+}
+
+/// Writes the map to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
+pub fn save_field_map(map: &FieldMap<'_>, path: &Path) -> Result<(), ReportError> {
+    let is_png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !is_png {
+        return crate::write_atomic(path, field_map_svg(map)?.as_bytes());
+    }
+    check(map)?;
+    let tmp = crate::atomic::temp_path_for(path)?.with_extension("png");
+    let drawn = (|| {
+        let root = BitMapBackend::new(&tmp, size_for(map)).into_drawing_area();
+        draw(map, &root)?;
+        root.present().map_err(|e| ReportError::Backend(e.to_string()))
+    })();
+    if let Err(e) = drawn {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, path).map_err(|source| {
+        let _ = std::fs::remove_file(&tmp);
+        ReportError::Io { path: path.to_path_buf(), source }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
+        (vec![[0.0, 0.0], [0.01, 0.0], [0.01, 0.01], [0.0, 0.01]], vec![[0, 1, 2], [0, 2, 3]])
+    }
+
+    #[test]
+    fn contour_of_a_linear_function_is_a_straight_line() {
+        let (nodes, tris) = square();
+        let psi: Vec<f64> = nodes.iter().map(|p| p[0]).collect();
+        let segments = contour_segments(&nodes, &tris, &psi, 0.004);
+        assert_eq!(segments.len(), 2);
+        for s in segments {
+            assert!((s[0].0 - 0.004).abs() < 1e-12 && (s[1].0 - 0.004).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn renders_svg_and_rejects_mismatched_data() {
+        let (nodes, tris) = square();
+        let psi = [0.0, 1.0, 2.0, 1.0];
+        let map = FieldMap {
+            title: "test",
+            nodes: &nodes,
+            triangles: &tris,
+            region_tags: &[1, 2],
+            b_abs_t: &[0.5, 1.0],
+            flux_function: &psi,
+            flux_lines: 5,
+        };
+        let svg = field_map_svg(&map).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("|B| [T]"));
+        let bad = FieldMap { b_abs_t: &[0.5], ..map };
+        assert!(field_map_svg(&bad).is_err());
+    }
+}
