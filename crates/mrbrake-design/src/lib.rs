@@ -1,7 +1,12 @@
 //! MR brake design: closed-form torque models of the thesis, coil and winding formulas, passivity
 //! conditions, and (later) brake specifications, the geometry builder and studies.
 
+pub mod analysis;
 pub mod formula;
+pub mod geo_export;
+pub mod geometry;
+pub mod mesh_build;
+pub mod spec;
 
 /// Errors of this crate.
 #[derive(Debug, thiserror::Error)]
@@ -10,6 +15,9 @@ pub enum DesignError {
     /// Invalid input (a field out of its allowed range), with a message naming the field.
     #[error("{0}")]
     Input(String),
+    /// A numerical or internal failure (e.g. the mesher could not reach the requested size).
+    #[error("{0}")]
+    Numerical(String),
 }
 
 impl DesignError {

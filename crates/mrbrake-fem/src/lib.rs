@@ -1,10 +1,26 @@
 //! Axisymmetric finite-element core: mesh, elements, quadrature, assembly, sparse solve.
 //! Knows no magnetics: physics lives in the forms the caller assembles.
 //!
-//! Brief overview: a [`mesh::Mesh`] holds the (r, z) nodes, the triangles with their physical (region)
-//! tags and the tagged boundary edges. (More modules are being written: see docs/ARCHITECTURE.md.)
+//! Brief overview:
+//! - [`mesh::Mesh`] holds the (r, z) nodes, the triangles with their physical (region) tags and the
+//!   tagged boundary edges; [`structured`] generates simple graded meshes of blocks and half-discs;
+//!   [`gmsh`] reads Gmsh MSH 2.2 / 4.1 ASCII files; [`vtu`] writes ParaView files.
+//! - [`quadrature`] gives triangle and interval rules; [`element`] the P1 triangle geometry
+//!   (barycentric gradients) used by the forms.
+//! - [`pattern::SymmetricPattern`] is the sparsity pattern with a precomputed element scatter map, and
+//!   [`cholesky::SparseCholesky`] the faer sparse Cholesky with the symbolic analysis done once.
+//! - [`locate::PointLocator`] finds the triangle containing a point (uniform bucket grid).
 
+pub mod cholesky;
+pub mod element;
+pub mod gmsh;
+pub mod locate;
 pub mod mesh;
+pub mod mesher;
+pub mod pattern;
+pub mod quadrature;
+pub mod structured;
+pub mod vtu;
 
 /// Errors of this crate.
 #[derive(Debug, thiserror::Error)]
@@ -13,12 +29,33 @@ pub enum FemError {
     /// Invalid input (file, line, field) with a message naming what was expected.
     #[error("{0}")]
     Input(String),
+    /// A malformed mesh file: the file, the 1-based line number and what was expected there.
+    #[error("{file}:{line}: {message}")]
+    Parse {
+        /// The file being read.
+        file: String,
+        /// 1-based line number (the last line for a truncated file).
+        line: usize,
+        /// What was wrong and what was expected.
+        message: String,
+    },
+    /// A file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The underlying I/O error.
+        source: std::io::Error,
+    },
+    /// A numerical failure (e.g. a matrix that is not positive definite).
+    #[error("{0}")]
+    Numerical(String),
 }
 
 impl FemError {
     /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
     /// internal failures (exit code 1).
     pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Input(_))
+        matches!(self, Self::Input(_) | Self::Parse { .. } | Self::Io { .. })
     }
 }

@@ -1,6 +1,60 @@
 //! Axisymmetric non-linear magnetostatics in the azimuthal vector potential A_phi.
 //!
-//! (Work in progress: see docs/ARCHITECTURE.md for the crate map.)
+//! Brief overview:
+//! - [`problem::Problem`]: a mesh (`mrbrake_fem::mesh::Mesh`), a [`problem::Region`] (material and
+//!   source) per physical surface, boundary conditions per physical curve.
+//! - [`solver::Solver`]: built once per problem (DOF numbering, sparsity pattern, symbolic Cholesky),
+//!   then [`solver::Solver::solve`] runs Newton–Raphson with line search; sources can be changed
+//!   ([`solver::Solver::set_source`]) and the previous solution passed as a warm start, as a current
+//!   sweep does. The weak form and the open boundary are in [`assembly`].
+//! - [`field::Solution`] with post-processing on the solver: B at points and along lines, region
+//!   statistics, flux linkage, inductance, energy and co-energy.
+//! - [`material`]: the [`material::Reluctivity`] law `ν(B²)` (implemented by the material library's
+//!   B-H curves) and an analytic test curve.
+//! - [`problem_file`]: the TOML problem files of `mrbrake fem solve`.
+//! - [`exact`]: closed-form reference fields (current loop with elliptic integrals, solenoids, thick
+//!   coil on the axis, permeable sphere) used by the validation tests.
+//!
+//! ```
+//! use std::sync::Arc;
+//! use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+//! use mrbrake_magnetics::material::MagneticMaterial;
+//! use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
+//! use mrbrake_magnetics::solver::{Solver, SolverOptions};
+//!
+//! // A coil (tag 2) in air (tag 1), A = 0 on the outer box (edge tag 12).
+//! let r = graded_lines(0.0, 0.1, 20, 1.0);
+//! let z = graded_lines(-0.1, 0.1, 40, 1.0);
+//! let coil = |r: f64, z: f64| if (0.02..0.03).contains(&r) && z.abs() < 0.02 { 2 } else { 1 };
+//! let mesh = rectangle_mesh(&r, &z, coil, SideTags { r_min: 10, r_max: 11, z_min: 12, z_max: 12 }).unwrap();
+//! let problem = Problem {
+//!     mesh: Arc::new(mesh),
+//!     regions: vec![
+//!         Region { tag: 1, material: MagneticMaterial::air(), source: None },
+//!         Region { tag: 2, material: MagneticMaterial::air(), source: Some(Source::Coil { turns: 100.0, current_a: 1.0 }) },
+//!     ],
+//!     boundaries: vec![
+//!         Boundary { tag: 11, condition: BoundaryCondition::Dirichlet },
+//!         Boundary { tag: 12, condition: BoundaryCondition::Dirichlet },
+//!     ],
+//! };
+//! let mut solver = Solver::new(problem, SolverOptions::default()).unwrap();
+//! let solution = solver.solve(None).unwrap();
+//! let centre = solver.b_at(&solution, [0.0, 0.0]).unwrap();
+//! assert!(centre.b_z_t > 0.0);
+//! ```
+
+pub mod assembly;
+pub mod benchmark;
+pub mod exact;
+pub mod field;
+pub mod material;
+pub mod problem;
+pub mod problem_file;
+pub mod solver;
+
+pub use field::Solution;
+pub use solver::{NewtonStep, Solver, SolverOptions};
 
 /// Errors of this crate.
 #[derive(Debug, thiserror::Error)]
@@ -9,12 +63,48 @@ pub enum MagneticsError {
     /// Invalid input (file, field, value) with a message naming what was expected.
     #[error("{0}")]
     Input(String),
+    /// An error of the mesh / finite-element layer (mesh file, invalid mesh, factorisation).
+    #[error(transparent)]
+    Fem(#[from] mrbrake_fem::FemError),
+    /// An error of the material library (unknown name, bad B-H file).
+    #[error(transparent)]
+    Material(#[from] mrbrake_materials::MaterialError),
+    /// Newton–Raphson failed; the residual history says how far it got.
+    #[error("Newton-Raphson failed: {reason}; residual history (relative): {}", format_history(history, *residual_scale))]
+    NotConverged {
+        /// Why it stopped.
+        reason: String,
+        /// One entry per iteration.
+        history: Vec<NewtonStep>,
+        /// Residual scale of the stopping rule.
+        residual_scale: f64,
+    },
+    /// Another numerical failure.
+    #[error("{0}")]
+    Numerical(String),
+}
+
+fn format_history(history: &[NewtonStep], _scale: f64) -> String {
+    if history.is_empty() {
+        return "(none)".into();
+    }
+    history
+        .iter()
+        .enumerate()
+        .map(|(k, s)| format!("#{} {:.3e} (step {:.3})", k + 1, s.relative_residual, s.step_length))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 impl MagneticsError {
     /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
     /// internal failures (exit code 1).
     pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Input(_))
+        match self {
+            Self::Input(_) => true,
+            Self::Fem(e) => e.is_input_error(),
+            Self::Material(e) => e.is_input_error(),
+            Self::NotConverged { .. } | Self::Numerical(_) => false,
+        }
     }
 }

@@ -1,20 +1,50 @@
 //! Material library for mrbrake: B-H curves, MR-fluid yield stress, linear materials, copper wire.
 //!
-//! (Work in progress: see docs/ARCHITECTURE.md for the crate map.)
+//! # Brief overview
+//! * [`BhCurve`] — a validated non-linear B-H curve (from points or a CSV file `H_A_per_m,B_T`), stored
+//!   as a monotone C¹ cubic `H(B)` that passes through every data point and continues with slope `μ0`
+//!   beyond the last one. It gives `B(H)`, `H(B)` and the reluctivity `ν(B²) = H/B` with its exact
+//!   derivative `dν/dB²` for Newton solvers ([`BhCurve::nu_of_b2`], [`BhCurve::dnu_db2`]).
+//! * [`YieldStressCurve`] — an MR fluid's `τ_y` of B or H: monotone C¹ through the data, saturating
+//!   smoothly above it.
+//! * [`MrFluid`] — B-H curve, `τ_y(B)`, `τ_y(H)`, viscosity, density, reference points.
+//! * [`Material`] and [`Magnetic`] — what a solver needs per region: `Linear { mu_r }` or
+//!   `NonLinear(Arc<BhCurve>)`, density, conductivity.
+//! * [`library`] — the built-in materials by name (`steel-1008`, `air`, `mrf-122eg`, …), vendored from
+//!   `data/` and parsed once.
+//! * [`wire`] — copper wire by AWG (18–32) or by diameter, resistance at a temperature.
+//! * Every curve and property carries a [`Provenance`] (source, method, [`Trust`]).
+//!
+//! All values are SI: H in A/m, B in T, τ in Pa, ν in m/H, density in kg/m³, σ in S/m.
+//!
+//! ```
+//! use mrbrake_materials::library;
+//! let steel = library::bh_curve("steel-1008").unwrap();
+//! let b = steel.b_of_h(1000.0); // T at 1 kA/m (1.374 T by linear interpolation of the same points)
+//! assert!((b - 1.40).abs() < 0.01);
+//! let nu = steel.nu_of_b2(b * b);
+//! assert!((nu * b - 1000.0).abs() < 1e-6);
+//! ```
 
-/// Errors of this crate.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum MaterialError {
-    /// Invalid input (file, field, value) with a message naming what was expected.
-    #[error("{0}")]
-    Input(String),
-}
+mod bh_curve;
+mod error;
+mod hermite;
+pub mod library;
+mod material;
+mod mr_fluid;
+mod provenance;
+mod table;
+pub mod wire;
+mod yield_stress;
 
-impl MaterialError {
-    /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
-    /// internal failures (exit code 1).
-    pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Input(_))
-    }
-}
+pub use bh_curve::{BH_HEADER, BhCurve, MIN_BH_POINTS};
+pub use error::MaterialError;
+pub use material::{Magnetic, Material, MaterialKind};
+pub use mr_fluid::{MrFluid, ReferenceCheck, ReferencePoint, Viscosity};
+pub use provenance::{Provenance, Sourced, Trust};
+pub use wire::CopperWire;
+pub use yield_stress::{FieldVariable, MIN_YIELD_POINTS, YieldStressCurve};
+
+/// Vacuum permeability μ0 [H/m], CODATA 2018 recommended value (no longer exactly 4π·10⁻⁷ since the
+/// 2019 SI redefinition; the difference is 5.5·10⁻¹⁰ relative).
+pub const MU_0: f64 = 1.256_637_062_12e-6;

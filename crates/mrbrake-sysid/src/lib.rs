@@ -1,20 +1,39 @@
-//! System identification from MR-brake test-rig logs.
+//! System identification from MR-brake test-rig logs (thesis chapter 5).
 //!
-//! (Work in progress: see docs/ARCHITECTURE.md for the crate map.)
+//! Brief overview:
+//! - [`log`] reads CSV logs (columns by name, any sample rate) with errors naming file and line.
+//! - [`characterize`] finds the repeated current ramps of the characterisation protocol (§5.3.1),
+//!   averages them and fits polynomial rising/falling branches → [`characterize::Characterization`].
+//! - [`inverse`] turns the branches into a monotone, clamped [`inverse::InverseModel`] for control, with
+//!   the branch chosen by the sign of the demand's derivative ([`inverse::InverseTracker`]).
+//! - [`tracking`] computes the torque-tracking RMSE (5.2).
+//! - [`freqresp`] turns sinusoidal tests (a manifest of logs) into frequency-response points by sine
+//!   fits (5.3), (5.4); [`frd`] reads and writes such data.
+//! - [`tfest`] estimates a continuous-time [`transfer_function::TransferFunction`] from them
+//!   (Levy / Sanathanan–Koerner, then Levenberg–Marquardt).
+//!
+//! ```
+//! use mrbrake_sysid::{frd::Frd, tfest::{logspace, tfest, TfestOptions}, transfer_function::TransferFunction};
+//! // The thesis's brake 1 (5.5) sampled at 41 log-spaced frequencies and estimated back.
+//! let g = TransferFunction::new(vec![1.0], vec![1.791e-5, 0.01702, 1.0]).unwrap();
+//! let omega = logspace(0.1, 1000.0, 41);
+//! let frd = Frd { response: omega.iter().map(|w| g.response(*w)).collect(), omega_rad_s: omega, weight: None };
+//! let fit = tfest(&frd, &TfestOptions::new(2, 0)).unwrap();
+//! let corners = fit.model.corner_frequencies_rad_s().unwrap();
+//! assert!((corners[0] - 62.93).abs() < 0.01 && (corners[1] - 887.38).abs() < 0.01);
+//! ```
 
-/// Errors of this crate.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum SysidError {
-    /// Invalid input (file, field, value) with a message naming what was expected.
-    #[error("{0}")]
-    Input(String),
-}
+pub mod characterize;
+pub mod complex;
+mod error;
+pub mod frd;
+pub mod freqresp;
+pub mod inverse;
+pub mod linalg;
+pub mod log;
+pub mod polynomial;
+pub mod tfest;
+pub mod tracking;
+pub mod transfer_function;
 
-impl SysidError {
-    /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
-    /// internal failures (exit code 1).
-    pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Input(_))
-    }
-}
+pub use error::SysidError;

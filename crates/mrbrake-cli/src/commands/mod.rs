@@ -1,20 +1,62 @@
 //! One module per subcommand; each defines its clap arguments and a `run` function.
+//! To add a subcommand: a `mod` line, an enum variant and a match arm.
 
 use clap::Subcommand;
+
+mod analyze;
+mod characterize;
+mod export_geo;
+mod fem;
+mod formula;
+mod freqresp;
+mod haptic;
+mod materials;
+mod rig;
+mod tfest;
 
 /// The subcommands of `mrbrake`.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Print the mrbrake version and the crates it is built from.
-    Version,
+    /// Analyse a brake design: field in every gap, torque–current curve, coil, mechanics, plots.
+    /// With no SPEC, the thesis's bidirectional brake.
+    Analyze(analyze::AnalyzeArgs),
+    /// Closed-form thesis models: brake torque (single disc, multi-disc, drum, multi-drum) and coil.
+    #[command(subcommand)]
+    Formula(formula::FormulaCommand),
+    /// The built-in material library: list names, show curves, derived values and provenance.
+    #[command(subcommand)]
+    Materials(materials::MaterialsCommand),
+    /// Haptic simulation: virtual wall with a conventional brake, the bidirectional brake or a motor; Z-width map.
+    #[command(subcommand)]
+    Haptic(haptic::HapticCommand),
+    /// Hysteresis branches, inverse model and loop plot from a repeated-ramp test-rig log (§5.3.1).
+    Characterize(characterize::CharacterizeArgs),
+    /// Gain, phase and tracking RMSE per frequency from sinusoidal test logs listed in a manifest (§5.3.2).
+    Freqresp(freqresp::FreqRespArgs),
+    /// Continuous-time transfer function from frequency-response data.
+    Tfest(tfest::TfestArgs),
+    /// Axisymmetric non-linear magnetostatic finite elements (problem files, Gmsh meshes).
+    #[command(subcommand)]
+    Fem(fem::FemCommand),
+    /// Virtual test rig: simulate the thesis's experiments and write their logs.
+    #[command(subcommand)]
+    Rig(rig::RigCommand),
+    /// Write the brake geometry and its physical groups as a Gmsh .geo file (cross-check in other solvers).
+    ExportGeo(export_geo::ExportGeoArgs),
 }
 
 /// Runs one subcommand.
 pub fn run(command: Command) -> anyhow::Result<()> {
     match command {
-        Command::Version => {
-            println!("mrbrake {}", env!("CARGO_PKG_VERSION"));
-            Ok(())
-        }
+        Command::Analyze(a) => analyze::run(a),
+        Command::Formula(c) => formula::run(c),
+        Command::Materials(c) => materials::run(c),
+        Command::Haptic(c) => haptic::run(c),
+        Command::Characterize(a) => characterize::run(a),
+        Command::Freqresp(a) => freqresp::run(a),
+        Command::Tfest(a) => tfest::run(a),
+        Command::Rig(c) => rig::run(c),
+        Command::Fem(c) => fem::run(c),
+        Command::ExportGeo(a) => export_geo::run(a),
     }
 }

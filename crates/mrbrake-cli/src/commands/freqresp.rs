@@ -1,0 +1,90 @@
+//! `mrbrake freqresp MANIFEST.csv`: gain (5.3)/(5.4), phase and tracking RMSE (5.2) per test frequency
+//! from sinusoidal test logs, written as frequency-response data (thesis §5.3.2).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use mrbrake_report::bode::{BodeCurve, save_bode};
+use mrbrake_sysid::freqresp::{FreqRespOptions, frd_csv, frequency_response};
+use mrbrake_units::{Dimension, parse};
+use serde_json::json;
+
+use crate::exit::InputError;
+use crate::output::print_json;
+
+/// Arguments of `mrbrake freqresp`.
+#[derive(Debug, Args)]
+pub struct FreqRespArgs {
+    /// Manifest CSV with columns frequency_rad_s,file (files relative to the manifest).
+    manifest: PathBuf,
+    /// Output FRD file (default: frd.csv beside the manifest).
+    #[arg(long, value_name = "FRD.csv")]
+    out: Option<PathBuf>,
+    /// Name of the time column of the test logs (seconds).
+    #[arg(long, default_value = "time_s")]
+    time_col: String,
+    /// Name of the input column (the desired torque).
+    #[arg(long, default_value = "input")]
+    input_col: String,
+    /// Name of the output column (the measured torque).
+    #[arg(long, default_value = "output")]
+    output_col: String,
+    /// Periods discarded at the start of each test (start-up transient).
+    #[arg(long, default_value_t = 1.0)]
+    discard_periods: f64,
+    /// Time discarded at the start of each test (the larger discard applies), e.g. 0.5s.
+    #[arg(long, default_value = "0.5s")]
+    settle: String,
+    /// Draw the measured Bode diagram (SVG, or PNG for a .png name).
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
+    /// Print a JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs `mrbrake freqresp`.
+pub fn run(args: FreqRespArgs) -> anyhow::Result<()> {
+    let settle_s = parse(&args.settle, Dimension::Time)?;
+    if !(settle_s >= 0.0) || !(args.discard_periods >= 0.0) {
+        return Err(InputError("--settle and --discard-periods must be non-negative".into()).into());
+    }
+    let options = FreqRespOptions {
+        time_col: args.time_col.clone(),
+        input_col: args.input_col.clone(),
+        output_col: args.output_col.clone(),
+        discard_periods: args.discard_periods,
+        settle_s,
+    };
+    let points = frequency_response(&args.manifest, &options)?;
+    let out = args.out.clone().unwrap_or_else(|| args.manifest.with_file_name("frd.csv"));
+    mrbrake_report::write_atomic(&out, frd_csv(&points).as_bytes())?;
+    if let Some(path) = &args.plot {
+        let curve = BodeCurve {
+            label: "measured".into(),
+            points: points.iter().map(|p| (p.omega_rad_s, p.magnitude_db, p.phase_deg)).collect(),
+            markers: true,
+        };
+        save_bode(path, "Frequency response", &[curve])?;
+    }
+    if args.json {
+        return print_json(&json!({ "frd_file": out, "points": points }));
+    }
+    println!("frequency response of {} tests → {}", points.len(), out.display());
+    println!(
+        "{:>12} {:>10} {:>10} {:>9} {:>10} {:>8}",
+        "omega rad/s", "gain dB", "phase deg", "quality%", "RMSE N·m", "RMSE %"
+    );
+    for p in &points {
+        println!(
+            "{:>12.4} {:>10.3} {:>10.2} {:>9.2} {:>10.4} {:>8.2}",
+            p.omega_rad_s,
+            p.magnitude_db,
+            p.phase_deg,
+            p.quality_percent,
+            p.tracking.rmse_nm,
+            p.tracking.rmse_percent_of_range
+        );
+    }
+    Ok(())
+}

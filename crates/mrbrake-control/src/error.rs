@@ -1,0 +1,76 @@
+//! The crate's error type: invalid configuration found when a controller or a model is built.
+//!
+//! The control step itself never fails: bad run-time input gives the safe output and a
+//! [`crate::Fault`] flag instead of an error, because a real-time loop must always produce currents.
+
+use core::fmt;
+
+/// Errors raised while building a configuration (never during a control step).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum ControlError {
+    /// A configuration field is outside its allowed range.
+    OutOfRange {
+        /// The field's name, e.g. `"current_max_a"`.
+        field: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// Smallest allowed value.
+        min: f64,
+        /// Largest allowed value.
+        max: f64,
+    },
+    /// A branch polynomial is unusable (no coefficients, too many, or not finite).
+    InvalidPolynomial {
+        /// Which branch: `"rising"` or `"falling"`.
+        branch: &'static str,
+    },
+    /// A branch decreases somewhere on the current range, so its inverse is not unique.
+    NonMonotoneBranch {
+        /// Which branch: `"rising"` or `"falling"`.
+        branch: &'static str,
+    },
+}
+
+impl ControlError {
+    /// True for every variant: all of them come from bad configuration input (CLI exit code 2).
+    pub fn is_input_error(&self) -> bool {
+        true
+    }
+}
+
+impl fmt::Display for ControlError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::OutOfRange { field, value, min, max } => {
+                write!(f, "{field} = {value} is outside the allowed range [{min}, {max}]")
+            }
+            Self::InvalidPolynomial { branch } => write!(
+                f,
+                "the {branch} branch needs 1 to {} finite coefficients (ascending powers of current)",
+                crate::polynomial::MAX_DEGREE + 1
+            ),
+            Self::NonMonotoneBranch { branch } => write!(
+                f,
+                "the {branch} branch decreases somewhere on the current range, so torque -> current is ambiguous"
+            ),
+        }
+    }
+}
+
+#[cfg(any(test, feature = "std"))]
+impl std::error::Error for ControlError {}
+
+/// Checks `min ≤ value ≤ max` with a finite value.
+pub(crate) fn check_range(
+    field: &'static str,
+    value: f64,
+    min: f64,
+    max: f64,
+) -> Result<f64, ControlError> {
+    if value.is_finite() && value >= min && value <= max {
+        Ok(value)
+    } else {
+        Err(ControlError::OutOfRange { field, value, min, max })
+    }
+}

@@ -1,0 +1,677 @@
+//! Brake analysis, end to end: spec → geometry → mesh → non-linear field at each current of a sweep →
+//! torque (local Bingham integration and the thesis's mean-B method), coil, mechanics.
+//!
+//! Brief overview: [`analyze`] takes a validated [`BrakeSpec`] and [`AnalysisOptions`] and returns an
+//! [`Analysis`]: the torque–current curve, per-gap results at the maximum current, per-direction
+//! torque for the bidirectional brake, the coil's electrical figures and inductance, and the
+//! mechanical figures (mass, volume, rotor inertia, torque density).
+//!
+//! # Torque models
+//! * **Local Bingham torque** (beyond the thesis): along each fluid gap the yield stress follows the
+//!   local flux density, `τ_y(|B(s)|)`, sampled on the gap's mid-line. For a cylindrical (drum) gap at
+//!   shear radius `R` and height `h` the yield torque is `T = ∫₀ʰ 2π R² τ_y(|B(R_mid, z)|) dz` (thesis
+//!   (3.5) integrated over the cylinder); for an annular (disc) gap it is
+//!   `T = ∫_{R1}^{R2} 2π r² τ_y(|B(r, z_mid)|) dr` (one face of (3.6)). Integrated with the composite
+//!   trapezoidal rule on [`GAP_SAMPLES`] intervals.
+//! * **Thesis method**: the volume-mean |B| over all fluid gaps of a direction → `τ_y` from the fluid's
+//!   curve → (4.4) for drums (`2π h τ_y Σ R_k²`) and (3.7)/(3.8) for discs (per face: `2π τ_y (R2³ −
+//!   R1³)/3`), as the thesis did with ANSYS's mean B (4.4.1).
+//! * **Viscous torque** at the speed `ω` of the options (3.4): `2π R³ h η ω / g` per cylindrical gap
+//!   and `π η ω (R2⁴ − R1⁴) / (2 g)` per annular gap; plus a constant seal-friction torque.
+//!   The off-state torque is the total at zero current.
+//!
+//! For the bidirectional brake the sweep energises the coil of unit 1 only (the controller drives one
+//! brake at a time); the torque of direction 1 is that of unit 1's gaps. Unit 2 is solved once at the
+//! maximum current with its own coil, and the torque that leaks into the idle unit's gaps (through the
+//! shaft and spacer) is reported as cross-coupling.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use mrbrake_fem::mesh::Mesh;
+use mrbrake_magnetics::material::MagneticMaterial;
+use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
+use mrbrake_magnetics::{Solution, Solver, SolverOptions};
+use mrbrake_materials::{CopperWire, MrFluid, library};
+use serde::Serialize;
+
+use crate::DesignError;
+use crate::formula;
+use crate::geometry::{self, BrakeGeometry, Direction, GapInfo, GapOrientation, PartKind};
+use crate::mesh_build::{self, MeshLevel};
+use crate::spec::BrakeSpec;
+
+/// Number of trapezoid intervals along each gap's mid-line for the local torque integral.
+pub const GAP_SAMPLES: usize = 64;
+
+/// Density of annealed copper [kg/m³] (IEC 60028: 8.89 g/cm³ at 20 °C).
+const COPPER_DENSITY_KG_M3: f64 = 8890.0;
+
+/// What to compute.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnalysisOptions {
+    /// Mesh density.
+    pub mesh: MeshLevel,
+    /// Number of currents in the torque–current sweep, from 0 to the maximum current (≥ 2).
+    pub points: usize,
+    /// Relative speed for the viscous torque [rad/s].
+    pub speed_rad_s: f64,
+    /// Constant seal / bearing friction added to every torque [N·m].
+    pub seal_friction_nm: f64,
+    /// Copper temperature for the resistance [°C].
+    pub temperature_c: f64,
+}
+
+impl Default for AnalysisOptions {
+    fn default() -> Self {
+        // 1 rad/s: a slow hand motion on a haptic knob; it makes the viscous term visible without
+        // dominating (the thesis quotes torques at rest, (3.7)).
+        Self { mesh: MeshLevel::Default, points: 21, speed_rad_s: 1.0, seal_friction_nm: 0.0, temperature_c: 20.0 }
+    }
+}
+
+/// One point of the torque–current curve.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CurvePoint {
+    /// Coil current [A].
+    #[serde(rename = "current_A")]
+    pub current_a: f64,
+    /// Total braking torque of direction 1 (local Bingham + viscous + seal) [N·m].
+    #[serde(rename = "torque_Nm")]
+    pub torque_nm: f64,
+    /// Yield torque from the local |B| alone [N·m].
+    #[serde(rename = "yield_torque_Nm")]
+    pub yield_torque_nm: f64,
+    /// Thesis method at this current [N·m].
+    #[serde(rename = "thesis_formula_Nm")]
+    pub thesis_formula_nm: f64,
+    /// Volume-mean |B| over direction 1's gaps [T].
+    #[serde(rename = "mean_B_T")]
+    pub mean_b_t: f64,
+    /// Flux linkage of the energised coil [Wb].
+    #[serde(rename = "flux_linkage_Wb")]
+    pub flux_linkage_wb: f64,
+    /// Newton iterations of this solve.
+    pub newton_iterations: usize,
+}
+
+/// One fluid gap at the maximum current.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GapResult {
+    /// Global gap index.
+    pub index: usize,
+    /// Unit (0 or 1).
+    pub unit: usize,
+    /// Shear radius R (drums: R_k of (4.4); discs: mean radius) [m].
+    pub r_m: f64,
+    /// Sheared height (drums) or radial span (discs) [m].
+    pub height_m: f64,
+    /// Gap width g [m].
+    pub width_m: f64,
+    /// `cylindrical` or `annular`.
+    pub orientation: &'static str,
+    /// Volume-mean |B| in the gap [T].
+    #[serde(rename = "mean_B_T")]
+    pub mean_b_t: f64,
+    /// Largest |B| in the gap [T].
+    #[serde(rename = "max_B_T")]
+    pub max_b_t: f64,
+    /// Yield stress at the mean |B| [Pa].
+    #[serde(rename = "tau_y_Pa")]
+    pub tau_y_pa: f64,
+    /// Local Bingham yield torque [N·m].
+    #[serde(rename = "torque_Nm")]
+    pub torque_nm: f64,
+    /// Viscous torque at the analysis speed [N·m].
+    #[serde(rename = "viscous_torque_Nm")]
+    pub viscous_torque_nm: f64,
+    /// |B| along the mid-line: (position along the gap [m], |B| [T]).
+    #[serde(skip)]
+    pub profile: Vec<(f64, f64)>,
+}
+
+/// Torque summary.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TorqueSummary {
+    /// Total torque of direction 1 at the maximum current [N·m].
+    #[serde(rename = "at_max_current_Nm")]
+    pub at_max_current_nm: f64,
+    /// Torque at zero current (viscous + seal) [N·m].
+    #[serde(rename = "off_state_Nm")]
+    pub off_state_nm: f64,
+    /// Thesis method at the maximum current [N·m].
+    #[serde(rename = "thesis_formula_Nm")]
+    pub thesis_formula_nm: f64,
+    /// Mean |B| over direction 1's gaps at the maximum current [T].
+    #[serde(rename = "mean_B_T")]
+    pub mean_b_t: f64,
+    /// Dynamic range T_on / T_off (infinite when the off-state torque is 0).
+    pub dynamic_range: f64,
+    /// Direction 2's torque at the maximum current with its own coil (bidirectional only) [N·m].
+    #[serde(rename = "direction2_at_max_current_Nm")]
+    pub direction2_at_max_current_nm: Option<f64>,
+    /// Yield torque that appears in the idle unit's gaps when only unit 1 is energised, as a fraction
+    /// of unit 1's yield torque (bidirectional only).
+    pub cross_coupling: Option<f64>,
+}
+
+/// Coil figures.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CoilResult {
+    /// Turns.
+    pub turns: u32,
+    /// Bare wire diameter [m].
+    pub wire_diameter_m: f64,
+    /// Wire length of one coil [m].
+    pub wire_length_m: f64,
+    /// Resistance at 20 °C [Ω].
+    #[serde(rename = "resistance_20C_ohm")]
+    pub resistance_20c_ohm: f64,
+    /// Resistance at the analysis temperature [Ω].
+    pub resistance_ohm: f64,
+    /// Thesis current density (4.1) at the maximum current [A/mm²].
+    #[serde(rename = "current_density_A_per_mm2")]
+    pub current_density_a_per_mm2: f64,
+    /// Ohmic power at the maximum current [W].
+    #[serde(rename = "power_W")]
+    pub power_w: f64,
+    /// Secant inductance λ/I at the maximum current [H].
+    #[serde(rename = "inductance_H")]
+    pub inductance_h: f64,
+    /// Incremental inductance dλ/dI at the maximum current [H].
+    #[serde(rename = "incremental_inductance_H")]
+    pub incremental_inductance_h: f64,
+    /// L/R time constant with the secant inductance [s].
+    pub time_constant_s: f64,
+}
+
+/// Mechanical figures.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Mechanics {
+    /// Mass of all modelled parts (air excluded) [kg].
+    pub mass_kg: f64,
+    /// Envelope volume of the device (its bounding cylinder) [m³].
+    pub volume_m3: f64,
+    /// Moment of inertia of the parts that turn with the shaft in direction 1 [kg·m²].
+    pub rotor_inertia_kg_m2: f64,
+    /// The same for direction 2 (bidirectional only) [kg·m²].
+    pub rotor_inertia_direction2_kg_m2: Option<f64>,
+    /// Torque at the maximum current per envelope volume [N·m/m³].
+    pub torque_density_nm_per_m3: f64,
+    /// Torque at the maximum current per mass [N·m/kg].
+    pub torque_density_nm_per_kg: f64,
+}
+
+/// Mesh size.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MeshSummary {
+    /// Nodes.
+    pub nodes: usize,
+    /// Triangles.
+    pub elements: usize,
+}
+
+/// Wall-clock split [s].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
+pub struct Timings {
+    /// Geometry and mesh.
+    pub mesh: f64,
+    /// Solver set-up (pattern, symbolic factorisation).
+    pub setup: f64,
+    /// All non-linear solves of the sweep.
+    pub solve: f64,
+    /// Torque, coil and mechanics post-processing.
+    pub post: f64,
+    /// Whole analysis.
+    pub total: f64,
+}
+
+/// Everything [`analyze`] computes.
+#[derive(Debug, Clone, Serialize)]
+pub struct Analysis {
+    /// Spec name.
+    pub name: String,
+    /// Configuration name.
+    pub configuration: &'static str,
+    /// Maximum current [A].
+    #[serde(rename = "max_current_A")]
+    pub max_current_a: f64,
+    /// The sweep, direction 1.
+    pub torque_current_curve: Vec<CurvePoint>,
+    /// Torque summary.
+    pub torque: TorqueSummary,
+    /// Per-gap results at the maximum current (all gaps; for the bidirectional brake unit 2's gaps are
+    /// taken from the unit-2 solve).
+    pub gaps: Vec<GapResult>,
+    /// Coil.
+    pub coil: CoilResult,
+    /// Mechanics.
+    pub mechanics: Mechanics,
+    /// Mesh size.
+    pub mesh: MeshSummary,
+    /// Analysis speed for the viscous term [rad/s].
+    pub speed_rad_s: f64,
+    /// Timings.
+    pub timings_s: Timings,
+    /// Spec warnings (e.g. current above the wire rating).
+    pub warnings: Vec<String>,
+}
+
+/// The pieces a caller may want to keep for plots (field map) after the analysis.
+pub struct FieldAtMaxCurrent {
+    /// The solver (mesh, materials, post-processing).
+    pub solver: Solver,
+    /// The solution at the maximum current (unit 1 energised).
+    pub solution: Solution,
+    /// The geometry.
+    pub geometry: BrakeGeometry,
+}
+
+/// Runs the whole analysis of `spec`.
+pub fn analyze(spec: &BrakeSpec, options: &AnalysisOptions) -> Result<Analysis, DesignError> {
+    analyze_with_field(spec, options).map(|(a, _)| a)
+}
+
+/// Runs the analysis and also returns the field at the maximum current (for field maps).
+pub fn analyze_with_field(
+    spec: &BrakeSpec,
+    options: &AnalysisOptions,
+) -> Result<(Analysis, FieldAtMaxCurrent), DesignError> {
+    let t_start = Instant::now();
+    if options.points < 2 {
+        return Err(DesignError::Input(format!("the sweep needs at least 2 points, got {}", options.points)));
+    }
+    formula::non_negative("speed", options.speed_rad_s.abs())?;
+    formula::non_negative("seal friction", options.seal_friction_nm)?;
+    let warnings: Vec<String> =
+        spec.validate()?.into_iter().map(|w| format!("{}: {}", w.field, w.message)).collect();
+    let geometry = geometry::build(spec)?;
+    let mesh = Arc::new(mesh_build::mesh(&geometry, options.mesh)?);
+    let t_mesh = t_start.elapsed().as_secs_f64();
+
+    let fluid = fluid_of(spec)?;
+    let problem = problem_of(&geometry, Arc::clone(&mesh))?;
+    let t0 = Instant::now();
+    let mut solver = Solver::new(problem, SolverOptions::default()).map_err(numerical)?;
+    let t_setup = t0.elapsed().as_secs_f64();
+
+    let max_current = spec.coil.max_current.a();
+    let turns = spec.turns();
+    let unit1_coils: Vec<u32> = geometry.coils.iter().filter(|c| c.unit == 0).map(|c| c.tag).collect();
+    let unit2_coils: Vec<u32> = geometry.coils.iter().filter(|c| c.unit == 1).map(|c| c.tag).collect();
+    let dir1_gaps: Vec<&GapInfo> = geometry.gaps.iter().filter(|g| g.unit == 0).collect();
+    let dir2_gaps: Vec<&GapInfo> = geometry.gaps.iter().filter(|g| g.unit == 1).collect();
+
+    // The sweep: unit 1 energised, warm-started from the previous current.
+    let t0 = Instant::now();
+    let mut curve = Vec::with_capacity(options.points);
+    let mut previous: Option<Solution> = None;
+    let mut dir1_at_max = Vec::new();
+    for k in 0..options.points {
+        let current = max_current * k as f64 / (options.points - 1) as f64;
+        set_coils(&mut solver, &geometry, &unit1_coils, &unit2_coils, current, 0.0, turns)?;
+        let solution = solver.solve(previous.as_ref().map(|s| s.a_phi())).map_err(numerical)?;
+        let gaps = gap_results(&solver, &solution, &dir1_gaps, &fluid, options.speed_rad_s)?;
+        let point = curve_point(&solver, &solution, &gaps, &dir1_gaps, &fluid, current, options)?;
+        curve.push(point);
+        if k + 1 == options.points {
+            dir1_at_max = gaps;
+        }
+        previous = Some(solution);
+    }
+    let solution_max = previous.expect("the sweep has at least two points");
+    let mut t_solve = t0.elapsed().as_secs_f64();
+
+    // Cross-coupling into the idle unit, and direction 2 with its own coil.
+    let t0 = Instant::now();
+    let mut gaps = dir1_at_max;
+    let mut direction2 = None;
+    let mut cross_coupling = None;
+    if !dir2_gaps.is_empty() {
+        let idle = gap_results(&solver, &solution_max, &dir2_gaps, &fluid, 0.0)?;
+        let idle_yield: f64 = idle.iter().map(|g| g.torque_nm).sum();
+        let active_yield: f64 = gaps.iter().map(|g| g.torque_nm).sum();
+        cross_coupling = Some(if active_yield > 0.0 { idle_yield / active_yield } else { 0.0 });
+        set_coils(&mut solver, &geometry, &unit1_coils, &unit2_coils, 0.0, max_current, turns)?;
+        let s2 = solver.solve(Some(solution_max.a_phi())).map_err(numerical)?;
+        let g2 = gap_results(&solver, &s2, &dir2_gaps, &fluid, options.speed_rad_s)?;
+        direction2 = Some(
+            g2.iter().map(|g| g.torque_nm + g.viscous_torque_nm).sum::<f64>() + options.seal_friction_nm,
+        );
+        gaps.extend(g2);
+        // Leave the solver energised as for the returned solution.
+        set_coils(&mut solver, &geometry, &unit1_coils, &unit2_coils, max_current, 0.0, turns)?;
+    }
+    t_solve += t0.elapsed().as_secs_f64();
+
+    // Coil: figures from the formulas plus the field's inductance.
+    let t0 = Instant::now();
+    let coil = coil_result(spec, &geometry, &mut solver, &solution_max, &unit1_coils, max_current, options)?;
+    let last = *curve.last().expect("the sweep has at least two points");
+    let first = curve[0];
+    let mechanics = mechanics(&geometry, spec, last.torque_nm)?;
+    let torque = TorqueSummary {
+        at_max_current_nm: last.torque_nm,
+        off_state_nm: first.torque_nm,
+        thesis_formula_nm: last.thesis_formula_nm,
+        mean_b_t: last.mean_b_t,
+        dynamic_range: if first.torque_nm > 0.0 { last.torque_nm / first.torque_nm } else { f64::INFINITY },
+        direction2_at_max_current_nm: direction2,
+        cross_coupling,
+    };
+    let t_post = t0.elapsed().as_secs_f64();
+    let analysis = Analysis {
+        name: spec.name.clone(),
+        configuration: spec.configuration.name(),
+        max_current_a: max_current,
+        torque_current_curve: curve,
+        torque,
+        gaps,
+        coil,
+        mechanics,
+        mesh: MeshSummary { nodes: mesh.nodes.len(), elements: mesh.triangles.len() },
+        speed_rad_s: options.speed_rad_s,
+        timings_s: Timings {
+            mesh: t_mesh,
+            setup: t_setup,
+            solve: t_solve,
+            post: t_post,
+            total: t_start.elapsed().as_secs_f64(),
+        },
+        warnings,
+    };
+    Ok((analysis, FieldAtMaxCurrent { solver, solution: solution_max, geometry }))
+}
+
+fn numerical(e: mrbrake_magnetics::MagneticsError) -> DesignError {
+    if e.is_input_error() {
+        DesignError::Input(format!("field solution: {e}"))
+    } else {
+        DesignError::Numerical(format!("field solution: {e}"))
+    }
+}
+
+fn material_error(e: mrbrake_materials::MaterialError) -> DesignError {
+    DesignError::Input(e.to_string())
+}
+
+/// The fluid named by the spec.
+fn fluid_of(spec: &BrakeSpec) -> Result<Arc<MrFluid>, DesignError> {
+    let material = library::get(&spec.materials.fluid).map_err(material_error)?;
+    material.fluid.clone().ok_or_else(|| {
+        DesignError::Input(format!(
+            "materials.fluid: '{}' is not an MR fluid (see `mrbrake materials list`)",
+            spec.materials.fluid
+        ))
+    })
+}
+
+/// The magnetostatic problem: a library material per region, A = 0 on the axis and the air box.
+pub fn problem_of(geometry: &BrakeGeometry, mesh: Arc<Mesh>) -> Result<Problem, DesignError> {
+    let mut regions = Vec::with_capacity(geometry.regions.len());
+    for region in &geometry.regions {
+        let material = library::get(&region.material).map_err(|e| {
+            DesignError::Input(format!("material of part '{}': {e}", region.name))
+        })?;
+        regions.push(Region {
+            tag: region.tag,
+            material: MagneticMaterial::from_library(&material.magnetic),
+            source: None,
+        });
+    }
+    let boundaries = vec![
+        Boundary { tag: geometry.axis_tag, condition: BoundaryCondition::Dirichlet },
+        Boundary { tag: geometry.outer_tag, condition: BoundaryCondition::Dirichlet },
+    ];
+    Ok(Problem { mesh, regions, boundaries })
+}
+
+/// Drives the coils of unit 1 with `i1` and those of unit 2 with `i2` (each with its sign).
+fn set_coils(
+    solver: &mut Solver,
+    geometry: &BrakeGeometry,
+    unit1: &[u32],
+    unit2: &[u32],
+    i1: f64,
+    i2: f64,
+    turns: u32,
+) -> Result<(), DesignError> {
+    for coil in &geometry.coils {
+        let current = if unit1.contains(&coil.tag) {
+            i1
+        } else if unit2.contains(&coil.tag) {
+            i2
+        } else {
+            0.0
+        };
+        let source = Source::Coil { turns: f64::from(turns), current_a: coil.current_sign * current };
+        solver.set_source(coil.tag, Some(source)).map_err(numerical)?;
+    }
+    Ok(())
+}
+
+/// Local Bingham torque, mean |B| and |B| profile of each gap.
+fn gap_results(
+    solver: &Solver,
+    solution: &Solution,
+    gaps: &[&GapInfo],
+    fluid: &MrFluid,
+    speed_rad_s: f64,
+) -> Result<Vec<GapResult>, DesignError> {
+    let eta = fluid.viscosity_pa_s();
+    gaps.iter()
+        .map(|gap| {
+            let stats = solver.region_stats(solution, gap.tag).map_err(numerical)?;
+            let line = solver.b_along(solution, &gap.sample_line, GAP_SAMPLES).map_err(numerical)?;
+            let [p0, p1] = gap.sample_line;
+            let length = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
+            let ds = length / GAP_SAMPLES as f64;
+            // Trapezoidal rule of ∫ 2π r² τ_y(|B|) ds along the mid-line.
+            let mut torque = 0.0;
+            let mut profile = Vec::with_capacity(line.len());
+            for (k, p) in line.iter().enumerate() {
+                let r = match gap.orientation {
+                    GapOrientation::Cylindrical => gap.shear_radius_m,
+                    GapOrientation::Annular => p.r,
+                };
+                let w = if k == 0 || k + 1 == line.len() { 0.5 } else { 1.0 };
+                torque += w * 2.0 * std::f64::consts::PI * r * r * fluid.tau_y_of_b(p.b_abs_t) * ds;
+                profile.push((k as f64 * ds, p.b_abs_t));
+            }
+            let viscous = viscous_torque(gap, eta, speed_rad_s);
+            Ok(GapResult {
+                index: gap.index,
+                unit: gap.unit,
+                r_m: gap.shear_radius_m,
+                height_m: gap.height_m,
+                width_m: gap.width_m,
+                orientation: match gap.orientation {
+                    GapOrientation::Cylindrical => "cylindrical",
+                    GapOrientation::Annular => "annular",
+                },
+                mean_b_t: stats.mean_b_t,
+                max_b_t: stats.max_b_t,
+                tau_y_pa: fluid.tau_y_of_b(stats.mean_b_t),
+                torque_nm: torque,
+                viscous_torque_nm: viscous,
+                profile,
+            })
+        })
+        .collect()
+}
+
+/// Viscous torque of one gap at relative speed `omega` (3.4): cylindrical `2π R³ h η ω / g`; annular
+/// (one face of (3.6)) `π η ω (R2⁴ − R1⁴) / (2 g)`.
+fn viscous_torque(gap: &GapInfo, eta: f64, omega: f64) -> f64 {
+    let pi = std::f64::consts::PI;
+    match gap.orientation {
+        GapOrientation::Cylindrical => {
+            2.0 * pi * gap.shear_radius_m.powi(3) * gap.height_m * eta * omega.abs() / gap.width_m
+        }
+        GapOrientation::Annular => {
+            let r1 = gap.rect.r0;
+            let r2 = gap.rect.r1;
+            pi * eta * omega.abs() * (r2.powi(4) - r1.powi(4)) / (2.0 * gap.width_m)
+        }
+    }
+}
+
+/// The thesis's method: volume-mean |B| over the direction's gaps → τ_y → (4.4) for cylindrical
+/// surfaces, one face of (3.7) for annular ones.
+fn thesis_torque(gaps: &[GapResult], infos: &[&GapInfo], fluid: &MrFluid) -> (f64, f64) {
+    let pi = std::f64::consts::PI;
+    let mut weighted = 0.0;
+    let mut volume = 0.0;
+    for info in infos {
+        let v = info.rect.ring_volume_m3();
+        let g = gaps.iter().find(|g| g.index == info.index).expect("a result for every gap");
+        weighted += g.mean_b_t * v;
+        volume += v;
+    }
+    let mean_b = if volume > 0.0 { weighted / volume } else { 0.0 };
+    let tau = fluid.tau_y_of_b(mean_b);
+    let torque = infos
+        .iter()
+        .map(|g| match g.orientation {
+            GapOrientation::Cylindrical => 2.0 * pi * g.height_m * tau * g.shear_radius_m.powi(2),
+            GapOrientation::Annular => 2.0 * pi * tau * (g.rect.r1.powi(3) - g.rect.r0.powi(3)) / 3.0,
+        })
+        .sum();
+    (mean_b, torque)
+}
+
+fn curve_point(
+    solver: &Solver,
+    solution: &Solution,
+    gaps: &[GapResult],
+    infos: &[&GapInfo],
+    fluid: &MrFluid,
+    current: f64,
+    options: &AnalysisOptions,
+) -> Result<CurvePoint, DesignError> {
+    let yield_nm: f64 = gaps.iter().map(|g| g.torque_nm).sum();
+    let viscous: f64 = gaps.iter().map(|g| g.viscous_torque_nm).sum();
+    let (mean_b, thesis) = thesis_torque(gaps, infos, fluid);
+    let flux = solver
+        .coils(solution)
+        .iter()
+        .filter(|c| c.current_a.abs() > 0.0)
+        .map(|c| c.flux_linkage_wb * c.current_a.signum())
+        .next()
+        .unwrap_or(0.0);
+    Ok(CurvePoint {
+        current_a: current,
+        torque_nm: yield_nm + viscous + options.seal_friction_nm,
+        yield_torque_nm: yield_nm,
+        thesis_formula_nm: thesis,
+        mean_b_t: mean_b,
+        flux_linkage_wb: flux,
+        newton_iterations: solution.report.iterations,
+    })
+}
+
+fn coil_result(
+    spec: &BrakeSpec,
+    geometry: &BrakeGeometry,
+    solver: &mut Solver,
+    solution: &Solution,
+    unit1: &[u32],
+    max_current: f64,
+    options: &AnalysisOptions,
+) -> Result<CoilResult, DesignError> {
+    let wire = CopperWire::from_diameter(spec.wire_diameter_m()).map_err(material_error)?;
+    let coil = geometry
+        .coils
+        .iter()
+        .find(|c| unit1.contains(&c.tag))
+        .ok_or_else(|| DesignError::Numerical("the geometry has no coil in unit 1".into()))?;
+    let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
+    let e = formula::coil_electrics(coil.turns, mean_radius, &wire, max_current, options.temperature_c)?;
+    // Flux linkage of every energised coil of unit 1 (two-sided coils are in series).
+    let flux: f64 = solver
+        .coils(solution)
+        .iter()
+        .filter(|c| unit1.contains(&c.physical))
+        .map(|c| c.flux_linkage_wb * c.current_a.signum())
+        .sum();
+    let secant = if max_current > 0.0 { flux / max_current } else { f64::NAN };
+    let mut incremental = 0.0;
+    for &tag in unit1 {
+        let sign = geometry.coils.iter().find(|c| c.tag == tag).map_or(1.0, |c| c.current_sign);
+        incremental += sign * sign * solver.incremental_inductance(solution, tag).map_err(numerical)?;
+    }
+    let coils_in_series = unit1.len() as f64;
+    let resistance = e.resistance_ohm * coils_in_series;
+    Ok(CoilResult {
+        turns: coil.turns,
+        wire_diameter_m: wire.diameter_m,
+        wire_length_m: e.wire_length_m,
+        resistance_20c_ohm: e.resistance_20c_ohm,
+        resistance_ohm: e.resistance_ohm,
+        current_density_a_per_mm2: e.current_density_a_per_mm2,
+        power_w: e.power_w * coils_in_series,
+        inductance_h: secant,
+        incremental_inductance_h: incremental,
+        time_constant_s: secant / resistance,
+    })
+}
+
+/// Density of a library material [kg/m³] (0 for air / unknown with a clear error otherwise).
+fn density(material: &str) -> Result<f64, DesignError> {
+    let m = library::get(material).map_err(material_error)?;
+    if let Some(fluid) = &m.fluid {
+        return Ok(fluid.density_kg_m3.value);
+    }
+    m.density_kg_m3.as_ref().map(|d| d.value).ok_or_else(|| {
+        DesignError::Input(format!("material '{material}' has no density in the library; pick another"))
+    })
+}
+
+/// Mass, envelope volume, rotor inertia per direction and torque density.
+///
+/// Each rectangle of a part sweeps a ring of volume `π (r1² − r0²) Δz` and inertia
+/// `ρ π (r1⁴ − r0⁴) Δz / 2` about the axis. A coil counts its copper only
+/// (`N · π d²/4 · 2π r_mean`). The fluid is not counted in the rotor inertia (it is sheared, not
+/// carried).
+fn mechanics(geometry: &BrakeGeometry, spec: &BrakeSpec, torque_nm: f64) -> Result<Mechanics, DesignError> {
+    let pi = std::f64::consts::PI;
+    let mut mass = 0.0;
+    let mut inertia = [0.0f64; 2];
+    for region in &geometry.regions {
+        match region.kind {
+            PartKind::Air => continue,
+            PartKind::Coil => {
+                let d = spec.wire_diameter_m();
+                for coil in geometry.coils.iter().filter(|c| c.tag == region.tag) {
+                    let r_mean = 0.5 * (coil.rect.r0 + coil.rect.r1);
+                    mass += COPPER_DENSITY_KG_M3 * f64::from(coil.turns) * pi * d * d / 4.0 * 2.0 * pi * r_mean;
+                }
+                continue;
+            }
+            _ => {}
+        }
+        let rho = density(&region.material)?;
+        mass += rho * region.volume_m3();
+        if let Some(direction) = region.rotates {
+            let j: f64 = region.rects.iter().map(|r| rho * pi * (r.r1.powi(4) - r.r0.powi(4)) * (r.z1 - r.z0) / 2.0).sum();
+            match direction {
+                Direction::Both => {
+                    inertia[0] += j;
+                    inertia[1] += j;
+                }
+                Direction::Clockwise => inertia[0] += j,
+                Direction::CounterClockwise => inertia[1] += j,
+            }
+        }
+    }
+    let d = geometry.device;
+    let volume = pi * d.r1 * d.r1 * (d.z1 - d.z0);
+    Ok(Mechanics {
+        mass_kg: mass,
+        volume_m3: volume,
+        rotor_inertia_kg_m2: inertia[0],
+        rotor_inertia_direction2_kg_m2: (geometry.units > 1).then_some(inertia[1]),
+        torque_density_nm_per_m3: torque_nm / volume,
+        torque_density_nm_per_kg: torque_nm / mass,
+    })
+}

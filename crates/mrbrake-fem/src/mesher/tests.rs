@@ -1,0 +1,154 @@
+//! Validation of the mesher: exact region areas, angle bound, tags, tagged edges, size scaling.
+
+use super::quality::{area_by_tag, min_angle_deg, triangle_points};
+use super::*;
+
+/// An L-shaped steel part, a thin gap and a coil in an air box: the shapes a brake model has.
+fn sample() -> (Pslg, Vec<(u32, f64)>) {
+    let mut g = Pslg::new();
+    // Air box [0, 0.05] x [0, 0.04] minus the parts below, given as the outer boundary + parts.
+    g.add_rectangle(0.0, 0.05, 0.0, 0.04).unwrap();
+    // L-shaped steel: polygon.
+    let l = [[0.005, 0.005], [0.025, 0.005], [0.025, 0.01], [0.01, 0.01], [0.01, 0.03], [0.005, 0.03]];
+    g.add_polygon(&l).unwrap();
+    // A 0.5 mm gap beside the L's vertical leg.
+    g.add_rectangle(0.01, 0.0105, 0.015, 0.025).unwrap();
+    // A coil.
+    g.add_rectangle(0.015, 0.025, 0.015, 0.025).unwrap();
+    g.add_segment([0.0, 0.0], [0.0, 0.04], Some(1)).unwrap();
+    g.add_segment([0.01, 0.015], [0.01, 0.025], Some(20)).unwrap();
+    g.add_seed([0.007, 0.02], 3);
+    g.add_seed([0.01025, 0.02], 4);
+    g.add_seed([0.02, 0.02], 5);
+    g.add_seed([0.04, 0.035], 6);
+    let a_l = 0.02 * 0.005 + 0.005 * 0.02;
+    let a_gap = 0.0005 * 0.01;
+    let a_coil = 0.01 * 0.01;
+    let a_air = 0.05 * 0.04 - a_l - a_gap - a_coil;
+    (g, vec![(3, a_l), (4, a_gap), (5, a_coil), (6, a_air)])
+}
+
+fn size(h_max: f64) -> SizeField {
+    SizeField::uniform(h_max).with_region(4, h_max / 16.0)
+}
+
+#[test]
+fn region_areas_are_exact_and_tags_complete() {
+    let (g, areas) = sample();
+    let mesh = triangulate(&g, &size(0.004), &MeshOptions::default()).unwrap();
+    let got = area_by_tag(&mesh);
+    for (tag, expected) in areas {
+        let a = got[&tag];
+        assert!((a - expected).abs() <= 1e-12 * expected.max(1e-9), "tag {tag}: {a} vs {expected}");
+    }
+    assert_eq!(mesh.triangles.len(), mesh.triangle_tags.len());
+    for t in 0..mesh.triangles.len() {
+        let [a, b, c] = triangle_points(&mesh, t);
+        assert!(quality::signed_area(a, b, c) > 0.0, "triangle {t} is not counter-clockwise");
+    }
+}
+
+#[test]
+fn min_angle_respects_the_limit() {
+    let (g, _) = sample();
+    let options = MeshOptions { min_angle_deg: 28.0, ..MeshOptions::default() };
+    let mesh = triangulate(&g, &size(0.004), &options).unwrap();
+    let worst = (0..mesh.triangles.len()).map(|t| min_angle_deg(triangle_points(&mesh, t))).fold(f64::INFINITY, f64::min);
+    // All input angles are 90° or 180°, so no exception applies; allow round-off.
+    assert!(worst >= 28.0 - 1e-6, "smallest angle {worst}°");
+}
+
+#[test]
+fn no_node_inside_a_region_of_another_tag() {
+    let (g, _) = sample();
+    let mesh = triangulate(&g, &size(0.004), &MeshOptions::default()).unwrap();
+    // Every triangle's centroid lies in the region its tag says (regions known analytically).
+    let region_of = |p: [f64; 2]| -> u32 {
+        let in_rect = |r0: f64, r1: f64, z0: f64, z1: f64| p[0] > r0 && p[0] < r1 && p[1] > z0 && p[1] < z1;
+        if in_rect(0.005, 0.025, 0.005, 0.01) || in_rect(0.005, 0.01, 0.01, 0.03) {
+            3
+        } else if in_rect(0.01, 0.0105, 0.015, 0.025) {
+            4
+        } else if in_rect(0.015, 0.025, 0.015, 0.025) {
+            5
+        } else {
+            6
+        }
+    };
+    for (t, tag) in mesh.triangle_tags.iter().enumerate() {
+        let [a, b, c] = triangle_points(&mesh, t);
+        let centroid = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
+        assert_eq!(region_of(centroid), *tag, "triangle {t} at {centroid:?}");
+    }
+}
+
+#[test]
+fn tagged_segments_are_covered_by_tagged_edges() {
+    let (g, _) = sample();
+    let mesh = triangulate(&g, &size(0.004), &MeshOptions::default()).unwrap();
+    let length = |tag: u32| -> f64 {
+        mesh.edges
+            .iter()
+            .zip(&mesh.edge_tags)
+            .filter(|(_, t)| **t == tag)
+            .map(|(e, _)| {
+                let (p, q) = (mesh.nodes[e[0]], mesh.nodes[e[1]]);
+                ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt()
+            })
+            .sum()
+    };
+    assert!((length(1) - 0.04).abs() < 1e-12, "axis length {}", length(1));
+    assert!((length(20) - 0.01).abs() < 1e-12, "gap wall length {}", length(20));
+    for (e, t) in mesh.edges.iter().zip(&mesh.edge_tags) {
+        let (p, q) = (mesh.nodes[e[0]], mesh.nodes[e[1]]);
+        match t {
+            1 => assert!(p[0].abs() < 1e-15 && q[0].abs() < 1e-15),
+            20 => assert!((p[0] - 0.01).abs() < 1e-15 && (q[0] - 0.01).abs() < 1e-15),
+            _ => panic!("unexpected tag {t}"),
+        }
+    }
+}
+
+#[test]
+fn thin_gap_gets_its_target_size() {
+    let (g, _) = sample();
+    let mesh = triangulate(&g, &size(0.004), &MeshOptions::default()).unwrap();
+    let h_gap = 0.004 / 16.0;
+    for (t, tag) in mesh.triangle_tags.iter().enumerate() {
+        if *tag == 4 {
+            let p = triangle_points(&mesh, t);
+            for i in 0..3 {
+                let (a, b) = (p[i], p[(i + 1) % 3]);
+                let len = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+                assert!(len <= h_gap * (1.0 + 1e-9), "gap edge {len} > {h_gap}");
+            }
+        }
+    }
+}
+
+#[test]
+fn node_count_grows_about_fourfold_when_size_halves() {
+    let mut g = Pslg::new();
+    g.add_rectangle(0.0, 0.04, 0.0, 0.03).unwrap();
+    g.add_seed([0.01, 0.01], 1);
+    let n1 = triangulate(&g, &SizeField::uniform(0.002), &MeshOptions::default()).unwrap().nodes.len();
+    let n2 = triangulate(&g, &SizeField::uniform(0.001), &MeshOptions::default()).unwrap().nodes.len();
+    let ratio = n2 as f64 / n1 as f64;
+    assert!((3.2..=4.8).contains(&ratio), "nodes {n1} -> {n2}, ratio {ratio}");
+}
+
+#[test]
+fn missing_seed_and_open_region_are_input_errors() {
+    let mut g = Pslg::new();
+    g.add_rectangle(0.0, 1.0, 0.0, 1.0).unwrap();
+    g.add_rectangle(0.2, 0.4, 0.2, 0.4).unwrap();
+    g.add_seed([0.8, 0.8], 1);
+    let err = triangulate(&g, &SizeField::uniform(0.2), &MeshOptions::default()).unwrap_err();
+    assert!(err.is_input_error() && err.to_string().contains("no region seed"), "{err}");
+    g.add_seed([0.3, 0.3], 2);
+    assert!(triangulate(&g, &SizeField::uniform(0.2), &MeshOptions::default()).is_ok());
+    let mut h = Pslg::new();
+    h.add_rectangle(0.0, 1.0, 0.0, 1.0).unwrap();
+    h.add_seed([2.0, 2.0], 1);
+    assert!(triangulate(&h, &SizeField::uniform(0.2), &MeshOptions::default()).unwrap_err().is_input_error());
+}

@@ -1,0 +1,199 @@
+//! Closed-form axisymmetric fields used to validate the solver (SI units; `A_phi` in Wb/m, B in T).
+//!
+//! - [`elliptic_k_e`]: complete elliptic integrals K(m), E(m) by the arithmetic–geometric mean
+//!   (Abramowitz & Stegun 17.6.1–17.6.4).
+//! - [`loop_a_phi`]: vector potential of a circular current loop (Jackson, Classical Electrodynamics,
+//!   3rd ed., eq. 5.37): `A_phi = μ0 I / (π k) √(a/r) [(1 − k²/2) K(k²) − E(k²)]`,
+//!   `k² = 4 a r / ((a + r)² + z²)`.
+//! - [`thick_coil_a_phi`]: a rectangular-section coil of uniform current density, by Gauss–Legendre
+//!   integration of the loop potential over the section (exact to quadrature outside the section).
+//! - [`thick_coil_axis_bz`]: on-axis B of that coil in closed form (integral of the loop's axial
+//!   field `μ0 I a² / (2 (a² + u²)^{3/2})` over the section).
+//! - [`long_solenoid_a_phi`]: infinitely long thick solenoid, `B_z(r) = μ0 J (r2 − max(r, r1))` inside,
+//!   0 outside, `A_phi = (1/r) ∫_0^r B_z s ds`.
+//! - [`sphere_a_phi`]: permeable sphere in a uniform field `B0 e_z` (Jackson §5.11 / Griffiths ex. 6.3
+//!   form for magnetostatics): inside `B = 3 μr/(μr + 2) B0` uniform, outside the uniform field plus a
+//!   dipole `A = B0 r/2 + B0 K a³ r / ρ³`, `K = (μr − 1)/(μr + 2)`.
+
+use crate::material::MU_0;
+use mrbrake_fem::quadrature::gauss_legendre_unit;
+
+/// Complete elliptic integrals of the first and second kind, `(K(m), E(m))`, parameter `m = k²` in `[0, 1)`.
+pub fn elliptic_k_e(m: f64) -> (f64, f64) {
+    let mut a = 1.0;
+    let mut b = (1.0 - m).sqrt();
+    let mut c = m.sqrt();
+    let mut sum = 0.5 * c * c; // 2^{n−1} c_n² for n = 0
+    let mut power = 1.0;
+    for _ in 0..40 {
+        if c.abs() < 1e-17 {
+            break;
+        }
+        let a_next = 0.5 * (a + b);
+        let b_next = (a * b).sqrt();
+        c = 0.5 * (a - b);
+        a = a_next;
+        b = b_next;
+        sum += power * c * c;
+        power *= 2.0;
+    }
+    let k = std::f64::consts::PI / (2.0 * a);
+    (k, k * (1.0 - sum))
+}
+
+/// `A_phi` (Wb/m) at `(r, z)` of a loop of radius `a` at `z = 0` carrying `current` (A).
+pub fn loop_a_phi(a: f64, current: f64, r: f64, z: f64) -> f64 {
+    if r <= 0.0 {
+        return 0.0;
+    }
+    let m = 4.0 * a * r / ((a + r) * (a + r) + z * z);
+    // Small m: (1 − m/2) K − E = π m² / 32 (1 + 3m/4 + O(m²)) avoids the cancellation.
+    let bracket = if m < 1e-4 {
+        std::f64::consts::PI * m * m / 32.0 * (1.0 + 0.75 * m)
+    } else {
+        let (k, e) = elliptic_k_e(m);
+        (1.0 - 0.5 * m) * k - e
+    };
+    MU_0 * current / (std::f64::consts::PI * m.sqrt()) * (a / r).sqrt() * bracket
+}
+
+/// Rectangular coil section `[r1, r2] × [z1, z2]` with current density `j` (A/m²).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoilSection {
+    /// Inner radius (m).
+    pub r1: f64,
+    /// Outer radius (m).
+    pub r2: f64,
+    /// Lower axial end (m).
+    pub z1: f64,
+    /// Upper axial end (m).
+    pub z2: f64,
+    /// Current density (A/m²).
+    pub j: f64,
+}
+
+/// `A_phi` of the coil at `(r, z)` outside its section, by `panels² × 8²` Gauss points.
+pub fn thick_coil_a_phi(coil: &CoilSection, r: f64, z: f64, panels: usize) -> f64 {
+    let (x, w) = gauss_legendre_unit(8);
+    let panels = panels.max(1);
+    let (dr, dz) = ((coil.r2 - coil.r1) / panels as f64, (coil.z2 - coil.z1) / panels as f64);
+    let mut sum = 0.0;
+    for pr in 0..panels {
+        for pz in 0..panels {
+            for (xr, wr) in x.iter().zip(&w) {
+                for (xz, wz) in x.iter().zip(&w) {
+                    let a = coil.r1 + dr * (pr as f64 + xr);
+                    let zc = coil.z1 + dz * (pz as f64 + xz);
+                    sum += wr * wz * loop_a_phi(a, 1.0, r, z - zc);
+                }
+            }
+        }
+    }
+    sum * coil.j * dr * dz
+}
+
+/// On-axis `B_z` (T) of the coil at axial position `z`.
+pub fn thick_coil_axis_bz(coil: &CoilSection, z: f64) -> f64 {
+    let f = |u: f64| {
+        u * ((coil.r2 + coil.r2.hypot(u)) / (coil.r1 + coil.r1.hypot(u))).ln()
+    };
+    0.5 * MU_0 * coil.j * (f(coil.z2 - z) - f(coil.z1 - z))
+}
+
+/// `A_phi` (Wb/m) at radius `r` of an infinitely long solenoid `r1 <= r <= r2` with current density `j`.
+pub fn long_solenoid_a_phi(j: f64, r1: f64, r2: f64, r: f64) -> f64 {
+    if r <= 0.0 {
+        return 0.0;
+    }
+    let b0 = MU_0 * j * (r2 - r1);
+    // ∫_0^s B_z(t) t dt.
+    let flux_integral = |s: f64| {
+        if s <= r1 {
+            0.5 * b0 * s * s
+        } else {
+            let s = s.min(r2);
+            0.5 * b0 * r1 * r1 + MU_0 * j * (0.5 * r2 * (s * s - r1 * r1) - (s.powi(3) - r1.powi(3)) / 3.0)
+        }
+    };
+    flux_integral(r) / r
+}
+
+/// `B_z` (T) at radius `r` of the infinitely long solenoid.
+pub fn long_solenoid_bz(j: f64, r1: f64, r2: f64, r: f64) -> f64 {
+    if r <= r1 {
+        MU_0 * j * (r2 - r1)
+    } else if r <= r2 {
+        MU_0 * j * (r2 - r)
+    } else {
+        0.0
+    }
+}
+
+/// `A_phi` at `(r, z)` for a sphere of radius `a` (centre at the origin) and relative permeability
+/// `mu_r` in the uniform far field `b0 e_z`.
+pub fn sphere_a_phi(b0: f64, mu_r: f64, a: f64, r: f64, z: f64) -> f64 {
+    let rho = r.hypot(z);
+    let k = (mu_r - 1.0) / (mu_r + 2.0);
+    if rho <= a {
+        0.5 * 3.0 * mu_r / (mu_r + 2.0) * b0 * r
+    } else {
+        0.5 * b0 * r + b0 * k * a.powi(3) * r / rho.powi(3)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn elliptic_integrals_match_tables() {
+        // A&S Table 17.1: K(0.5) = 1.854_074_677_301_372, E(0.5) = 1.350_643_881_047_675.
+        let (k, e) = elliptic_k_e(0.5);
+        assert!((k - 1.854_074_677_301_372).abs() < 1e-14);
+        assert!((e - 1.350_643_881_047_675).abs() < 1e-14);
+        let (k0, e0) = elliptic_k_e(0.0);
+        let half_pi = std::f64::consts::FRAC_PI_2;
+        assert!((k0 - half_pi).abs() < 1e-15 && (e0 - half_pi).abs() < 1e-15);
+        // K(0.99) = 3.695_637_362_989_875.
+        assert!((elliptic_k_e(0.99).0 - 3.695_637_362_989_875).abs() < 1e-12);
+    }
+
+    #[test]
+    fn loop_far_field_is_a_dipole_and_axis_field_matches_biot_savart() {
+        let (a, i) = (0.05, 2.0);
+        // Far field: A = μ0 m sinθ / (4π ρ²), m = I π a².
+        let (r, z) = (3.0, 4.0);
+        let rho: f64 = 5.0;
+        let dipole = MU_0 * i * std::f64::consts::PI * a * a * (r / rho) / (4.0 * std::f64::consts::PI * rho * rho);
+        assert!((loop_a_phi(a, i, r, z) - dipole).abs() < 1e-3 * dipole);
+        // Near the axis B_z ≈ 2A/r = μ0 I a² / (2 (a² + z²)^{3/2}).
+        let (r, z) = (1e-5, 0.03);
+        let bz = 2.0 * loop_a_phi(a, i, r, z) / r;
+        let exact = MU_0 * i * a * a / (2.0 * (a * a + z * z).powf(1.5));
+        assert!((bz - exact).abs() < 1e-6 * exact);
+    }
+
+    #[test]
+    fn thick_coil_axis_matches_integrated_loops() {
+        let coil = CoilSection { r1: 0.01, r2: 0.02, z1: -0.01, z2: 0.015, j: 1e6 };
+        let z = 0.04;
+        let r = 1e-6;
+        let bz_from_a = 2.0 * thick_coil_a_phi(&coil, r, z, 2) / r;
+        let bz = thick_coil_axis_bz(&coil, z);
+        assert!((bz_from_a - bz).abs() < 1e-6 * bz, "{bz_from_a} vs {bz}");
+    }
+
+    #[test]
+    fn solenoid_and_sphere_are_continuous() {
+        let (j, r1, r2) = (1e6, 0.01, 0.02);
+        for r in [r1, r2] {
+            let below = long_solenoid_a_phi(j, r1, r2, r * (1.0 - 1e-9));
+            let above = long_solenoid_a_phi(j, r1, r2, r * (1.0 + 1e-9));
+            assert!((below - above).abs() < 1e-6 * below.abs());
+        }
+        let (b0, mu, a) = (0.1, 100.0, 0.02);
+        let inside = sphere_a_phi(b0, mu, a, 0.6 * a, 0.8 * a * (1.0 - 1e-12));
+        let outside = sphere_a_phi(b0, mu, a, 0.6 * a, 0.8 * a * (1.0 + 1e-12));
+        assert!((inside - outside).abs() < 1e-9 * inside);
+    }
+}

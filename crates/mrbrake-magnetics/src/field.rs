@@ -1,0 +1,352 @@
+//! The solution and its post-processing: B at points and along lines, region statistics, flux
+//! linkage and inductance, stored energy and co-energy.
+//!
+//! All integrals are over the full body of revolution (the `2π` dropped in the weak form is put back):
+//! - flux linkage of a coil of `N` turns over its cross-section `S` (turns spread uniformly):
+//!   `λ = (N/S) ∫_S 2π r A_phi dS` — each turn at radius r links `2π r A_phi` (Stokes), averaged over S;
+//! - secant inductance `L = λ / I`; incremental inductance `dλ/dI` by [`Solver::incremental_inductance`];
+//! - energy `W = ∫ w(B) dV`, `w(B) = ∫_0^B H db`, co-energy `W' = ∫ (H B − w) dV` (equal for linear media).
+//!
+//! B of the P1 potential, `B_r = −∂A/∂z`, `B_z = ∂A/∂r + A/r`, is only first-order accurate point by
+//! point (and piecewise almost constant). [`Solver::b_at`] therefore returns a *recovered* field: at
+//! every node, the area-weighted average of the centroid values of the triangles around it **of the
+//! same region** (so the jump of tangential B at an iron/air interface is kept), interpolated
+//! linearly inside the triangle — the simple averaging recovery of Zienkiewicz & Zhu (Int. J. Numer.
+//! Meth. Eng. 24 (1987) 337), which is second-order accurate at interior nodes of regular meshes (the
+//! thick-coil validation measures it on the axis). On the axis `B_r = 0` is imposed (symmetry).
+//! [`Solver::b_at_raw`] gives the unrecovered element value; on the axis (`r → 0`, where `A = 0`) it
+//! uses the limit `B_z = 2 ∂A/∂r`.
+
+use serde::Serialize;
+
+use mrbrake_fem::element::P1Triangle;
+use mrbrake_fem::locate::PointLocator;
+
+use crate::MagneticsError;
+use crate::assembly::{flux_density, point_values, triangle};
+use crate::solver::{NewtonReport, Solver};
+
+const TWO_PI: f64 = 2.0 * std::f64::consts::PI;
+
+/// The converged potential and the Newton report.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    a_phi: Vec<f64>,
+    /// Recovered B at the corners of every triangle (3 per triangle), computed on first use.
+    recovered: std::sync::OnceLock<Vec<[f64; 2]>>,
+    /// Newton iterations, history and timings.
+    pub report: NewtonReport,
+}
+
+impl Solution {
+    pub(crate) fn new(a_phi: Vec<f64>, report: NewtonReport) -> Self {
+        Self { a_phi, recovered: std::sync::OnceLock::new(), report }
+    }
+
+    /// Nodal values of `A_phi` (Wb/m), one per mesh node (usable as a warm start).
+    pub fn a_phi(&self) -> &[f64] {
+        &self.a_phi
+    }
+}
+
+/// B at one point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PointField {
+    /// Radius (m).
+    pub r: f64,
+    /// Axial position (m).
+    pub z: f64,
+    /// Radial flux density (T).
+    pub b_r_t: f64,
+    /// Axial flux density (T).
+    pub b_z_t: f64,
+    /// Magnitude (T).
+    pub b_abs_t: f64,
+}
+
+/// Statistics of |B| over one region (volume-weighted over the body of revolution).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RegionStats {
+    /// Physical tag.
+    pub physical: u32,
+    /// Cross-section area (m²).
+    pub area_m2: f64,
+    /// Volume of the body of revolution (m³).
+    pub volume_m3: f64,
+    /// Volume-weighted mean |B| (T).
+    pub mean_b_t: f64,
+    /// Largest |B| at a quadrature point (T).
+    pub max_b_t: f64,
+    /// Volume-weighted 10 %, 50 % and 90 % quantiles of |B| (T).
+    pub quantiles_b_t: [f64; 3],
+}
+
+/// Flux linkage and inductance of a coil.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CoilLinkage {
+    /// Physical tag of the coil region.
+    pub physical: u32,
+    /// Turns.
+    pub turns: f64,
+    /// Current (A).
+    pub current_a: f64,
+    /// Flux linkage λ (Wb).
+    pub flux_linkage_wb: f64,
+    /// Secant inductance λ/I (H); NaN at zero current.
+    pub inductance_h: f64,
+}
+
+/// `(N/S) ∫ 2π r A dS` over region index `ri`.
+pub(crate) fn coil_flux(solver: &Solver, a: &[f64], ri: usize, turns: f64) -> f64 {
+    let mesh = &solver.problem.mesh;
+    let mut integral = 0.0;
+    for (t, nodes) in mesh.triangles.iter().enumerate() {
+        if solver.region_index[t] as usize != ri {
+            continue;
+        }
+        let tri = triangle(mesh, t);
+        for q in &solver.rule {
+            let v = point_values(&tri, q);
+            let a_q: f64 = (0..3).map(|k| v.basis[k] * a[nodes[k]]).sum();
+            integral += v.weight * a_q;
+        }
+    }
+    TWO_PI * integral * turns / solver.region_area[ri]
+}
+
+impl Solver {
+    fn locator(&self) -> &PointLocator {
+        self.locator.get_or_init(|| PointLocator::new(&self.problem.mesh))
+    }
+
+    /// Recovered B at `[r, z]` (m) (see the module docs); an error if the point is outside the mesh.
+    pub fn b_at(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
+        let mesh = &self.problem.mesh;
+        let (t, bary) = self.locator().locate(mesh, p).ok_or_else(|| {
+            MagneticsError::Input(format!("point (r = {} m, z = {} m) is outside the mesh", p[0], p[1]))
+        })?;
+        let corners = solution.recovered.get_or_init(|| self.recover_b(solution));
+        let mut b = [0.0; 2];
+        for k in 0..3 {
+            b[0] += bary[k] * corners[3 * t + k][0];
+            b[1] += bary[k] * corners[3 * t + k][1];
+        }
+        Ok(PointField { r: p[0], z: p[1], b_r_t: b[0], b_z_t: b[1], b_abs_t: b[0].hypot(b[1]) })
+    }
+
+    /// Same-region nodal averaging of the centroid B (module docs), per triangle corner.
+    fn recover_b(&self, solution: &Solution) -> Vec<[f64; 2]> {
+        let mesh = &self.problem.mesh;
+        let centroid_b = self.element_b(solution);
+        let n = mesh.nodes.len();
+        let mut start = vec![0usize; n + 1];
+        for tri in &mesh.triangles {
+            for &v in tri {
+                start[v + 1] += 1;
+            }
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut corner_of = vec![0usize; start[n]];
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for (k, &v) in tri.iter().enumerate() {
+                corner_of[fill[v]] = 3 * t + k;
+                fill[v] += 1;
+            }
+        }
+        let axis_tol = 1e-9 * mesh.size_scale();
+        let mut corners = vec![[0.0; 2]; 3 * mesh.triangles.len()];
+        for v in 0..n {
+            let around = &corner_of[start[v]..start[v + 1]];
+            for &c in around {
+                let tag = mesh.triangle_tags[c / 3];
+                let (mut sum, mut weight) = ([0.0; 2], 0.0);
+                for &d in around {
+                    let t = d / 3;
+                    if mesh.triangle_tags[t] == tag {
+                        let area = mesh.signed_area(t);
+                        sum[0] += area * centroid_b[t][0];
+                        sum[1] += area * centroid_b[t][1];
+                        weight += area;
+                    }
+                }
+                let mut b = [sum[0] / weight, sum[1] / weight];
+                if mesh.nodes[v][0] <= axis_tol {
+                    b[0] = 0.0;
+                }
+                corners[c] = b;
+            }
+        }
+        corners
+    }
+
+    /// Unrecovered B of the P1 potential in the triangle containing `[r, z]`.
+    pub fn b_at_raw(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
+        let mesh = &self.problem.mesh;
+        let (t, bary) = self.locator().locate(mesh, p).ok_or_else(|| {
+            MagneticsError::Input(format!("point (r = {} m, z = {} m) is outside the mesh", p[0], p[1]))
+        })?;
+        let tri = triangle(mesh, t);
+        let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
+        let b = b_in_triangle(&tri, a, bary, p[0], mesh.size_scale());
+        Ok(PointField { r: p[0], z: p[1], b_r_t: b[0], b_z_t: b[1], b_abs_t: b[0].hypot(b[1]) })
+    }
+
+    /// B at `samples` equally spaced points along each segment of the polyline `points`
+    /// (segment ends included once).
+    pub fn b_along(&self, solution: &Solution, points: &[[f64; 2]], samples: usize) -> Result<Vec<PointField>, MagneticsError> {
+        let mut out = Vec::new();
+        let samples = samples.max(1);
+        for (s, w) in points.windows(2).enumerate() {
+            for k in 0..=samples {
+                if s > 0 && k == 0 {
+                    continue;
+                }
+                let f = k as f64 / samples as f64;
+                let p = [w[0][0] + f * (w[1][0] - w[0][0]), w[0][1] + f * (w[1][1] - w[0][1])];
+                out.push(self.b_at(solution, p)?);
+            }
+        }
+        Ok(out)
+    }
+
+    /// |B| statistics of region `tag`.
+    pub fn region_stats(&self, solution: &Solution, tag: u32) -> Result<RegionStats, MagneticsError> {
+        let ri = self.region_position(tag)?;
+        let mesh = &self.problem.mesh;
+        let mut samples: Vec<(f64, f64)> = Vec::new();
+        for (t, nodes) in mesh.triangles.iter().enumerate() {
+            if self.region_index[t] as usize != ri {
+                continue;
+            }
+            let tri = triangle(mesh, t);
+            let a = nodes.map(|v| solution.a_phi[v]);
+            for q in &self.rule {
+                let v = point_values(&tri, q);
+                let b = flux_density(&v, a);
+                samples.push((b[0].hypot(b[1]), TWO_PI * v.weight));
+            }
+        }
+        let volume: f64 = samples.iter().map(|s| s.1).sum();
+        let mean = samples.iter().map(|s| s.0 * s.1).sum::<f64>() / volume;
+        let max = samples.iter().map(|s| s.0).fold(0.0, f64::max);
+        samples.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let mut quantiles = [0.0; 3];
+        for (k, level) in [0.1, 0.5, 0.9].iter().enumerate() {
+            let mut cumulative = 0.0;
+            for s in &samples {
+                cumulative += s.1;
+                if cumulative >= level * volume {
+                    quantiles[k] = s.0;
+                    break;
+                }
+            }
+        }
+        Ok(RegionStats {
+            physical: tag,
+            area_m2: self.region_area[ri],
+            volume_m3: volume,
+            mean_b_t: mean,
+            max_b_t: max,
+            quantiles_b_t: quantiles,
+        })
+    }
+
+    /// Flux linkage and secant inductance of every coil (regions with a turns × current source).
+    pub fn coils(&self, solution: &Solution) -> Vec<CoilLinkage> {
+        let mut out = Vec::new();
+        for (ri, region) in self.problem.regions.iter().enumerate() {
+            if let Some(crate::problem::Source::Coil { turns, current_a }) = region.source {
+                let flux = coil_flux(self, &solution.a_phi, ri, turns);
+                out.push(CoilLinkage {
+                    physical: region.tag,
+                    turns,
+                    current_a,
+                    flux_linkage_wb: flux,
+                    inductance_h: if current_a.abs() > 0.0 { flux / current_a } else { f64::NAN },
+                });
+            }
+        }
+        out
+    }
+
+    /// Stored magnetic energy `W` and co-energy `W'` (J), whole body of revolution.
+    pub fn energy(&self, solution: &Solution) -> (f64, f64) {
+        let mesh = &self.problem.mesh;
+        let mut energy = 0.0;
+        let mut coenergy = 0.0;
+        for (t, nodes) in mesh.triangles.iter().enumerate() {
+            let material = &self.materials[self.region_index[t] as usize];
+            let tri = triangle(mesh, t);
+            let a = nodes.map(|v| solution.a_phi[v]);
+            for q in &self.rule {
+                let v = point_values(&tri, q);
+                let b = flux_density(&v, a);
+                let b2 = b[0] * b[0] + b[1] * b[1];
+                let w = material.energy_density(b2.sqrt());
+                let hb = material.nu_and_dnu_db2(b2).0 * b2;
+                energy += TWO_PI * v.weight * w;
+                coenergy += TWO_PI * v.weight * (hb - w);
+            }
+        }
+        (energy, coenergy)
+    }
+
+    /// B at the centroid of every triangle: `[B_r, B_z]` pairs (T), for maps and VTU output.
+    pub fn element_b(&self, solution: &Solution) -> Vec<[f64; 2]> {
+        let mesh = &self.problem.mesh;
+        (0..mesh.triangles.len())
+            .map(|t| {
+                let tri = triangle(mesh, t);
+                let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
+                let centroid = tri.point([1.0 / 3.0; 3]);
+                b_in_triangle(&tri, a, [1.0 / 3.0; 3], centroid[0], mesh.size_scale())
+            })
+            .collect()
+    }
+
+    /// Weighted L2 error `(∫ (A_h − A)² 2π r dS)^{1/2}` (Wb·m^{1/2}) against a reference potential,
+    /// with the degree-5 triangle rule, over the regions in `tags` (all regions when empty).
+    pub fn l2_error(&self, solution: &Solution, reference: impl Fn([f64; 2]) -> f64, tags: &[u32]) -> f64 {
+        let mesh = &self.problem.mesh;
+        let rule = mrbrake_fem::quadrature::triangle_rule(5);
+        let mut sum = 0.0;
+        for (t, nodes) in mesh.triangles.iter().enumerate() {
+            if !tags.is_empty() && !tags.contains(&mesh.triangle_tags[t]) {
+                continue;
+            }
+            let tri = triangle(mesh, t);
+            for q in &rule {
+                let p = tri.point(q.bary);
+                let a_h: f64 = (0..3).map(|k| q.bary[k] * solution.a_phi[nodes[k]]).sum();
+                let e = a_h - reference(p);
+                sum += TWO_PI * q.weight * tri.area * p[0] * e * e;
+            }
+        }
+        sum.sqrt()
+    }
+
+    fn region_position(&self, tag: u32) -> Result<usize, MagneticsError> {
+        self.problem
+            .regions
+            .iter()
+            .position(|r| r.tag == tag)
+            .ok_or_else(|| MagneticsError::Input(format!("no region with physical = {tag}")))
+    }
+}
+
+/// B in a triangle at barycentric `bary` (radius `r`); the axis limit `B_z = 2 ∂A/∂r` below
+/// `r = 1e-9 ×` the mesh scale.
+fn b_in_triangle(tri: &P1Triangle, a: [f64; 3], bary: [f64; 3], r: f64, scale: f64) -> [f64; 2] {
+    let mut grad = [0.0; 2];
+    let mut value = 0.0;
+    for i in 0..3 {
+        grad[0] += a[i] * tri.grad[i][0];
+        grad[1] += a[i] * tri.grad[i][1];
+        value += a[i] * bary[i];
+    }
+    let b_z = if r <= 1e-9 * scale { 2.0 * grad[0] } else { grad[0] + value / r };
+    [-grad[1], b_z]
+}

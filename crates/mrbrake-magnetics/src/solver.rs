@@ -1,0 +1,641 @@
+//! The solver: setup once per mesh (DOF numbering, sparsity pattern, symbolic Cholesky), then Newton
+//! solves that can be repeated with new sources and a warm start.
+//!
+//! Newton–Raphson with line search (Dennis & Schnabel, Numerical Methods for Unconstrained
+//! Optimization and Nonlinear Equations, §6.3):
+//!
+//! 1. assemble the residual `R(A)` and the exact Jacobian `K(A)` on the free nodes;
+//! 2. stop when `‖R‖₂ <= rtol · s`, where the scale `s = ‖F‖₂ + ‖R(A_D)‖₂` is the norm of the source
+//!    load vector plus that of the residual of the Dirichlet lifting `A_D` (interior zero) evaluated
+//!    in the *linear* (initial-reluctivity) state — both independent of the iterate;
+//! 3. factorise `K` (numeric Cholesky on the stored symbolic analysis) and solve `K δ = −R`;
+//! 4. line search on the energy `W(A)` whose gradient is `R` (see [`crate::assembly`]): `W` is convex
+//!    for a monotone B-H curve, so along the Newton direction `g(α) = δ · R(A + αδ) = dW/dα` is
+//!    increasing, with `g(0) = −δᵀKδ < 0`. The full step is accepted when `g(1) <= 0` (W decreases on
+//!    the whole step) or `|g(1)| <= |g(0)|/4`; otherwise the root of `g` in `(0, 1)` is bracketed and
+//!    approached by Illinois false position until `|g(α)| <= |g(0)|/4` (an approximate exact line
+//!    search: every accepted step lowers W). Only residuals are needed, no energy values. This is what
+//!    makes saturated problems converge from `A = 0`, where the first Newton step (with the initial
+//!    permeability of the iron) overshoots by orders of magnitude.
+//!
+//! A step that cannot be found (40 trials), a non-finite residual, a failed factorisation or the
+//! iteration limit gives [`MagneticsError::NotConverged`] with the whole residual history.
+//!
+//! Linear problems converge in one iteration. The accepted trial point's Jacobian is the next
+//! iteration's, so each Newton iteration costs one parallel assembly, one numeric factorisation and
+//! one triangular solve (plus one assembly per rejected line-search step).
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use mrbrake_fem::cholesky::SparseCholesky;
+use mrbrake_fem::mesh::Mesh;
+use mrbrake_fem::pattern::{CONSTRAINED, SymmetricPattern};
+use mrbrake_fem::quadrature::{TrianglePoint, gauss_legendre_unit, triangle_rule};
+use serde::Serialize;
+
+use crate::MagneticsError;
+use crate::assembly::{ElementData, assemble_elements};
+use crate::field::Solution;
+use crate::material::{MU_0, MagneticMaterial};
+use crate::problem::{BoundaryCondition, Problem, Source};
+
+/// Solver settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverOptions {
+    /// Degree of the triangle quadrature rule (2 by default; 4 for more accuracy on coarse meshes).
+    pub quadrature_degree: usize,
+    /// Maximum Newton iterations.
+    pub max_iterations: usize,
+    /// Relative residual tolerance `rtol` of the stopping rule.
+    pub residual_tolerance: f64,
+    /// Threads for the factorisation (0: rayon's global pool).
+    pub threads: usize,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        Self { quadrature_degree: 2, max_iterations: 50, residual_tolerance: 1e-9, threads: 0 }
+    }
+}
+
+/// One Newton iteration in the history.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct NewtonStep {
+    /// Residual norm `‖R‖₂` before the step (A·m, i.e. the units of the weak form without 2π).
+    pub residual: f64,
+    /// Residual relative to the scale `s` of the stopping rule.
+    pub relative_residual: f64,
+    /// Accepted line-search factor α.
+    pub step_length: f64,
+    /// `‖α δ‖∞ / ‖A‖∞` after the step.
+    pub relative_update: f64,
+}
+
+/// Timings of one solve (seconds).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct SolveTimings {
+    /// Assembly of residuals and Jacobians.
+    pub assemble_s: f64,
+    /// Numeric Cholesky factorisations.
+    pub factor_s: f64,
+    /// Triangular solves.
+    pub solve_s: f64,
+    /// Whole Newton loop.
+    pub total_s: f64,
+}
+
+/// Outcome of the Newton iterations.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NewtonReport {
+    /// Number of linear solves performed.
+    pub iterations: usize,
+    /// True when the stopping rule was met.
+    pub converged: bool,
+    /// Residual scale `s` of the stopping rule.
+    pub residual_scale: f64,
+    /// Final relative residual.
+    pub final_relative_residual: f64,
+    /// History, one entry per iteration.
+    pub history: Vec<NewtonStep>,
+    /// Time split.
+    pub timings: SolveTimings,
+}
+
+/// A reusable solver for one mesh and one set of materials and boundary conditions.
+#[derive(Debug)]
+pub struct Solver {
+    pub(crate) problem: Problem,
+    pub(crate) options: SolverOptions,
+    pub(crate) rule: Vec<TrianglePoint>,
+    pub(crate) materials: Vec<MagneticMaterial>,
+    pub(crate) data: ElementData,
+    pub(crate) region_index: Vec<u32>,
+    pub(crate) region_area: Vec<f64>,
+    /// Free-DOF index of each node, or CONSTRAINED.
+    pub(crate) dof: Vec<usize>,
+    /// Prescribed values (used at constrained nodes).
+    pub(crate) fixed_values: Vec<f64>,
+    pub(crate) n_free: usize,
+    pub(crate) pattern: SymmetricPattern,
+    pub(crate) cholesky: SparseCholesky,
+    /// Open-boundary contributions (constant).
+    pub(crate) open_terms: OpenTerms,
+    pub(crate) any_nonlinear: bool,
+    pub(crate) symbolic_s: f64,
+    pub(crate) locator: std::sync::OnceLock<mrbrake_fem::locate::PointLocator>,
+    element_residual: Vec<f64>,
+    element_jacobian: Vec<f64>,
+    values: Vec<f64>,
+}
+
+impl Solver {
+    /// Checks the problem and does the per-mesh work: DOF numbering, pattern, symbolic factorisation.
+    pub fn new(problem: Problem, options: SolverOptions) -> Result<Self, MagneticsError> {
+        let mesh = problem.mesh.clone();
+        mesh.validate()?;
+        let mut sorted_tags: Vec<u32> = problem.regions.iter().map(|r| r.tag).collect();
+        sorted_tags.sort_unstable();
+        if let Some(w) = sorted_tags.windows(2).find(|w| w[0] == w[1]) {
+            return Err(MagneticsError::Input(format!("region {} is defined twice", w[0])));
+        }
+        let mesh_tags = mesh.region_tags();
+        for tag in &mesh_tags {
+            if problem.region(*tag).is_none() {
+                return Err(MagneticsError::Input(format!(
+                    "mesh region (physical surface) {tag} has no material: add a region with physical = {tag}"
+                )));
+            }
+        }
+        let edge_tags = mesh.boundary_tags();
+        for region in &problem.regions {
+            if mesh_tags.binary_search(&region.tag).is_err() {
+                return Err(MagneticsError::Input(format!(
+                    "region physical = {} is not a surface of the mesh (mesh surfaces: {mesh_tags:?})",
+                    region.tag
+                )));
+            }
+            if let MagneticMaterial::Linear { mu_r } = region.material
+                && !(mu_r.is_finite() && mu_r > 0.0)
+            {
+                return Err(MagneticsError::Input(format!(
+                    "region {}: mu_r = {mu_r} must be finite and > 0",
+                    region.tag
+                )));
+            }
+        }
+        for boundary in &problem.boundaries {
+            if edge_tags.binary_search(&boundary.tag).is_err() {
+                return Err(MagneticsError::Input(format!(
+                    "boundary physical = {} is not a curve of the mesh (mesh curves: {edge_tags:?})",
+                    boundary.tag
+                )));
+            }
+        }
+        let region_index: Vec<u32> = mesh
+            .triangle_tags
+            .iter()
+            .map(|t| problem.regions.iter().position(|r| r.tag == *t).expect("every mesh tag has a region (checked)") as u32)
+            .collect();
+        let mut region_area = vec![0.0; problem.regions.len()];
+        for (t, &ri) in region_index.iter().enumerate() {
+            region_area[ri as usize] += mesh.signed_area(t);
+        }
+        let materials: Vec<MagneticMaterial> = problem.regions.iter().map(|r| r.material.clone()).collect();
+        let any_nonlinear = materials.iter().any(MagneticMaterial::is_nonlinear);
+
+        // Constrained nodes: the axis, Dirichlet edges, nodes not in any triangle.
+        let n = mesh.nodes.len();
+        let mut constrained = vec![true; n];
+        for tri in &mesh.triangles {
+            for &v in tri {
+                constrained[v] = false;
+            }
+        }
+        let mut fixed_values = vec![0.0; n];
+        for v in mesh.axis_nodes() {
+            constrained[v] = true;
+        }
+        for boundary in &problem.boundaries {
+            match &boundary.condition {
+                BoundaryCondition::Dirichlet => {
+                    for v in mesh.boundary_nodes(boundary.tag) {
+                        constrained[v] = true;
+                    }
+                }
+                BoundaryCondition::Prescribed(g) => {
+                    for v in mesh.boundary_nodes(boundary.tag) {
+                        constrained[v] = true;
+                        fixed_values[v] = g(mesh.nodes[v]);
+                    }
+                }
+                BoundaryCondition::Open { .. } => {}
+            }
+        }
+        for v in mesh.axis_nodes() {
+            fixed_values[v] = 0.0;
+        }
+        let mut dof = vec![CONSTRAINED; n];
+        let mut n_free = 0;
+        for v in 0..n {
+            if !constrained[v] {
+                dof[v] = n_free;
+                n_free += 1;
+            }
+        }
+        if n_free == 0 {
+            return Err(MagneticsError::Input("every node is constrained: nothing to solve".into()));
+        }
+        let element_dofs: Vec<usize> = mesh.triangles.iter().flat_map(|t| t.map(|v| dof[v])).collect();
+        let pattern = SymmetricPattern::new(n_free, 3, &element_dofs);
+        let open_terms = open_boundary_terms(&mesh, &problem, &dof, &pattern)?;
+        let start = Instant::now();
+        let cholesky = SparseCholesky::new(&pattern, options.threads)?;
+        let symbolic_s = start.elapsed().as_secs_f64();
+        let n_tri = mesh.triangles.len();
+        let mut solver = Self {
+            rule: triangle_rule(options.quadrature_degree),
+            materials,
+            data: ElementData { material: region_index.clone(), current_density: vec![0.0; n_tri] },
+            region_index,
+            region_area,
+            dof,
+            fixed_values,
+            n_free,
+            element_residual: vec![0.0; 3 * n_tri],
+            element_jacobian: vec![0.0; 6 * n_tri],
+            values: vec![0.0; pattern.nnz()],
+            pattern,
+            cholesky,
+            open_terms,
+            any_nonlinear,
+            symbolic_s,
+            locator: std::sync::OnceLock::new(),
+            problem,
+            options,
+        };
+        solver.update_sources()?;
+        Ok(solver)
+    }
+
+    /// The problem being solved.
+    pub fn problem(&self) -> &Problem {
+        &self.problem
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Arc<Mesh> {
+        &self.problem.mesh
+    }
+
+    /// Number of free unknowns.
+    pub fn unknowns(&self) -> usize {
+        self.n_free
+    }
+
+    /// Seconds spent in the symbolic factorisation (once per solver).
+    pub fn symbolic_factorisation_s(&self) -> f64 {
+        self.symbolic_s
+    }
+
+    /// Stored entries of the Cholesky factor (fill-in measure).
+    pub fn factor_nnz(&self) -> usize {
+        self.cholesky.factor_nnz()
+    }
+
+    /// Replaces the source of region `tag` (e.g. the next current of a sweep). The mesh, pattern and
+    /// symbolic factorisation are kept.
+    pub fn set_source(&mut self, tag: u32, source: Option<Source>) -> Result<(), MagneticsError> {
+        let region = self
+            .problem
+            .regions
+            .iter_mut()
+            .find(|r| r.tag == tag)
+            .ok_or_else(|| MagneticsError::Input(format!("set_source: no region with physical = {tag}")))?;
+        region.source = source;
+        self.update_sources()
+    }
+
+    /// Current density (A/m²) of each region from its source (`N I / S` for coils).
+    fn update_sources(&mut self) -> Result<(), MagneticsError> {
+        let mut density = vec![0.0; self.problem.regions.len()];
+        for (i, region) in self.problem.regions.iter().enumerate() {
+            density[i] = match region.source {
+                None => 0.0,
+                Some(Source::CurrentDensity { a_per_m2 }) => a_per_m2,
+                Some(Source::Coil { turns, current_a }) => {
+                    if self.region_area[i] <= 0.0 {
+                        return Err(MagneticsError::Input(format!(
+                            "coil region {} has zero area: it needs triangles in the mesh",
+                            region.tag
+                        )));
+                    }
+                    turns * current_a / self.region_area[i]
+                }
+            };
+            if !density[i].is_finite() {
+                return Err(MagneticsError::Input(format!("region {}: source is not finite", region.tag)));
+            }
+        }
+        for (t, &ri) in self.region_index.iter().enumerate() {
+            self.data.current_density[t] = density[ri as usize];
+        }
+        Ok(())
+    }
+
+    /// Assembles the residual on nodes (and the Jacobian values in `self.values` when asked).
+    fn assemble(&mut self, a: &[f64], jacobian: bool, residual_free: &mut [f64]) {
+        let mesh = self.problem.mesh.clone();
+        assemble_elements(
+            &mesh,
+            &self.rule,
+            &self.materials,
+            &self.data,
+            a,
+            &mut self.element_residual,
+            if jacobian { Some(&mut self.element_jacobian) } else { None },
+        );
+        residual_free.iter_mut().for_each(|r| *r = 0.0);
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let d = self.dof[tri[k]];
+                if d != CONSTRAINED {
+                    residual_free[d] += self.element_residual[3 * t + k];
+                }
+            }
+        }
+        for &(i, j, value) in &self.open_terms.residual {
+            let d = self.dof[i];
+            if d != CONSTRAINED {
+                residual_free[d] += value * a[j];
+            }
+        }
+        if jacobian {
+            self.pattern.assemble(&self.element_jacobian, &mut self.values);
+            for &(pos, value) in &self.open_terms.matrix {
+                self.values[pos as usize] += value;
+            }
+        }
+    }
+
+    /// Residual scale `s = ‖F‖ + ‖R_lin(A_D)‖` of the stopping rule (see the module docs).
+    fn residual_scale(&mut self) -> f64 {
+        let saved = std::mem::take(&mut self.materials);
+        // Linear state: every material at its B = 0 reluctivity.
+        self.materials = saved.iter().map(|m| MagneticMaterial::Linear { mu_r: 1.0 / (MU_0 * m.nu_and_dnu_db2(0.0).0) }).collect();
+        let mut lifting = self.fixed_values.clone();
+        for (v, d) in self.dof.iter().enumerate() {
+            if *d != CONSTRAINED {
+                lifting[v] = 0.0;
+            }
+        }
+        let mut residual = vec![0.0; self.n_free];
+        let density = std::mem::replace(&mut self.data.current_density, vec![0.0; self.problem.mesh.triangles.len()]);
+        self.assemble(&lifting, false, &mut residual);
+        let dirichlet_norm = norm2(&residual);
+        self.data.current_density = density;
+        let zero = vec![0.0; lifting.len()];
+        self.assemble(&zero, false, &mut residual);
+        let source_norm = norm2(&residual);
+        self.materials = saved;
+        source_norm + dirichlet_norm
+    }
+
+    /// Solves from `A = 0` (or from `initial`, e.g. a previous solution of a sweep: warm start).
+    /// Prescribed boundary values are imposed on the start vector.
+    pub fn solve(&mut self, initial: Option<&[f64]>) -> Result<Solution, MagneticsError> {
+        let start = Instant::now();
+        let n_nodes = self.problem.mesh.nodes.len();
+        let mut a = match initial {
+            Some(init) if init.len() == n_nodes => init.to_vec(),
+            Some(init) => {
+                return Err(MagneticsError::Input(format!(
+                    "warm start has {} values but the mesh has {n_nodes} nodes",
+                    init.len()
+                )));
+            }
+            None => vec![0.0; n_nodes],
+        };
+        for v in 0..n_nodes {
+            if self.dof[v] == CONSTRAINED {
+                a[v] = self.fixed_values[v];
+            }
+        }
+        let mut timings = SolveTimings::default();
+        let t = Instant::now();
+        let scale = self.residual_scale().max(f64::MIN_POSITIVE);
+        let mut residual = vec![0.0; self.n_free];
+        self.assemble(&a, true, &mut residual);
+        timings.assemble_s += t.elapsed().as_secs_f64();
+        let mut history: Vec<NewtonStep> = Vec::new();
+        let rtol = self.options.residual_tolerance;
+        let mut trial = a.clone();
+        let mut trial_residual = vec![0.0; self.n_free];
+        let mut delta = vec![0.0; self.n_free];
+        let mut converged = false;
+        let mut iterations = 0;
+        loop {
+            let r_norm = norm2(&residual);
+            if !r_norm.is_finite() {
+                return Err(self.failure("the residual is not finite (NaN or infinite B-H value?)", history, scale));
+            }
+            if r_norm <= rtol * scale {
+                converged = true;
+                break;
+            }
+            if iterations >= self.options.max_iterations {
+                break;
+            }
+            iterations += 1;
+            let t = Instant::now();
+            if let Err(e) = self.cholesky.factorize(&self.values) {
+                return Err(self.failure(&format!("{e} (Jacobian not positive definite: is a B-H curve non-monotone?)"), history, scale));
+            }
+            timings.factor_s += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            for (d, r) in delta.iter_mut().zip(&residual) {
+                *d = -r;
+            }
+            self.cholesky.solve_in_place(&mut delta)?;
+            timings.solve_s += t.elapsed().as_secs_f64();
+
+            // Line search on the convex energy (module docs): g(α) = δ·R(A + αδ) = dW/dα is
+            // increasing in α with g(0) = −δᵀKδ < 0. The full step is tried first.
+            let g0: f64 = delta.iter().zip(&residual).map(|(d, r)| d * r).sum();
+            let mut alpha = 1.0;
+            let mut accepted = false;
+            let (lo, mut g_lo) = (0.0, g0);
+            let (mut hi, mut g_hi): (f64, f64);
+            let mut right_moved = false;
+            for _ in 0..40 {
+                for v in 0..n_nodes {
+                    let d = self.dof[v];
+                    trial[v] = if d == CONSTRAINED { a[v] } else { a[v] + alpha * delta[d] };
+                }
+                let t = Instant::now();
+                self.assemble(&trial, true, &mut trial_residual);
+                timings.assemble_s += t.elapsed().as_secs_f64();
+                let g: f64 = delta.iter().zip(&trial_residual).map(|(d, r)| d * r).sum();
+                if !g.is_finite() {
+                    // Overflow in a B-H evaluation: step back hard, the bracket is not updated.
+                    alpha *= 0.1;
+                    continue;
+                }
+                if g <= 0.0 || g.abs() <= 0.25 * g0.abs() {
+                    // Either W still decreases at α (the whole step [0, α] is downhill), or α is
+                    // within a quarter of the initial slope of the minimiser along the line.
+                    accepted = true;
+                    break;
+                }
+                hi = alpha;
+                g_hi = g;
+                // Illinois false position on the bracket [lo, hi] (g_lo < 0 < g_hi).
+                let next = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+                alpha = next.clamp(lo + 0.01 * (hi - lo), hi - 0.01 * (hi - lo));
+                // Illinois: the right end moved again, so halve the weight of the fixed left end.
+                if right_moved {
+                    g_lo *= 0.5;
+                }
+                right_moved = true;
+            }
+            let a_max = a.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+            let d_max = delta.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * alpha;
+            history.push(NewtonStep {
+                residual: r_norm,
+                relative_residual: r_norm / scale,
+                step_length: if accepted { alpha } else { 0.0 },
+                relative_update: d_max / a_max.max(f64::MIN_POSITIVE),
+            });
+            if !accepted {
+                return Err(self.failure("the line search found no step reducing the residual", history, scale));
+            }
+            std::mem::swap(&mut a, &mut trial);
+            std::mem::swap(&mut residual, &mut trial_residual);
+            // With only linear materials the first solve is exact up to the round-off of the direct
+            // solver; accept it unless that round-off is abnormal (ill-conditioning).
+            if !self.any_nonlinear && norm2(&residual) <= 1e-6 * scale {
+                converged = true;
+                break;
+            }
+        }
+        let final_relative = norm2(&residual) / scale;
+        timings.total_s = start.elapsed().as_secs_f64();
+        let report = NewtonReport {
+            iterations,
+            converged,
+            residual_scale: scale,
+            final_relative_residual: final_relative,
+            history: history.clone(),
+            timings,
+        };
+        if !converged {
+            return Err(MagneticsError::NotConverged {
+                reason: format!("no convergence in {} Newton iterations", self.options.max_iterations),
+                history,
+                residual_scale: scale,
+            });
+        }
+        Ok(Solution::new(a, report))
+    }
+
+    fn failure(&self, reason: &str, history: Vec<NewtonStep>, scale: f64) -> MagneticsError {
+        MagneticsError::NotConverged { reason: reason.to_string(), history, residual_scale: scale }
+    }
+
+    /// Incremental inductance `dλ/dI` (H) of the coil region `tag` at the solution: one extra
+    /// factorisation of the Jacobian at `solution` and one solve `K dA/dI = ∂F/∂I`, then
+    /// `dλ/dI = (N/S) ∫ 2π r dA/dI dS` (the small-signal inductance seen by the current controller).
+    pub fn incremental_inductance(&mut self, solution: &Solution, tag: u32) -> Result<f64, MagneticsError> {
+        let ri = self
+            .problem
+            .regions
+            .iter()
+            .position(|r| r.tag == tag)
+            .ok_or_else(|| MagneticsError::Input(format!("no region with physical = {tag}")))?;
+        let Some(Source::Coil { turns, .. }) = self.problem.regions[ri].source else {
+            return Err(MagneticsError::Input(format!("region {tag} is not a coil (turns × current)")));
+        };
+        let mut residual = vec![0.0; self.n_free];
+        self.assemble(solution.a_phi(), true, &mut residual);
+        self.cholesky.factorize(&self.values)?;
+        // ∂F_i/∂I = (N/S) ∫_coil φ_i r dS.
+        let mesh = self.problem.mesh.clone();
+        let coil_density = turns / self.region_area[ri];
+        let mut rhs = vec![0.0; self.n_free];
+        for (t, tri_nodes) in mesh.triangles.iter().enumerate() {
+            if self.region_index[t] as usize != ri {
+                continue;
+            }
+            let tri = crate::assembly::triangle(&mesh, t);
+            for q in &self.rule {
+                let v = crate::assembly::point_values(&tri, q);
+                for k in 0..3 {
+                    let d = self.dof[tri_nodes[k]];
+                    if d != CONSTRAINED {
+                        rhs[d] += coil_density * v.weight * v.basis[k];
+                    }
+                }
+            }
+        }
+        self.cholesky.solve_in_place(&mut rhs)?;
+        let mut da = vec![0.0; mesh.nodes.len()];
+        for v in 0..da.len() {
+            if self.dof[v] != CONSTRAINED {
+                da[v] = rhs[self.dof[v]];
+            }
+        }
+        Ok(crate::field::coil_flux(self, &da, ri, turns))
+    }
+}
+
+fn norm2(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Open-boundary (asymptotic) terms `ν0/R ∫_edge φ_a φ_b r dl` (2-point Gauss, exact: the integrand
+/// is cubic along the edge): residual couplings `(i, j, m_ij)` in both orders, and matrix entries
+/// `(position, m_ij)` once per upper-triangle pair of free DOFs.
+fn open_boundary_terms(
+    mesh: &Mesh,
+    problem: &Problem,
+    dof: &[usize],
+    pattern: &SymmetricPattern,
+) -> Result<OpenTerms, MagneticsError> {
+    let mut terms = OpenTerms::default();
+    let (x, w) = gauss_legendre_unit(2);
+    for boundary in &problem.boundaries {
+        let BoundaryCondition::Open { centre_z_m } = boundary.condition else { continue };
+        let radius = |p: [f64; 2]| p[0].hypot(p[1] - centre_z_m);
+        let edges: Vec<[usize; 2]> =
+            mesh.edges.iter().zip(&mesh.edge_tags).filter(|(_, t)| **t == boundary.tag).map(|(e, _)| *e).collect();
+        let radii: Vec<f64> = edges.iter().flat_map(|e| e.map(|v| radius(mesh.nodes[v]))).collect();
+        let r_min = radii.iter().cloned().fold(f64::INFINITY, f64::min);
+        let r_max = radii.iter().cloned().fold(0.0, f64::max);
+        if !(r_min > 0.0) || (r_max - r_min) > 0.02 * r_max {
+            return Err(MagneticsError::Input(format!(
+                "open boundary {}: its nodes must lie on a circle centred on the axis at z = {centre_z_m} m \
+                 (distances range from {r_min:.4e} to {r_max:.4e} m)",
+                boundary.tag
+            )));
+        }
+        for e in edges {
+            let (pa, pb) = (mesh.nodes[e[0]], mesh.nodes[e[1]]);
+            let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+            let big_r = 0.5 * (radius(pa) + radius(pb));
+            let mut m = [[0.0; 2]; 2];
+            for (xq, wq) in x.iter().zip(&w) {
+                let phi = [1.0 - xq, *xq];
+                let r = pa[0] * phi[0] + pb[0] * phi[1];
+                for i in 0..2 {
+                    for j in 0..2 {
+                        m[i][j] += wq * length * r * phi[i] * phi[j] / (MU_0 * big_r);
+                    }
+                }
+            }
+            for i in 0..2 {
+                for j in 0..2 {
+                    terms.residual.push((e[i], e[j], m[i][j]));
+                    let (di, dj) = (dof[e[i]], dof[e[j]]);
+                    if di != CONSTRAINED && dj != CONSTRAINED && (i == j || i < j) {
+                        let (row, col) = if di <= dj { (di, dj) } else { (dj, di) };
+                        let rows = &pattern.row_idx[pattern.col_ptr[col]..pattern.col_ptr[col + 1]];
+                        let k = rows.binary_search(&row).map_err(|_| {
+                            MagneticsError::Numerical("open-boundary edge is not an edge of a triangle".into())
+                        })?;
+                        terms.matrix.push(((pattern.col_ptr[col] + k) as u32, m[i][j]));
+                    }
+                }
+            }
+        }
+    }
+    Ok(terms)
+}
+
+/// Constant contributions of the open boundary.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct OpenTerms {
+    /// `(i, j, m_ij)` node couplings for the residual, both orders.
+    pub residual: Vec<(usize, usize, f64)>,
+    /// `(value position, m_ij)` for the Jacobian (upper triangle, once per pair).
+    pub matrix: Vec<(u32, f64)>,
+}

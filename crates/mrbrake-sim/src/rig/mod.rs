@@ -1,0 +1,367 @@
+//! The virtual test rig: simulates the thesis's experiments (§3.2, §5.3) and writes logs in exactly the
+//! form a real rig would, so the identification pipeline can be tested end to end and an experiment
+//! rehearsed before a brake exists.
+//!
+//! Signal chain, one update per output sample (zero-order-hold current, [`crate::lti`] exact
+//! discretisation):
+//!
+//! ```text
+//! current I ──► static hysteresis T_s (play-type switch between polynomial branches)
+//!           ──► brake dynamics G_b(s) (default (5.5)) ──► + viscous c·ω ──► torque sensor
+//! motor voltage ──► DC motor (5.1) ──► ÷ belt ratio ──► shaft speed ω
+//! torque sensor: T·(V_fs/T_fs) + Gaussian noise ──► 16-bit ADC over ±V_fs ──► logged torque
+//! ```
+//!
+//! The static hysteresis is a play-type (clamp) model: T_s[k] = clamp(T_s[k−1], T_up(I[k]),
+//! T_down(I[k])) with T_down ≥ T_up. On a full ramp it follows the rising branch up and the falling
+//! branch down, exactly the loop the characterisation fits; on a reversal inside the loop the torque
+//! holds until the other branch is reached, so the loop stays continuous.
+//!
+//! Protocols: [`characterization_log`] (§5.3.1) and [`frequency_response_logs`] (§5.3.2: the current
+//! is shaped through the inverse model so that the torque demand is sinusoidal).
+
+pub mod config;
+pub mod noise;
+
+use mrbrake_sysid::inverse::{
+    BranchPolynomial, Direction, HysteresisModel, InverseModel, InverseTracker,
+};
+use mrbrake_sysid::polynomial::Polynomial;
+
+use crate::SimError;
+use crate::lti::{ContinuousTf, DiscreteStateSpace};
+pub use config::RigConfig;
+use noise::GaussianNoise;
+
+/// The simulated plant: brake, motor and sensor, advanced one output sample at a time.
+#[derive(Debug, Clone)]
+pub struct Plant {
+    rising: Polynomial,
+    falling: Polynomial,
+    static_torque_nm: f64,
+    brake_dynamics: DiscreteStateSpace,
+    motor: DiscreteStateSpace,
+    viscous: f64,
+    belt_ratio: f64,
+    motor_voltage_v: f64,
+    volts_per_nm: f64,
+    noise_std_v: f64,
+    lsb_v: f64,
+    full_scale_v: f64,
+    stiffness: f64,
+    noise: GaussianNoise,
+}
+
+/// One output sample of the plant.
+#[derive(Debug, Clone, Copy)]
+pub struct PlantSample {
+    /// True brake torque, N·m.
+    pub torque_nm: f64,
+    /// Torque as logged by the sensor chain (noise, quantisation), N·m.
+    pub measured_torque_nm: f64,
+    /// Brake shaft speed, rad/s.
+    pub speed_rad_s: f64,
+}
+
+impl Plant {
+    /// Builds the plant at output step `dt_s` with noise seed `seed`.
+    pub fn new(config: &RigConfig, dt_s: f64, seed: u64) -> Result<Self, SimError> {
+        let b = &config.brake;
+        let g = ContinuousTf::new(b.dynamics_numerator.clone(), b.dynamics_denominator.clone())
+            .map_err(|e| SimError::Input(format!("brake dynamics: {e}")))?;
+        let m = ContinuousTf::new(config.motor.numerator.clone(), config.motor.denominator.clone())
+            .map_err(|e| SimError::Input(format!("motor: {e}")))?;
+        let s = &config.sensor;
+        Ok(Self {
+            rising: Polynomial::new(b.rising.clone()),
+            falling: Polynomial::new(b.falling.clone()),
+            static_torque_nm: Polynomial::new(b.rising.clone()).eval(0.0),
+            brake_dynamics: DiscreteStateSpace::zoh(&g, dt_s)?,
+            motor: DiscreteStateSpace::zoh(&m, dt_s)?,
+            viscous: b.viscous_nm_s_per_rad,
+            belt_ratio: config.motor.belt_ratio,
+            motor_voltage_v: config.motor.voltage_v,
+            volts_per_nm: s.full_scale_v / s.full_scale_nm,
+            noise_std_v: s.noise_std_v,
+            lsb_v: 2.0 * s.full_scale_v / 2f64.powi(s.adc_bits as i32),
+            full_scale_v: s.full_scale_v,
+            stiffness: s.stiffness_nm_per_rad,
+            noise: GaussianNoise::new(seed),
+        })
+    }
+
+    /// Starts in equilibrium at current `current_a` on the rising branch, motor at steady speed.
+    pub fn settle(&mut self, current_a: f64) {
+        self.static_torque_nm = self.rising.eval(current_a);
+        self.brake_dynamics.set_steady_state(self.static_torque_nm);
+        self.motor.set_steady_state(self.motor_voltage_v);
+    }
+
+    /// Static (quasi-steady) torque of the play-type hysteresis model for the next current.
+    fn static_torque(&mut self, current_a: f64) -> f64 {
+        let up = self.rising.eval(current_a);
+        let down = self.falling.eval(current_a);
+        let (lo, hi) = if up <= down { (up, down) } else { (down, up) };
+        self.static_torque_nm = self.static_torque_nm.clamp(lo, hi);
+        self.static_torque_nm
+    }
+
+    /// Advances one output step with current `current_a`; `measure` adds the sensor chain.
+    pub fn step(&mut self, current_a: f64, measure: bool) -> PlantSample {
+        let ts = self.static_torque(current_a);
+        let motor_speed = self.motor.step(self.motor_voltage_v);
+        let speed_rad_s = motor_speed / self.belt_ratio;
+        let torque_nm = self.brake_dynamics.step(ts) + self.viscous * speed_rad_s;
+        let measured_torque_nm = if measure { self.measure(torque_nm) } else { torque_nm };
+        PlantSample { torque_nm, measured_torque_nm, speed_rad_s }
+    }
+
+    /// Sensor chain: volts, noise, clipping at ±full scale, quantisation, back to N·m.
+    fn measure(&mut self, torque_nm: f64) -> f64 {
+        let v = torque_nm * self.volts_per_nm + self.noise_std_v * self.noise.standard_normal();
+        let v = v.clamp(-self.full_scale_v, self.full_scale_v - self.lsb_v);
+        let code = (v / self.lsb_v).round();
+        code * self.lsb_v / self.volts_per_nm
+    }
+
+    /// Sensor shaft twist for a torque, rad (torque / torsional stiffness).
+    pub fn twist_rad(&self, torque_nm: f64) -> f64 {
+        torque_nm / self.stiffness
+    }
+}
+
+/// A log produced by the rig: its file name and CSV text.
+#[derive(Debug, Clone)]
+pub struct RigFile {
+    /// File name (no directory).
+    pub name: String,
+    /// CSV content with a header row.
+    pub csv: String,
+}
+
+/// The current command of the characterisation protocol at output step `k` (§5.3.1).
+fn protocol_current(config: &RigConfig, t_s: f64) -> Option<f64> {
+    let c = &config.characterization;
+    let steps = (config.brake.current_max_a / c.step_a).round() as i64;
+    let sequence_s = (2 * steps + 1) as f64 * c.step_s + c.pause_s;
+    let rep = (t_s / sequence_s).floor();
+    if rep >= c.repetitions as f64 {
+        return None;
+    }
+    let local = t_s - rep * sequence_s;
+    let index = (local / c.step_s + 1e-9).floor() as i64;
+    let level = if index <= steps {
+        index
+    } else if index <= 2 * steps {
+        2 * steps - index
+    } else {
+        0
+    };
+    Some((level as f64 * c.step_a).min(config.brake.current_max_a))
+}
+
+/// Duration of the characterisation protocol, s.
+pub fn characterization_duration_s(config: &RigConfig) -> f64 {
+    let c = &config.characterization;
+    let steps = (config.brake.current_max_a / c.step_a).round();
+    ((2.0 * steps + 1.0) * c.step_s + c.pause_s) * c.repetitions as f64
+}
+
+fn rates(config: &RigConfig) -> (f64, usize) {
+    let dt = 1.0 / config.daq.output_rate_hz;
+    let sub = (config.daq.output_rate_hz / config.daq.sample_rate_hz).round() as usize;
+    (dt, sub.max(1))
+}
+
+/// Samples (time s, current A, torque N·m, speed rad/s) of the characterisation run.
+pub fn characterization_samples(config: &RigConfig) -> Result<Vec<[f64; 4]>, SimError> {
+    config.validate("rig configuration")?;
+    let (dt, sub) = rates(config);
+    let mut plant = Plant::new(config, dt, config.seed)?;
+    plant.settle(0.0);
+    let total = characterization_duration_s(config);
+    let n = (total * config.daq.output_rate_hz).round() as usize;
+    let mut out = Vec::with_capacity(n / sub + 1);
+    for k in 0..n {
+        let t = k as f64 * dt;
+        let current = protocol_current(config, t).unwrap_or(0.0);
+        let logged = k % sub == 0;
+        let s = plant.step(current, logged);
+        if logged {
+            out.push([t, current, s.measured_torque_nm, s.speed_rad_s]);
+        }
+    }
+    Ok(out)
+}
+
+/// The characterisation log (`time_s, current_A, torque_Nm, speed_rad_s`), as `mrbrake characterize`
+/// reads it.
+pub fn characterization_log(config: &RigConfig) -> Result<RigFile, SimError> {
+    let samples = characterization_samples(config)?;
+    let mut csv = String::with_capacity(samples.len() * 40);
+    csv.push_str("time_s,current_A,torque_Nm,speed_rad_s\n");
+    for [t, i, tq, w] in samples {
+        push_row(&mut csv, &[t, i, tq, w]);
+    }
+    Ok(RigFile { name: "characterization.csv".into(), csv })
+}
+
+/// Appends one CSV row with enough digits for the 16-bit sensor and microsecond time stamps.
+fn push_row(out: &mut String, values: &[f64]) {
+    use std::fmt::Write;
+    for (k, v) in values.iter().enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        let _ = write!(out, "{v:.7}");
+    }
+    out.push('\n');
+}
+
+/// The test frequencies of §5.3.2: `points_per_decade` per decade from ω_min to ω_max inclusive.
+pub fn test_frequencies(config: &RigConfig) -> Vec<f64> {
+    let f = &config.frequency_response;
+    let decades = (f.omega_max_rad_s / f.omega_min_rad_s).log10();
+    let count = (decades * f.points_per_decade as f64).round() as usize + 1;
+    (0..count)
+        .map(|k| f.omega_min_rad_s * 10f64.powf(k as f64 / f.points_per_decade as f64))
+        .collect()
+}
+
+/// One sinusoidal test: (time s, demanded torque N·m, measured torque N·m, current A) per sample.
+pub fn sine_test_samples(
+    config: &RigConfig,
+    omega_rad_s: f64,
+    inverse: &InverseModel,
+    seed: u64,
+) -> Result<Vec<[f64; 4]>, SimError> {
+    let f = &config.frequency_response;
+    let (dt, sub) = rates(config);
+    let period = 2.0 * std::f64::consts::PI / omega_rad_s;
+    let discard = (f.periods_discarded * period).max(f.settle_s);
+    let measure = (f.periods_measured * period).max(f.min_measure_s);
+    let mid = 0.5 * (f.torque_min_nm + f.torque_max_nm);
+    let amp = 0.5 * (f.torque_max_nm - f.torque_min_nm);
+    let mut plant = Plant::new(config, dt, seed)?;
+    let mut tracker = InverseTracker::new(inverse.clone());
+    let i0 = tracker.current_for(mid);
+    plant.settle(i0);
+    let n = ((discard + measure) / dt).ceil() as usize;
+    let mut out = Vec::with_capacity(n / sub + 1);
+    for k in 0..n {
+        let t = k as f64 * dt;
+        let demand = mid + amp * (omega_rad_s * t).sin();
+        let current = tracker.current_for(demand);
+        let logged = k % sub == 0;
+        let s = plant.step(current, logged);
+        if logged {
+            out.push([t, demand, s.measured_torque_nm, current]);
+        }
+    }
+    Ok(out)
+}
+
+/// The inverse model of the configured branches (what a perfectly characterised brake would use).
+pub fn configured_model(config: &RigConfig) -> HysteresisModel {
+    HysteresisModel {
+        rising: BranchPolynomial { coefficients: config.brake.rising.clone() },
+        falling: BranchPolynomial { coefficients: config.brake.falling.clone() },
+        current_min_a: 0.0,
+        current_max_a: config.brake.current_max_a,
+    }
+}
+
+/// The frequency-response protocol: one log per test frequency (`time_s, input, output, current_A`)
+/// and the manifest `frequency_rad_s,file`. `model` is the inverse model that shapes the current
+/// (default: the configured branches).
+pub fn frequency_response_logs(
+    config: &RigConfig,
+    model: Option<&HysteresisModel>,
+) -> Result<Vec<RigFile>, SimError> {
+    config.validate("rig configuration")?;
+    let model = model.cloned().unwrap_or_else(|| configured_model(config));
+    let inverse = InverseModel::new(&model)?;
+    let (lo, hi) =
+        (inverse.torque_range(Direction::Rising), inverse.torque_range(Direction::Falling));
+    let f = &config.frequency_response;
+    if f.torque_min_nm < lo.0.max(hi.0) || f.torque_max_nm > lo.1.min(hi.1) {
+        return Err(SimError::Input(format!(
+            "frequency_response: the torque demand {}..{} N·m leaves the range both branches reach ({:.4}..{:.4} N·m)",
+            f.torque_min_nm,
+            f.torque_max_nm,
+            lo.0.max(hi.0),
+            lo.1.min(hi.1)
+        )));
+    }
+    let mut files = Vec::new();
+    let mut manifest = String::from("frequency_rad_s,file\n");
+    for (k, w) in test_frequencies(config).into_iter().enumerate() {
+        let samples =
+            sine_test_samples(config, w, &inverse, config.seed.wrapping_add(1 + k as u64))?;
+        let mut csv = String::with_capacity(samples.len() * 40);
+        csv.push_str("time_s,input,output,current_A\n");
+        for row in samples {
+            push_row(&mut csv, &row);
+        }
+        let name = format!("sine_{k:02}.csv");
+        manifest.push_str(&format!("{w},{name}\n"));
+        files.push(RigFile { name, csv });
+    }
+    files.push(RigFile { name: "manifest.csv".into(), csv: manifest });
+    Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn protocol_matches_thesis_timing() {
+        let c = RigConfig::default();
+        // (2·2000 + 1) steps of 10 ms + 5 s pause = 45.01 s per sequence, ten sequences.
+        assert!((characterization_duration_s(&c) - 450.1).abs() < 1e-9);
+        assert!((protocol_current(&c, 0.005).unwrap() - 0.0).abs() < 1e-15);
+        assert!((protocol_current(&c, 10.0).unwrap() - 1.0).abs() < 1e-12);
+        assert!((protocol_current(&c, 20.005).unwrap() - 2.0).abs() < 1e-12);
+        assert!((protocol_current(&c, 30.0).unwrap() - 1.0).abs() < 1e-12);
+        assert!((protocol_current(&c, 42.0).unwrap()).abs() < 1e-15);
+        assert!(protocol_current(&c, 451.0).is_none());
+    }
+
+    #[test]
+    fn play_model_follows_branches_and_holds_on_reversal() {
+        let mut cfg = RigConfig::default();
+        cfg.sensor.noise_std_v = 0.0;
+        let mut p = Plant::new(&cfg, 1e-3, 0).unwrap();
+        p.settle(0.0);
+        let up = Polynomial::new(cfg.brake.rising.clone());
+        let down = Polynomial::new(cfg.brake.falling.clone());
+        for k in 0..=100 {
+            p.static_torque(k as f64 * 0.01);
+        }
+        assert!((p.static_torque_nm - up.eval(1.0)).abs() < 1e-12);
+        // Reversal: the torque holds until the falling branch comes down to it.
+        let held = p.static_torque(0.99);
+        assert!((held - up.eval(1.0)).abs() < 1e-12);
+        let low = p.static_torque(0.2);
+        assert!((low - down.eval(0.2)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn sensor_quantises_to_the_adc_step() {
+        let mut cfg = RigConfig::default();
+        cfg.sensor.noise_std_v = 0.0;
+        let mut p = Plant::new(&cfg, 1e-3, 0).unwrap();
+        let lsb_nm = 20.0 / 65536.0;
+        let m = p.measure(1.23456);
+        assert!((m - 1.23456).abs() <= 0.5 * lsb_nm + 1e-15);
+        assert!(((m / lsb_nm) - (m / lsb_nm).round()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn thesis_frequency_grid_has_41_points() {
+        let w = test_frequencies(&RigConfig::default());
+        assert_eq!(w.len(), 41);
+        assert!((w[0] - 0.1).abs() < 1e-15 && (w[40] - 1000.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,364 @@
+//! Characterisation of the static torque–current hysteresis loop from a repeated-ramp log (thesis §5.3.1).
+//!
+//! Protocol in the thesis: the current rises from 0 to 2 A in 1 mA steps every 10 ms, falls back the
+//! same way, pauses 5 s, and the sequence repeats ten times while the torque is sampled at 1 kHz.
+//! The analysis here does not assume those numbers:
+//!
+//! 1. **Segmentation** with a Schmitt trigger on the current (10 % and 90 % of its range): every excursion
+//!    low → high → low is one repetition. Its rising part runs from the (last) lowest-current sample of
+//!    the low phase before the excursion to the current's peak; its falling part from the peak to the
+//!    first lowest-current sample of the following low phase. Samples resting within 1 % of the range
+//!    of the minimum between repetitions give the off-state torque.
+//! 2. **Averaging**: the samples of all repetitions are binned by current (default 200 bins) and the
+//!    torque averaged per bin and branch, the mean torque signal of the thesis.
+//! 3. **Branch fits**: a polynomial (default quintic, as in the thesis) through each averaged branch,
+//!    solved in a scaled variable ([`crate::polynomial::fit`]) and reported in ascending powers of the
+//!    current in A. The fit percentage is 100·(1 − ‖T − T̂‖/‖T − mean T‖) over the **raw** samples of
+//!    the branch (all repetitions), like the thesis's fit to the raw torque signal.
+
+use crate::SysidError;
+use crate::inverse::{BranchPolynomial, HysteresisModel};
+use crate::polynomial::{Polynomial, fit};
+
+/// Settings of the characterisation.
+#[derive(Debug, Clone, Copy)]
+pub struct CharacterizeOptions {
+    /// Polynomial order of each branch (thesis: 5).
+    pub order: usize,
+    /// Number of current bins used to average the repetitions.
+    pub bins: usize,
+}
+
+impl Default for CharacterizeOptions {
+    fn default() -> Self {
+        Self { order: 5, bins: 200 }
+    }
+}
+
+/// One fitted branch.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct BranchFit {
+    /// Torque in N·m as a polynomial in the current in A, ascending powers.
+    pub coefficients: Vec<f64>,
+    /// 100·(1 − ‖T − T̂‖/‖T − mean T‖) over the raw samples of this branch, all repetitions.
+    pub fit_percent: f64,
+    /// The same measure against the repetition-averaged branch.
+    pub fit_percent_mean: f64,
+    /// Raw samples used.
+    pub samples: usize,
+}
+
+/// Result of a characterisation (serialised as the `characterize` JSON and the inverse-model file).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Characterization {
+    /// Branch while the current increases.
+    pub rising: BranchFit,
+    /// Branch while the current decreases.
+    pub falling: BranchFit,
+    /// Lowest current in the log, A.
+    #[serde(rename = "current_min_A")]
+    pub current_min_a: f64,
+    /// Highest current in the log, A.
+    #[serde(rename = "current_max_A")]
+    pub current_max_a: f64,
+    /// Mean torque while the current rests at its minimum between repetitions, N·m (thesis: 0.15 N·m).
+    #[serde(rename = "off_state_torque_Nm")]
+    pub off_state_torque_nm: f64,
+    /// Largest torque of the fitted branches over the current range, N·m (thesis: 3.84 N·m at 2 A);
+    /// taken from the fits rather than the raw peak so that sensor noise does not inflate it.
+    #[serde(rename = "max_torque_Nm")]
+    pub max_torque_nm: f64,
+    /// Largest |T_falling(I) − T_rising(I)| of the fitted branches over the current range, N·m.
+    #[serde(rename = "max_hysteresis_Nm")]
+    pub max_hysteresis_nm: f64,
+    /// Current at which that width occurs, A.
+    #[serde(rename = "max_hysteresis_current_A")]
+    pub max_hysteresis_current_a: f64,
+    /// Number of complete repetitions found.
+    pub repetitions: usize,
+    /// Repetition-averaged rising branch, (current A, torque N·m) per non-empty bin.
+    #[serde(skip)]
+    pub rising_mean: Vec<(f64, f64)>,
+    /// Repetition-averaged falling branch.
+    #[serde(skip)]
+    pub falling_mean: Vec<(f64, f64)>,
+}
+
+impl Characterization {
+    /// The two fitted branches as a [`HysteresisModel`] (for the inverse).
+    pub fn model(&self) -> HysteresisModel {
+        HysteresisModel {
+            rising: BranchPolynomial { coefficients: self.rising.coefficients.clone() },
+            falling: BranchPolynomial { coefficients: self.falling.coefficients.clone() },
+            current_min_a: self.current_min_a,
+            current_max_a: self.current_max_a,
+        }
+    }
+}
+
+/// One repetition: index ranges (inclusive start, exclusive end) of its rising and falling parts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Repetition {
+    /// Samples of the rising part.
+    pub rising: (usize, usize),
+    /// Samples of the falling part.
+    pub falling: (usize, usize),
+}
+
+/// Finds the repetitions of a ramp-up/ramp-down current sequence (step 1 of the module docs).
+pub fn segment(current_a: &[f64]) -> Result<(Vec<Repetition>, f64, f64), SysidError> {
+    let (lo, hi) = current_a
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+    let range = hi - lo;
+    if range.is_nan() || range <= 0.0 {
+        return Err(SysidError::Input(
+            "characterize: the current never changes, there is no ramp to analyse".into(),
+        ));
+    }
+    let low_th = lo + 0.1 * range;
+    let high_th = lo + 0.9 * range;
+    let n = current_a.len();
+    let mut reps = Vec::new();
+    // Index of the lowest current of the current low phase (the last one when several are equal).
+    let mut low_phase_min: Option<usize> = None;
+    let mut i = 0;
+    while i < n {
+        if low_phase_min.is_none_or(|k| current_a[i] <= current_a[k]) {
+            low_phase_min = Some(i);
+        }
+        if current_a[i] > high_th {
+            let start = low_phase_min.unwrap_or(0);
+            // High phase: peak until the current falls below the low threshold.
+            let mut peak = i;
+            let mut j = i;
+            while j < n && current_a[j] >= low_th {
+                if current_a[j] > current_a[peak] {
+                    peak = j;
+                }
+                j += 1;
+            }
+            // Falling end: the first sample at the lowest current before the current rises again.
+            let next_rise = (j..n).find(|&k| current_a[k] > high_th).unwrap_or(n);
+            if next_rise == n && j == n {
+                break; // incomplete last repetition
+            }
+            let end = (j..next_rise)
+                .fold(j, |best, k| if current_a[k] < current_a[best] { k } else { best });
+            if current_a[end] > lo + 0.05 * range {
+                break; // the log ends before the current is back at the bottom
+            }
+            reps.push(Repetition { rising: (start, peak + 1), falling: (peak, end + 1) });
+            low_phase_min = None;
+            i = end;
+            continue;
+        }
+        i += 1;
+    }
+    if reps.is_empty() {
+        return Err(SysidError::Input(format!(
+            "characterize: no complete ramp found (the current must rise from near {lo:.4} A to above \
+             {high_th:.4} A and come back)"
+        )));
+    }
+    Ok((reps, lo, hi))
+}
+
+/// 100·(1 − ‖y − ŷ‖/‖y − mean y‖), the fit percentage used throughout (MATLAB's NRMSE fit).
+pub fn fit_percent(y: &[f64], y_hat: &[f64]) -> f64 {
+    let mean = y.iter().sum::<f64>() / y.len().max(1) as f64;
+    let err: f64 = y.iter().zip(y_hat).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+    let spread: f64 = y.iter().map(|a| (a - mean) * (a - mean)).sum::<f64>().sqrt();
+    100.0 * (1.0 - err / spread)
+}
+
+/// Characterises the loop from current (A) and torque (N·m) samples.
+pub fn characterize(
+    current_a: &[f64],
+    torque_nm: &[f64],
+    options: CharacterizeOptions,
+) -> Result<Characterization, SysidError> {
+    if current_a.len() != torque_nm.len() {
+        return Err(SysidError::Input(
+            "characterize: current and torque have different lengths".into(),
+        ));
+    }
+    if options.order == 0 || options.order > 12 {
+        return Err(SysidError::Input(format!(
+            "characterize: polynomial order {} is outside 1..=12",
+            options.order
+        )));
+    }
+    if options.bins < 2 * (options.order + 1) {
+        return Err(SysidError::Input(format!(
+            "characterize: {} bins are too few for order {} (need at least {})",
+            options.bins,
+            options.order,
+            2 * (options.order + 1)
+        )));
+    }
+    let (reps, lo, hi) = segment(current_a)?;
+    let bin_of =
+        |i: f64| (((i - lo) / (hi - lo) * options.bins as f64) as usize).min(options.bins - 1);
+    let branch = |pick: fn(&Repetition) -> (usize, usize)| -> Result<(BranchFit, Vec<(f64, f64)>), SysidError> {
+        let mut sum_i = vec![0.0; options.bins];
+        let mut sum_t = vec![0.0; options.bins];
+        let mut count = vec![0usize; options.bins];
+        for r in &reps {
+            let (a, b) = pick(r);
+            for k in a..b {
+                let bin = bin_of(current_a[k]);
+                sum_i[bin] += current_a[k];
+                sum_t[bin] += torque_nm[k];
+                count[bin] += 1;
+            }
+        }
+        let mean: Vec<(f64, f64)> =
+            (0..options.bins).filter(|b| count[*b] > 0).map(|b| (sum_i[b] / count[b] as f64, sum_t[b] / count[b] as f64)).collect();
+        if mean.len() < options.order + 1 {
+            return Err(SysidError::Input(format!(
+                "characterize: only {} current levels were visited; order {} needs at least {}",
+                mean.len(),
+                options.order,
+                options.order + 1
+            )));
+        }
+        let (xs, ys): (Vec<f64>, Vec<f64>) = mean.iter().copied().unzip();
+        let p = fit(&xs, &ys, options.order)?;
+        let fitted_mean: Vec<f64> = xs.iter().map(|x| p.eval(*x)).collect();
+        let (mut raw_t, mut raw_hat) = (Vec::new(), Vec::new());
+        for r in &reps {
+            let (a, b) = pick(r);
+            for k in a..b {
+                raw_t.push(torque_nm[k]);
+                raw_hat.push(p.eval(current_a[k]));
+            }
+        }
+        Ok((
+            BranchFit {
+                fit_percent: fit_percent(&raw_t, &raw_hat),
+                fit_percent_mean: fit_percent(&ys, &fitted_mean),
+                samples: raw_t.len(),
+                coefficients: p.coefficients,
+            },
+            mean,
+        ))
+    };
+    let (rising, rising_mean) = branch(|r| r.rising)?;
+    let (falling, falling_mean) = branch(|r| r.falling)?;
+
+    // Off-state torque: samples resting at the bottom between (and after) repetitions.
+    let bottom = lo + 0.01 * (hi - lo);
+    let mut off = (0.0, 0usize);
+    for (w, r) in reps.iter().enumerate() {
+        let from = r.falling.1;
+        let to = reps.get(w + 1).map_or(current_a.len(), |next| next.rising.0);
+        for k in from..to {
+            if current_a[k] <= bottom {
+                off.0 += torque_nm[k];
+                off.1 += 1;
+            }
+        }
+    }
+    let p_up = Polynomial::new(rising.coefficients.clone());
+    let p_down = Polynomial::new(falling.coefficients.clone());
+    let off_state_torque_nm = if off.1 > 0 { off.0 / off.1 as f64 } else { p_up.eval(lo) };
+    let (mut max_h, mut max_h_i) = (0.0_f64, lo);
+    let mut max_torque_nm = f64::NEG_INFINITY;
+    for k in 0..=1000 {
+        let i = lo + (hi - lo) * k as f64 / 1000.0;
+        max_torque_nm = max_torque_nm.max(p_up.eval(i)).max(p_down.eval(i));
+        let w = (p_down.eval(i) - p_up.eval(i)).abs();
+        if w > max_h {
+            max_h = w;
+            max_h_i = i;
+        }
+    }
+    Ok(Characterization {
+        rising,
+        falling,
+        current_min_a: lo,
+        current_max_a: hi,
+        off_state_torque_nm,
+        max_torque_nm,
+        max_hysteresis_nm: max_h,
+        max_hysteresis_current_a: max_h_i,
+        repetitions: reps.len(),
+        rising_mean,
+        falling_mean,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The thesis protocol with a static loop (no dynamics, no noise): rising T = 0.15 + 1.8 I,
+    /// falling T = 0.15 + 1.8 I + 0.3 I (2 − I).
+    fn protocol(reps: usize) -> (Vec<f64>, Vec<f64>) {
+        let (mut i_a, mut t_nm) = (Vec::new(), Vec::new());
+        for _ in 0..reps {
+            for k in 0..=2000 {
+                for _ in 0..10 {
+                    let i = k as f64 * 1e-3;
+                    i_a.push(i);
+                    t_nm.push(0.15 + 1.8 * i);
+                }
+            }
+            for k in (0..2000).rev() {
+                for _ in 0..10 {
+                    let i = k as f64 * 1e-3;
+                    i_a.push(i);
+                    t_nm.push(0.15 + 1.8 * i + 0.3 * i * (2.0 - i));
+                }
+            }
+            for _ in 0..5000 {
+                i_a.push(0.0);
+                t_nm.push(0.15);
+            }
+        }
+        (i_a, t_nm)
+    }
+
+    #[test]
+    fn segmentation_counts_repetitions() {
+        let (i, _) = protocol(3);
+        let (reps, lo, hi) = segment(&i).unwrap();
+        assert_eq!(reps.len(), 3);
+        assert!(lo.abs() < 1e-15 && (hi - 2.0).abs() < 1e-12);
+        // Each rising part ends at the peak (2 A).
+        for r in &reps {
+            assert!((i[r.rising.1 - 1] - 2.0).abs() < 1e-12);
+            assert!(i[r.falling.1 - 1].abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn static_loop_is_recovered_exactly() {
+        let (i, t) = protocol(2);
+        let c = characterize(&i, &t, CharacterizeOptions { order: 2, bins: 200 }).unwrap();
+        assert_eq!(c.repetitions, 2);
+        let up = Polynomial::new(c.rising.coefficients.clone());
+        let down = Polynomial::new(c.falling.coefficients.clone());
+        // Averaging within 10 mA bins biases a curved branch by T''·h²/24 ≈ 2.5e-6 N·m.
+        for k in 0..=20 {
+            let x = k as f64 * 0.1;
+            assert!((up.eval(x) - (0.15 + 1.8 * x)).abs() < 1e-9);
+            assert!((down.eval(x) - (0.15 + 1.8 * x + 0.3 * x * (2.0 - x))).abs() < 1e-5);
+        }
+        assert!(c.rising.fit_percent > 99.999);
+        assert!((c.off_state_torque_nm - 0.15).abs() < 1e-12);
+        assert!((c.max_torque_nm - 3.75).abs() < 1e-5);
+        assert!(
+            (c.max_hysteresis_nm - 0.3).abs() < 1e-5
+                && (c.max_hysteresis_current_a - 1.0).abs() < 1e-2
+        );
+    }
+
+    #[test]
+    fn constant_current_is_an_input_error() {
+        let err =
+            characterize(&[1.0; 100], &[0.5; 100], CharacterizeOptions::default()).unwrap_err();
+        assert!(err.is_input_error());
+    }
+}

@@ -1,0 +1,53 @@
+//! The one error type of this crate.
+
+use std::path::PathBuf;
+
+/// Errors of `mrbrake-sysid`.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SysidError {
+    /// Invalid argument or data (a value out of range, too few points), with a message naming the
+    /// field and the allowed range.
+    #[error("{0}")]
+    Input(String),
+    /// A log, manifest or FRD file is malformed: the message names the file, the line (1-based, the
+    /// header being line 1) when known, and what was expected.
+    #[error("{file}{}: {message}", line.map(|l| format!(", line {l}")).unwrap_or_default())]
+    File {
+        /// The file (or in-memory source name) being read.
+        file: PathBuf,
+        /// The 1-based line, when the problem is on one line.
+        line: Option<u64>,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+    /// A file could not be opened or read.
+    #[error("cannot read '{path}': {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The underlying I/O error.
+        source: std::io::Error,
+    },
+    /// A numerical method failed (singular least-squares problem, non-convergence); `history` holds the
+    /// cost (or residual) per iteration so the failure can be diagnosed.
+    #[error("{message} (history of the cost per iteration: {history:?})")]
+    Numerical {
+        /// What failed.
+        message: String,
+        /// Cost or residual per iteration up to the failure.
+        history: Vec<f64>,
+    },
+}
+
+impl SysidError {
+    /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
+    /// internal failures (exit code 1).
+    pub fn is_input_error(&self) -> bool {
+        matches!(self, Self::Input(_) | Self::File { .. } | Self::Io { .. })
+    }
+
+    pub(crate) fn numerical(message: impl Into<String>, history: Vec<f64>) -> Self {
+        Self::Numerical { message: message.into(), history }
+    }
+}

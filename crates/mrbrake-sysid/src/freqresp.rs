@@ -1,0 +1,314 @@
+//! Frequency response from sinusoidal tests (thesis §5.3.2): gain (5.3)/(5.4) and phase per frequency.
+//!
+//! For each test, input and output are fitted in the least-squares sense by `c + a cos ωt + b sin ωt`
+//! at the known test frequency ω (the "sine-fit" of IEEE Std 1057, three-parameter form), after
+//! discarding the start-up transient: the first `discard_periods` periods or `settle_s` seconds,
+//! whichever is longer, then keeping the largest whole number of periods that remain. With the phasors
+//! U = a_u − j b_u and Y = a_y − j b_y the response is G(jω) = Y/U, i.e. gain |T_o/T_i| (5.3) and the
+//! phase difference. The quality figure of a point is the fit percentage of the output sine,
+//! 100·(1 − ‖y − ŷ‖/‖y − mean y‖): near 100 % for a clean sinusoid, lower with noise or distortion.
+
+use std::path::{Path, PathBuf};
+
+use crate::SysidError;
+use crate::characterize::fit_percent;
+use crate::complex::Complex;
+use crate::frd::{Frd, unwrap_deg};
+use crate::linalg::{Matrix, least_squares};
+use crate::log::read_log;
+use crate::tracking::{TrackingError, tracking_error};
+
+/// Settings of the frequency-response analysis.
+#[derive(Debug, Clone)]
+pub struct FreqRespOptions {
+    /// Time column name.
+    pub time_col: String,
+    /// Input column name (the desired torque T_i in the thesis).
+    pub input_col: String,
+    /// Output column name (the measured torque T_o).
+    pub output_col: String,
+    /// Periods discarded at the start.
+    pub discard_periods: f64,
+    /// Seconds discarded at the start (the larger of the two discards applies).
+    pub settle_s: f64,
+}
+
+impl Default for FreqRespOptions {
+    fn default() -> Self {
+        Self {
+            time_col: "time_s".into(),
+            input_col: "input".into(),
+            output_col: "output".into(),
+            discard_periods: 1.0,
+            settle_s: 0.5,
+        }
+    }
+}
+
+/// A fitted sinusoid c + Re{X e^{jωt}}.
+#[derive(Debug, Clone, Copy)]
+pub struct SineFit {
+    /// Complex amplitude (phasor) X.
+    pub phasor: Complex,
+    /// Constant offset c.
+    pub offset: f64,
+    /// Fit percentage of the sine model to the samples.
+    pub fit_percent: f64,
+}
+
+/// Least-squares sine fit at the known frequency `omega_rad_s`.
+pub fn sine_fit(time_s: &[f64], y: &[f64], omega_rad_s: f64) -> Result<SineFit, SysidError> {
+    let mut a = Matrix::zeros(time_s.len(), 3);
+    for (i, t) in time_s.iter().enumerate() {
+        a.set(i, 0, 1.0);
+        a.set(i, 1, (omega_rad_s * t).cos());
+        a.set(i, 2, (omega_rad_s * t).sin());
+    }
+    let x = least_squares(&a, y)?;
+    let y_hat: Vec<f64> = time_s
+        .iter()
+        .map(|t| x[0] + x[1] * (omega_rad_s * t).cos() + x[2] * (omega_rad_s * t).sin())
+        .collect();
+    Ok(SineFit {
+        phasor: Complex::new(x[1], -x[2]),
+        offset: x[0],
+        fit_percent: fit_percent(y, &y_hat),
+    })
+}
+
+/// The result at one test frequency.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct FrequencyPoint {
+    /// Test frequency, rad/s.
+    pub omega_rad_s: f64,
+    /// 20·log10|G| (5.4), dB.
+    #[serde(rename = "magnitude_dB")]
+    pub magnitude_db: f64,
+    /// Phase of G in degrees (unwrapped along frequency in a full analysis).
+    pub phase_deg: f64,
+    /// Real part of G(jω).
+    pub re: f64,
+    /// Imaginary part of G(jω).
+    pub im: f64,
+    /// Output sine-fit percentage (quality of the point).
+    pub quality_percent: f64,
+    /// Input sine-fit percentage (how sinusoidal the demand was).
+    pub input_fit_percent: f64,
+    /// Tracking error (5.2) between input and output over the analysed window.
+    pub tracking: TrackingError,
+    /// Whole periods analysed.
+    pub periods: usize,
+    /// The log this point came from.
+    pub file: PathBuf,
+}
+
+/// Analyses one sinusoidal test from its samples.
+pub fn analyse_test(
+    source: &Path,
+    omega_rad_s: f64,
+    time_s: &[f64],
+    input: &[f64],
+    output: &[f64],
+    options: &FreqRespOptions,
+) -> Result<FrequencyPoint, SysidError> {
+    let file_err =
+        |message: String| SysidError::File { file: source.to_path_buf(), line: None, message };
+    if !(omega_rad_s > 0.0 && omega_rad_s.is_finite()) {
+        return Err(file_err(format!("test frequency {omega_rad_s} rad/s must be positive")));
+    }
+    let n = time_s.len();
+    if n < 4 {
+        return Err(file_err(format!("{n} samples are too few for a sine fit")));
+    }
+    let period = 2.0 * std::f64::consts::PI / omega_rad_s;
+    let (t0, t_end) = (time_s[0], time_s[n - 1]);
+    let start = t0 + (options.discard_periods * period).max(options.settle_s);
+    let whole = ((t_end - start) / period).floor();
+    if whole < 1.0 {
+        return Err(file_err(format!(
+            "the log lasts {:.4} s; at {omega_rad_s} rad/s at least {:.4} s are needed (start-up discard {:.4} s + one period {:.4} s)",
+            t_end - t0,
+            start - t0 + period,
+            start - t0,
+            period
+        )));
+    }
+    let window_start = t_end - whole * period;
+    let first = time_s.partition_point(|t| *t < window_start - 1e-12 * period);
+    let (t, u, y) = (&time_s[first..], &input[first..], &output[first..]);
+    if t.len() < 4 {
+        return Err(file_err(format!(
+            "only {} samples in the analysed window at {omega_rad_s} rad/s",
+            t.len()
+        )));
+    }
+    let fu = sine_fit(t, u, omega_rad_s)?;
+    let fy = sine_fit(t, y, omega_rad_s)?;
+    if fu.phasor.abs().is_nan() || fu.phasor.abs() <= 0.0 {
+        return Err(file_err(format!("the input has no component at {omega_rad_s} rad/s")));
+    }
+    let g = fy.phasor / fu.phasor;
+    Ok(FrequencyPoint {
+        omega_rad_s,
+        magnitude_db: 20.0 * g.abs().log10(),
+        phase_deg: g.arg().to_degrees(),
+        re: g.re,
+        im: g.im,
+        quality_percent: fy.fit_percent,
+        input_fit_percent: fu.fit_percent,
+        tracking: tracking_error(u, y)?,
+        periods: whole as usize,
+        file: source.to_path_buf(),
+    })
+}
+
+/// One manifest row: a test frequency and its log file (resolved against the manifest's folder).
+#[derive(Debug, Clone)]
+pub struct ManifestEntry {
+    /// Test frequency, rad/s.
+    pub omega_rad_s: f64,
+    /// Log file.
+    pub file: PathBuf,
+}
+
+/// Reads a manifest CSV with columns `frequency_rad_s,file`.
+pub fn read_manifest(path: &Path) -> Result<Vec<ManifestEntry>, SysidError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let file_err = |line: Option<u64>, message: String| SysidError::File {
+        file: path.to_path_buf(),
+        line,
+        message,
+    };
+    let mut rdr = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let header = rdr
+        .headers()
+        .map_err(|e| file_err(Some(1), format!("cannot read the header row: {e}")))?
+        .clone();
+    let (Some(fi), Some(pi)) = (
+        header.iter().position(|h| h == "frequency_rad_s"),
+        header.iter().position(|h| h == "file"),
+    ) else {
+        return Err(file_err(
+            Some(1),
+            "the header must name the columns frequency_rad_s and file".into(),
+        ));
+    };
+    let mut entries = Vec::new();
+    for rec in rdr.records() {
+        let rec = rec
+            .map_err(|e| file_err(e.position().map(|p| p.line()), format!("malformed CSV: {e}")))?;
+        let line = rec.position().map(|p| p.line());
+        let w: f64 = rec
+            .get(fi)
+            .and_then(|c| c.parse().ok())
+            .filter(|w: &f64| w.is_finite() && *w > 0.0)
+            .ok_or_else(|| file_err(line, "frequency_rad_s must be a positive number".into()))?;
+        let f = rec
+            .get(pi)
+            .filter(|f| !f.is_empty())
+            .ok_or_else(|| file_err(line, "file is empty".into()))?;
+        entries.push(ManifestEntry { omega_rad_s: w, file: base.join(f) });
+    }
+    if entries.is_empty() {
+        return Err(file_err(None, "the manifest lists no test".into()));
+    }
+    Ok(entries)
+}
+
+/// Analyses every test of a manifest; points sorted by frequency, phase unwrapped along frequency.
+pub fn frequency_response(
+    manifest: &Path,
+    options: &FreqRespOptions,
+) -> Result<Vec<FrequencyPoint>, SysidError> {
+    let entries = read_manifest(manifest)?;
+    let mut points = Vec::with_capacity(entries.len());
+    for e in &entries {
+        let log =
+            read_log(&e.file, &options.time_col, &[&options.input_col, &options.output_col], 4)?;
+        points.push(analyse_test(
+            &e.file,
+            e.omega_rad_s,
+            &log.time_s,
+            &log.channels[0],
+            &log.channels[1],
+            options,
+        )?);
+    }
+    Ok(finish(points))
+}
+
+/// Sorts points by frequency and unwraps their phase.
+pub fn finish(mut points: Vec<FrequencyPoint>) -> Vec<FrequencyPoint> {
+    points.sort_by(|a, b| a.omega_rad_s.total_cmp(&b.omega_rad_s));
+    let unwrapped = unwrap_deg(&points.iter().map(|p| p.phase_deg).collect::<Vec<_>>());
+    for (p, ph) in points.iter_mut().zip(unwrapped) {
+        p.phase_deg = ph;
+    }
+    points
+}
+
+/// The points as frequency-response data for the estimator.
+pub fn to_frd(points: &[FrequencyPoint]) -> Frd {
+    Frd {
+        omega_rad_s: points.iter().map(|p| p.omega_rad_s).collect(),
+        response: points.iter().map(|p| Complex::new(p.re, p.im)).collect(),
+        weight: None,
+    }
+}
+
+/// The points as an FRD CSV text (readable by [`crate::frd::read_frd`]).
+pub fn frd_csv(points: &[FrequencyPoint]) -> String {
+    let mut s = String::from(
+        "omega_rad_s,magnitude_dB,phase_deg,re,im,quality_percent,rmse_Nm,rmse_percent\n",
+    );
+    for p in points {
+        s.push_str(&format!(
+            "{},{},{},{},{},{},{},{}\n",
+            p.omega_rad_s,
+            p.magnitude_db,
+            p.phase_deg,
+            p.re,
+            p.im,
+            p.quality_percent,
+            p.tracking.rmse_nm,
+            p.tracking.rmse_percent_of_range
+        ));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sine_fit_recovers_gain_and_phase_of_a_delayed_sine() {
+        let w = 7.0;
+        let t: Vec<f64> = (0..5000).map(|i| i as f64 * 1e-3).collect();
+        let u: Vec<f64> = t.iter().map(|t| 2.0 + (w * t).sin()).collect();
+        // Output: gain 0.5, phase −60°, plus a decaying transient that the discard removes.
+        let y: Vec<f64> = t
+            .iter()
+            .map(|t| 1.0 + 0.5 * (w * t - 60f64.to_radians()).sin() + 0.3 * (-t / 0.05).exp())
+            .collect();
+        let p =
+            analyse_test(Path::new("x.csv"), w, &t, &u, &y, &FreqRespOptions::default()).unwrap();
+        assert!((p.magnitude_db - 20.0 * 0.5f64.log10()).abs() < 1e-6, "{}", p.magnitude_db);
+        assert!((p.phase_deg + 60.0).abs() < 1e-4, "{}", p.phase_deg);
+        assert!(p.quality_percent > 99.99);
+    }
+
+    #[test]
+    fn too_short_log_names_the_file() {
+        let t: Vec<f64> = (0..100).map(|i| i as f64 * 1e-3).collect();
+        let err =
+            analyse_test(Path::new("short.csv"), 1.0, &t, &t, &t, &FreqRespOptions::default())
+                .unwrap_err();
+        assert!(err.to_string().contains("short.csv") && err.is_input_error());
+    }
+}

@@ -1,0 +1,229 @@
+//! Reading test-rig logs: CSV with a header row, columns chosen by name, any sample rate.
+//!
+//! A log is valid when every requested cell is a finite number and the time column strictly increases;
+//! anything else is an error naming the file, the line (the header is line 1) and the column. Lines
+//! starting with `#` are comments; cells may carry surrounding spaces.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+use crate::SysidError;
+
+/// Time-stamped channels read from one log file.
+#[derive(Debug, Clone)]
+pub struct Log {
+    /// Where the data came from (for error messages).
+    pub source: PathBuf,
+    /// Sample times in seconds, strictly increasing.
+    pub time_s: Vec<f64>,
+    /// The requested channels, in the order they were asked for, each as long as `time_s`.
+    pub channels: Vec<Vec<f64>>,
+}
+
+impl Log {
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.time_s.len()
+    }
+
+    /// True when the log holds no sample.
+    pub fn is_empty(&self) -> bool {
+        self.time_s.is_empty()
+    }
+
+    /// Mean sample rate in Hz, (n − 1)/(t_last − t_first).
+    pub fn mean_sample_rate_hz(&self) -> f64 {
+        let n = self.time_s.len();
+        if n < 2 {
+            return 0.0;
+        }
+        (n - 1) as f64 / (self.time_s[n - 1] - self.time_s[0])
+    }
+}
+
+/// Reads `time_col` and `channel_cols` from the CSV file at `path`; at least `min_samples` rows.
+pub fn read_log(
+    path: &Path,
+    time_col: &str,
+    channel_cols: &[&str],
+    min_samples: usize,
+) -> Result<Log, SysidError> {
+    let file = std::fs::File::open(path)
+        .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
+    read_log_from(
+        path,
+        std::io::BufReader::with_capacity(1 << 16, file),
+        time_col,
+        channel_cols,
+        min_samples,
+    )
+}
+
+/// As [`read_log`], from any reader; `source` only names the data in error messages.
+pub fn read_log_from(
+    source: &Path,
+    reader: impl Read,
+    time_col: &str,
+    channel_cols: &[&str],
+    min_samples: usize,
+) -> Result<Log, SysidError> {
+    let mut names = vec![time_col];
+    names.extend_from_slice(channel_cols);
+    let columns = read_columns_from(source, reader, &names)?;
+    let mut columns = columns.into_iter();
+    let time_s = columns.next().unwrap_or_default();
+    let log = Log { source: source.to_path_buf(), time_s, channels: columns.collect() };
+    check_time(&log.source, &log.time_s, time_col)?;
+    if log.len() < min_samples {
+        return Err(SysidError::File {
+            file: log.source,
+            line: None,
+            message: format!(
+                "only {} samples; at least {min_samples} are needed",
+                log.time_s.len()
+            ),
+        });
+    }
+    Ok(log)
+}
+
+/// Reads the named numeric columns (any order in the file) from a CSV source with a header row.
+pub fn read_columns_from(
+    source: &Path,
+    reader: impl Read,
+    names: &[&str],
+) -> Result<Vec<Vec<f64>>, SysidError> {
+    let file_err = |line: Option<u64>, message: String| SysidError::File {
+        file: source.to_path_buf(),
+        line,
+        message,
+    };
+    let mut rdr = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .flexible(true)
+        .from_reader(reader);
+    let header = rdr
+        .headers()
+        .map_err(|e| file_err(Some(1), format!("cannot read the header row: {e}")))?
+        .clone();
+    let mut index = Vec::with_capacity(names.len());
+    for name in names {
+        match header.iter().position(|h| h == *name) {
+            Some(i) => index.push(i),
+            None => {
+                let available: Vec<&str> = header.iter().collect();
+                return Err(file_err(
+                    Some(1),
+                    format!(
+                        "no column named '{name}' in the header (columns: {})",
+                        available.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+    let mut columns: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
+    let mut record = csv::StringRecord::new();
+    loop {
+        match rdr.read_record(&mut record) {
+            Ok(false) => break,
+            Ok(true) => {}
+            Err(e) => {
+                let line = e.position().map(|p| p.line());
+                return Err(file_err(line, format!("malformed CSV: {e}")));
+            }
+        }
+        let line = record.position().map(|p| p.line());
+        for (k, &i) in index.iter().enumerate() {
+            let cell = record
+                .get(i)
+                .ok_or_else(|| file_err(line, format!("missing value in column '{}'", names[k])))?;
+            let value: f64 = cell.parse().map_err(|_| {
+                file_err(line, format!("column '{}': '{cell}' is not a number", names[k]))
+            })?;
+            if !value.is_finite() {
+                return Err(file_err(
+                    line,
+                    format!("column '{}': {cell} is not a finite number", names[k]),
+                ));
+            }
+            columns[k].push(value);
+        }
+    }
+    Ok(columns)
+}
+
+/// Checks that the time column strictly increases; the error names the line of the first violation.
+fn check_time(source: &Path, time_s: &[f64], time_col: &str) -> Result<(), SysidError> {
+    for i in 1..time_s.len() {
+        if time_s[i] <= time_s[i - 1] {
+            return Err(SysidError::File {
+                file: source.to_path_buf(),
+                line: Some(i as u64 + 2),
+                message: format!(
+                    "column '{time_col}' must strictly increase: {} follows {}",
+                    time_s[i],
+                    time_s[i - 1]
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read(text: &str, min: usize) -> Result<Log, SysidError> {
+        read_log_from(
+            Path::new("test.csv"),
+            text.as_bytes(),
+            "time_s",
+            &["current_A", "torque_Nm"],
+            min,
+        )
+    }
+
+    #[test]
+    fn columns_are_found_by_name_in_any_order() {
+        let log = read("torque_Nm, time_s ,current_A\n0.1,0.0,0\n0.2,0.001,0.5\n", 2).unwrap();
+        assert_eq!(log.channels[0], vec![0.0, 0.5]);
+        assert_eq!(log.channels[1], vec![0.1, 0.2]);
+        assert!((log.mean_sample_rate_hz() - 1000.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn nan_is_rejected_with_file_and_line() {
+        let err =
+            read("time_s,current_A,torque_Nm\n0,0,0\n0.001,NaN,0\n", 1).unwrap_err().to_string();
+        assert!(
+            err.contains("test.csv") && err.contains("line 3") && err.contains("current_A"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn non_monotone_time_is_rejected_with_line() {
+        let err = read("time_s,current_A,torque_Nm\n0,0,0\n0.002,0,0\n0.001,0,0\n", 1)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("line 4") && err.contains("strictly increase"), "{err}");
+    }
+
+    #[test]
+    fn missing_column_and_missing_value_are_named() {
+        let err = read("time_s,current_A\n0,0\n", 1).unwrap_err().to_string();
+        assert!(err.contains("torque_Nm") && err.contains("line 1"), "{err}");
+        let err = read("time_s,current_A,torque_Nm\n0,0,0\n0.001,0\n", 1).unwrap_err().to_string();
+        assert!(err.contains("line 3") && err.contains("torque_Nm"), "{err}");
+    }
+
+    #[test]
+    fn too_few_samples_is_an_input_error() {
+        let err = read("time_s,current_A,torque_Nm\n0,0,0\n", 10).unwrap_err();
+        assert!(err.is_input_error());
+        assert!(err.to_string().contains("at least 10"));
+    }
+}

@@ -1,0 +1,498 @@
+//! Continuous-time transfer-function estimation from frequency-response data.
+//!
+//! Model: G(s) = e^{−sτ}·N(s)/D(s) with N of degree `zeros`, D of degree `poles` and D(0) = 1; the
+//! optional input delay τ is known (e.g. the half-sample delay of a zero-order-hold output) and removed
+//! from the data before fitting. Criterion: the weighted complex error
+//! V(θ) = Σ_k w_k² |N(jω_k)/D(jω_k) − G_k|² (with unit weights this is what MATLAB's `tfest` minimises
+//! on frequency-domain data).
+//!
+//! 1. **Linear initialisation**: Levy's linearisation (Levy 1959, IRE Trans. Autom. Control 4:37)
+//!    w_k |N(jω_k) − G_k D(jω_k)|², then Sanathanan–Koerner iterations (Sanathanan & Koerner 1963, IEEE
+//!    Trans. Autom. Control 8:56) that divide each equation by |D_prev(jω_k)| so the linear problem
+//!    converges towards the true output-error criterion.
+//! 2. **Non-linear least squares**: Levenberg–Marquardt (Marquardt 1963, SIAM J. Appl. Math. 11:431) on
+//!    V(θ) with the analytic Jacobian ∂Ĝ/∂b_i = sⁱ/D, ∂Ĝ/∂a_i = −N sⁱ/D², each step solved by QR of the
+//!    augmented system [J; √λ·diag(JᵀJ)^{1/2}] δ = [−r; 0] (no normal equations).
+//!
+//! Frequencies are scaled by ω_s = √(ω_min ω_max) during the fit (s = ω_s p), which keeps the powers of
+//! jω within a few decades of 1; D(0) = 1 is unaffected by that scaling.
+
+use crate::SysidError;
+use crate::complex::Complex;
+use crate::frd::Frd;
+use crate::linalg::{Matrix, least_squares};
+use crate::transfer_function::TransferFunction;
+
+/// Per-point weighting of the complex error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Weighting {
+    /// w_k = 1 (MATLAB's default): absolute complex error; the high-gain band dominates.
+    #[default]
+    Uniform,
+    /// w_k = 1/|G_k|: relative error; every decade counts alike.
+    InverseMagnitude,
+}
+
+/// Settings of the estimator.
+#[derive(Debug, Clone)]
+pub struct TfestOptions {
+    /// Number of poles (degree of D), ≥ 1.
+    pub poles: usize,
+    /// Number of zeros (degree of N), ≤ poles.
+    pub zeros: usize,
+    /// Weighting of the complex error (multiplied by the FRD's own weights, if any).
+    pub weighting: Weighting,
+    /// Known input delay τ in seconds (0 for none).
+    pub delay_s: f64,
+    /// Maximum Sanathanan–Koerner iterations.
+    pub max_sk_iterations: usize,
+    /// Maximum Levenberg–Marquardt iterations.
+    pub max_lm_iterations: usize,
+}
+
+impl TfestOptions {
+    /// Options for `poles` poles and `zeros` zeros, other settings at their defaults.
+    pub fn new(poles: usize, zeros: usize) -> Self {
+        Self {
+            poles,
+            zeros,
+            weighting: Weighting::Uniform,
+            delay_s: 0.0,
+            max_sk_iterations: 30,
+            max_lm_iterations: 300,
+        }
+    }
+}
+
+/// The estimated model and how well it fits.
+#[derive(Debug, Clone)]
+pub struct TfestResult {
+    /// The rational part N(s)/D(s) (descending powers, D(0) = 1).
+    pub model: TransferFunction,
+    /// The input delay used, s.
+    pub delay_s: f64,
+    /// MATLAB's fit: 100·(1 − ‖G − Ĝ‖/‖G − mean G‖) over the complex response.
+    pub fit_percent: f64,
+    /// Mean squared complex error, mean |G − Ĝ|².
+    pub mse: f64,
+    /// Weighted cost V after each Sanathanan–Koerner iteration.
+    pub sk_history: Vec<f64>,
+    /// Weighted cost V after each accepted Levenberg–Marquardt iteration.
+    pub lm_history: Vec<f64>,
+}
+
+/// The JSON summary of an estimate.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct TfestSummary {
+    /// Numerator, highest power first.
+    pub numerator: Vec<f64>,
+    /// Denominator, highest power first, constant term 1.
+    pub denominator: Vec<f64>,
+    /// Poles as [re, im], by increasing modulus.
+    pub poles: Vec<[f64; 2]>,
+    /// Zeros as [re, im].
+    pub zeros: Vec<[f64; 2]>,
+    /// G(0).
+    pub dc_gain: f64,
+    /// −3 dB bandwidth, rad/s (null when undefined).
+    pub bandwidth_rad_s: Option<f64>,
+    /// Pole moduli (one per conjugate pair), rad/s.
+    pub corner_frequencies_rad_s: Vec<f64>,
+    /// True when every pole has a negative real part.
+    pub stable: bool,
+    /// Fit percentage on the complex response.
+    pub fit_percent: f64,
+    /// Mean squared complex error.
+    pub mse: f64,
+    /// Input delay, s.
+    pub delay_s: f64,
+    /// Sanathanan–Koerner iterations run.
+    pub sk_iterations: usize,
+    /// Levenberg–Marquardt iterations accepted.
+    pub lm_iterations: usize,
+}
+
+impl TfestResult {
+    /// Model response including the delay, e^{−jωτ} N(jω)/D(jω).
+    pub fn response(&self, omega_rad_s: f64) -> Complex {
+        self.model.response(omega_rad_s) * Complex::from_polar(1.0, -omega_rad_s * self.delay_s)
+    }
+
+    /// Poles, zeros, gains and fit as a serialisable summary.
+    pub fn summary(&self) -> Result<TfestSummary, SysidError> {
+        let poles = self.model.poles()?;
+        let zeros = self.model.zeros()?;
+        Ok(TfestSummary {
+            numerator: self.model.numerator.clone(),
+            denominator: self.model.denominator.clone(),
+            stable: poles.iter().all(|p| p.re < 0.0),
+            poles: poles.iter().map(|p| [p.re, p.im]).collect(),
+            zeros: zeros.iter().map(|p| [p.re, p.im]).collect(),
+            dc_gain: self.model.dc_gain(),
+            bandwidth_rad_s: self.model.bandwidth_rad_s(),
+            corner_frequencies_rad_s: self.model.corner_frequencies_rad_s()?,
+            fit_percent: self.fit_percent,
+            mse: self.mse,
+            delay_s: self.delay_s,
+            sk_iterations: self.sk_history.len(),
+            lm_iterations: self.lm_history.len(),
+        })
+    }
+}
+
+/// Fitting problem in the scaled frequency variable p = s/ω_s.
+struct Problem {
+    m: usize,
+    n: usize,
+    /// Powers (jω_k/ω_s)^i for i = 0..=max(m, n).
+    powers: Vec<Vec<Complex>>,
+    /// Data with the delay removed.
+    data: Vec<Complex>,
+    weight: Vec<f64>,
+}
+
+impl Problem {
+    fn unknowns(&self) -> usize {
+        self.m + 1 + self.n
+    }
+
+    /// N(p_k), D(p_k) for parameters θ = [b_0..b_m, a_1..a_n].
+    fn nd(&self, theta: &[f64], k: usize) -> (Complex, Complex) {
+        let pw = &self.powers[k];
+        let mut num = Complex::default();
+        for i in 0..=self.m {
+            num = num + pw[i].scale(theta[i]);
+        }
+        let mut den = Complex::new(1.0, 0.0);
+        for i in 1..=self.n {
+            den = den + pw[i].scale(theta[self.m + i]);
+        }
+        (num, den)
+    }
+
+    fn cost(&self, theta: &[f64]) -> f64 {
+        (0..self.data.len())
+            .map(|k| {
+                let (num, den) = self.nd(theta, k);
+                (num / den - self.data[k]).norm_sqr() * self.weight[k] * self.weight[k]
+            })
+            .sum()
+    }
+
+    /// One Levy (previous = None) or Sanathanan–Koerner step.
+    fn linear_step(&self, previous: Option<&[f64]>) -> Result<Vec<f64>, SysidError> {
+        let rows = 2 * self.data.len();
+        let mut a = Matrix::zeros(rows, self.unknowns());
+        let mut b = vec![0.0; rows];
+        for k in 0..self.data.len() {
+            let c = match previous {
+                Some(theta) => self.weight[k] / self.nd(theta, k).1.abs(),
+                None => self.weight[k],
+            };
+            let pw = &self.powers[k];
+            let g = self.data[k];
+            for i in 0..=self.m {
+                a.set(2 * k, i, c * pw[i].re);
+                a.set(2 * k + 1, i, c * pw[i].im);
+            }
+            for i in 1..=self.n {
+                let v = (g * pw[i]).scale(-c);
+                a.set(2 * k, self.m + i, v.re);
+                a.set(2 * k + 1, self.m + i, v.im);
+            }
+            b[2 * k] = c * g.re;
+            b[2 * k + 1] = c * g.im;
+        }
+        least_squares(&a, &b)
+    }
+
+    /// Residual vector r (stacked re/im) and Jacobian at θ.
+    fn residual_jacobian(&self, theta: &[f64]) -> (Vec<f64>, Matrix) {
+        let rows = 2 * self.data.len();
+        let mut r = vec![0.0; rows];
+        let mut j = Matrix::zeros(rows, self.unknowns());
+        for k in 0..self.data.len() {
+            let (num, den) = self.nd(theta, k);
+            let w = self.weight[k];
+            let e = (num / den - self.data[k]).scale(w);
+            r[2 * k] = e.re;
+            r[2 * k + 1] = e.im;
+            let pw = &self.powers[k];
+            let inv_d = Complex::new(1.0, 0.0) / den;
+            for i in 0..=self.m {
+                let d = (pw[i] * inv_d).scale(w);
+                j.set(2 * k, i, d.re);
+                j.set(2 * k + 1, i, d.im);
+            }
+            let g_over_d = num * inv_d * inv_d;
+            for i in 1..=self.n {
+                let d = (pw[i] * g_over_d).scale(-w);
+                j.set(2 * k, self.m + i, d.re);
+                j.set(2 * k + 1, self.m + i, d.im);
+            }
+        }
+        (r, j)
+    }
+}
+
+/// Estimates a continuous-time transfer function from frequency-response data (see module docs).
+pub fn tfest(frd: &Frd, options: &TfestOptions) -> Result<TfestResult, SysidError> {
+    let (m, n) = (options.zeros, options.poles);
+    if n == 0 || m > n {
+        return Err(SysidError::Input(format!(
+            "tfest: need at least one pole and no more zeros than poles (got {n} poles, {m} zeros)"
+        )));
+    }
+    let count = frd.omega_rad_s.len();
+    if 2 * count < m + 1 + n || count != frd.response.len() {
+        return Err(SysidError::Input(format!(
+            "tfest: {count} frequency points cannot determine {} parameters (need at least {})",
+            m + 1 + n,
+            (m + 1 + n).div_ceil(2)
+        )));
+    }
+    if !(options.delay_s >= 0.0 && options.delay_s.is_finite()) {
+        return Err(SysidError::Input(format!(
+            "tfest: delay {} s must be a non-negative number",
+            options.delay_s
+        )));
+    }
+    if frd.response.iter().any(|g| !g.is_finite())
+        || frd.omega_rad_s.iter().any(|w| w.is_nan() || *w <= 0.0)
+    {
+        return Err(SysidError::Input(
+            "tfest: frequencies must be positive and responses finite".into(),
+        ));
+    }
+    let w_min = frd.omega_rad_s.iter().copied().fold(f64::INFINITY, f64::min);
+    let w_max = frd.omega_rad_s.iter().copied().fold(0.0, f64::max);
+    let omega_scale = (w_min * w_max).sqrt();
+    let degree = m.max(n);
+    let powers: Vec<Vec<Complex>> = frd
+        .omega_rad_s
+        .iter()
+        .map(|w| {
+            let p = Complex::new(0.0, w / omega_scale);
+            let mut v = vec![Complex::new(1.0, 0.0)];
+            for i in 1..=degree {
+                let last = v[i - 1];
+                v.push(last * p);
+            }
+            v
+        })
+        .collect();
+    let data: Vec<Complex> = frd
+        .omega_rad_s
+        .iter()
+        .zip(&frd.response)
+        .map(|(w, g)| *g * Complex::from_polar(1.0, w * options.delay_s))
+        .collect();
+    let weight: Vec<f64> = (0..count)
+        .map(|k| {
+            let base = match options.weighting {
+                Weighting::Uniform => 1.0,
+                Weighting::InverseMagnitude => 1.0 / frd.response[k].abs().max(f64::MIN_POSITIVE),
+            };
+            base * frd.weight.as_ref().map_or(1.0, |w| w[k])
+        })
+        .collect();
+    let problem = Problem { m, n, powers, data, weight };
+
+    // 1. Levy, then Sanathanan–Koerner.
+    let mut theta = problem.linear_step(None)?;
+    let mut sk_history = vec![problem.cost(&theta)];
+    for _ in 0..options.max_sk_iterations {
+        let next = problem.linear_step(Some(&theta))?;
+        let change = next
+            .iter()
+            .zip(&theta)
+            .map(|(a, b)| (a - b).abs() / a.abs().max(1e-12))
+            .fold(0.0, f64::max);
+        theta = next;
+        sk_history.push(problem.cost(&theta));
+        if change < 1e-10 {
+            break;
+        }
+    }
+    if !sk_history.last().is_some_and(|c| c.is_finite()) {
+        return Err(SysidError::numerical(
+            "tfest: the Sanathanan–Koerner iterations diverged",
+            sk_history,
+        ));
+    }
+
+    // 2. Levenberg–Marquardt.
+    let mut cost = problem.cost(&theta);
+    let mut lm_history = Vec::new();
+    let mut lambda = 1e-3;
+    let mut converged = false;
+    for _ in 0..options.max_lm_iterations {
+        let (r, j) = problem.residual_jacobian(&theta);
+        let p = problem.unknowns();
+        let rows = r.len();
+        let mut aug = Matrix::zeros(rows + p, p);
+        let mut rhs = vec![0.0; rows + p];
+        let mut diag = vec![0.0; p];
+        for c in 0..p {
+            for row in 0..rows {
+                aug.set(row, c, j.get(row, c));
+                diag[c] += j.get(row, c) * j.get(row, c);
+            }
+        }
+        for row in 0..rows {
+            rhs[row] = -r[row];
+        }
+        let mut accepted = false;
+        while lambda < 1e16 {
+            for c in 0..p {
+                aug.set(rows + c, c, (lambda * diag[c].max(1e-300)).sqrt());
+            }
+            let step = least_squares(&aug, &rhs)?;
+            let trial: Vec<f64> = theta.iter().zip(&step).map(|(t, s)| t + s).collect();
+            let trial_cost = problem.cost(&trial);
+            if trial_cost.is_finite() && trial_cost < cost {
+                let rel_step = step
+                    .iter()
+                    .zip(&theta)
+                    .map(|(s, t)| s.abs() / t.abs().max(1e-12))
+                    .fold(0.0, f64::max);
+                let rel_gain = (cost - trial_cost) / cost.max(f64::MIN_POSITIVE);
+                theta = trial;
+                cost = trial_cost;
+                lm_history.push(cost);
+                lambda = (lambda / 3.0).max(1e-12);
+                accepted = true;
+                if rel_step < 1e-10 || rel_gain < 1e-14 {
+                    converged = true;
+                }
+                break;
+            }
+            lambda *= 4.0;
+        }
+        if !accepted {
+            // No step decreases the cost even with a tiny step: θ is a (local) minimum to working precision.
+            converged = true;
+        }
+        if converged || cost <= 0.0 {
+            converged = true;
+            break;
+        }
+    }
+    if !converged {
+        let mut history = sk_history.clone();
+        history.extend(&lm_history);
+        return Err(SysidError::numerical(
+            format!(
+                "tfest: Levenberg–Marquardt did not converge in {} iterations",
+                options.max_lm_iterations
+            ),
+            history,
+        ));
+    }
+
+    // Unscale: coefficient of sⁱ = coefficient of pⁱ / ω_sⁱ; descending order.
+    let numerator: Vec<f64> =
+        (0..=m).rev().map(|i| theta[i] / omega_scale.powi(i as i32)).collect();
+    let mut denominator: Vec<f64> =
+        (1..=n).rev().map(|i| theta[m + i] / omega_scale.powi(i as i32)).collect();
+    denominator.push(1.0);
+    let model = TransferFunction::new(numerator, denominator)?;
+    let mut result = TfestResult {
+        model,
+        delay_s: options.delay_s,
+        fit_percent: 0.0,
+        mse: 0.0,
+        sk_history,
+        lm_history,
+    };
+    let fitted: Vec<Complex> = frd.omega_rad_s.iter().map(|w| result.response(*w)).collect();
+    result.fit_percent = complex_fit_percent(&frd.response, &fitted);
+    result.mse = frd.response.iter().zip(&fitted).map(|(g, h)| (*g - *h).norm_sqr()).sum::<f64>()
+        / count as f64;
+    Ok(result)
+}
+
+/// MATLAB's fit on complex data: 100·(1 − ‖g − ĝ‖/‖g − mean g‖).
+pub fn complex_fit_percent(g: &[Complex], g_hat: &[Complex]) -> f64 {
+    let n = g.len().max(1) as f64;
+    let mean = g.iter().fold(Complex::default(), |a, b| a + *b).scale(1.0 / n);
+    let err: f64 = g.iter().zip(g_hat).map(|(a, b)| (*a - *b).norm_sqr()).sum::<f64>().sqrt();
+    let spread: f64 = g.iter().map(|a| (*a - mean).norm_sqr()).sum::<f64>().sqrt();
+    100.0 * (1.0 - err / spread)
+}
+
+/// `count` log-spaced frequencies from `lo` to `hi` rad/s inclusive.
+pub fn logspace(lo: f64, hi: f64, count: usize) -> Vec<f64> {
+    if count < 2 {
+        return vec![lo];
+    }
+    (0..count).map(|k| lo * (hi / lo).powf(k as f64 / (count - 1) as f64)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frd_of(g: &TransferFunction, omega: &[f64]) -> Frd {
+        Frd {
+            omega_rad_s: omega.to_vec(),
+            response: omega.iter().map(|w| g.response(*w)).collect(),
+            weight: None,
+        }
+    }
+
+    #[test]
+    fn exact_data_of_thesis_brake_2_is_recovered() {
+        // (5.6): 0.9818/(2.309e-5 s² + 0.01726 s + 1), corners 63.3 and 684.4 rad/s.
+        let truth = TransferFunction::new(vec![0.9818], vec![2.309e-5, 0.01726, 1.0]).unwrap();
+        let frd = frd_of(&truth, &logspace(0.1, 1000.0, 41));
+        let r = tfest(&frd, &TfestOptions::new(2, 0)).unwrap();
+        for (a, b) in r.model.denominator.iter().zip(&truth.denominator) {
+            assert!((a - b).abs() / b.abs() < 1e-8, "{:?}", r.model);
+        }
+        let s = r.summary().unwrap();
+        assert!(
+            (s.corner_frequencies_rad_s[0] - 63.3).abs() < 0.05,
+            "{:?}",
+            s.corner_frequencies_rad_s
+        );
+        assert!(
+            (s.corner_frequencies_rad_s[1] - 684.4).abs() < 0.5,
+            "{:?}",
+            s.corner_frequencies_rad_s
+        );
+        assert!(r.fit_percent > 99.9999);
+    }
+
+    #[test]
+    fn delay_is_removed_before_fitting() {
+        let truth = TransferFunction::new(vec![2.0], vec![0.01, 1.0]).unwrap();
+        let omega = logspace(1.0, 1000.0, 31);
+        let tau = 5e-4;
+        let frd = Frd {
+            omega_rad_s: omega.clone(),
+            response: omega
+                .iter()
+                .map(|w| truth.response(*w) * Complex::from_polar(1.0, -w * tau))
+                .collect(),
+            weight: None,
+        };
+        let mut o = TfestOptions::new(1, 0);
+        o.delay_s = tau;
+        let r = tfest(&frd, &o).unwrap();
+        assert!(
+            (r.model.denominator[0] - 0.01).abs() < 1e-10 && (r.model.dc_gain() - 2.0).abs() < 1e-9
+        );
+    }
+
+    #[test]
+    fn improper_request_is_an_input_error() {
+        let frd = Frd {
+            omega_rad_s: vec![1.0, 2.0],
+            response: vec![Complex::new(1.0, 0.0); 2],
+            weight: None,
+        };
+        assert!(tfest(&frd, &TfestOptions::new(1, 2)).unwrap_err().is_input_error());
+        assert!(tfest(&frd, &TfestOptions::new(3, 1)).unwrap_err().is_input_error());
+    }
+}

@@ -1,0 +1,143 @@
+//! Continuous-time transfer functions G(s) = N(s)/D(s): frequency response, poles, DC gain, bandwidth.
+//!
+//! Coefficients are stored in **descending** powers of s (the convention of MATLAB's `tf` and of the
+//! thesis's (5.1), (5.5), (5.6)); the estimator normalises the denominator's constant term to 1.
+
+use crate::SysidError;
+use crate::complex::Complex;
+use crate::polynomial::roots_descending;
+
+/// G(s) = N(s)/D(s), coefficients in descending powers of s.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct TransferFunction {
+    /// Numerator coefficients, highest power first.
+    pub numerator: Vec<f64>,
+    /// Denominator coefficients, highest power first.
+    pub denominator: Vec<f64>,
+}
+
+/// Evaluates a polynomial given in descending powers at `z` (Horner).
+fn eval_descending(c: &[f64], z: Complex) -> Complex {
+    c.iter().fold(Complex::default(), |acc, v| acc * z + Complex::new(*v, 0.0))
+}
+
+impl TransferFunction {
+    /// A transfer function; fails on empty or non-finite coefficients or a zero denominator.
+    pub fn new(numerator: Vec<f64>, denominator: Vec<f64>) -> Result<Self, SysidError> {
+        if numerator.is_empty() || numerator.iter().chain(&denominator).any(|c| !c.is_finite()) {
+            return Err(SysidError::Input(
+                "transfer function: coefficients must be finite and the numerator non-empty".into(),
+            ));
+        }
+        if denominator.iter().all(|c| c.abs() <= 0.0) {
+            return Err(SysidError::Input("transfer function: the denominator is zero".into()));
+        }
+        Ok(Self { numerator, denominator })
+    }
+
+    /// G(jω).
+    pub fn response(&self, omega_rad_s: f64) -> Complex {
+        let s = Complex::new(0.0, omega_rad_s);
+        eval_descending(&self.numerator, s) / eval_descending(&self.denominator, s)
+    }
+
+    /// G(s) at a complex s.
+    pub fn eval(&self, s: Complex) -> Complex {
+        eval_descending(&self.numerator, s) / eval_descending(&self.denominator, s)
+    }
+
+    /// Poles (roots of D), sorted by increasing modulus.
+    pub fn poles(&self) -> Result<Vec<Complex>, SysidError> {
+        roots_descending(&self.denominator)
+    }
+
+    /// Zeros (roots of N), sorted by increasing modulus.
+    pub fn zeros(&self) -> Result<Vec<Complex>, SysidError> {
+        roots_descending(&self.numerator)
+    }
+
+    /// G(0) = N(0)/D(0) (infinite for a pole at the origin).
+    pub fn dc_gain(&self) -> f64 {
+        let n0 = self.numerator.last().copied().unwrap_or(0.0);
+        let d0 = self.denominator.last().copied().unwrap_or(0.0);
+        n0 / d0
+    }
+
+    /// Corner (break) frequencies in rad/s: the moduli of the poles, one per complex-conjugate pair,
+    /// ascending. For real poles these are the thesis's corner frequencies (62.92 and 887.23 rad/s for
+    /// (5.5)).
+    pub fn corner_frequencies_rad_s(&self) -> Result<Vec<f64>, SysidError> {
+        Ok(self
+            .poles()?
+            .iter()
+            .filter(|p| p.im >= 0.0)
+            .map(|p| p.abs())
+            .filter(|w| *w > 0.0)
+            .collect())
+    }
+
+    /// −3 dB bandwidth: the lowest frequency at which |G(jω)| falls to |G(0)|/√2 (None when the DC gain
+    /// is zero or infinite, or the magnitude never falls that low below 10⁶ times the highest corner).
+    pub fn bandwidth_rad_s(&self) -> Option<f64> {
+        let dc = self.dc_gain().abs();
+        if !(dc.is_finite() && dc > 0.0) {
+            return None;
+        }
+        let target = dc / std::f64::consts::SQRT_2;
+        let corners = self.corner_frequencies_rad_s().ok()?;
+        let lo = corners.first().copied().unwrap_or(1.0).max(1e-12) * 1e-4;
+        let hi = corners.last().copied().unwrap_or(1.0).max(1e-12) * 1e6;
+        let factor: f64 = 1.01;
+        let mut w_prev = lo;
+        let mut w = lo;
+        while w < hi {
+            if self.response(w).abs() < target {
+                // Bisection in log ω between w_prev and w.
+                let (mut a, mut b) = (w_prev.ln(), w.ln());
+                for _ in 0..100 {
+                    let m = 0.5 * (a + b);
+                    if self.response(m.exp()).abs() < target {
+                        b = m;
+                    } else {
+                        a = m;
+                    }
+                }
+                return Some((0.5 * (a + b)).exp());
+            }
+            w_prev = w;
+            w *= factor;
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thesis_brake_1_corners() {
+        // (5.5): corners stated as 62.92 and 887.23 rad/s; the printed (rounded) coefficients give
+        // 62.93 and 887.38 rad/s.
+        let g = TransferFunction::new(vec![1.0], vec![1.791e-5, 0.01702, 1.0]).unwrap();
+        let c = g.corner_frequencies_rad_s().unwrap();
+        assert!((c[0] - 62.92).abs() / 62.92 < 5e-4, "{c:?}");
+        assert!((c[1] - 887.23).abs() / 887.23 < 5e-4, "{c:?}");
+        assert!((g.dc_gain() - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn first_order_bandwidth_is_the_pole() {
+        let g = TransferFunction::new(vec![2.0], vec![0.01, 1.0]).unwrap();
+        let bw = g.bandwidth_rad_s().unwrap();
+        assert!((bw - 100.0).abs() < 1e-8, "{bw}");
+    }
+
+    #[test]
+    fn response_matches_closed_form() {
+        let g = TransferFunction::new(vec![1.0], vec![1.0, 1.0]).unwrap();
+        let r = g.response(1.0);
+        assert!((r.abs() - 1.0 / 2f64.sqrt()).abs() < 1e-15);
+        assert!((r.arg() + std::f64::consts::FRAC_PI_4).abs() < 1e-15);
+    }
+}
