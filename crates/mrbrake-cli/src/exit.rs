@@ -10,14 +10,26 @@ pub fn code_for(err: &anyhow::Error) -> i32 {
     for cause in err.chain() {
         let input = cause.downcast_ref::<InputError>().is_some()
             || cause.downcast_ref::<mrbrake_units::UnitError>().is_some()
-            || cause.downcast_ref::<std::io::Error>().is_some_and(|e| e.kind() == std::io::ErrorKind::NotFound)
-            || cause.downcast_ref::<mrbrake_materials::MaterialError>().is_some_and(|e| e.is_input_error())
+            || cause
+                .downcast_ref::<std::io::Error>()
+                .is_some_and(|e| e.kind() == std::io::ErrorKind::NotFound)
+            || cause
+                .downcast_ref::<mrbrake_materials::MaterialError>()
+                .is_some_and(|e| e.is_input_error())
             || cause.downcast_ref::<mrbrake_fem::FemError>().is_some_and(|e| e.is_input_error())
-            || cause.downcast_ref::<mrbrake_magnetics::MagneticsError>().is_some_and(|e| e.is_input_error())
-            || cause.downcast_ref::<mrbrake_design::DesignError>().is_some_and(|e| e.is_input_error())
-            || cause.downcast_ref::<mrbrake_sysid::SysidError>().is_some_and(|e| e.is_input_error())
+            || cause
+                .downcast_ref::<mrbrake_magnetics::MagneticsError>()
+                .is_some_and(|e| e.is_input_error())
+            || cause
+                .downcast_ref::<mrbrake_design::DesignError>()
+                .is_some_and(|e| e.is_input_error())
+            || cause
+                .downcast_ref::<mrbrake_sysid::SysidError>()
+                .is_some_and(|e| e.is_input_error())
             || cause.downcast_ref::<mrbrake_sim::SimError>().is_some_and(|e| e.is_input_error())
-            || cause.downcast_ref::<mrbrake_report::ReportError>().is_some_and(|e| e.is_input_error());
+            || cause
+                .downcast_ref::<mrbrake_report::ReportError>()
+                .is_some_and(|e| e.is_input_error());
         if input {
             return 2;
         }

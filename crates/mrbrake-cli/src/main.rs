@@ -12,7 +12,12 @@ use clap::Parser;
 
 /// Design, simulate and characterise magnetorheological (MR) fluid brakes for haptic devices.
 #[derive(Debug, Parser)]
-#[command(name = "mrbrake", version, about, long_about = None, propagate_version = true)]
+#[command(
+    name = "mrbrake",
+    version,
+    about = "Design, simulate and characterise magnetorheological (MR) fluid brakes for haptic devices.",
+    propagate_version = true
+)]
 struct Cli {
     #[command(subcommand)]
     command: commands::Command,

@@ -12,7 +12,9 @@
 //!    at zero: withdrawing is free. With a conventional single brake (no bearing) the one brake gets
 //!    the demand whenever the handle penetrates, and it resists both directions: the sticky wall.
 //! 3. **Hysteresis compensation.** The demand's change since the last tick selects the rising or the
-//!    falling branch (thesis §5.3.2, Fig. 5.7), whose inverse gives the current.
+//!    falling branch (thesis §5.3.2, Fig. 5.7), whose inverse gives the current (safeguarded Newton,
+//!    warm-started from the previous tick's current, at most
+//!    [`crate::MAX_INVERSE_ITERATIONS`] iterations).
 //! 4. **Safety.** Non-finite or out-of-range input gives both currents 0 and a [`Fault`]; every
 //!    current is finally clamped to `[0, I_max]`.
 
@@ -70,6 +72,7 @@ pub struct DirectionalController {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ControllerState {
     previous_demand_nm: [f64; 2],
+    previous_current_a: [f64; 2],
     branch: [Branch; 2],
     fault_count: u32,
 }
@@ -230,6 +233,7 @@ impl DirectionalController {
         let angle_rad = input.encoder_counts as f64 * self.radians_per_count;
         if let Some(fault) = self.check(input, angle_rad) {
             state.previous_demand_nm = [0.0; 2];
+            state.previous_current_a = [0.0; 2];
             state.branch = [Branch::Rising; 2];
             state.fault_count = state.fault_count.saturating_add(1);
             return ControlOutput {
@@ -294,6 +298,7 @@ impl DirectionalController {
         if self.layout == BrakeLayout::Conventional {
             current_a[1] = 0.0;
         }
+        state.previous_current_a = current_a;
 
         ControlOutput {
             current_a,

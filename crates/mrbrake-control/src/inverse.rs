@@ -13,9 +13,9 @@ use crate::polynomial::BranchPolynomial;
 pub enum Branch {
     /// Current (and torque) increasing: the lower half of an MR brake's loop.
     #[default]
-    Rising,
+    Rising = 0,
     /// Current (and torque) decreasing: the upper half of the loop.
-    Falling,
+    Falling = 1,
 }
 
 /// Samples used to check that a branch is non-decreasing when a model is built (host side).
@@ -31,6 +31,8 @@ pub struct InverseModel {
     falling: BranchPolynomial,
     current_min_a: f64,
     current_max_a: f64,
+    /// `T(i_min)` and `T(i_max)` of the rising and the falling branch (precomputed for the step).
+    end_torques_nm: [(f64, f64); 2],
 }
 
 impl InverseModel {
@@ -73,7 +75,9 @@ impl InverseModel {
         if !falling.is_non_decreasing(current_min_a, current_max_a, MONOTONICITY_SAMPLES) {
             return Err(ControlError::NonMonotoneBranch { branch: "falling" });
         }
-        Ok(Self { rising, falling, current_min_a, current_max_a })
+        let ends = |p: &BranchPolynomial| (p.torque_nm(current_min_a), p.torque_nm(current_max_a));
+        let end_torques_nm = [ends(&rising), ends(&falling)];
+        Ok(Self { rising, falling, current_min_a, current_max_a, end_torques_nm })
     }
 
     /// The branch polynomial for `branch`.
@@ -103,8 +107,24 @@ impl InverseModel {
     /// `branch`. Demands below the off-state torque give `i_min`, above the capacity the upper limit.
     #[inline]
     pub fn current_for(&self, branch: Branch, target_nm: f64, limit_a: f64) -> f64 {
+        self.current_for_from(branch, target_nm, limit_a, None)
+    }
+
+    /// [`Self::current_for`] starting the iteration from `guess` (the previous current).
+    #[inline]
+    pub fn current_for_from(
+        &self,
+        branch: Branch,
+        target_nm: f64,
+        limit_a: f64,
+        guess: Option<f64>,
+    ) -> f64 {
+        let polynomial = self.branch(branch);
+        let (t_min, t_max) = self.end_torques_nm[branch as usize];
         let upper = self.current_max_a.min(limit_a).max(self.current_min_a);
-        self.branch(branch).invert(target_nm, self.current_min_a, upper)
+        // The precomputed end torque holds unless a lower limit cuts the range.
+        let t_upper = if upper < self.current_max_a { polynomial.torque_nm(upper) } else { t_max };
+        polynomial.invert_from(target_nm, (self.current_min_a, t_min), (upper, t_upper), guess)
     }
 }
 

@@ -22,6 +22,8 @@ const INVERSE_RELATIVE_TOLERANCE: f64 = 1e-4;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BranchPolynomial {
     coefficients: [f64; MAX_DEGREE + 1],
+    /// Number of coefficients in use (trailing zeros are not evaluated).
+    len: usize,
 }
 
 impl BranchPolynomial {
@@ -38,7 +40,12 @@ impl BranchPolynomial {
             }
             *slot = c;
         }
-        Some(Self { coefficients: stored })
+        let mut len = coefficients.len();
+        // Exactly ±0.0 (sign bit shifted out): trailing zero coefficients need no evaluation.
+        while len > 1 && stored[len - 1].to_bits() << 1 == 0 {
+            len -= 1;
+        }
+        Some(Self { coefficients: stored, len })
     }
 
     /// The ascending coefficients (always `MAX_DEGREE + 1` of them, trailing zeros included).
@@ -49,7 +56,7 @@ impl BranchPolynomial {
     /// Torque `T(i)` in Nm at current `current_a` (Horner's scheme).
     #[inline]
     pub fn torque_nm(&self, current_a: f64) -> f64 {
-        self.coefficients.iter().rev().fold(0.0, |acc, &c| acc * current_a + c)
+        self.coefficients[..self.len].iter().rev().fold(0.0, |acc, &c| acc * current_a + c)
     }
 
     /// Torque and its slope `dT/di` (Nm/A) at `current_a`, evaluated together by Horner's scheme.
@@ -57,7 +64,7 @@ impl BranchPolynomial {
     pub fn torque_and_slope(&self, current_a: f64) -> (f64, f64) {
         let mut value = 0.0;
         let mut slope = 0.0;
-        for &c in self.coefficients.iter().rev() {
+        for &c in self.coefficients[..self.len].iter().rev() {
             slope = slope * current_a + value;
             value = value * current_a + c;
         }
@@ -95,10 +102,26 @@ impl BranchPolynomial {
     /// required for a unique answer (checked on the host by [`Self::is_non_decreasing`]); for any
     /// other branch the result is still a current inside the range. Non-finite targets give `i_min`.
     pub fn invert(&self, target_nm: f64, current_min_a: f64, current_max_a: f64) -> f64 {
+        let t_lo = self.torque_nm(current_min_a);
+        let t_hi = self.torque_nm(current_max_a);
+        self.invert_from(target_nm, (current_min_a, t_lo), (current_max_a, t_hi), None)
+    }
+
+    /// [`Self::invert`] with the end-point torques already known (`(i_min, T(i_min))`,
+    /// `(i_max, T(i_max))`) and an optional first guess (e.g. the previous tick's current), which
+    /// lets Newton converge in one or two steps when the demand changes little between ticks.
+    #[inline]
+    pub fn invert_from(
+        &self,
+        target_nm: f64,
+        low: (f64, f64),
+        high: (f64, f64),
+        guess: Option<f64>,
+    ) -> f64 {
+        let (current_min_a, t_lo) = low;
+        let (current_max_a, t_hi) = high;
         let mut lo = current_min_a;
         let mut hi = current_max_a;
-        let t_lo = self.torque_nm(lo);
-        let t_hi = self.torque_nm(hi);
         if !target_nm.is_finite() || target_nm <= t_lo {
             return lo;
         }
@@ -106,8 +129,11 @@ impl BranchPolynomial {
             return hi;
         }
         let tolerance = INVERSE_RELATIVE_TOLERANCE * (t_hi - t_lo).abs().max(1e-9);
-        // Start from the linear interpolation between the end points.
-        let mut i = lo + (hi - lo) * (target_nm - t_lo) / (t_hi - t_lo);
+        // Start from the guess if it lies strictly inside, else interpolate between the end points.
+        let mut i = match guess {
+            Some(g) if g > lo && g < hi => g,
+            _ => lo + (hi - lo) * (target_nm - t_lo) / (t_hi - t_lo),
+        };
         for _ in 0..MAX_INVERSE_ITERATIONS {
             let (t, slope) = self.torque_and_slope(i);
             let residual = t - target_nm;
@@ -158,6 +184,16 @@ mod tests {
         assert!(p.invert(-5.0, 0.0, 2.0).abs() < 1e-15);
         assert!((p.invert(50.0, 0.0, 2.0) - 2.0).abs() < 1e-15);
         assert!(p.invert(f64::NAN, 0.0, 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn warm_start_gives_the_same_current() {
+        let p = BranchPolynomial::from_ascending(&[0.15, 1.5, 0.4, -0.2]).unwrap();
+        let ends = ((0.0, p.torque_nm(0.0)), (2.0, p.torque_nm(2.0)));
+        for guess in [None, Some(0.3), Some(1.9), Some(5.0), Some(f64::NAN)] {
+            let i = p.invert_from(2.0, ends.0, ends.1, guess);
+            assert!((p.torque_nm(i) - 2.0).abs() < 1e-3, "{guess:?}");
+        }
     }
 
     #[test]

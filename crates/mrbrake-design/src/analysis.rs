@@ -66,7 +66,13 @@ impl Default for AnalysisOptions {
     fn default() -> Self {
         // 1 rad/s: a slow hand motion on a haptic knob; it makes the viscous term visible without
         // dominating (the thesis quotes torques at rest, (3.7)).
-        Self { mesh: MeshLevel::Default, points: 21, speed_rad_s: 1.0, seal_friction_nm: 0.0, temperature_c: 20.0 }
+        Self {
+            mesh: MeshLevel::Default,
+            points: 21,
+            speed_rad_s: 1.0,
+            seal_friction_nm: 0.0,
+            temperature_c: 20.0,
+        }
     }
 }
 
@@ -279,7 +285,10 @@ pub fn analyze_with_field(
 ) -> Result<(Analysis, FieldAtMaxCurrent), DesignError> {
     let t_start = Instant::now();
     if options.points < 2 {
-        return Err(DesignError::Input(format!("the sweep needs at least 2 points, got {}", options.points)));
+        return Err(DesignError::Input(format!(
+            "the sweep needs at least 2 points, got {}",
+            options.points
+        )));
     }
     formula::non_negative("speed", options.speed_rad_s.abs())?;
     formula::non_negative("seal friction", options.seal_friction_nm)?;
@@ -297,8 +306,10 @@ pub fn analyze_with_field(
 
     let max_current = spec.coil.max_current.a();
     let turns = spec.turns();
-    let unit1_coils: Vec<u32> = geometry.coils.iter().filter(|c| c.unit == 0).map(|c| c.tag).collect();
-    let unit2_coils: Vec<u32> = geometry.coils.iter().filter(|c| c.unit == 1).map(|c| c.tag).collect();
+    let unit1_coils: Vec<u32> =
+        geometry.coils.iter().filter(|c| c.unit == 0).map(|c| c.tag).collect();
+    let unit2_coils: Vec<u32> =
+        geometry.coils.iter().filter(|c| c.unit == 1).map(|c| c.tag).collect();
     let dir1_gaps: Vec<&GapInfo> = geometry.gaps.iter().filter(|g| g.unit == 0).collect();
     let dir2_gaps: Vec<&GapInfo> = geometry.gaps.iter().filter(|g| g.unit == 1).collect();
 
@@ -336,7 +347,8 @@ pub fn analyze_with_field(
         let s2 = solver.solve(Some(solution_max.a_phi())).map_err(numerical)?;
         let g2 = gap_results(&solver, &s2, &dir2_gaps, &fluid, options.speed_rad_s)?;
         direction2 = Some(
-            g2.iter().map(|g| g.torque_nm + g.viscous_torque_nm).sum::<f64>() + options.seal_friction_nm,
+            g2.iter().map(|g| g.torque_nm + g.viscous_torque_nm).sum::<f64>()
+                + options.seal_friction_nm,
         );
         gaps.extend(g2);
         // Leave the solver energised as for the returned solution.
@@ -346,7 +358,15 @@ pub fn analyze_with_field(
 
     // Coil: figures from the formulas plus the field's inductance.
     let t0 = Instant::now();
-    let coil = coil_result(spec, &geometry, &mut solver, &solution_max, &unit1_coils, max_current, options)?;
+    let coil = coil_result(
+        spec,
+        &geometry,
+        &mut solver,
+        &solution_max,
+        &unit1_coils,
+        max_current,
+        options,
+    )?;
     let last = *curve.last().expect("the sweep has at least two points");
     let first = curve[0];
     let mechanics = mechanics(&geometry, spec, last.torque_nm)?;
@@ -355,7 +375,11 @@ pub fn analyze_with_field(
         off_state_nm: first.torque_nm,
         thesis_formula_nm: last.thesis_formula_nm,
         mean_b_t: last.mean_b_t,
-        dynamic_range: if first.torque_nm > 0.0 { last.torque_nm / first.torque_nm } else { f64::INFINITY },
+        dynamic_range: if first.torque_nm > 0.0 {
+            last.torque_nm / first.torque_nm
+        } else {
+            f64::INFINITY
+        },
         direction2_at_max_current_nm: direction2,
         cross_coupling,
     };
@@ -410,9 +434,8 @@ fn fluid_of(spec: &BrakeSpec) -> Result<Arc<MrFluid>, DesignError> {
 pub fn problem_of(geometry: &BrakeGeometry, mesh: Arc<Mesh>) -> Result<Problem, DesignError> {
     let mut regions = Vec::with_capacity(geometry.regions.len());
     for region in &geometry.regions {
-        let material = library::get(&region.material).map_err(|e| {
-            DesignError::Input(format!("material of part '{}': {e}", region.name))
-        })?;
+        let material = library::get(&region.material)
+            .map_err(|e| DesignError::Input(format!("material of part '{}': {e}", region.name)))?;
         regions.push(Region {
             tag: region.tag,
             material: MagneticMaterial::from_library(&material.magnetic),
@@ -444,7 +467,8 @@ fn set_coils(
         } else {
             0.0
         };
-        let source = Source::Coil { turns: f64::from(turns), current_a: coil.current_sign * current };
+        let source =
+            Source::Coil { turns: f64::from(turns), current_a: coil.current_sign * current };
         solver.set_source(coil.tag, Some(source)).map_err(numerical)?;
     }
     Ok(())
@@ -462,7 +486,8 @@ fn gap_results(
     gaps.iter()
         .map(|gap| {
             let stats = solver.region_stats(solution, gap.tag).map_err(numerical)?;
-            let line = solver.b_along(solution, &gap.sample_line, GAP_SAMPLES).map_err(numerical)?;
+            let line =
+                solver.b_along(solution, &gap.sample_line, GAP_SAMPLES).map_err(numerical)?;
             let [p0, p1] = gap.sample_line;
             let length = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
             let ds = length / GAP_SAMPLES as f64;
@@ -534,7 +559,9 @@ fn thesis_torque(gaps: &[GapResult], infos: &[&GapInfo], fluid: &MrFluid) -> (f6
         .iter()
         .map(|g| match g.orientation {
             GapOrientation::Cylindrical => 2.0 * pi * g.height_m * tau * g.shear_radius_m.powi(2),
-            GapOrientation::Annular => 2.0 * pi * tau * (g.rect.r1.powi(3) - g.rect.r0.powi(3)) / 3.0,
+            GapOrientation::Annular => {
+                2.0 * pi * tau * (g.rect.r1.powi(3) - g.rect.r0.powi(3)) / 3.0
+            }
         })
         .sum();
     (mean_b, torque)
@@ -586,7 +613,13 @@ fn coil_result(
         .find(|c| unit1.contains(&c.tag))
         .ok_or_else(|| DesignError::Numerical("the geometry has no coil in unit 1".into()))?;
     let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
-    let e = formula::coil_electrics(coil.turns, mean_radius, &wire, max_current, options.temperature_c)?;
+    let e = formula::coil_electrics(
+        coil.turns,
+        mean_radius,
+        &wire,
+        max_current,
+        options.temperature_c,
+    )?;
     // Flux linkage of every energised coil of unit 1 (two-sided coils are in series).
     let flux: f64 = solver
         .coils(solution)
@@ -598,7 +631,8 @@ fn coil_result(
     let mut incremental = 0.0;
     for &tag in unit1 {
         let sign = geometry.coils.iter().find(|c| c.tag == tag).map_or(1.0, |c| c.current_sign);
-        incremental += sign * sign * solver.incremental_inductance(solution, tag).map_err(numerical)?;
+        incremental +=
+            sign * sign * solver.incremental_inductance(solution, tag).map_err(numerical)?;
     }
     let coils_in_series = unit1.len() as f64;
     let resistance = e.resistance_ohm * coils_in_series;
@@ -623,7 +657,9 @@ fn density(material: &str) -> Result<f64, DesignError> {
         return Ok(fluid.density_kg_m3.value);
     }
     m.density_kg_m3.as_ref().map(|d| d.value).ok_or_else(|| {
-        DesignError::Input(format!("material '{material}' has no density in the library; pick another"))
+        DesignError::Input(format!(
+            "material '{material}' has no density in the library; pick another"
+        ))
     })
 }
 
@@ -633,7 +669,11 @@ fn density(material: &str) -> Result<f64, DesignError> {
 /// `ρ π (r1⁴ − r0⁴) Δz / 2` about the axis. A coil counts its copper only
 /// (`N · π d²/4 · 2π r_mean`). The fluid is not counted in the rotor inertia (it is sheared, not
 /// carried).
-fn mechanics(geometry: &BrakeGeometry, spec: &BrakeSpec, torque_nm: f64) -> Result<Mechanics, DesignError> {
+fn mechanics(
+    geometry: &BrakeGeometry,
+    spec: &BrakeSpec,
+    torque_nm: f64,
+) -> Result<Mechanics, DesignError> {
     let pi = std::f64::consts::PI;
     let mut mass = 0.0;
     let mut inertia = [0.0f64; 2];
@@ -644,7 +684,10 @@ fn mechanics(geometry: &BrakeGeometry, spec: &BrakeSpec, torque_nm: f64) -> Resu
                 let d = spec.wire_diameter_m();
                 for coil in geometry.coils.iter().filter(|c| c.tag == region.tag) {
                     let r_mean = 0.5 * (coil.rect.r0 + coil.rect.r1);
-                    mass += COPPER_DENSITY_KG_M3 * f64::from(coil.turns) * pi * d * d / 4.0 * 2.0 * pi * r_mean;
+                    mass += COPPER_DENSITY_KG_M3 * f64::from(coil.turns) * pi * d * d / 4.0
+                        * 2.0
+                        * pi
+                        * r_mean;
                 }
                 continue;
             }
@@ -653,7 +696,11 @@ fn mechanics(geometry: &BrakeGeometry, spec: &BrakeSpec, torque_nm: f64) -> Resu
         let rho = density(&region.material)?;
         mass += rho * region.volume_m3();
         if let Some(direction) = region.rotates {
-            let j: f64 = region.rects.iter().map(|r| rho * pi * (r.r1.powi(4) - r.r0.powi(4)) * (r.z1 - r.z0) / 2.0).sum();
+            let j: f64 = region
+                .rects
+                .iter()
+                .map(|r| rho * pi * (r.r1.powi(4) - r.r0.powi(4)) * (r.z1 - r.z0) / 2.0)
+                .sum();
             match direction {
                 Direction::Both => {
                     inertia[0] += j;

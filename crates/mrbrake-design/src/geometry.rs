@@ -561,8 +561,8 @@ fn drum_unit(
     let stack_out = drum.surface_radius_m(n_surf - 1) + g;
     let bw = c.bobbin_wall.m();
     // Axial stations.
-    let z_cover = h.cover_thickness.m();
-    let z_rotor = z_cover + h.rotor_disc_thickness.m();
+    let z_cover = h.cover_thickness.map_or(0.0, |t| t.m());
+    let z_rotor = z_cover + h.rotor_disc_thickness.map_or(0.0, |t| t.m());
     let z_stack = z_rotor + hh;
     let z_coil = z_stack + c.window_height.m() + 2.0 * bw;
     let z_end = z_coil + h.end_plate_thickness.m();

@@ -7,6 +7,7 @@ pub mod geo_export;
 pub mod geometry;
 pub mod mesh_build;
 pub mod spec;
+pub mod study;
 
 /// Errors of this crate.
 #[derive(Debug, thiserror::Error)]

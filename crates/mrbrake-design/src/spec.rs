@@ -185,11 +185,13 @@ pub struct Housing {
     /// Drums: radial thickness of the static steel inner core ("inner case", thesis Table 4.5: 7 mm).
     /// Discs: radial thickness of the steel pole ring inside an inner coil.
     pub inner_case_thickness: Length,
-    /// Axial thickness of the non-magnetic cover at the rotor end.
-    pub cover_thickness: Length,
-    /// Axial thickness of the non-magnetic rotary part (rotor disc) that carries the rotating
-    /// cylinders or discs to the hub on the shaft.
-    pub rotor_disc_thickness: Length,
+    /// Drums only: axial thickness of the non-magnetic cover at the rotor end.
+    #[serde(default)]
+    pub cover_thickness: Option<Length>,
+    /// Drums only: axial thickness of the non-magnetic rotary part (rotor disc) that carries the
+    /// rotating cylinders to the hub on the shaft.
+    #[serde(default)]
+    pub rotor_disc_thickness: Option<Length>,
 }
 
 /// Multi-drum working surfaces (thesis 4.4, 4.5, Figure 4.15).
@@ -352,35 +354,19 @@ impl std::fmt::Display for Warning {
     }
 }
 
-/// Thesis Table 4.6 (AWG sizes and properties): gauge, copper diameter (mm), current rating (A).
-/// Used only to resolve `awg` to a diameter and a rating for validation; the full wire data (AWG
-/// 18–32, resistance) lives in the material library.
-const AWG_TABLE_4_6: [(u32, f64, f64); 7] = [
-    (20, 0.812, 7.5),
-    (21, 0.723, 6.3),
-    (22, 0.644, 5.0),
-    (23, 0.573, 3.5),
-    (24, 0.511, 2.1),
-    (25, 0.455, 1.7),
-    (26, 0.405, 1.3),
-];
-
-/// Copper diameter of AWG gauge n by the defining formula d = 0.127 mm × 92^((36 − n)/39).
-pub fn awg_diameter_m(gauge: u32) -> f64 {
-    0.127e-3 * 92f64.powf((36.0 - f64::from(gauge)) / 39.0)
-}
-
 impl Wire {
     /// The copper diameter (m): given, or from the AWG gauge.
     pub fn diameter_m(&self) -> Option<f64> {
-        self.diameter.map(Length::m).or_else(|| self.awg.map(awg_diameter_m))
+        self.diameter
+            .map(Length::m)
+            .or_else(|| self.awg.map(mrbrake_materials::wire::awg_diameter_m))
     }
 
     /// The current rating (A): given, or from thesis Table 4.6 for AWG 20–26.
     pub fn rated_current_a(&self) -> Option<f64> {
-        self.rated_current.map(Current::a).or_else(|| {
-            self.awg.and_then(|g| AWG_TABLE_4_6.iter().find(|row| row.0 == g).map(|row| row.2))
-        })
+        self.rated_current
+            .map(Current::a)
+            .or_else(|| self.awg.and_then(mrbrake_materials::wire::thesis_current_rating_a))
     }
 }
 
@@ -465,39 +451,97 @@ impl BrakeSpec {
         }
     }
 
+    fn check_materials(&self, p: &mut Problems) {
+        use mrbrake_materials::MaterialKind;
+        let library = mrbrake_materials::library::names();
+        let kind_of = |name: &str| {
+            let wanted = name.trim().to_ascii_lowercase();
+            library.iter().find(|(n, _)| *n == wanted).map(|(_, k)| *k)
+        };
+        let names_of = |kind: Option<MaterialKind>| -> String {
+            library
+                .iter()
+                .filter(|(_, k)| kind.is_none_or(|want| *k == want))
+                .map(|(n, _)| *n)
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let m = &self.materials;
+        let mut entries = vec![
+            ("materials.flux_path", &m.flux_path, None),
+            ("materials.non_magnetic", &m.non_magnetic, None),
+            ("materials.shaft", &m.shaft, None),
+            ("materials.fluid", &m.fluid, Some(MaterialKind::MrFluid)),
+            ("materials.coil", &m.coil, Some(MaterialKind::Linear)),
+            ("materials.surroundings", &m.surroundings, Some(MaterialKind::Linear)),
+        ];
+        if let Some(spacer) = &m.spacer {
+            entries.push(("materials.spacer", spacer, None));
+        }
+        for (field, name, wanted) in entries {
+            match (kind_of(name), wanted) {
+                (None, _) => p.error(
+                    field,
+                    format!("'{name}' is not in the material library; known: {}", names_of(wanted)),
+                ),
+                (Some(kind), Some(want)) if kind != want => p.error(
+                    field,
+                    format!(
+                        "'{name}' is a {} material; this part needs a {} material: {}",
+                        kind.as_str(),
+                        want.as_str(),
+                        names_of(Some(want))
+                    ),
+                ),
+                _ => {}
+            }
+        }
+        if kind_of(&m.flux_path).is_some_and(|k| k != MaterialKind::Steel) {
+            p.warn(
+                "materials.flux_path",
+                format!("'{}' is not a steel: the flux path will be non-magnetic", m.flux_path),
+            );
+        }
+        for (field, name) in [
+            ("materials.non_magnetic", &m.non_magnetic),
+            ("materials.spacer", m.spacer.as_ref().unwrap_or(&m.non_magnetic)),
+        ] {
+            if kind_of(name) == Some(MaterialKind::Steel) {
+                p.warn(
+                    field,
+                    format!("'{name}' is a steel: this part is meant to block flux (thesis 4.3.1)"),
+                );
+            }
+        }
+    }
+
     fn check_fields(&self, p: &mut Problems) {
         if self.name.trim().is_empty() {
             p.error("name", "must not be empty");
         }
-        for (field, value) in [
-            ("materials.flux_path", &self.materials.flux_path),
-            ("materials.non_magnetic", &self.materials.non_magnetic),
-            ("materials.shaft", &self.materials.shaft),
-            ("materials.fluid", &self.materials.fluid),
-            ("materials.coil", &self.materials.coil),
-            ("materials.surroundings", &self.materials.surroundings),
-        ] {
-            if value.trim().is_empty() {
-                p.error(
-                    field,
-                    "must name a material of the library (e.g. steel-1008, aluminium, mrf-122eg)",
-                );
-            }
-        }
-        if !self.materials.fluid.to_ascii_lowercase().starts_with("mrf") {
-            p.error(
-                "materials.fluid",
-                format!("'{}' is not an MR fluid: the gaps must be filled with an MR fluid (mrf-122eg, mrf-132dg, mrf-140cg)", self.materials.fluid),
-            );
-        }
+        self.check_materials(p);
         p.positive("shaft.radius", self.shaft.radius);
         let h = &self.housing;
         p.positive("housing.outer_radius", h.outer_radius);
         p.positive("housing.case_thickness", h.case_thickness);
         p.positive("housing.end_plate_thickness", h.end_plate_thickness);
         p.positive("housing.inner_case_thickness", h.inner_case_thickness);
-        p.positive("housing.cover_thickness", h.cover_thickness);
-        p.positive("housing.rotor_disc_thickness", h.rotor_disc_thickness);
+        for (field, value) in [
+            ("housing.cover_thickness", h.cover_thickness),
+            ("housing.rotor_disc_thickness", h.rotor_disc_thickness),
+        ] {
+            match value {
+                Some(v) => p.positive(field, v),
+                None if self.configuration.is_drum() => p.error(
+                    field,
+                    format!(
+                        "configuration '{}' needs it (a length > 0)",
+                        self.configuration.name()
+                    ),
+                ),
+                None => {}
+            }
+        }
         p.positive("envelope.diameter", self.envelope.diameter);
         p.positive("envelope.length", self.envelope.length);
         p.positive("model.air_margin", self.model.air_margin);
@@ -656,21 +700,11 @@ impl BrakeSpec {
     }
 }
 
-/// Turns that fit a C_w × C_h window with wire radius r (thesis 4.2, 4.3):
-/// i = floor((C_h − 2r) / (√3 r)) wires per column, N = floor(C_w / (2r) (i + 1) − i / 2).
-///
-/// (The lead's `formula` module will expose the same formula as `turns_in_window`; this private
-/// copy keeps the spec validation independent of it until then.)
+/// Turns that fit a C_w × C_h window with wire radius r, thesis (4.2), (4.3)
+/// ([`crate::formula::turns_in_window`]); 0 when not even one wire fits.
 pub fn turns_in_window(window_width_m: f64, window_height_m: f64, wire_radius_m: f64) -> u32 {
-    if !(wire_radius_m > 0.0)
-        || window_height_m < 2.0 * wire_radius_m
-        || window_width_m < 2.0 * wire_radius_m
-    {
-        return 0;
-    }
-    let i = ((window_height_m - 2.0 * wire_radius_m) / (3f64.sqrt() * wire_radius_m)).floor();
-    let n = window_width_m / (2.0 * wire_radius_m) * (i + 1.0) - i / 2.0;
-    n.floor().max(0.0) as u32
+    crate::formula::turns_in_window(window_width_m, window_height_m, wire_radius_m)
+        .map_or(0, |t| t.turns)
 }
 
 #[cfg(test)]
@@ -694,8 +728,10 @@ mod tests {
     }
 
     #[test]
-    fn awg_24_is_0_511_mm() {
-        assert!((awg_diameter_m(24) * 1e3 - 0.511).abs() < 0.001);
+    fn awg_24_resolves_to_0_511_mm_and_2_1_a() {
+        let wire = Wire { awg: Some(24), diameter: None, rated_current: None };
+        assert!((wire.diameter_m().unwrap() * 1e3 - 0.511).abs() < 0.001);
+        assert!((wire.rated_current_a().unwrap() - 2.1).abs() < 1e-12);
     }
 
     #[test]

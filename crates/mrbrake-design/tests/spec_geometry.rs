@@ -214,3 +214,23 @@ fn geo_export_has_every_physical_group() {
     assert!(text.contains("Physical Curve(\"axis\", 1)"));
     assert!(text.contains("Physical Curve(\"outer_boundary\", 2)"));
 }
+
+#[test]
+fn mesh_levels_refine_the_default_brake() {
+    let g = geometry::build(&default_spec()).unwrap();
+    let mut counts = Vec::new();
+    for level in [MeshLevel::Coarse, MeshLevel::Default, MeshLevel::Fine] {
+        let started = std::time::Instant::now();
+        let mesh = mesh_build::mesh(&g, level).unwrap();
+        let fewest =
+            g.gaps.iter().map(|gap| mesh_build::elements_across(&mesh, gap, 5)).min().unwrap();
+        println!(
+            "{level:?}: {} nodes, {} triangles, fewest elements across a gap {fewest}, {:.3} s",
+            mesh.nodes.len(),
+            mesh.triangles.len(),
+            started.elapsed().as_secs_f64()
+        );
+        counts.push(mesh.nodes.len());
+    }
+    assert!(counts[0] < counts[1] && counts[1] < counts[2], "{counts:?}");
+}

@@ -22,13 +22,15 @@ fn geometry() -> Pslg {
 
 fn bench(c: &mut Criterion) {
     let g = geometry();
-    // Uniform 0.27 mm plus a 0.0625 mm gap target gives ~100k nodes.
-    let size = SizeField::uniform(0.27e-3).with_region(2, 0.0625e-3);
+    // Uniform 0.3 mm plus a 0.0625 mm gap target gives about 100k nodes.
+    let size = SizeField::uniform(0.3e-3).with_region(2, 0.0625e-3);
     let mesh = triangulate(&g, &size, &MeshOptions::default()).unwrap();
     eprintln!("mesher bench: {} nodes, {} triangles", mesh.nodes.len(), mesh.triangles.len());
     let mut group = c.benchmark_group("mesher");
     group.sample_size(10);
-    group.bench_function("brake_section_100k_nodes", |b| b.iter(|| triangulate(&g, &size, &MeshOptions::default()).unwrap()));
+    group.bench_function("brake_section_100k_nodes", |b| {
+        b.iter(|| triangulate(&g, &size, &MeshOptions::default()).unwrap())
+    });
     group.finish();
 }
 

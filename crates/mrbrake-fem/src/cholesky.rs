@@ -54,17 +54,20 @@ impl SparseCholesky {
         )
         .map_err(|e| FemError::Numerical(format!("symbolic Cholesky analysis failed: {e:?}")))?;
         let parallelism = if threads == 1 { Par::Seq } else { Par::rayon(threads) };
-        let factor_req = symbolic.factorize_numeric_llt_scratch::<f64>(parallelism, Default::default());
+        let factor_req =
+            symbolic.factorize_numeric_llt_scratch::<f64>(parallelism, Default::default());
         let solve_req = symbolic.solve_in_place_scratch::<f64>(1, parallelism);
         let l_values = vec![0.0; symbolic.len_val()];
         Ok(Self {
             structure,
             symbolic: Arc::new(symbolic),
             l_values,
-            factor_workspace: MemBuffer::try_new(factor_req)
-                .map_err(|_| FemError::Numerical("out of memory for the Cholesky workspace".into()))?,
-            solve_workspace: MemBuffer::try_new(solve_req)
-                .map_err(|_| FemError::Numerical("out of memory for the Cholesky workspace".into()))?,
+            factor_workspace: MemBuffer::try_new(factor_req).map_err(|_| {
+                FemError::Numerical("out of memory for the Cholesky workspace".into())
+            })?,
+            solve_workspace: MemBuffer::try_new(solve_req).map_err(|_| {
+                FemError::Numerical("out of memory for the Cholesky workspace".into())
+            })?,
             factorised: false,
             parallelism,
         })
@@ -90,7 +93,9 @@ impl SparseCholesky {
                 MemStack::new(&mut self.factor_workspace),
                 Default::default(),
             )
-            .map_err(|e| FemError::Numerical(format!("sparse Cholesky factorisation failed: {e:?}")))?;
+            .map_err(|e| {
+                FemError::Numerical(format!("sparse Cholesky factorisation failed: {e:?}"))
+            })?;
         self.factorised = true;
         Ok(())
     }
@@ -98,7 +103,9 @@ impl SparseCholesky {
     /// Solves `A x = rhs` in place with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), FemError> {
         if !self.factorised {
-            return Err(FemError::Numerical("solve requested before a successful factorisation".into()));
+            return Err(FemError::Numerical(
+                "solve requested before a successful factorisation".into(),
+            ));
         }
         if rhs.len() != self.structure.nrows() {
             return Err(FemError::Numerical(format!(
@@ -110,7 +117,12 @@ impl SparseCholesky {
         let n = rhs.len();
         let llt = faer::sparse::linalg::cholesky::LltRef::new(&self.symbolic, &self.l_values);
         let rhs_mat = MatMut::from_column_major_slice_mut(rhs, n, 1);
-        llt.solve_in_place_with_conj(Conj::No, rhs_mat, self.parallelism, MemStack::new(&mut self.solve_workspace));
+        llt.solve_in_place_with_conj(
+            Conj::No,
+            rhs_mat,
+            self.parallelism,
+            MemStack::new(&mut self.solve_workspace),
+        );
         Ok(())
     }
 }

@@ -47,7 +47,8 @@ impl P1Triangle {
             let k = (i + 2) % 3;
             // λ_i = area(p, x_j, x_k) / area(T).
             let (a, b) = (self.nodes[j], self.nodes[k]);
-            l[i] = 0.5 * ((a[0] - p[0]) * (b[1] - p[1]) - (b[0] - p[0]) * (a[1] - p[1])) / self.area;
+            l[i] =
+                0.5 * ((a[0] - p[0]) * (b[1] - p[1]) - (b[0] - p[0]) * (a[1] - p[1])) / self.area;
         }
         l
     }
@@ -63,10 +64,13 @@ mod tests {
         assert!(t.area > 0.0);
         // f = 3 + 2r − 5z sampled at the nodes has gradient (2, −5).
         let f: Vec<f64> = t.nodes.iter().map(|p| 3.0 + 2.0 * p[0] - 5.0 * p[1]).collect();
-        let g = (0..3).fold([0.0, 0.0], |g, i| [g[0] + f[i] * t.grad[i][0], g[1] + f[i] * t.grad[i][1]]);
+        let g = (0..3)
+            .fold([0.0, 0.0], |g, i| [g[0] + f[i] * t.grad[i][0], g[1] + f[i] * t.grad[i][1]]);
         assert!((g[0] - 2.0).abs() < 1e-12 && (g[1] + 5.0).abs() < 1e-12);
         let p = t.point([0.2, 0.3, 0.5]);
         let l = t.barycentric(p);
-        assert!((l[0] - 0.2).abs() < 1e-12 && (l[1] - 0.3).abs() < 1e-12 && (l[2] - 0.5).abs() < 1e-12);
+        assert!(
+            (l[0] - 0.2).abs() < 1e-12 && (l[1] - 0.3).abs() < 1e-12 && (l[2] - 0.5).abs() < 1e-12
+        );
     }
 }

@@ -32,7 +32,10 @@ pub struct GmshMesh {
 impl GmshMesh {
     /// Tag of the physical group called `name` with the given dimension (1 = curve, 2 = surface).
     pub fn physical_tag(&self, dimension: u32, name: &str) -> Option<u32> {
-        self.physical_names.iter().find(|(d, _, n)| *d == dimension && n == name).map(|(_, t, _)| *t)
+        self.physical_names
+            .iter()
+            .find(|(d, _, n)| *d == dimension && n == name)
+            .map(|(_, t, _)| *t)
     }
 }
 
@@ -67,10 +70,18 @@ pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, 
                 let parsed = match v {
                     "2.2" | "2.1" | "2" | "2.0" => 2,
                     "4.1" => 4,
-                    other => return Err(reader.err(ln, format!("unsupported MSH version `{other}`: expected 2.2 or 4.1"))),
+                    other => {
+                        return Err(reader.err(
+                            ln,
+                            format!("unsupported MSH version `{other}`: expected 2.2 or 4.1"),
+                        ));
+                    }
                 };
                 if file_type != "0" {
-                    return Err(reader.err(ln, "binary MSH files are not supported: save as ASCII (file-type 0)".into()));
+                    return Err(reader.err(
+                        ln,
+                        "binary MSH files are not supported: save as ASCII (file-type 0)".into(),
+                    ));
                 }
                 version = Some(parsed);
                 reader.expect_end("$EndMeshFormat")?;
@@ -93,7 +104,11 @@ pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, 
             }
             "$Nodes" => {
                 let v = require_any_version(&reader, line_no, version)?;
-                nodes = Some(if v == 2 { read_nodes_v2(&mut reader)? } else { read_nodes_v4(&mut reader)? });
+                nodes = Some(if v == 2 {
+                    read_nodes_v2(&mut reader)?
+                } else {
+                    read_nodes_v4(&mut reader)?
+                });
             }
             "$Elements" => {
                 let v = require_any_version(&reader, line_no, version)?;
@@ -108,7 +123,9 @@ pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, 
                 }
             }
             other if other.starts_with("$End") => {
-                return Err(reader.err(line_no, format!("unexpected `{other}` outside its section")));
+                return Err(
+                    reader.err(line_no, format!("unexpected `{other}` outside its section"))
+                );
             }
             other if other.starts_with('$') => {
                 // Unknown section ($NodeData, $Periodic, ...): skip to its end marker.
@@ -121,20 +138,39 @@ pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, 
                 }
             }
             other => {
-                return Err(reader.err(line_no, format!("expected a section header such as `$Nodes`, found `{other}`")));
+                return Err(reader.err(
+                    line_no,
+                    format!("expected a section header such as `$Nodes`, found `{other}`"),
+                ));
             }
         }
     }
     let last = reader.last_line.max(1);
     if version.is_none() {
-        return Err(FemError::Parse { file: file.into(), line: 1, message: "missing $MeshFormat section".into() });
+        return Err(FemError::Parse {
+            file: file.into(),
+            line: 1,
+            message: "missing $MeshFormat section".into(),
+        });
     }
-    let nodes = nodes.ok_or_else(|| FemError::Parse { file: file.into(), line: last, message: "missing $Nodes section".into() })?;
+    let nodes = nodes.ok_or_else(|| FemError::Parse {
+        file: file.into(),
+        line: last,
+        message: "missing $Nodes section".into(),
+    })?;
     if !saw_elements {
-        return Err(FemError::Parse { file: file.into(), line: last, message: "missing $Elements section".into() });
+        return Err(FemError::Parse {
+            file: file.into(),
+            line: last,
+            message: "missing $Elements section".into(),
+        });
     }
     if raw_triangles.is_empty() {
-        return Err(FemError::Parse { file: file.into(), line: last, message: "the mesh has no triangles (2-D elements of type 2 or 9)".into() });
+        return Err(FemError::Parse {
+            file: file.into(),
+            line: last,
+            message: "the mesh has no triangles (2-D elements of type 2 or 9)".into(),
+        });
     }
     // Map Gmsh node tags to compact indices of the nodes used by triangles, in file order.
     let mut used = vec![false; nodes.coords.len()];
@@ -234,7 +270,10 @@ fn parse_num<T: std::str::FromStr>(
     what: &str,
 ) -> Result<T, FemError> {
     let token = token.ok_or_else(|| reader.err(line, format!("missing {what}")))?;
-    token.trim().parse::<T>().map_err(|_| reader.err(line, format!("expected {what}, found `{token}`")))
+    token
+        .trim()
+        .parse::<T>()
+        .map_err(|_| reader.err(line, format!("expected {what}, found `{token}`")))
 }
 
 fn numbers<T: std::str::FromStr>(
@@ -244,7 +283,9 @@ fn numbers<T: std::str::FromStr>(
     what: &str,
 ) -> Result<Vec<T>, FemError> {
     text.split_whitespace()
-        .map(|t| t.parse::<T>().map_err(|_| reader.err(line, format!("expected {what}, found `{t}`"))))
+        .map(|t| {
+            t.parse::<T>().map_err(|_| reader.err(line, format!("expected {what}, found `{t}`")))
+        })
         .collect()
 }
 
@@ -257,7 +298,9 @@ fn require_version(
 ) -> Result<(), FemError> {
     match version {
         Some(v) if v == wanted => Ok(()),
-        Some(v) => Err(reader.err(line, format!("section {section} is not valid in MSH version {v}"))),
+        Some(v) => {
+            Err(reader.err(line, format!("section {section} is not valid in MSH version {v}")))
+        }
         None => Err(reader.err(line, format!("{section} before $MeshFormat"))),
     }
 }
@@ -284,7 +327,13 @@ impl Nodes {
         xyz: [f64; 3],
     ) -> Result<(), FemError> {
         if xyz[2].abs() > 1e-12 * (1.0 + xyz[0].abs() + xyz[1].abs()) {
-            return Err(reader.err(line, format!("node {tag} has z = {} but an (r, z) mesh must lie in the plane z = 0", xyz[2])));
+            return Err(reader.err(
+                line,
+                format!(
+                    "node {tag} has z = {} but an (r, z) mesh must lie in the plane z = 0",
+                    xyz[2]
+                ),
+            ));
         }
         if self.index.insert(tag, self.coords.len()).is_some() {
             return Err(reader.err(line, format!("node tag {tag} appears twice")));
@@ -296,7 +345,8 @@ impl Nodes {
 
 fn read_nodes_v2(reader: &mut Reader<'_>) -> Result<Nodes, FemError> {
     let count = reader.count("the number of nodes")?;
-    let mut nodes = Nodes { coords: Vec::with_capacity(count), index: HashMap::with_capacity(count) };
+    let mut nodes =
+        Nodes { coords: Vec::with_capacity(count), index: HashMap::with_capacity(count) };
     for _ in 0..count {
         let (ln, l) = reader.next_line("a node line `tag x y z`")?;
         let mut it = l.split_whitespace();
@@ -348,7 +398,11 @@ fn read_elements_v2(
         if v.len() != 3 + n_tags + n_nodes {
             return Err(reader.err(
                 ln,
-                format!("element of type {element_type} with {n_tags} tags needs {} numbers, found {}", 3 + n_tags + n_nodes, v.len()),
+                format!(
+                    "element of type {element_type} with {n_tags} tags needs {} numbers, found {}",
+                    3 + n_tags + n_nodes,
+                    v.len()
+                ),
             ));
         }
         let physical = if n_tags > 0 { v[3] as u32 } else { 0 };
@@ -390,7 +444,10 @@ fn read_entities(reader: &mut Reader<'_>) -> Result<Entities, FemError> {
             }
             let n_phys = v[phys_at] as usize;
             if v.len() < phys_at + 1 + n_phys {
-                return Err(reader.err(ln, format!("entity line lists {n_phys} physical tags but has too few numbers")));
+                return Err(reader.err(
+                    ln,
+                    format!("entity line lists {n_phys} physical tags but has too few numbers"),
+                ));
             }
             if n_phys > 0 {
                 physical.insert((dim as u32, v[0] as i64), v[phys_at + 1].abs() as u32);
@@ -405,14 +462,20 @@ fn read_nodes_v4(reader: &mut Reader<'_>) -> Result<Nodes, FemError> {
     let (ln, l) = reader.next_line("`numEntityBlocks numNodes minNodeTag maxNodeTag`")?;
     let head: Vec<usize> = numbers(reader, ln, l, "a count")?;
     if head.len() != 4 {
-        return Err(reader.err(ln, "expected `numEntityBlocks numNodes minNodeTag maxNodeTag`".into()));
+        return Err(
+            reader.err(ln, "expected `numEntityBlocks numNodes minNodeTag maxNodeTag`".into())
+        );
     }
-    let mut nodes = Nodes { coords: Vec::with_capacity(head[1]), index: HashMap::with_capacity(head[1]) };
+    let mut nodes =
+        Nodes { coords: Vec::with_capacity(head[1]), index: HashMap::with_capacity(head[1]) };
     for _ in 0..head[0] {
-        let (ln, l) = reader.next_line("an entity block `entityDim entityTag parametric numNodesInBlock`")?;
+        let (ln, l) =
+            reader.next_line("an entity block `entityDim entityTag parametric numNodesInBlock`")?;
         let block: Vec<i64> = numbers(reader, ln, l, "an integer")?;
         if block.len() != 4 {
-            return Err(reader.err(ln, "expected `entityDim entityTag parametric numNodesInBlock`".into()));
+            return Err(
+                reader.err(ln, "expected `entityDim entityTag parametric numNodesInBlock`".into())
+            );
         }
         if block[2] != 0 {
             return Err(reader.err(ln, "parametric node coordinates are not supported".into()));
@@ -427,7 +490,10 @@ fn read_nodes_v4(reader: &mut Reader<'_>) -> Result<Nodes, FemError> {
             let (ln, l) = reader.next_line("node coordinates `x y z`")?;
             let v: Vec<f64> = numbers(reader, ln, l, "a coordinate")?;
             if v.len() != 3 {
-                return Err(reader.err(ln, format!("expected three coordinates `x y z`, found {} numbers", v.len())));
+                return Err(reader.err(
+                    ln,
+                    format!("expected three coordinates `x y z`, found {} numbers", v.len()),
+                ));
             }
             nodes.push(reader, ln, tag, [v[0], v[1], v[2]])?;
         }
@@ -445,15 +511,19 @@ fn read_elements_v4(
     let (ln, l) = reader.next_line("`numEntityBlocks numElements minElementTag maxElementTag`")?;
     let head: Vec<usize> = numbers(reader, ln, l, "a count")?;
     if head.len() != 4 {
-        return Err(reader.err(ln, "expected `numEntityBlocks numElements minElementTag maxElementTag`".into()));
+        return Err(reader
+            .err(ln, "expected `numEntityBlocks numElements minElementTag maxElementTag`".into()));
     }
     for _ in 0..head[0] {
-        let (ln, l) = reader.next_line("an element block `entityDim entityTag elementType numElementsInBlock`")?;
+        let (ln, l) = reader
+            .next_line("an element block `entityDim entityTag elementType numElementsInBlock`")?;
         let block: Vec<i64> = numbers(reader, ln, l, "an integer")?;
         if block.len() != 4 {
-            return Err(reader.err(ln, "expected `entityDim entityTag elementType numElementsInBlock`".into()));
+            return Err(reader
+                .err(ln, "expected `entityDim entityTag elementType numElementsInBlock`".into()));
         }
-        let (dim, entity, element_type, n) = (block[0] as u32, block[1], block[2] as u32, block[3].max(0) as usize);
+        let (dim, entity, element_type, n) =
+            (block[0] as u32, block[1], block[2] as u32, block[3].max(0) as usize);
         let n_nodes = nodes_of_type(element_type)
             .ok_or_else(|| reader.err(ln, format!("unsupported element type {element_type}")))?;
         let physical = entities.physical.get(&(dim, entity)).copied();
@@ -462,7 +532,13 @@ fn read_elements_v4(
             let (ln, l) = reader.next_line("an element line `tag nodes...`")?;
             let v: Vec<usize> = numbers(reader, ln, l, "an integer")?;
             if v.len() != 1 + n_nodes {
-                return Err(reader.err(ln, format!("element of type {element_type} needs 1 + {n_nodes} numbers, found {}", v.len())));
+                return Err(reader.err(
+                    ln,
+                    format!(
+                        "element of type {element_type} needs 1 + {n_nodes} numbers, found {}",
+                        v.len()
+                    ),
+                ));
             }
             match element_type {
                 2 | 9 => {

@@ -42,7 +42,9 @@ impl PointLocator {
                     bh[k] = bh[k].max(mesh.nodes[v][k]);
                 }
             }
-            let idx = |x: f64, k: usize| (((x - lo[k]) / cell[k]).floor().max(0.0) as usize).min(dims[k] - 1);
+            let idx = |x: f64, k: usize| {
+                (((x - lo[k]) / cell[k]).floor().max(0.0) as usize).min(dims[k] - 1)
+            };
             (idx(bl[0], 0), idx(bh[0], 0), idx(bl[1], 1), idx(bh[1], 1))
         };
         let mut count = vec![0usize; n_cells + 1];
@@ -79,7 +81,11 @@ impl PointLocator {
         let j = ((p[1] - self.origin[1]) / self.cell[1]).floor();
         let tol = 1e-9;
         let inside_box = |x: f64, n: usize| x >= -1.0 && x <= n as f64;
-        if !p[0].is_finite() || !p[1].is_finite() || !inside_box(i, self.dims[0]) || !inside_box(j, self.dims[1]) {
+        if !p[0].is_finite()
+            || !p[1].is_finite()
+            || !inside_box(i, self.dims[0])
+            || !inside_box(j, self.dims[1])
+        {
             return None;
         }
         let i = (i.max(0.0) as usize).min(self.dims[0] - 1);
@@ -111,7 +117,9 @@ mod tests {
     fn finds_points_and_rejects_outside() {
         let r = graded_lines(0.0, 1.0, 7, 3.0);
         let z = graded_lines(-1.0, 1.0, 9, 1.0);
-        let m = rectangle_mesh(&r, &z, |_, _| 1, SideTags { r_min: 1, r_max: 2, z_min: 3, z_max: 4 }).unwrap();
+        let m =
+            rectangle_mesh(&r, &z, |_, _| 1, SideTags { r_min: 1, r_max: 2, z_min: 3, z_max: 4 })
+                .unwrap();
         let loc = PointLocator::new(&m);
         for p in [[0.0, 0.0], [0.33, 0.71], [1.0, 1.0], [0.999, -0.999]] {
             let (t, l) = loc.locate(&m, p).expect("inside");

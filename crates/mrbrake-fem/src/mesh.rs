@@ -110,7 +110,9 @@ impl Mesh {
         let scale = self.size_scale();
         for (i, p) in self.nodes.iter().enumerate() {
             if !p[0].is_finite() || !p[1].is_finite() {
-                return Err(FemError::Input(format!("mesh node {i} has a non-finite coordinate {p:?}")));
+                return Err(FemError::Input(format!(
+                    "mesh node {i} has a non-finite coordinate {p:?}"
+                )));
             }
             if p[0] < -1e-9 * scale {
                 return Err(FemError::Input(format!(
@@ -135,7 +137,9 @@ impl Mesh {
         }
         for (e, edge) in self.edges.iter().enumerate() {
             if edge.iter().any(|&v| v >= n) || edge[0] == edge[1] {
-                return Err(FemError::Input(format!("edge {e} has invalid nodes {edge:?} ({n} nodes)")));
+                return Err(FemError::Input(format!(
+                    "edge {e} has invalid nodes {edge:?} ({n} nodes)"
+                )));
             }
         }
         Ok(())

@@ -85,7 +85,9 @@ impl SymmetricPattern {
                     if da != CONSTRAINED && db != CONSTRAINED {
                         let (row, col) = if da <= db { (da, db) } else { (db, da) };
                         let rows = &row_idx[col_ptr[col]..col_ptr[col + 1]];
-                        let offset = rows.binary_search(&row).expect("row was inserted into this column above");
+                        let offset = rows
+                            .binary_search(&row)
+                            .expect("row was inserted into this column above");
                         scatter[e * pairs + p] = (col_ptr[col] + offset) as u32;
                     }
                     p += 1;

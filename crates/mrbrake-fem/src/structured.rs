@@ -82,7 +82,8 @@ pub fn rectangle_mesh(
     }
     for j in 0..nz - 1 {
         for i in 0..nr - 1 {
-            let tag = region_of(0.5 * (r_lines[i] + r_lines[i + 1]), 0.5 * (z_lines[j] + z_lines[j + 1]));
+            let tag =
+                region_of(0.5 * (r_lines[i] + r_lines[i + 1]), 0.5 * (z_lines[j] + z_lines[j + 1]));
             let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
             if (i + j) % 2 == 0 {
                 mesh.triangles.extend([[a, b, c], [a, c, d]]);
@@ -137,7 +138,9 @@ pub fn half_disc_mesh(
     }
     let id = |ring: usize, j: usize| 1 + ring * nt + j;
     let push = |mesh: &mut Mesh, mut tri: [usize; 3]| {
-        let centroid = |k: usize| (mesh.nodes[tri[0]][k] + mesh.nodes[tri[1]][k] + mesh.nodes[tri[2]][k]) / 3.0;
+        let centroid = |k: usize| {
+            (mesh.nodes[tri[0]][k] + mesh.nodes[tri[1]][k] + mesh.nodes[tri[2]][k]) / 3.0
+        };
         let tag = region_of(centroid(0), centroid(1));
         if signed_area(mesh.nodes[tri[0]], mesh.nodes[tri[1]], mesh.nodes[tri[2]]) < 0.0 {
             tri.swap(1, 2);
@@ -180,10 +183,16 @@ pub fn half_disc_mesh(
 
 fn check_increasing(name: &str, lines: &[f64]) -> Result<(), FemError> {
     if lines.len() < 2 {
-        return Err(FemError::Input(format!("{name} needs at least two values, got {}", lines.len())));
+        return Err(FemError::Input(format!(
+            "{name} needs at least two values, got {}",
+            lines.len()
+        )));
     }
     for (k, w) in lines.windows(2).enumerate() {
-        if !(w[1] > w[0]) || !w[0].is_finite() || !w[1].is_finite() {
+        if w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater)
+            || !w[0].is_finite()
+            || !w[1].is_finite()
+        {
             return Err(FemError::Input(format!(
                 "{name} must be finite and strictly increasing: {name}[{k}] = {}, {name}[{}] = {}",
                 w[0],

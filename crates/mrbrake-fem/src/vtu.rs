@@ -26,7 +26,9 @@ pub fn to_vtu(mesh: &Mesh, point_fields: &[Field<'_>], cell_fields: &[Field<'_>]
     let mut s = String::with_capacity(64 * (n_points + n_cells));
     s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
     let _ = writeln!(s, "<Piece NumberOfPoints=\"{n_points}\" NumberOfCells=\"{n_cells}\">");
-    s.push_str("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    s.push_str(
+        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+    );
     for p in &mesh.nodes {
         let _ = writeln!(s, "{:e} {:e} 0", p[0], p[1]);
     }
@@ -46,7 +48,9 @@ pub fn to_vtu(mesh: &Mesh, point_fields: &[Field<'_>], cell_fields: &[Field<'_>]
     for f in point_fields {
         data_array(&mut s, f);
     }
-    s.push_str("</PointData>\n<CellData>\n<DataArray type=\"Int64\" Name=\"region\" format=\"ascii\">\n");
+    s.push_str(
+        "</PointData>\n<CellData>\n<DataArray type=\"Int64\" Name=\"region\" format=\"ascii\">\n",
+    );
     for t in &mesh.triangle_tags {
         let _ = writeln!(s, "{t}");
     }

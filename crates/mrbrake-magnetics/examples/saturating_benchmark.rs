@@ -22,7 +22,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let steel = mrbrake_materials::library::get("steel-1010")?;
     let mut rows = Vec::new();
     for _ in 0..repeats.max(1) {
-        let problem = pot_core_problem(target, MagneticMaterial::from_library(&steel.magnetic), current)?;
+        let problem =
+            pot_core_problem(target, MagneticMaterial::from_library(&steel.magnetic), current)?;
         let nodes = problem.mesh.nodes.len();
         let start = Instant::now();
         let mut solver = Solver::new(problem, SolverOptions::default())?;
@@ -30,13 +31,36 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let solution = solver.solve(None)?;
         let post_start = Instant::now();
         let steel_stats = solver.region_stats(&solution, STEEL)?;
+        let t_stats = post_start.elapsed().as_secs_f64();
         let coils = solver.coils(&solution);
+        let t_coils = post_start.elapsed().as_secs_f64();
         let (energy, _) = solver.energy(&solution);
+        let t_energy = post_start.elapsed().as_secs_f64();
         let gap = solver.b_at(&solution, [5e-3, 15.5e-3])?;
         let post = post_start.elapsed().as_secs_f64();
+        println!(
+            "post split: stats {t_stats:.3} coils {:.3} energy {:.3} probe {:.3}; history {:?}",
+            t_coils - t_stats,
+            t_energy - t_coils,
+            post - t_energy,
+            solution
+                .report
+                .history
+                .iter()
+                .map(|h| format!("{:.1e}@{:.2}", h.relative_residual, h.step_length))
+                .collect::<Vec<_>>()
+        );
         let total = start.elapsed().as_secs_f64();
         let t = solution.report.timings;
-        rows.push((total, setup, t.assemble_s, t.factor_s, t.solve_s, post, solution.report.iterations));
+        rows.push((
+            total,
+            setup,
+            t.assemble_s,
+            t.factor_s,
+            t.solve_s,
+            post,
+            solution.report.iterations,
+        ));
         println!(
             "nodes {nodes} unknowns {} factor nnz {} | iterations {} | total {total:.3} s = setup {setup:.3} (symbolic {:.3}) + assemble {:.3} + factor {:.3} + solve {:.3} + post {post:.3} | max |B| steel {:.3} T, gap B {:.3} T, λ {:.4e} Wb, W {energy:.4e} J",
             solver.unknowns(),

@@ -116,7 +116,8 @@ pub(crate) fn element_kernel(
             for i in 0..3 {
                 for j in i..3 {
                     let curl_dot = v.curl[i][0] * v.curl[j][0] + v.curl[i][1] * v.curl[j][1];
-                    jac[p] += v.weight * (nu * curl_dot + 2.0 * dnu * b_dot_curl[i] * b_dot_curl[j]);
+                    jac[p] +=
+                        v.weight * (nu * curl_dot + 2.0 * dnu * b_dot_curl[i] * b_dot_curl[j]);
                     p += 1;
                 }
             }
@@ -144,7 +145,15 @@ pub(crate) fn assemble_elements(
         let [n0, n1, n2] = mesh.triangles[t];
         let tri = P1Triangle::new([mesh.nodes[n0], mesh.nodes[n1], mesh.nodes[n2]]);
         let material = &materials[data.material[t] as usize];
-        element_kernel(&tri, rule, material, data.current_density[t], [a[n0], a[n1], a[n2]], res, jac);
+        element_kernel(
+            &tri,
+            rule,
+            material,
+            data.current_density[t],
+            [a[n0], a[n1], a[n2]],
+            res,
+            jac,
+        );
     };
     match element_jacobian {
         Some(jac) => element_residual
@@ -164,7 +173,7 @@ pub(crate) fn assemble_elements(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::{MarroccoCurve, MU_0};
+    use crate::material::{MU_0, MarroccoCurve};
     use mrbrake_fem::quadrature::triangle_rule;
     use std::sync::Arc;
 
@@ -192,7 +201,11 @@ mod tests {
             element_kernel(&tri, &rule, &iron, 1e6, am, &mut rm, None);
             for i in 0..3 {
                 let fd = (rp[i] - rm[i]) / (2.0 * h);
-                assert!((fd - full(i, j)).abs() <= 1e-5 * full(i, i).abs(), "({i},{j}): {fd} vs {}", full(i, j));
+                assert!(
+                    (fd - full(i, j)).abs() <= 1e-5 * full(i, i).abs(),
+                    "({i},{j}): {fd} vs {}",
+                    full(i, j)
+                );
             }
         }
         // Uniform B = B0 e_z is A = B0 r / 2: the air residual without source is the boundary flux only,

@@ -94,9 +94,7 @@ pub fn thick_coil_a_phi(coil: &CoilSection, r: f64, z: f64, panels: usize) -> f6
 
 /// On-axis `B_z` (T) of the coil at axial position `z`.
 pub fn thick_coil_axis_bz(coil: &CoilSection, z: f64) -> f64 {
-    let f = |u: f64| {
-        u * ((coil.r2 + coil.r2.hypot(u)) / (coil.r1 + coil.r1.hypot(u))).ln()
-    };
+    let f = |u: f64| u * ((coil.r2 + coil.r2.hypot(u)) / (coil.r1 + coil.r1.hypot(u))).ln();
     0.5 * MU_0 * coil.j * (f(coil.z2 - z) - f(coil.z1 - z))
 }
 
@@ -112,7 +110,8 @@ pub fn long_solenoid_a_phi(j: f64, r1: f64, r2: f64, r: f64) -> f64 {
             0.5 * b0 * s * s
         } else {
             let s = s.min(r2);
-            0.5 * b0 * r1 * r1 + MU_0 * j * (0.5 * r2 * (s * s - r1 * r1) - (s.powi(3) - r1.powi(3)) / 3.0)
+            0.5 * b0 * r1 * r1
+                + MU_0 * j * (0.5 * r2 * (s * s - r1 * r1) - (s.powi(3) - r1.powi(3)) / 3.0)
         }
     };
     flux_integral(r) / r
@@ -164,7 +163,8 @@ mod tests {
         // Far field: A = μ0 m sinθ / (4π ρ²), m = I π a².
         let (r, z) = (3.0, 4.0);
         let rho: f64 = 5.0;
-        let dipole = MU_0 * i * std::f64::consts::PI * a * a * (r / rho) / (4.0 * std::f64::consts::PI * rho * rho);
+        let dipole = MU_0 * i * std::f64::consts::PI * a * a * (r / rho)
+            / (4.0 * std::f64::consts::PI * rho * rho);
         assert!((loop_a_phi(a, i, r, z) - dipole).abs() < 1e-3 * dipole);
         // Near the axis B_z ≈ 2A/r = μ0 I a² / (2 (a² + z²)^{3/2}).
         let (r, z) = (1e-5, 0.03);

@@ -123,7 +123,10 @@ impl Solver {
     pub fn b_at(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
         let mesh = &self.problem.mesh;
         let (t, bary) = self.locator().locate(mesh, p).ok_or_else(|| {
-            MagneticsError::Input(format!("point (r = {} m, z = {} m) is outside the mesh", p[0], p[1]))
+            MagneticsError::Input(format!(
+                "point (r = {} m, z = {} m) is outside the mesh",
+                p[0], p[1]
+            ))
         })?;
         let corners = solution.recovered.get_or_init(|| self.recover_b(solution));
         let mut b = [0.0; 2];
@@ -186,7 +189,10 @@ impl Solver {
     pub fn b_at_raw(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
         let mesh = &self.problem.mesh;
         let (t, bary) = self.locator().locate(mesh, p).ok_or_else(|| {
-            MagneticsError::Input(format!("point (r = {} m, z = {} m) is outside the mesh", p[0], p[1]))
+            MagneticsError::Input(format!(
+                "point (r = {} m, z = {} m) is outside the mesh",
+                p[0], p[1]
+            ))
         })?;
         let tri = triangle(mesh, t);
         let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
@@ -196,7 +202,12 @@ impl Solver {
 
     /// B at `samples` equally spaced points along each segment of the polyline `points`
     /// (segment ends included once).
-    pub fn b_along(&self, solution: &Solution, points: &[[f64; 2]], samples: usize) -> Result<Vec<PointField>, MagneticsError> {
+    pub fn b_along(
+        &self,
+        solution: &Solution,
+        points: &[[f64; 2]],
+        samples: usize,
+    ) -> Result<Vec<PointField>, MagneticsError> {
         let mut out = Vec::new();
         let samples = samples.max(1);
         for (s, w) in points.windows(2).enumerate() {
@@ -213,7 +224,11 @@ impl Solver {
     }
 
     /// |B| statistics of region `tag`.
-    pub fn region_stats(&self, solution: &Solution, tag: u32) -> Result<RegionStats, MagneticsError> {
+    pub fn region_stats(
+        &self,
+        solution: &Solution,
+        tag: u32,
+    ) -> Result<RegionStats, MagneticsError> {
         let ri = self.region_position(tag)?;
         let mesh = &self.problem.mesh;
         let mut samples: Vec<(f64, f64)> = Vec::new();
@@ -297,19 +312,25 @@ impl Solver {
     /// B at the centroid of every triangle: `[B_r, B_z]` pairs (T), for maps and VTU output.
     pub fn element_b(&self, solution: &Solution) -> Vec<[f64; 2]> {
         let mesh = &self.problem.mesh;
+        let scale = mesh.size_scale();
         (0..mesh.triangles.len())
             .map(|t| {
                 let tri = triangle(mesh, t);
                 let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
                 let centroid = tri.point([1.0 / 3.0; 3]);
-                b_in_triangle(&tri, a, [1.0 / 3.0; 3], centroid[0], mesh.size_scale())
+                b_in_triangle(&tri, a, [1.0 / 3.0; 3], centroid[0], scale)
             })
             .collect()
     }
 
     /// Weighted L2 error `(∫ (A_h − A)² 2π r dS)^{1/2}` (Wb·m^{1/2}) against a reference potential,
     /// with the degree-5 triangle rule, over the regions in `tags` (all regions when empty).
-    pub fn l2_error(&self, solution: &Solution, reference: impl Fn([f64; 2]) -> f64, tags: &[u32]) -> f64 {
+    pub fn l2_error(
+        &self,
+        solution: &Solution,
+        reference: impl Fn([f64; 2]) -> f64,
+        tags: &[u32],
+    ) -> f64 {
         let mesh = &self.problem.mesh;
         let rule = mrbrake_fem::quadrature::triangle_rule(5);
         let mut sum = 0.0;

@@ -72,8 +72,18 @@ impl MagneticMaterial {
         match self {
             Self::Linear { mu_r } => 0.5 * b * b / (MU_0 * mu_r),
             Self::NonLinear(curve) => {
-                const X: [f64; 4] = [0.069_431_844_202_974, 0.330_009_478_207_572, 0.669_990_521_792_428, 0.930_568_155_797_026];
-                const W: [f64; 4] = [0.173_927_422_568_727, 0.326_072_577_431_273, 0.326_072_577_431_273, 0.173_927_422_568_727];
+                const X: [f64; 4] = [
+                    0.069_431_844_202_974,
+                    0.330_009_478_207_572,
+                    0.669_990_521_792_428,
+                    0.930_568_155_797_026,
+                ];
+                const W: [f64; 4] = [
+                    0.173_927_422_568_727,
+                    0.326_072_577_431_273,
+                    0.326_072_577_431_273,
+                    0.173_927_422_568_727,
+                ];
                 let panels = 8;
                 let h = b / panels as f64;
                 let mut sum = 0.0;
@@ -136,7 +146,8 @@ impl Reluctivity for MarroccoCurve {
         let sa = s.powi(self.alpha);
         let denominator = sa + self.tau;
         let nu = nu0 * (self.epsilon + (self.c - self.epsilon) * sa / denominator);
-        let dsa = if self.alpha == 0 { 0.0 } else { f64::from(self.alpha) * s.powi(self.alpha - 1) };
+        let dsa =
+            if self.alpha == 0 { 0.0 } else { f64::from(self.alpha) * s.powi(self.alpha - 1) };
         let dnu = nu0 * (self.c - self.epsilon) * dsa * self.tau / (denominator * denominator);
         (nu, dnu)
     }
@@ -176,7 +187,9 @@ mod tests {
         let b = 2.2;
         let n = 200_000;
         let curve = MarroccoCurve::soft_iron();
-        let fine: f64 = (0..n).map(|i| curve.h_of_b(b * (i as f64 + 0.5) / n as f64)).sum::<f64>() * b / n as f64;
+        let fine: f64 = (0..n).map(|i| curve.h_of_b(b * (i as f64 + 0.5) / n as f64)).sum::<f64>()
+            * b
+            / n as f64;
         assert!((iron.energy_density(b) - fine).abs() < 1e-6 * fine);
     }
 }

@@ -160,8 +160,10 @@ fn unit_scale(unit: &str, file: &str) -> Result<f64, MagneticsError> {
 /// Reads a problem file and everything it refers to (mesh, B-H files).
 pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| MagneticsError::Input(format!("{file}: cannot read: {e}")))?;
-    let raw: RawFile = toml::from_str(&text).map_err(|e| MagneticsError::Input(format!("{file}: {e}")))?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| MagneticsError::Input(format!("{file}: cannot read: {e}")))?;
+    let raw: RawFile =
+        toml::from_str(&text).map_err(|e| MagneticsError::Input(format!("{file}: {e}")))?;
     let dir = path.parent().unwrap_or(Path::new("."));
     let scale = unit_scale(raw.length_unit.as_deref().unwrap_or("m"), &file)?;
     let mesh_path = dir.join(&raw.mesh);
@@ -187,7 +189,9 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
         let field = format!("{file}: boundary[{k}] (physical = {})", b.physical);
         let condition = match b.kind.as_str() {
             "dirichlet" => Some(BoundaryCondition::Dirichlet),
-            "open" => Some(BoundaryCondition::Open { centre_z_m: b.centre_z.unwrap_or(0.0) * scale }),
+            "open" => {
+                Some(BoundaryCondition::Open { centre_z_m: b.centre_z.unwrap_or(0.0) * scale })
+            }
             "neumann" => None,
             other => {
                 return Err(MagneticsError::Input(format!(
@@ -210,24 +214,34 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     if let Some(s) = &raw.solver {
         if let Some(m) = s.max_iterations {
             if m == 0 {
-                return Err(MagneticsError::Input(format!("{file}: solver.max_iterations must be >= 1")));
+                return Err(MagneticsError::Input(format!(
+                    "{file}: solver.max_iterations must be >= 1"
+                )));
             }
             options.max_iterations = m;
         }
         if let Some(t) = s.tolerance {
             if !(t > 0.0 && t < 1.0) {
-                return Err(MagneticsError::Input(format!("{file}: solver.tolerance = {t} must be in (0, 1)")));
+                return Err(MagneticsError::Input(format!(
+                    "{file}: solver.tolerance = {t} must be in (0, 1)"
+                )));
             }
             options.residual_tolerance = t;
         }
         if let Some(q) = s.quadrature_degree {
             if !(1..=5).contains(&q) {
-                return Err(MagneticsError::Input(format!("{file}: solver.quadrature_degree = {q} must be 1 to 5")));
+                return Err(MagneticsError::Input(format!(
+                    "{file}: solver.quadrature_degree = {q} must be 1 to 5"
+                )));
             }
             options.quadrature_degree = q;
         }
     }
-    let probes = raw.probe.iter().map(|p| Probe { name: p.name.clone(), point: [p.r * scale, p.z * scale] }).collect();
+    let probes = raw
+        .probe
+        .iter()
+        .map(|p| Probe { name: p.name.clone(), point: [p.r * scale, p.z * scale] })
+        .collect();
     let lines = raw
         .line
         .iter()
@@ -265,7 +279,11 @@ fn check_regions(problem: &Problem, file: &str, mesh_path: &Path) -> Result<(), 
     Ok(())
 }
 
-fn material_of(value: &toml::Value, dir: &Path, field: &str) -> Result<MagneticMaterial, MagneticsError> {
+fn material_of(
+    value: &toml::Value,
+    dir: &Path,
+    field: &str,
+) -> Result<MagneticMaterial, MagneticsError> {
     match value {
         toml::Value::String(name) => {
             let material = mrbrake_materials::library::get(name)?;
@@ -273,15 +291,19 @@ fn material_of(value: &toml::Value, dir: &Path, field: &str) -> Result<MagneticM
         }
         toml::Value::Table(table) => {
             if let Some(mu) = table.get("mu_r") {
-                let mu_r = mu.as_float().or_else(|| mu.as_integer().map(|i| i as f64)).ok_or_else(|| {
-                    MagneticsError::Input(format!("{field}: material.mu_r must be a number"))
-                })?;
+                let mu_r = mu.as_float().or_else(|| mu.as_integer().map(|i| i as f64)).ok_or_else(
+                    || MagneticsError::Input(format!("{field}: material.mu_r must be a number")),
+                )?;
                 if !(mu_r.is_finite() && mu_r > 0.0) {
-                    return Err(MagneticsError::Input(format!("{field}: material.mu_r = {mu_r} must be > 0")));
+                    return Err(MagneticsError::Input(format!(
+                        "{field}: material.mu_r = {mu_r} must be > 0"
+                    )));
                 }
                 Ok(MagneticMaterial::Linear { mu_r })
             } else if let Some(csv) = table.get("bh_csv") {
-                let csv = csv.as_str().ok_or_else(|| MagneticsError::Input(format!("{field}: material.bh_csv must be a path string")))?;
+                let csv = csv.as_str().ok_or_else(|| {
+                    MagneticsError::Input(format!("{field}: material.bh_csv must be a path string"))
+                })?;
                 let curve = mrbrake_materials::BhCurve::from_csv_file(&dir.join(csv))?;
                 Ok(MagneticMaterial::NonLinear(Arc::new(curve)))
             } else {
@@ -304,14 +326,18 @@ fn number(table: &toml::Table, key: &str, field: &str) -> Result<Option<f64>, Ma
             .or_else(|| v.as_integer().map(|i| i as f64))
             .filter(|x| x.is_finite())
             .map(Some)
-            .ok_or_else(|| MagneticsError::Input(format!("{field}: source.{key} must be a finite number"))),
+            .ok_or_else(|| {
+                MagneticsError::Input(format!("{field}: source.{key} must be a finite number"))
+            }),
     }
 }
 
 fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError> {
-    let table = value
-        .as_table()
-        .ok_or_else(|| MagneticsError::Input(format!("{field}: source must be a table such as {{ turns = 100, current_A = 1.0 }}")))?;
+    let table = value.as_table().ok_or_else(|| {
+        MagneticsError::Input(format!(
+            "{field}: source must be a table such as {{ turns = 100, current_A = 1.0 }}"
+        ))
+    })?;
     for key in table.keys() {
         if !["turns", "current_A", "current_density_A_per_m2"].contains(&key.as_str()) {
             return Err(MagneticsError::Input(format!(
@@ -325,7 +351,9 @@ fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError>
     match (number(table, "turns", field)?, number(table, "current_A", field)?) {
         (Some(turns), Some(current_a)) => {
             if turns <= 0.0 {
-                return Err(MagneticsError::Input(format!("{field}: source.turns = {turns} must be > 0")));
+                return Err(MagneticsError::Input(format!(
+                    "{field}: source.turns = {turns} must be > 0"
+                )));
             }
             Ok(Source::Coil { turns, current_a })
         }
@@ -447,7 +475,14 @@ pub struct SolveReport {
 }
 
 fn probe_report(name: &str, f: &PointField) -> ProbeReport {
-    ProbeReport { name: name.to_string(), r: f.r, z: f.z, b_r_t: f.b_r_t, b_z_t: f.b_z_t, b_abs_t: f.b_abs_t }
+    ProbeReport {
+        name: name.to_string(),
+        r: f.r,
+        z: f.z,
+        b_r_t: f.b_r_t,
+        b_z_t: f.b_z_t,
+        b_abs_t: f.b_abs_t,
+    }
 }
 
 /// Reads, solves and post-processes a problem file; returns the report and the solver and solution
@@ -461,20 +496,31 @@ pub fn solve_file(path: &Path) -> Result<(SolveReport, Solver, Solution), Magnet
     let post_start = Instant::now();
     let mut probes = Vec::new();
     for p in &file.probes {
-        let f = solver.b_at(&solution, p.point).map_err(|e| MagneticsError::Input(format!("{}: probe `{}`: {e}", path.display(), p.name)))?;
+        let f = solver.b_at(&solution, p.point).map_err(|e| {
+            MagneticsError::Input(format!("{}: probe `{}`: {e}", path.display(), p.name))
+        })?;
         probes.push(probe_report(&p.name, &f));
     }
     let mut lines = Vec::new();
     for l in &file.lines {
-        let samples = solver
-            .b_along(&solution, &[l.from, l.to], l.samples)
-            .map_err(|e| MagneticsError::Input(format!("{}: line `{}`: {e}", path.display(), l.name)))?;
-        lines.push(LineReport { name: l.name.clone(), points: samples.iter().map(|f| probe_report(&l.name, f)).collect() });
+        let samples = solver.b_along(&solution, &[l.from, l.to], l.samples).map_err(|e| {
+            MagneticsError::Input(format!("{}: line `{}`: {e}", path.display(), l.name))
+        })?;
+        lines.push(LineReport {
+            name: l.name.clone(),
+            points: samples.iter().map(|f| probe_report(&l.name, f)).collect(),
+        });
     }
     let mut regions = Vec::new();
     for tag in solver.mesh().region_tags() {
         let s: RegionStats = solver.region_stats(&solution, tag)?;
-        regions.push(RegionReport { physical: tag, area_m2: s.area_m2, mean_b_t: s.mean_b_t, max_b_t: s.max_b_t, quantiles_b_t: s.quantiles_b_t });
+        regions.push(RegionReport {
+            physical: tag,
+            area_m2: s.area_m2,
+            mean_b_t: s.mean_b_t,
+            max_b_t: s.max_b_t,
+            quantiles_b_t: s.quantiles_b_t,
+        });
     }
     let linkages: Vec<CoilLinkage> = solver.coils(&solution);
     let (energy_j, coenergy_j) = solver.energy(&solution);

@@ -12,9 +12,9 @@
 //! 4. line search on the energy `W(A)` whose gradient is `R` (see [`crate::assembly`]): `W` is convex
 //!    for a monotone B-H curve, so along the Newton direction `g(α) = δ · R(A + αδ) = dW/dα` is
 //!    increasing, with `g(0) = −δᵀKδ < 0`. The full step is accepted when `g(1) <= 0` (W decreases on
-//!    the whole step) or `|g(1)| <= |g(0)|/4`; otherwise the root of `g` in `(0, 1)` is bracketed and
-//!    approached by Illinois false position until `|g(α)| <= |g(0)|/4` (an approximate exact line
-//!    search: every accepted step lowers W). Only residuals are needed, no energy values. This is what
+//!    the whole step) or `|g(1)| <= 0.3 |g(0)|`; otherwise the root of `g` in `(0, 1)` is bracketed
+//!    and approached by Illinois false position until `|g(α)| <= 0.3 |g(0)|` (an approximate exact
+//!    line search; steps with `g(α) < 0` lower W on all of `[0, α]`). Only residuals are needed, no energy values. This is what
 //!    makes saturated problems converge from `A = 0`, where the first Newton step (with the initial
 //!    permeability of the iron) overshoots by orders of magnitude.
 //!
@@ -58,6 +58,9 @@ impl Default for SolverOptions {
         Self { quadrature_degree: 2, max_iterations: 50, residual_tolerance: 1e-9, threads: 0 }
     }
 }
+
+/// Line-search acceptance: `|g(α)| <= LINE_SEARCH_SLOPE |g(0)|` (see the module docs).
+const LINE_SEARCH_SLOPE: f64 = 0.3;
 
 /// One Newton iteration in the history.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -175,13 +178,20 @@ impl Solver {
         let region_index: Vec<u32> = mesh
             .triangle_tags
             .iter()
-            .map(|t| problem.regions.iter().position(|r| r.tag == *t).expect("every mesh tag has a region (checked)") as u32)
+            .map(|t| {
+                problem
+                    .regions
+                    .iter()
+                    .position(|r| r.tag == *t)
+                    .expect("every mesh tag has a region (checked)") as u32
+            })
             .collect();
         let mut region_area = vec![0.0; problem.regions.len()];
         for (t, &ri) in region_index.iter().enumerate() {
             region_area[ri as usize] += mesh.signed_area(t);
         }
-        let materials: Vec<MagneticMaterial> = problem.regions.iter().map(|r| r.material.clone()).collect();
+        let materials: Vec<MagneticMaterial> =
+            problem.regions.iter().map(|r| r.material.clone()).collect();
         let any_nonlinear = materials.iter().any(MagneticMaterial::is_nonlinear);
 
         // Constrained nodes: the axis, Dirichlet edges, nodes not in any triangle.
@@ -224,9 +234,12 @@ impl Solver {
             }
         }
         if n_free == 0 {
-            return Err(MagneticsError::Input("every node is constrained: nothing to solve".into()));
+            return Err(MagneticsError::Input(
+                "every node is constrained: nothing to solve".into(),
+            ));
         }
-        let element_dofs: Vec<usize> = mesh.triangles.iter().flat_map(|t| t.map(|v| dof[v])).collect();
+        let element_dofs: Vec<usize> =
+            mesh.triangles.iter().flat_map(|t| t.map(|v| dof[v])).collect();
         let pattern = SymmetricPattern::new(n_free, 3, &element_dofs);
         let open_terms = open_boundary_terms(&mesh, &problem, &dof, &pattern)?;
         let start = Instant::now();
@@ -286,12 +299,9 @@ impl Solver {
     /// Replaces the source of region `tag` (e.g. the next current of a sweep). The mesh, pattern and
     /// symbolic factorisation are kept.
     pub fn set_source(&mut self, tag: u32, source: Option<Source>) -> Result<(), MagneticsError> {
-        let region = self
-            .problem
-            .regions
-            .iter_mut()
-            .find(|r| r.tag == tag)
-            .ok_or_else(|| MagneticsError::Input(format!("set_source: no region with physical = {tag}")))?;
+        let region = self.problem.regions.iter_mut().find(|r| r.tag == tag).ok_or_else(|| {
+            MagneticsError::Input(format!("set_source: no region with physical = {tag}"))
+        })?;
         region.source = source;
         self.update_sources()
     }
@@ -314,7 +324,10 @@ impl Solver {
                 }
             };
             if !density[i].is_finite() {
-                return Err(MagneticsError::Input(format!("region {}: source is not finite", region.tag)));
+                return Err(MagneticsError::Input(format!(
+                    "region {}: source is not finite",
+                    region.tag
+                )));
             }
         }
         for (t, &ri) in self.region_index.iter().enumerate() {
@@ -362,7 +375,10 @@ impl Solver {
     fn residual_scale(&mut self) -> f64 {
         let saved = std::mem::take(&mut self.materials);
         // Linear state: every material at its B = 0 reluctivity.
-        self.materials = saved.iter().map(|m| MagneticMaterial::Linear { mu_r: 1.0 / (MU_0 * m.nu_and_dnu_db2(0.0).0) }).collect();
+        self.materials = saved
+            .iter()
+            .map(|m| MagneticMaterial::Linear { mu_r: 1.0 / (MU_0 * m.nu_and_dnu_db2(0.0).0) })
+            .collect();
         let mut lifting = self.fixed_values.clone();
         for (v, d) in self.dof.iter().enumerate() {
             if *d != CONSTRAINED {
@@ -370,7 +386,10 @@ impl Solver {
             }
         }
         let mut residual = vec![0.0; self.n_free];
-        let density = std::mem::replace(&mut self.data.current_density, vec![0.0; self.problem.mesh.triangles.len()]);
+        let density = std::mem::replace(
+            &mut self.data.current_density,
+            vec![0.0; self.problem.mesh.triangles.len()],
+        );
         self.assemble(&lifting, false, &mut residual);
         let dirichlet_norm = norm2(&residual);
         self.data.current_density = density;
@@ -417,7 +436,11 @@ impl Solver {
         loop {
             let r_norm = norm2(&residual);
             if !r_norm.is_finite() {
-                return Err(self.failure("the residual is not finite (NaN or infinite B-H value?)", history, scale));
+                return Err(self.failure(
+                    "the residual is not finite (NaN or infinite B-H value?)",
+                    history,
+                    scale,
+                ));
             }
             if r_norm <= rtol * scale {
                 converged = true;
@@ -429,7 +452,11 @@ impl Solver {
             iterations += 1;
             let t = Instant::now();
             if let Err(e) = self.cholesky.factorize(&self.values) {
-                return Err(self.failure(&format!("{e} (Jacobian not positive definite: is a B-H curve non-monotone?)"), history, scale));
+                return Err(self.failure(
+                    &format!("{e} (Jacobian not positive definite: is a B-H curve non-monotone?)"),
+                    history,
+                    scale,
+                ));
             }
             timings.factor_s += t.elapsed().as_secs_f64();
             let t = Instant::now();
@@ -444,10 +471,10 @@ impl Solver {
             let g0: f64 = delta.iter().zip(&residual).map(|(d, r)| d * r).sum();
             let mut alpha = 1.0;
             let mut accepted = false;
-            let (lo, mut g_lo) = (0.0, g0);
-            let (mut hi, mut g_hi): (f64, f64);
-            let mut right_moved = false;
-            for _ in 0..40 {
+            let (mut lo, mut g_lo) = (0.0, g0);
+            let (mut hi, mut g_hi) = (1.0, f64::INFINITY);
+            let mut last_moved = 0i8;
+            for trial_count in 0..40 {
                 for v in 0..n_nodes {
                     let d = self.dof[v];
                     trial[v] = if d == CONSTRAINED { a[v] } else { a[v] + alpha * delta[d] };
@@ -456,27 +483,35 @@ impl Solver {
                 self.assemble(&trial, true, &mut trial_residual);
                 timings.assemble_s += t.elapsed().as_secs_f64();
                 let g: f64 = delta.iter().zip(&trial_residual).map(|(d, r)| d * r).sum();
-                if !g.is_finite() {
-                    // Overflow in a B-H evaluation: step back hard, the bracket is not updated.
-                    alpha *= 0.1;
-                    continue;
-                }
-                if g <= 0.0 || g.abs() <= 0.25 * g0.abs() {
-                    // Either W still decreases at α (the whole step [0, α] is downhill), or α is
-                    // within a quarter of the initial slope of the minimiser along the line.
+                if g.is_finite()
+                    && (g.abs() <= LINE_SEARCH_SLOPE * g0.abs() || (trial_count == 0 && g <= 0.0))
+                {
                     accepted = true;
                     break;
                 }
-                hi = alpha;
-                g_hi = g;
-                // Illinois false position on the bracket [lo, hi] (g_lo < 0 < g_hi).
-                let next = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-                alpha = next.clamp(lo + 0.01 * (hi - lo), hi - 0.01 * (hi - lo));
-                // Illinois: the right end moved again, so halve the weight of the fixed left end.
-                if right_moved {
-                    g_lo *= 0.5;
+                if !g.is_finite() || g > 0.0 {
+                    hi = alpha;
+                    g_hi = if g.is_finite() { g } else { f64::INFINITY };
+                    if last_moved == 1 {
+                        g_lo *= 0.5; // Illinois: the same end moved twice, halve the other end's weight
+                    }
+                    last_moved = 1;
+                } else {
+                    lo = alpha;
+                    g_lo = g;
+                    if last_moved == -1 {
+                        g_hi *= 0.5;
+                    }
+                    last_moved = -1;
                 }
-                right_moved = true;
+                // False position in [lo, hi]; bisection when the right end is unbounded, or when false
+                // position would creep (the root is kept off the ends by 1 % of the bracket).
+                alpha = if g_hi.is_finite() {
+                    lo - g_lo * (hi - lo) / (g_hi - g_lo)
+                } else {
+                    0.5 * (lo + hi)
+                };
+                alpha = alpha.clamp(lo + 0.01 * (hi - lo), hi - 0.01 * (hi - lo));
             }
             let a_max = a.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
             let d_max = delta.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * alpha;
@@ -487,7 +522,11 @@ impl Solver {
                 relative_update: d_max / a_max.max(f64::MIN_POSITIVE),
             });
             if !accepted {
-                return Err(self.failure("the line search found no step reducing the residual", history, scale));
+                return Err(self.failure(
+                    "the line search found no step lowering the energy",
+                    history,
+                    scale,
+                ));
             }
             std::mem::swap(&mut a, &mut trial);
             std::mem::swap(&mut residual, &mut trial_residual);
@@ -510,7 +549,10 @@ impl Solver {
         };
         if !converged {
             return Err(MagneticsError::NotConverged {
-                reason: format!("no convergence in {} Newton iterations", self.options.max_iterations),
+                reason: format!(
+                    "no convergence in {} Newton iterations",
+                    self.options.max_iterations
+                ),
                 history,
                 residual_scale: scale,
             });
@@ -525,7 +567,11 @@ impl Solver {
     /// Incremental inductance `dλ/dI` (H) of the coil region `tag` at the solution: one extra
     /// factorisation of the Jacobian at `solution` and one solve `K dA/dI = ∂F/∂I`, then
     /// `dλ/dI = (N/S) ∫ 2π r dA/dI dS` (the small-signal inductance seen by the current controller).
-    pub fn incremental_inductance(&mut self, solution: &Solution, tag: u32) -> Result<f64, MagneticsError> {
+    pub fn incremental_inductance(
+        &mut self,
+        solution: &Solution,
+        tag: u32,
+    ) -> Result<f64, MagneticsError> {
         let ri = self
             .problem
             .regions
@@ -533,7 +579,9 @@ impl Solver {
             .position(|r| r.tag == tag)
             .ok_or_else(|| MagneticsError::Input(format!("no region with physical = {tag}")))?;
         let Some(Source::Coil { turns, .. }) = self.problem.regions[ri].source else {
-            return Err(MagneticsError::Input(format!("region {tag} is not a coil (turns × current)")));
+            return Err(MagneticsError::Input(format!(
+                "region {tag} is not a coil (turns × current)"
+            )));
         };
         let mut residual = vec![0.0; self.n_free];
         self.assemble(solution.a_phi(), true, &mut residual);
@@ -586,12 +634,17 @@ fn open_boundary_terms(
     for boundary in &problem.boundaries {
         let BoundaryCondition::Open { centre_z_m } = boundary.condition else { continue };
         let radius = |p: [f64; 2]| p[0].hypot(p[1] - centre_z_m);
-        let edges: Vec<[usize; 2]> =
-            mesh.edges.iter().zip(&mesh.edge_tags).filter(|(_, t)| **t == boundary.tag).map(|(e, _)| *e).collect();
+        let edges: Vec<[usize; 2]> = mesh
+            .edges
+            .iter()
+            .zip(&mesh.edge_tags)
+            .filter(|(_, t)| **t == boundary.tag)
+            .map(|(e, _)| *e)
+            .collect();
         let radii: Vec<f64> = edges.iter().flat_map(|e| e.map(|v| radius(mesh.nodes[v]))).collect();
         let r_min = radii.iter().cloned().fold(f64::INFINITY, f64::min);
         let r_max = radii.iter().cloned().fold(0.0, f64::max);
-        if !(r_min > 0.0) || (r_max - r_min) > 0.02 * r_max {
+        if r_min.is_nan() || r_min <= 0.0 || (r_max - r_min) > 0.02 * r_max {
             return Err(MagneticsError::Input(format!(
                 "open boundary {}: its nodes must lie on a circle centred on the axis at z = {centre_z_m} m \
                  (distances range from {r_min:.4e} to {r_max:.4e} m)",
@@ -616,11 +669,13 @@ fn open_boundary_terms(
                 for j in 0..2 {
                     terms.residual.push((e[i], e[j], m[i][j]));
                     let (di, dj) = (dof[e[i]], dof[e[j]]);
-                    if di != CONSTRAINED && dj != CONSTRAINED && (i == j || i < j) {
+                    if di != CONSTRAINED && dj != CONSTRAINED && i <= j {
                         let (row, col) = if di <= dj { (di, dj) } else { (dj, di) };
                         let rows = &pattern.row_idx[pattern.col_ptr[col]..pattern.col_ptr[col + 1]];
                         let k = rows.binary_search(&row).map_err(|_| {
-                            MagneticsError::Numerical("open-boundary edge is not an edge of a triangle".into())
+                            MagneticsError::Numerical(
+                                "open-boundary edge is not an edge of a triangle".into(),
+                            )
                         })?;
                         terms.matrix.push(((pattern.col_ptr[col] + k) as u32, m[i][j]));
                     }

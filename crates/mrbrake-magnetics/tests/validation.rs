@@ -8,7 +8,8 @@ use std::sync::Arc;
 use mrbrake_fem::mesh::Mesh;
 use mrbrake_fem::structured::{SideTags, graded_lines, half_disc_mesh, join_lines, rectangle_mesh};
 use mrbrake_magnetics::exact::{
-    CoilSection, long_solenoid_a_phi, long_solenoid_bz, loop_a_phi, sphere_a_phi, thick_coil_a_phi, thick_coil_axis_bz,
+    CoilSection, long_solenoid_a_phi, long_solenoid_bz, loop_a_phi, sphere_a_phi, thick_coil_a_phi,
+    thick_coil_axis_bz,
 };
 use mrbrake_magnetics::material::{MU_0, MagneticMaterial, MarroccoCurve, Reluctivity};
 use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
@@ -53,10 +54,18 @@ fn long_solenoid_converges_at_second_order() {
             graded_lines(r2, r_box, 3 * n, 1.0),
         ]);
         let z = graded_lines(0.0, 0.005, n, 1.0);
-        let mesh = rectangle_mesh(&r, &z, |rc, _| if rc > r1 && rc < r2 { 2 } else { 1 }, SIDES).unwrap();
+        let mesh =
+            rectangle_mesh(&r, &z, |rc, _| if rc > r1 && rc < r2 { 2 } else { 1 }, SIDES).unwrap();
         let problem = Problem {
             mesh: Arc::new(mesh),
-            regions: vec![air(1), Region { tag: 2, material: MagneticMaterial::air(), source: Some(Source::CurrentDensity { a_per_m2: j }) }],
+            regions: vec![
+                air(1),
+                Region {
+                    tag: 2,
+                    material: MagneticMaterial::air(),
+                    source: Some(Source::CurrentDensity { a_per_m2: j }),
+                },
+            ],
             boundaries: vec![prescribed(OUTER, move |p| long_solenoid_a_phi(j, r1, r2, p[0]))],
         };
         let mut solver = Solver::new(problem, SolverOptions::default()).unwrap();
@@ -74,7 +83,12 @@ fn long_solenoid_converges_at_second_order() {
         coil_errors.push((in_coil.b_z_t - b_coil).abs() / b0);
     }
     let orders = observed_orders(&errors);
-    println!("long solenoid: relative L2(A) errors {}, orders {orders:.2?}; axis B errors {}, B in coil errors {}", sci(&errors), sci(&b_errors), sci(&coil_errors));
+    println!(
+        "long solenoid: relative L2(A) errors {}, orders {orders:.2?}; axis B errors {}, B in coil errors {}",
+        sci(&errors),
+        sci(&b_errors),
+        sci(&coil_errors)
+    );
     assert!(coil_errors[2] < 0.01);
     assert!(errors[2] < 2e-4, "finest relative L2 error {}", errors[2]);
     assert!(orders.iter().all(|&p| p > 1.9), "orders {orders:?}");
@@ -102,12 +116,24 @@ fn finite_thick_coil_axis_field_and_convergence() {
             graded_lines(coil.z2, z_box, 8 * n, 1.0),
         ]);
         let inside = |r: f64, z: f64| r > coil.r1 && r < coil.r2 && z > coil.z1 && z < coil.z2;
-        let mesh = rectangle_mesh(&r, &z, |rc, zc| if inside(rc, zc) { 2 } else { 1 }, SIDES).unwrap();
+        let mesh =
+            rectangle_mesh(&r, &z, |rc, zc| if inside(rc, zc) { 2 } else { 1 }, SIDES).unwrap();
         let reference = move |p: [f64; 2]| thick_coil_a_phi(&coil, p[0], p[1], 2);
         let problem = Problem {
             mesh: Arc::new(mesh.clone()),
-            regions: vec![air(1), Region { tag: 2, material: MagneticMaterial::air(), source: Some(Source::CurrentDensity { a_per_m2: coil.j }) }],
-            boundaries: vec![prescribed(OUTER, reference), prescribed(TOP, reference), prescribed(BOTTOM, reference)],
+            regions: vec![
+                air(1),
+                Region {
+                    tag: 2,
+                    material: MagneticMaterial::air(),
+                    source: Some(Source::CurrentDensity { a_per_m2: coil.j }),
+                },
+            ],
+            boundaries: vec![
+                prescribed(OUTER, reference),
+                prescribed(TOP, reference),
+                prescribed(BOTTOM, reference),
+            ],
         };
         let mut solver = Solver::new(problem, SolverOptions::default()).unwrap();
         let solution = solver.solve(None).unwrap();
@@ -117,7 +143,8 @@ fn finite_thick_coil_axis_field_and_convergence() {
         let mut norm = 0.0;
         for (v, p) in mesh.nodes.iter().enumerate() {
             let on_coarse = |x: f64, step: f64| ((x / step).round() * step - x).abs() < 1e-12;
-            let away = p[0] < coil.r1 - 1e-9 || p[0] > coil.r2 + 0.004 || p[1].abs() > coil.z2 + 0.004;
+            let away =
+                p[0] < coil.r1 - 1e-9 || p[0] > coil.r2 + 0.004 || p[1].abs() > coil.z2 + 0.004;
             if away && on_coarse(p[0], 0.005) && on_coarse(p[1], 0.005) && p[0] > 0.0 {
                 let exact = reference(*p);
                 sum += (solution.a_phi()[v] - exact).powi(2) * p[0];
@@ -134,7 +161,11 @@ fn finite_thick_coil_axis_field_and_convergence() {
         axis_errors.push(worst);
     }
     let orders = observed_orders(&errors);
-    println!("thick coil: nodal relative L2(A) errors {}, orders {orders:.2?}; axis B errors {}", sci(&errors), sci(&axis_errors));
+    println!(
+        "thick coil: nodal relative L2(A) errors {}, orders {orders:.2?}; axis B errors {}",
+        sci(&errors),
+        sci(&axis_errors)
+    );
     assert!(orders.iter().all(|&p| p > 1.8), "orders {orders:?}");
     assert!(errors[2] < 1e-3);
     assert!(axis_errors[2] < 5e-3, "axis B relative error {}", axis_errors[2]);
@@ -147,7 +178,8 @@ fn finite_thick_coil_axis_field_and_convergence() {
 fn current_loop_matches_elliptic_integrals() {
     let (a, side, current) = (0.02, 0.001, 10.0);
     let j = current / (side * side);
-    let coil = CoilSection { r1: a - 0.5 * side, r2: a + 0.5 * side, z1: -0.5 * side, z2: 0.5 * side, j };
+    let coil =
+        CoilSection { r1: a - 0.5 * side, r2: a + 0.5 * side, z1: -0.5 * side, z2: 0.5 * side, j };
     let r = join_lines(&[
         graded_lines(0.0, coil.r1, 40, 1.0),
         graded_lines(coil.r1, coil.r2, 4, 1.0),
@@ -163,8 +195,19 @@ fn current_loop_matches_elliptic_integrals() {
     let filament = move |p: [f64; 2]| loop_a_phi(a, current, p[0], p[1]);
     let problem = Problem {
         mesh: Arc::new(mesh),
-        regions: vec![air(1), Region { tag: 2, material: MagneticMaterial::air(), source: Some(Source::Coil { turns: 1.0, current_a: current }) }],
-        boundaries: vec![prescribed(OUTER, filament), prescribed(TOP, filament), prescribed(BOTTOM, filament)],
+        regions: vec![
+            air(1),
+            Region {
+                tag: 2,
+                material: MagneticMaterial::air(),
+                source: Some(Source::Coil { turns: 1.0, current_a: current }),
+            },
+        ],
+        boundaries: vec![
+            prescribed(OUTER, filament),
+            prescribed(TOP, filament),
+            prescribed(BOTTOM, filament),
+        ],
     };
     let mut solver = Solver::new(problem, SolverOptions::default()).unwrap();
     let solution = solver.solve(None).unwrap();
@@ -175,20 +218,25 @@ fn current_loop_matches_elliptic_integrals() {
         // Exact B from the loop potential by central differences of r A (B_z) and A (B_r).
         let h = 1e-6;
         let bz = if p[0] > 0.0 {
-            ((p[0] + h) * filament([p[0] + h, p[1]]) - (p[0] - h) * filament([p[0] - h, p[1]])) / (2.0 * h * p[0])
+            ((p[0] + h) * filament([p[0] + h, p[1]]) - (p[0] - h) * filament([p[0] - h, p[1]]))
+                / (2.0 * h * p[0])
         } else {
             2.0 * filament([h, p[1]]) / h
         };
         let br = -(filament([p[0], p[1] + h]) - filament([p[0], p[1] - h])) / (2.0 * h);
         let err = (b.b_r_t - br).hypot(b.b_z_t - bz) / br.hypot(bz);
-        println!("  loop probe {p:?}: B = ({:.4e}, {:.4e}) exact ({br:.4e}, {bz:.4e}), error {err:.2e}", b.b_r_t, b.b_z_t);
+        println!(
+            "  loop probe {p:?}: B = ({:.4e}, {:.4e}) exact ({br:.4e}, {bz:.4e}), error {err:.2e}",
+            b.b_r_t, b.b_z_t
+        );
         worst = worst.max(err);
     }
     let l2 = solver.l2_error(&solution, filament, &[1]) / solver.l2_error(&solution, |_| 0.0, &[1]);
-    println!("current loop (box with exact boundary): relative L2(A) error {l2:.3e}, worst probe |B| error {worst:.3e}");
+    println!(
+        "current loop (box with exact boundary): relative L2(A) error {l2:.3e}, worst probe |B| error {worst:.3e}"
+    );
     assert!(worst < 0.03, "probe B error {worst}");
     assert!(l2 < 5e-3);
-
 }
 
 /// A ring current on a polar block `ρ ∈ [18, 22] mm`, `θ ∈ π/2 ± π/16` (exactly meshed by the polar
@@ -208,7 +256,10 @@ fn open_boundary_beats_truncation() {
             for (xt, wt) in x.iter().zip(&w) {
                 let rho = rho1 + (rho2 - rho1) * xr;
                 let theta = t1 + (t2 - t1) * xt;
-                sum += wr * wt * rho * loop_a_phi(rho * theta.sin(), 1.0, p[0], p[1] - rho * theta.cos());
+                sum += wr
+                    * wt
+                    * rho
+                    * loop_a_phi(rho * theta.sin(), 1.0, p[0], p[1] - rho * theta.cos());
             }
         }
         sum * j * (rho2 - rho1) * (t2 - t1)
@@ -224,11 +275,24 @@ fn open_boundary_beats_truncation() {
     };
     let mut errors = Vec::new();
     for open in [false, true] {
-        let mesh = half_disc_mesh(&radii, 128, |rc, zc| if in_block(rc, zc) { 2 } else { 1 }, OUTER, AXIS).unwrap();
-        let condition = if open { BoundaryCondition::Open { centre_z_m: 0.0 } } else { BoundaryCondition::Dirichlet };
+        let mesh =
+            half_disc_mesh(&radii, 128, |rc, zc| if in_block(rc, zc) { 2 } else { 1 }, OUTER, AXIS)
+                .unwrap();
+        let condition = if open {
+            BoundaryCondition::Open { centre_z_m: 0.0 }
+        } else {
+            BoundaryCondition::Dirichlet
+        };
         let problem = Problem {
             mesh: Arc::new(mesh),
-            regions: vec![air(1), Region { tag: 2, material: MagneticMaterial::air(), source: Some(Source::CurrentDensity { a_per_m2: j }) }],
+            regions: vec![
+                air(1),
+                Region {
+                    tag: 2,
+                    material: MagneticMaterial::air(),
+                    source: Some(Source::CurrentDensity { a_per_m2: j }),
+                },
+            ],
             boundaries: vec![Boundary { tag: OUTER, condition }],
         };
         let mut solver = Solver::new(problem, SolverOptions::default()).unwrap();
@@ -239,7 +303,9 @@ fn open_boundary_beats_truncation() {
             let b = solver.b_at(&solution, p).unwrap();
             let h = 1e-6;
             let bz = if p[0] > 0.0 {
-                ((p[0] + h) * reference([p[0] + h, p[1]]) - (p[0] - h) * reference([p[0] - h, p[1]])) / (2.0 * h * p[0])
+                ((p[0] + h) * reference([p[0] + h, p[1]])
+                    - (p[0] - h) * reference([p[0] - h, p[1]]))
+                    / (2.0 * h * p[0])
             } else {
                 2.0 * reference([h, p[1]]) / h
             };
@@ -251,7 +317,10 @@ fn open_boundary_beats_truncation() {
         "ring current in a half disc of radius 5 × ring radius: worst B_z error / B_centre: A = 0 boundary {:.3e}, open boundary {:.3e}",
         errors[0], errors[1]
     );
-    assert!(errors[1] < 0.2 * errors[0], "open boundary should cut the truncation error: {errors:?}");
+    assert!(
+        errors[1] < 0.2 * errors[0],
+        "open boundary should cut the truncation error: {errors:?}"
+    );
     assert!(errors[1] < 5e-3);
 }
 
@@ -263,23 +332,42 @@ fn permeable_sphere_in_uniform_field() {
     let mut inside_errors = Vec::new();
     for level in 0..3 {
         let n = 4 << level;
-        let radii = join_lines(&[graded_lines(a / (2 * n) as f64, a, 2 * n, 1.0), graded_lines(a, 4.0 * a, 3 * n, 3.0)]);
-        let mesh = half_disc_mesh(&radii, 8 * n, |rc, zc| if rc.hypot(zc) < a { 2 } else { 1 }, OUTER, AXIS).unwrap();
+        let radii = join_lines(&[
+            graded_lines(a / (2 * n) as f64, a, 2 * n, 1.0),
+            graded_lines(a, 4.0 * a, 3 * n, 3.0),
+        ]);
+        let mesh = half_disc_mesh(
+            &radii,
+            8 * n,
+            |rc, zc| if rc.hypot(zc) < a { 2 } else { 1 },
+            OUTER,
+            AXIS,
+        )
+        .unwrap();
         let exact = move |p: [f64; 2]| sphere_a_phi(b0, mu_r, a, p[0], p[1]);
         let problem = Problem {
             mesh: Arc::new(mesh),
-            regions: vec![air(1), Region { tag: 2, material: MagneticMaterial::Linear { mu_r }, source: None }],
+            regions: vec![
+                air(1),
+                Region { tag: 2, material: MagneticMaterial::Linear { mu_r }, source: None },
+            ],
             boundaries: vec![prescribed(OUTER, exact)],
         };
         let mut solver = Solver::new(problem, SolverOptions::default()).unwrap();
         let solution = solver.solve(None).unwrap();
-        errors.push(solver.l2_error(&solution, exact, &[]) / solver.l2_error(&solution, |_| 0.0, &[]));
+        errors.push(
+            solver.l2_error(&solution, exact, &[]) / solver.l2_error(&solution, |_| 0.0, &[]),
+        );
         let b_in = 3.0 * mu_r / (mu_r + 2.0) * b0;
         let stats = solver.region_stats(&solution, 2).unwrap();
         inside_errors.push((stats.mean_b_t - b_in).abs() / b_in);
     }
     let orders = observed_orders(&errors);
-    println!("sphere mu_r = {mu_r}: relative L2(A) errors {}, orders {orders:.2?}; mean B inside errors {}", sci(&errors), sci(&inside_errors));
+    println!(
+        "sphere mu_r = {mu_r}: relative L2(A) errors {}, orders {orders:.2?}; mean B inside errors {}",
+        sci(&errors),
+        sci(&inside_errors)
+    );
     assert!(orders.iter().all(|&p| p > 1.7), "orders {orders:?}");
     assert!(inside_errors[2] < 5e-3, "B inside error {}", inside_errors[2]);
 }
@@ -312,10 +400,14 @@ fn nonlinear_iron_rod_in_long_solenoid() {
         }
         let seg = |s0: f64, s1: f64| -> f64 {
             let (x, w) = mrbrake_fem::quadrature::gauss_legendre_unit(6);
-            x.iter().zip(&w).map(|(x, w)| {
-                let s = s0 + (s1 - s0) * x;
-                w * b_exact(s) * s
-            }).sum::<f64>() * (s1 - s0)
+            x.iter()
+                .zip(&w)
+                .map(|(x, w)| {
+                    let s = s0 + (s1 - s0) * x;
+                    w * b_exact(s) * s
+                })
+                .sum::<f64>()
+                * (s1 - s0)
         };
         let mut total = 0.0;
         let mut lo = 0.0;
@@ -343,29 +435,50 @@ fn nonlinear_iron_rod_in_long_solenoid() {
             graded_lines(r2, r_box, 2 * n, 1.0),
         ]);
         let z = graded_lines(0.0, 0.004, n, 1.0);
-        let tag = |rc: f64, _z: f64| if rc < r_rod { 3 } else if rc > r1 && rc < r2 { 2 } else { 1 };
+        let tag = |rc: f64, _z: f64| {
+            if rc < r_rod {
+                3
+            } else if rc > r1 && rc < r2 {
+                2
+            } else {
+                1
+            }
+        };
         let mesh = rectangle_mesh(&r, &z, tag, SIDES).unwrap();
         let problem = Problem {
             mesh: Arc::new(mesh),
             regions: vec![
                 air(1),
-                Region { tag: 2, material: MagneticMaterial::air(), source: Some(Source::CurrentDensity { a_per_m2: j }) },
-                Region { tag: 3, material: MagneticMaterial::NonLinear(Arc::new(curve)), source: None },
+                Region {
+                    tag: 2,
+                    material: MagneticMaterial::air(),
+                    source: Some(Source::CurrentDensity { a_per_m2: j }),
+                },
+                Region {
+                    tag: 3,
+                    material: MagneticMaterial::NonLinear(Arc::new(curve)),
+                    source: None,
+                },
             ],
             boundaries: vec![prescribed(OUTER, move |p| a_exact(p[0]))],
         };
         let mut solver = Solver::new(problem, SolverOptions::default()).unwrap();
         let solution = solver.solve(None).unwrap();
         iterations.push(solution.report.iterations);
-        errors.push(solver.l2_error(&solution, |p| a_exact(p[0]), &[]) / solver.l2_error(&solution, |_| 0.0, &[]));
+        errors.push(
+            solver.l2_error(&solution, |p| a_exact(p[0]), &[])
+                / solver.l2_error(&solution, |_| 0.0, &[]),
+        );
         let stats = solver.region_stats(&solution, 3).unwrap();
         b_errors.push((stats.mean_b_t - b_rod).abs() / b_rod);
     }
     let orders = observed_orders(&errors);
     println!(
         "iron rod (B = {b_rod:.4} T, H = {h0:.0} A/m): relative L2(A) errors {}, orders {orders:.2?}; \
-         mean B in rod errors {}; Newton iterations {iterations:?}"
-    , sci(&errors), sci(&b_errors));
+         mean B in rod errors {}; Newton iterations {iterations:?}",
+        sci(&errors),
+        sci(&b_errors)
+    );
     assert!(orders.iter().all(|&p| p > 1.8), "orders {orders:?}");
     assert!(b_errors[2] < 1e-3);
     assert!(iterations.iter().all(|&k| k <= 25));
@@ -375,15 +488,32 @@ fn nonlinear_iron_rod_in_long_solenoid() {
 #[test]
 fn warm_start_and_source_update_reuse_the_solver() {
     let curve = MarroccoCurve::soft_iron();
-    let r = join_lines(&[graded_lines(0.0, 0.008, 8, 1.0), graded_lines(0.008, 0.01, 4, 1.0), graded_lines(0.01, 0.015, 4, 1.0), graded_lines(0.015, 0.025, 8, 1.0)]);
+    let r = join_lines(&[
+        graded_lines(0.0, 0.008, 8, 1.0),
+        graded_lines(0.008, 0.01, 4, 1.0),
+        graded_lines(0.01, 0.015, 4, 1.0),
+        graded_lines(0.015, 0.025, 8, 1.0),
+    ]);
     let z = graded_lines(0.0, 0.004, 4, 1.0);
-    let tag = |rc: f64, _z: f64| if rc < 0.008 { 3 } else if rc > 0.01 && rc < 0.015 { 2 } else { 1 };
+    let tag = |rc: f64, _z: f64| {
+        if rc < 0.008 {
+            3
+        } else if rc > 0.01 && rc < 0.015 {
+            2
+        } else {
+            1
+        }
+    };
     let mesh: Mesh = rectangle_mesh(&r, &z, tag, SIDES).unwrap();
     let problem = Problem {
         mesh: Arc::new(mesh),
         regions: vec![
             air(1),
-            Region { tag: 2, material: MagneticMaterial::air(), source: Some(Source::Coil { turns: 500.0, current_a: 0.0 }) },
+            Region {
+                tag: 2,
+                material: MagneticMaterial::air(),
+                source: Some(Source::Coil { turns: 500.0, current_a: 0.0 }),
+            },
             Region { tag: 3, material: MagneticMaterial::NonLinear(Arc::new(curve)), source: None },
         ],
         boundaries: vec![Boundary { tag: OUTER, condition: BoundaryCondition::Dirichlet }],
@@ -411,4 +541,68 @@ fn warm_start_and_source_update_reuse_the_solver() {
     // Saturation: flux linkage grows sub-linearly with current.
     assert!(fluxes[4] / fluxes[0] < 5.0 && fluxes.windows(2).all(|w| w[1] > w[0]));
     let _ = curve.nu_and_dnu_db2(0.0);
+}
+
+/// The library's steel-1010 B-H curve (materials crate) in the long-solenoid rod: `B_rod = B(H0)` by
+/// Ampère's law, at the knee (H = 2 kA/m, where dB/dH amplifies any error in H) and deep in
+/// saturation, with one refinement step to show the error is discretisation (order ≈ 2).
+#[test]
+fn library_steel_rod_follows_its_bh_curve() {
+    let steel = mrbrake_materials::library::get("steel-1010").unwrap();
+    let mrbrake_materials::Magnetic::NonLinear(curve) = &steel.magnetic else {
+        panic!("steel-1010 is non-linear")
+    };
+    let (r_rod, r1, r2, r_box) = (0.008, 0.01, 0.015, 0.025);
+    for h0 in [2_000.0, 200_000.0] {
+        let j = h0 / (r2 - r1);
+        let b_rod = curve.b_of_h(h0);
+        let mut errors = Vec::new();
+        for n in [8, 16] {
+            let r = join_lines(&[
+                graded_lines(0.0, r_rod, 2 * n, 1.0),
+                graded_lines(r_rod, r1, n / 2, 1.0),
+                graded_lines(r1, r2, n, 1.0),
+                graded_lines(r2, r_box, n, 1.0),
+            ]);
+            let z = graded_lines(0.0, 0.002, 2, 1.0);
+            let tag = |rc: f64, _z: f64| {
+                if rc < r_rod {
+                    3
+                } else if rc > r1 && rc < r2 {
+                    2
+                } else {
+                    1
+                }
+            };
+            let problem = Problem {
+                mesh: Arc::new(rectangle_mesh(&r, &z, tag, SIDES).unwrap()),
+                regions: vec![
+                    air(1),
+                    Region {
+                        tag: 2,
+                        material: MagneticMaterial::air(),
+                        source: Some(Source::CurrentDensity { a_per_m2: j }),
+                    },
+                    Region {
+                        tag: 3,
+                        material: MagneticMaterial::from_library(&steel.magnetic),
+                        source: None,
+                    },
+                ],
+                // Outside the coil H = 0, so the natural condition (n × H = 0) on the outer radius is exact.
+                boundaries: vec![],
+            };
+            let mut solver = Solver::new(problem, SolverOptions::default()).unwrap();
+            let solution = solver.solve(None).unwrap();
+            let stats = solver.region_stats(&solution, 3).unwrap();
+            errors.push((stats.mean_b_t - b_rod).abs() / b_rod);
+        }
+        let order = (errors[0] / errors[1]).log2();
+        println!(
+            "steel-1010 rod at H = {h0} A/m (B(H) = {b_rod:.5} T): relative errors {}, order {order:.2}",
+            sci(&errors)
+        );
+        assert!(errors[1] < 3e-3, "relative error {}", errors[1]);
+        assert!(order > 1.8 || errors[1] < 1e-6, "order {order}");
+    }
 }

@@ -60,14 +60,21 @@ pub struct BhCurve {
 
 impl BhCurve {
     /// Builds a curve from `(H [A/m], B [T])` points. Errors name the point (1-based) and the rule.
-    pub fn from_points(points: &[(f64, f64)], provenance: Provenance) -> Result<Self, MaterialError> {
+    pub fn from_points(
+        points: &[(f64, f64)],
+        provenance: Provenance,
+    ) -> Result<Self, MaterialError> {
         let numbered: Vec<(u64, f64, f64)> =
             points.iter().enumerate().map(|(i, &(h, b))| (i as u64 + 1, h, b)).collect();
         Self::from_numbered(&numbered, "points", provenance)
     }
 
     /// Parses CSV text (header `H_A_per_m,B_T`); `file` names the source in error messages.
-    pub fn from_csv_str(text: &str, file: &str, provenance: Provenance) -> Result<Self, MaterialError> {
+    pub fn from_csv_str(
+        text: &str,
+        file: &str,
+        provenance: Provenance,
+    ) -> Result<Self, MaterialError> {
         let rows = crate::table::read_xy(text, file, BH_HEADER)?;
         Self::from_numbered(&rows, file, provenance)
     }
@@ -80,7 +87,11 @@ impl BhCurve {
         Self::from_csv_str(&text, &file, Provenance::user_file(&file))
     }
 
-    fn from_numbered(rows: &[(u64, f64, f64)], file: &str, provenance: Provenance) -> Result<Self, MaterialError> {
+    fn from_numbered(
+        rows: &[(u64, f64, f64)],
+        file: &str,
+        provenance: Provenance,
+    ) -> Result<Self, MaterialError> {
         validate_increasing_from_origin(rows, file, ("H", "A/m"), ("B", "T"), MIN_BH_POINTS)?;
         let h: Vec<f64> = rows.iter().map(|r| r.1).collect();
         let b: Vec<f64> = rows.iter().map(|r| r.2).collect();
@@ -93,15 +104,16 @@ impl BhCurve {
         // split needs d_{n-2} < 2·secant. Lowering d_{n-2} keeps the neighbouring piece monotone
         // (its normalised slope only decreases within [0, 2]).
         let last_secant = s[n - 2];
-        let try_last = hermite::monotone_piece(b[n - 2], b[n - 1], h[n - 2], h[n - 1], d[n - 2], d[n - 1]);
-        let last_piece = match try_last {
-            Some(piece) => piece,
-            None => {
-                d[n - 2] = d[n - 2].min(1.5 * last_secant);
-                hermite::monotone_piece(b[n - 2], b[n - 1], h[n - 2], h[n - 1], d[n - 2], d[n - 1])
-                    .expect("d0 <= 1.5 secant and both slopes positive always admit a Schumaker split")
-            }
-        };
+        let (b0, b_end, h0, h_end) = (b[n - 2], b[n - 1], h[n - 2], h[n - 1]);
+        let cubic = hermite::hermite_cubic(b0, b_end, h0, h_end, d[n - 2], d[n - 1]);
+        if hermite::min_slope(&cubic, b_end - b0) <= hermite::MIN_SLOPE_FRACTION * last_secant {
+            // The cubic cannot reach 1/μ0 monotonically: cap the left slope so that the Schumaker
+            // split keeps a slope of at least secant/4 at its inner knot.
+            d[n - 2] = d[n - 2].min(1.5 * last_secant);
+        }
+        let last_piece = hermite::monotone_piece(b0, b_end, h0, h_end, d[n - 2], d[n - 1]).expect(
+            "a left slope <= 1.5 secant and positive slopes always admit a Schumaker split",
+        );
         // First piece: odd cubic H = a1 B + a3 B³ through (B1, H1) with slope d1 at B1.
         let (b1, d1, s0) = (b[1], d[1], s[0]);
         let a1 = 0.5 * (3.0 * s0 - d1);
@@ -109,7 +121,14 @@ impl BhCurve {
         let mut pieces = Vec::with_capacity(n - 1);
         pieces.push(Piece::Cubic([0.0, a1, 0.0, a3]));
         for k in 1..n - 2 {
-            pieces.push(Piece::Cubic(hermite::hermite_cubic(b[k], b[k + 1], h[k], h[k + 1], d[k], d[k + 1])));
+            pieces.push(Piece::Cubic(hermite::hermite_cubic(
+                b[k],
+                b[k + 1],
+                h[k],
+                h[k + 1],
+                d[k],
+                d[k + 1],
+            )));
         }
         pieces.push(last_piece);
         let h_of_b = PiecewiseCubic::from_pieces(&b, &pieces);
@@ -141,7 +160,7 @@ impl BhCurve {
         (self.h_last, self.b_last)
     }
 
-    /// Field strength H [A/m] at flux density `b` [T]. Odd: `h_of_b(−b) = −h_of_b(b)`.
+    /// Field strength H \[A/m\] at flux density `b` \[T\]. Odd: `h_of_b(−b) = −h_of_b(b)`.
     pub fn h_of_b(&self, b: f64) -> f64 {
         let magnitude = b.abs();
         let h = if magnitude >= self.b_last {
@@ -152,7 +171,7 @@ impl BhCurve {
         h.copysign(b)
     }
 
-    /// Flux density B [T] at field strength `h` [A/m]: the inverse of [`BhCurve::h_of_b`]. Odd.
+    /// Flux density B \[T\] at field strength `h` \[A/m\]: the inverse of [`BhCurve::h_of_b`]. Odd.
     pub fn b_of_h(&self, h: f64) -> f64 {
         let magnitude = h.abs();
         let b = if magnitude >= self.h_last {
@@ -163,21 +182,21 @@ impl BhCurve {
         b.copysign(h)
     }
 
-    /// Differential reluctivity `dH/dB` [A/(m·T)] at flux density `b` [T]: positive everywhere. This is
+    /// Differential reluctivity `dH/dB` \[A/(m·T)\] at flux density `b` \[T\]: positive everywhere. This is
     /// the Newton Jacobian coefficient `ν + 2 B² dν/dB²`.
     pub fn dh_db(&self, b: f64) -> f64 {
         let magnitude = b.abs();
         if magnitude >= self.b_last { 1.0 / MU_0 } else { self.h_of_b.value_and_slope(magnitude).1 }
     }
 
-    /// Reluctivity `ν = H/B` [m/H] as a function of `b2 = B²` [T²]. At `B = 0` it is the initial slope
+    /// Reluctivity `ν = H/B` \[m/H\] as a function of `b2 = B²` \[T²\]. At `B = 0` it is the initial slope
     /// `dH/dB(0)`. Negative `b2` is treated as 0; NaN gives NaN.
     #[inline]
     pub fn nu_of_b2(&self, b2: f64) -> f64 {
         self.nu_and_dnu_db2(b2).0
     }
 
-    /// `dν/dB²` [m/(H·T²)] at `b2 = B²`, the exact derivative of [`BhCurve::nu_of_b2`]:
+    /// `dν/dB²` \[m/(H·T²)\] at `b2 = B²`, the exact derivative of [`BhCurve::nu_of_b2`]:
     /// `(B H'(B) − H(B)) / (2 B³)`, or the constant `a3` on the first (odd) piece.
     #[inline]
     pub fn dnu_db2(&self, b2: f64) -> f64 {
@@ -225,17 +244,26 @@ pub(crate) fn validate_increasing_from_origin(
     (y_name, y_unit): (&str, &str),
     min_points: usize,
 ) -> Result<(), MaterialError> {
-    let fail = |line: u64, rule: String| Err(MaterialError::InvalidCurve { file: file.to_string(), line, rule });
+    let fail = |line: u64, rule: String| {
+        Err(MaterialError::InvalidCurve { file: file.to_string(), line, rule })
+    };
     for &(line, x, y) in rows {
         if !x.is_finite() || !y.is_finite() {
             return fail(
                 line,
-                format!("rule `finite`: {x_name} = {x}, {y_name} = {y}; every value must be a finite number"),
+                format!(
+                    "rule `finite`: {x_name} = {x}, {y_name} = {y}; every value must be a finite number"
+                ),
             );
         }
     }
     match rows.first() {
-        None => return fail(1, format!("rule `enough points`: no data points; at least {min_points} are needed")),
+        None => {
+            return fail(
+                1,
+                format!("rule `enough points`: no data points; at least {min_points} are needed"),
+            );
+        }
         Some(&(line, x, y)) => {
             if x.abs() > 0.0 || y.abs() > 0.0 {
                 return fail(

@@ -90,7 +90,7 @@ impl PiecewiseCubic {
     pub fn piece_index(&self, x: f64) -> usize {
         let last_piece = self.coeffs.len() - 1;
         let offset = (x - self.knots[0]) * self.inverse_cell;
-        if !(offset >= 0.0) {
+        if offset.is_nan() || offset < 0.0 {
             return 0; // below the first knot (or NaN)
         }
         // Truncation is the floor for offset >= 0; `as` saturates for huge values.
@@ -145,7 +145,9 @@ impl PiecewiseCubic {
             let df = c[1] + t * (2.0 * c[2] + t * 3.0 * c[3]);
             let newton = if df > 0.0 { t - f / df } else { f64::NAN };
             let next = if newton >= lo && newton <= hi { newton } else { 0.5 * (lo + hi) };
-            if (next - t).abs() <= 4.0 * f64::EPSILON * width.max(t.abs()) || hi - lo <= f64::EPSILON * width {
+            if (next - t).abs() <= 4.0 * f64::EPSILON * width.max(t.abs())
+                || hi - lo <= f64::EPSILON * width
+            {
                 t = next;
                 break;
             }
@@ -192,7 +194,8 @@ pub(crate) fn steffen_slopes(x: &[f64], y: &[f64]) -> Vec<f64> {
     let mut d = vec![0.0; n];
     for i in 1..n - 1 {
         let p = (s[i - 1] * h[i] + s[i] * h[i - 1]) / (h[i - 1] + h[i]);
-        d[i] = (s[i - 1].signum() + s[i].signum()) * s[i - 1].abs().min(s[i].abs()).min(0.5 * p.abs());
+        d[i] =
+            (s[i - 1].signum() + s[i].signum()) * s[i - 1].abs().min(s[i].abs()).min(0.5 * p.abs());
         if s[i - 1] * s[i] <= 0.0 {
             d[i] = 0.0;
         }
@@ -233,6 +236,10 @@ pub(crate) fn min_slope(c: &[f64; 4], width: f64) -> f64 {
     lowest
 }
 
+/// A cubic piece is accepted when its smallest slope exceeds this fraction of its secant; the margin
+/// keeps the derivative clearly positive (the inverse and the Newton Jacobian rely on it).
+pub(crate) const MIN_SLOPE_FRACTION: f64 = 1e-6;
+
 /// A strictly increasing C¹ piece on `[x0, x1]` matching values and the end slopes `d0, d1 > 0`.
 ///
 /// The cubic Hermite piece is used when its derivative stays positive (the interior of the
@@ -240,12 +247,18 @@ pub(crate) fn min_slope(c: &[f64; 4], width: f64) -> f64 {
 /// Lemma 2.3): with the split at `x0 + λh`, the slope there is `m = 2Δ − λ d0 − (1 − λ) d1` (so that the
 /// integral of the slope equals the rise), and `λ` is chosen halfway inside the range where `m > 0`.
 /// This requires `d0 < 2Δ`; the caller guarantees it (returns `None` otherwise).
-pub(crate) fn monotone_piece(x0: f64, x1: f64, y0: f64, y1: f64, d0: f64, d1: f64) -> Option<Piece> {
+pub(crate) fn monotone_piece(
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    d0: f64,
+    d1: f64,
+) -> Option<Piece> {
     let h = x1 - x0;
     let cubic = hermite_cubic(x0, x1, y0, y1, d0, d1);
-    // A small margin keeps the derivative clearly positive (the inverse and Newton rely on it).
     let secant = (y1 - y0) / h;
-    if min_slope(&cubic, h) > 1e-6 * secant {
+    if min_slope(&cubic, h) > MIN_SLOPE_FRACTION * secant {
         return Some(Piece::Cubic(cubic));
     }
     if d0 >= 2.0 * secant || d0 <= 0.0 || d1 <= 0.0 {
@@ -315,7 +328,8 @@ mod tests {
             .map(|k| Piece::Cubic(hermite_cubic(x[k], x[k + 1], y[k], y[k + 1], d[k], d[k + 1])))
             .collect();
         let pc = PiecewiseCubic::from_pieces(&x, &pieces);
-        let mut probes: Vec<f64> = (0..=20_000).map(|i| -1.0 + 12.0 * f64::from(i) / 20_000.0).collect();
+        let mut probes: Vec<f64> =
+            (0..=20_000).map(|i| -1.0 + 12.0 * f64::from(i) / 20_000.0).collect();
         for &k in &x {
             probes.extend([k, k - 1e-12, k + 1e-12, f64::from_bits(k.to_bits().saturating_sub(1))]);
         }
@@ -332,8 +346,9 @@ mod tests {
         let x = [0.0, 1.0, 2.5, 4.0];
         let y = [0.0, 2.0, 2.5, 7.0];
         let d = steffen_slopes(&x, &y);
-        let pieces: Vec<Piece> =
-            (0..3).map(|k| Piece::Cubic(hermite_cubic(x[k], x[k + 1], y[k], y[k + 1], d[k], d[k + 1]))).collect();
+        let pieces: Vec<Piece> = (0..3)
+            .map(|k| Piece::Cubic(hermite_cubic(x[k], x[k + 1], y[k], y[k + 1], d[k], d[k + 1])))
+            .collect();
         let pc = PiecewiseCubic::from_pieces(&x, &pieces);
         for i in 0..=400 {
             let xi = 4.0 * f64::from(i) / 400.0;

@@ -45,6 +45,6 @@ pub use provenance::{Provenance, Sourced, Trust};
 pub use wire::CopperWire;
 pub use yield_stress::{FieldVariable, MIN_YIELD_POINTS, YieldStressCurve};
 
-/// Vacuum permeability μ0 [H/m], CODATA 2018 recommended value (no longer exactly 4π·10⁻⁷ since the
+/// Vacuum permeability μ0 \[H/m\], CODATA 2018 recommended value (no longer exactly 4π·10⁻⁷ since the
 /// 2019 SI redefinition; the difference is 5.5·10⁻¹⁰ relative).
 pub const MU_0: f64 = 1.256_637_062_12e-6;

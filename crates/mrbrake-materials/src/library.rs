@@ -17,34 +17,62 @@ use std::sync::{Arc, OnceLock};
 use crate::table::read_rows;
 use crate::yield_stress::{FieldVariable, YieldStressCurve};
 use crate::{
-    BhCurve, Magnetic, Material, MaterialError, MaterialKind, MrFluid, Provenance, ReferencePoint, Sourced, Trust,
-    Viscosity,
+    BhCurve, Magnetic, Material, MaterialError, MaterialKind, MrFluid, Provenance, ReferencePoint,
+    Sourced, Trust, Viscosity,
 };
 
 /// The default MR fluid (the thesis's choice, lowest viscosity).
 pub const DEFAULT_FLUID: &str = "mrf-122eg";
 
-/// Ceiling of MRF-122EG's yield stress [Pa]: the thesis says the curve "approaches to 35 kPa which is the
+/// Ceiling of MRF-122EG's yield stress \[Pa\]: the thesis says the curve "approaches to 35 kPa which is the
 /// upper limit for the MRF-122EG" (Karabulut 2017, section 3.2, discussion of Figure 3.3).
 pub const MRF122EG_TAU_Y_CEILING_PA: f64 = 35_000.0;
 
 /// Every built-in material: name, kind, one-line description.
 const CATALOGUE: &[(&str, MaterialKind, &str)] = &[
     ("steel-1008", MaterialKind::Steel, "AISI 1008 low-carbon steel (ANSYS Maxwell library curve)"),
-    ("steel-1008-modelica", MaterialKind::Steel, "AISI 1008 steel, Modelica MSL fit formula (use below 2 T)"),
+    (
+        "steel-1008-modelica",
+        MaterialKind::Steel,
+        "AISI 1008 steel, Modelica MSL fit formula (use below 2 T)",
+    ),
     ("steel-1006", MaterialKind::Steel, "AISI 1006 steel (FEMM 4.2 library)"),
     ("steel-1010", MaterialKind::Steel, "AISI 1010 steel (FEMM 4.2 library)"),
-    ("steel-1010-motorproto", MaterialKind::Steel, "AISI 1010 steel (MotorProto curve, softer than FEMM's)"),
+    (
+        "steel-1010-motorproto",
+        MaterialKind::Steel,
+        "AISI 1010 steel (MotorProto curve, softer than FEMM's)",
+    ),
     ("steel-1018", MaterialKind::Steel, "AISI 1018 steel (FEMM 4.2 library, 13 coarse points)"),
-    ("steel-1020", MaterialKind::Steel, "AISI 1020 steel (FEMM 4.2 library; the thesis's flux-path steel)"),
+    (
+        "steel-1020",
+        MaterialKind::Steel,
+        "AISI 1020 steel (FEMM 4.2 library; the thesis's flux-path steel)",
+    ),
     ("air", MaterialKind::Linear, "air (mu_r = 1)"),
     ("aluminium", MaterialKind::Linear, "aluminium 6061-T6 (mu_r = 1)"),
     ("aluminium-1100", MaterialKind::Linear, "aluminium 1100 (mu_r = 1)"),
-    ("stainless-304", MaterialKind::Linear, "AISI 304 austenitic stainless steel, annealed (mu_r = 1)"),
-    ("stainless-316", MaterialKind::Linear, "AISI 316 austenitic stainless steel, annealed (mu_r = 1)"),
+    (
+        "stainless-304",
+        MaterialKind::Linear,
+        "AISI 304 austenitic stainless steel, annealed (mu_r = 1)",
+    ),
+    (
+        "stainless-316",
+        MaterialKind::Linear,
+        "AISI 316 austenitic stainless steel, annealed (mu_r = 1)",
+    ),
     ("copper", MaterialKind::Linear, "copper, 100 % IACS (mu_r = 1)"),
-    ("mrf-122eg", MaterialKind::MrFluid, "LORD MRF-122EG (default; tau_y(B) from the thesis's points)"),
-    ("mrf-122eg-carlson", MaterialKind::MrFluid, "LORD MRF-122EG modelled by Carlson's generic fit (phi = 0.22)"),
+    (
+        "mrf-122eg",
+        MaterialKind::MrFluid,
+        "LORD MRF-122EG (default; tau_y(B) from the thesis's points)",
+    ),
+    (
+        "mrf-122eg-carlson",
+        MaterialKind::MrFluid,
+        "LORD MRF-122EG modelled by Carlson's generic fit (phi = 0.22)",
+    ),
     ("mrf-132dg", MaterialKind::MrFluid, "LORD MRF-132DG (Carlson's generic fit, phi = 0.32)"),
     ("mrf-140cg", MaterialKind::MrFluid, "LORD MRF-140CG (Carlson's generic fit, phi = 0.40)"),
 ];
@@ -65,13 +93,17 @@ pub fn get(name: &str) -> Result<&'static Material, MaterialError> {
 
 /// The MR fluid called `name` (case-insensitive); an error lists the fluids if `name` is not one.
 pub fn fluid(name: &str) -> Result<&'static MrFluid, MaterialError> {
-    let fluids = || CATALOGUE.iter().filter(|c| c.1 == MaterialKind::MrFluid).map(|c| c.0.to_string()).collect();
+    let fluids = || {
+        CATALOGUE.iter().filter(|c| c.1 == MaterialKind::MrFluid).map(|c| c.0.to_string()).collect()
+    };
     match get(name) {
-        Ok(material) => material
-            .fluid
-            .as_deref()
-            .ok_or_else(|| MaterialError::UnknownMaterial { name: name.to_string(), known: fluids() }),
-        Err(MaterialError::UnknownMaterial { name, .. }) => Err(MaterialError::UnknownMaterial { name, known: fluids() }),
+        Ok(material) => material.fluid.as_deref().ok_or_else(|| MaterialError::UnknownMaterial {
+            name: name.to_string(),
+            known: fluids(),
+        }),
+        Err(MaterialError::UnknownMaterial { name, .. }) => {
+            Err(MaterialError::UnknownMaterial { name, known: fluids() })
+        }
         Err(other) => Err(other),
     }
 }
@@ -88,7 +120,11 @@ pub fn bh_curve(name: &str) -> Result<Arc<BhCurve>, MaterialError> {
         Magnetic::NonLinear(curve) => Ok(Arc::clone(curve)),
         Magnetic::Linear { .. } => Err(MaterialError::UnknownMaterial {
             name: name.to_string(),
-            known: CATALOGUE.iter().filter(|c| c.1 != MaterialKind::Linear).map(|c| c.0.to_string()).collect(),
+            known: CATALOGUE
+                .iter()
+                .filter(|c| c.1 != MaterialKind::Linear)
+                .map(|c| c.0.to_string())
+                .collect(),
         }),
     }
 }
@@ -151,8 +187,16 @@ fn handbook_steel_density() -> Sourced<f64> {
     )
 }
 
+/// One row of `data/steel_properties.csv`.
+#[derive(Debug, Clone, Copy)]
+struct SteelRow {
+    sigma_s_per_m: Option<f64>,
+    mu_r_linear: Option<f64>,
+    density_kg_m3: Option<f64>,
+}
+
 struct SteelProperties {
-    rows: Vec<(String, Option<f64>, Option<f64>, Option<f64>)>,
+    rows: Vec<(String, SteelRow)>,
 }
 
 impl SteelProperties {
@@ -164,24 +208,32 @@ impl SteelProperties {
             .map(|r| {
                 Ok((
                     r.text(0).to_string(),
-                    r.optional_number(2, header[2], file.path)?,
-                    r.optional_number(3, header[3], file.path)?,
-                    r.optional_number(4, header[4], file.path)?,
+                    SteelRow {
+                        sigma_s_per_m: r.optional_number(2, header[2], file.path)?,
+                        mu_r_linear: r.optional_number(3, header[3], file.path)?,
+                        density_kg_m3: r.optional_number(4, header[4], file.path)?,
+                    },
                 ))
             })
             .collect::<Result<_, MaterialError>>()?;
         Ok(Self { rows })
     }
 
-    /// (σ, μr linear, density) of the row named `material`.
-    fn get(&self, material: &str) -> Result<(Option<f64>, Option<f64>, Option<f64>), MaterialError> {
-        self.rows.iter().find(|r| r.0 == material).map(|r| (r.1, r.2, r.3)).ok_or_else(|| {
-            MaterialError::BuiltinData { message: format!("data/steel_properties.csv has no row `{material}`") }
+    /// The row named `material`.
+    fn get(&self, material: &str) -> Result<SteelRow, MaterialError> {
+        self.rows.iter().find(|r| r.0 == material).map(|r| r.1).ok_or_else(|| {
+            MaterialError::BuiltinData {
+                message: format!("data/steel_properties.csv has no row `{material}`"),
+            }
         })
     }
 }
 
-fn build_steel(name: &str, description: &str, props: &SteelProperties) -> Result<Material, MaterialError> {
+fn build_steel(
+    name: &str,
+    description: &str,
+    props: &SteelProperties,
+) -> Result<Material, MaterialError> {
     let (file, provenance, props_row) = match name {
         "steel-1008" => (
             data_file!("steel_1008_ansys_BH.csv"),
@@ -206,8 +258,16 @@ fn build_steel(name: &str, description: &str, props: &SteelProperties) -> Result
             ),
             None,
         ),
-        "steel-1006" => (data_file!("steel_1006_femm_BH.csv"), femm_steel("1006 Steel", ""), Some("FEMM 1006 Steel")),
-        "steel-1010" => (data_file!("steel_1010_femm_BH.csv"), femm_steel("1010 Steel", ""), Some("FEMM 1010 Steel")),
+        "steel-1006" => (
+            data_file!("steel_1006_femm_BH.csv"),
+            femm_steel("1006 Steel", ""),
+            Some("FEMM 1006 Steel"),
+        ),
+        "steel-1010" => (
+            data_file!("steel_1010_femm_BH.csv"),
+            femm_steel("1010 Steel", ""),
+            Some("FEMM 1010 Steel"),
+        ),
         "steel-1018" => (
             data_file!("steel_1018_femm_BH.csv"),
             femm_steel(
@@ -217,7 +277,11 @@ fn build_steel(name: &str, description: &str, props: &SteelProperties) -> Result
             ),
             Some("FEMM 1018 Steel"),
         ),
-        "steel-1020" => (data_file!("steel_1020_femm_BH.csv"), femm_steel("1020 Steel", ""), Some("FEMM 1020 Steel")),
+        "steel-1020" => (
+            data_file!("steel_1020_femm_BH.csv"),
+            femm_steel("1020 Steel", ""),
+            Some("FEMM 1020 Steel"),
+        ),
         "steel-1010-motorproto" => (
             data_file!("steel_1010_motorproto_BH.csv"),
             Provenance::new(
@@ -229,12 +293,16 @@ fn build_steel(name: &str, description: &str, props: &SteelProperties) -> Result
             ),
             Some("MotorProto Steel1010"),
         ),
-        other => return Err(MaterialError::BuiltinData { message: format!("no steel data for `{other}`") }),
+        other => {
+            return Err(MaterialError::BuiltinData {
+                message: format!("no steel data for `{other}`"),
+            });
+        }
     };
     let curve = BhCurve::from_csv_str(file.text, file.path, provenance.clone())?;
-    let (sigma, mu_r_linear, density) = match props_row {
+    let SteelRow { sigma_s_per_m: sigma, mu_r_linear, density_kg_m3: density } = match props_row {
         Some(row) => props.get(row)?,
-        None => (None, None, None),
+        None => SteelRow { sigma_s_per_m: None, mu_r_linear: None, density_kg_m3: None },
     };
     let props_provenance = |what: &str| {
         Provenance::new(
@@ -278,24 +346,39 @@ fn build_linear(name: &str, description: &str) -> Result<Material, MaterialError
         "air" => ("Air", 1.204, "dry air at 20 °C and 101.325 kPa (ideal gas, M = 28.96 g/mol)"),
         "aluminium" => ("Aluminum, 6061-T6", 2700.0, "ASM Handbook Vol. 2 (2.70 g/cm3 for 6061)"),
         "aluminium-1100" => ("Aluminum, 1100", 2710.0, "ASM Handbook Vol. 2 (2.71 g/cm3 for 1100)"),
-        "stainless-304" => ("304 Stainless Steel", 8000.0, "ASM Handbook Vol. 1 / AISI data (8.00 g/cm3 for 304)"),
-        "stainless-316" => ("316 Stainless Steel", 8000.0, "ASM Handbook Vol. 1 / AISI data (8.00 g/cm3 for 316)"),
-        "copper" => ("Copper", 8960.0, "CRC Handbook of Chemistry and Physics (8.96 g/cm3 for Cu at 20 °C)"),
-        other => return Err(MaterialError::BuiltinData { message: format!("no linear data for `{other}`") }),
+        "stainless-304" => {
+            ("304 Stainless Steel", 8000.0, "ASM Handbook Vol. 1 / AISI data (8.00 g/cm3 for 304)")
+        }
+        "stainless-316" => {
+            ("316 Stainless Steel", 8000.0, "ASM Handbook Vol. 1 / AISI data (8.00 g/cm3 for 316)")
+        }
+        "copper" => {
+            ("Copper", 8960.0, "CRC Handbook of Chemistry and Physics (8.96 g/cm3 for Cu at 20 °C)")
+        }
+        other => {
+            return Err(MaterialError::BuiltinData {
+                message: format!("no linear data for `{other}`"),
+            });
+        }
     };
     let file = data_file!("linear_materials_femm.csv");
     let header = ["material", "mu_r", "sigma_S_per_m"];
     let row = read_rows(file.text, file.path, &header)?
         .into_iter()
         .find(|r| r.text(0) == femm_block)
-        .ok_or_else(|| MaterialError::BuiltinData { message: format!("{} has no row `{femm_block}`", file.path) })?;
+        .ok_or_else(|| MaterialError::BuiltinData {
+            message: format!("{} has no row `{femm_block}`", file.path),
+        })?;
     let mu_r = row.number(1, header[1], file.path)?;
     let sigma = row.number(2, header[2], file.path)?;
     let mut method = "copied; B = mu0 mu_r H".to_string();
     if name.starts_with("stainless") {
-        method.push_str("; austenitic stainless can become weakly magnetic after cold work or welding");
+        method.push_str(
+            "; austenitic stainless can become weakly magnetic after cold work or welding",
+        );
     }
-    let provenance = Provenance::new(format!("{FEMM_SOURCE}, block \"{femm_block}\""), method, Trust::High);
+    let provenance =
+        Provenance::new(format!("{FEMM_SOURCE}, block \"{femm_block}\""), method, Trust::High);
     Ok(Material {
         name: name.to_string(),
         kind: MaterialKind::Linear,
@@ -304,11 +387,19 @@ fn build_linear(name: &str, description: &str) -> Result<Material, MaterialError
         provenance: provenance.clone(),
         density_kg_m3: Some(Sourced::new(
             density,
-            Provenance::new(density_source, "standard handbook value (not from FEMM)", Trust::Medium),
+            Provenance::new(
+                density_source,
+                "standard handbook value (not from FEMM)",
+                Trust::Medium,
+            ),
         )),
         conductivity_s_per_m: Some(Sourced::new(
             sigma,
-            Provenance::new(provenance.source.clone(), "copied, MS/m converted to S/m", Trust::High),
+            Provenance::new(
+                provenance.source.clone(),
+                "copied, MS/m converted to S/m",
+                Trust::High,
+            ),
         )),
         mu_r_linear: Some(mu_r),
         fluid: None,
@@ -351,7 +442,9 @@ fn fluid_properties(product: &str) -> Result<FluidProperties, MaterialError> {
     let row = read_rows(file.text, file.path, &header)?
         .into_iter()
         .find(|r| r.text(0) == product)
-        .ok_or_else(|| MaterialError::BuiltinData { message: format!("{} has no row `{product}`", file.path) })?;
+        .ok_or_else(|| MaterialError::BuiltinData {
+            message: format!("{} has no row `{product}`", file.path),
+        })?;
     Ok(FluidProperties {
         phi: row.number(1, header[1], file.path)?,
         carrier: row.text(2).to_string(),
@@ -385,16 +478,26 @@ fn spot_values(product: &str) -> Result<Vec<ReferencePoint>, MaterialError> {
 fn build_fluid(name: &str, description: &str) -> Result<Material, MaterialError> {
     let (product, bh_file, carlson_tau_h_file) = match name {
         "mrf-122eg" => ("MRF-122EG", data_file!("mrf122eg_BH_carlson_fit.csv"), None),
-        "mrf-122eg-carlson" => {
-            ("MRF-122EG", data_file!("mrf122eg_BH_carlson_fit.csv"), Some(data_file!("mrf122eg_tauH_carlson_fit.csv")))
+        "mrf-122eg-carlson" => (
+            "MRF-122EG",
+            data_file!("mrf122eg_BH_carlson_fit.csv"),
+            Some(data_file!("mrf122eg_tauH_carlson_fit.csv")),
+        ),
+        "mrf-132dg" => (
+            "MRF-132DG",
+            data_file!("mrf132dg_BH_carlson_fit.csv"),
+            Some(data_file!("mrf132dg_tauH_carlson_fit.csv")),
+        ),
+        "mrf-140cg" => (
+            "MRF-140CG",
+            data_file!("mrf140cg_BH_carlson_fit.csv"),
+            Some(data_file!("mrf140cg_tauH_carlson_fit.csv")),
+        ),
+        other => {
+            return Err(MaterialError::BuiltinData {
+                message: format!("no fluid data for `{other}`"),
+            });
         }
-        "mrf-132dg" => {
-            ("MRF-132DG", data_file!("mrf132dg_BH_carlson_fit.csv"), Some(data_file!("mrf132dg_tauH_carlson_fit.csv")))
-        }
-        "mrf-140cg" => {
-            ("MRF-140CG", data_file!("mrf140cg_BH_carlson_fit.csv"), Some(data_file!("mrf140cg_tauH_carlson_fit.csv")))
-        }
-        other => return Err(MaterialError::BuiltinData { message: format!("no fluid data for `{other}`") }),
     };
     let props = fluid_properties(product)?;
     let bh_provenance = Provenance::new(
@@ -457,7 +560,8 @@ fn build_fluid(name: &str, description: &str) -> Result<Material, MaterialError>
             ),
         });
     }
-    let density_trust = if props.density_kind.starts_with("estimate") { Trust::Low } else { Trust::Medium };
+    let density_trust =
+        if props.density_kind.starts_with("estimate") { Trust::Low } else { Trust::Medium };
     let density = Sourced::new(
         props.density,
         Provenance::new(
@@ -475,7 +579,15 @@ fn build_fluid(name: &str, description: &str) -> Result<Material, MaterialError>
         ),
     );
     let phi = Sourced::new(props.phi, Provenance::new(kubik, "copied (vol%)", Trust::Medium));
-    let mut fluid = MrFluid::new(name, Arc::clone(&bh), yield_stress, phi, props.carrier, viscosities, density.clone());
+    let mut fluid = MrFluid::new(
+        name,
+        Arc::clone(&bh),
+        yield_stress,
+        phi,
+        props.carrier,
+        viscosities,
+        density.clone(),
+    );
     fluid.reference_points = reference_points;
     Ok(Material {
         name: name.to_string(),
@@ -506,7 +618,8 @@ fn thesis_points() -> Result<Vec<ReferencePoint>, MaterialError> {
 
 /// MRF-122EG `τ_y(B)`: the thesis's 14 points (plus the origin) interpolated monotone C¹ (Steffen),
 /// continued above 0.49 T by an exponential matched in value and slope that tends to 35 kPa.
-fn mrf122eg_thesis_yield_stress() -> Result<(YieldStressCurve, Vec<ReferencePoint>), MaterialError> {
+fn mrf122eg_thesis_yield_stress() -> Result<(YieldStressCurve, Vec<ReferencePoint>), MaterialError>
+{
     let references = thesis_points()?;
     let mut points = vec![(0.0, 0.0)];
     points.extend(references.iter().filter_map(|p| p.b_t.map(|b| (b, p.tau_y_pa))));
@@ -520,7 +633,11 @@ fn mrf122eg_thesis_yield_stress() -> Result<(YieldStressCurve, Vec<ReferencePoin
          above 0.49 T); tau_y(H) = tau_y(B(H)) through the Carlson B-H fit (phi = 0.22)",
         Trust::MediumLow,
     );
-    let curve =
-        YieldStressCurve::from_points(&points, FieldVariable::FluxDensity, MRF122EG_TAU_Y_CEILING_PA, provenance)?;
+    let curve = YieldStressCurve::from_points(
+        &points,
+        FieldVariable::FluxDensity,
+        MRF122EG_TAU_Y_CEILING_PA,
+        provenance,
+    )?;
     Ok((curve, references))
 }

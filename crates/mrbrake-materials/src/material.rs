@@ -42,7 +42,7 @@ pub enum Magnetic {
 }
 
 impl Magnetic {
-    /// Reluctivity `ν` [m/H] at `b2 = B²` (constant `1/(μ0 μr)` for a linear material).
+    /// Reluctivity `ν` \[m/H\] at `b2 = B²` (constant `1/(μ0 μr)` for a linear material).
     #[inline]
     pub fn nu_of_b2(&self, b2: f64) -> f64 {
         match self {
@@ -65,7 +65,7 @@ impl Magnetic {
         matches!(self, Magnetic::NonLinear(_))
     }
 
-    /// Flux density [T] at field strength `h` [A/m].
+    /// Flux density \[T\] at field strength `h` \[A/m\].
     pub fn b_of_h(&self, h: f64) -> f64 {
         match self {
             Magnetic::Linear { mu_r } => MU_0 * mu_r * h,
@@ -87,9 +87,9 @@ pub struct Material {
     pub magnetic: Magnetic,
     /// Where the magnetic data come from.
     pub provenance: Provenance,
-    /// Density [kg/m³], when known.
+    /// Density \[kg/m³\], when known.
     pub density_kg_m3: Option<Sourced<f64>>,
-    /// Electrical conductivity [S/m], when known.
+    /// Electrical conductivity \[S/m\], when known.
     pub conductivity_s_per_m: Option<Sourced<f64>>,
     /// The constant μr the source library uses for linear solves of a steel (not part of its curve).
     pub mu_r_linear: Option<f64>,

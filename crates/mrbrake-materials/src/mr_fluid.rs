@@ -15,9 +15,9 @@ use crate::{BhCurve, Provenance, Sourced};
 /// Off-state (zero-field) dynamic viscosity at a stated temperature.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Viscosity {
-    /// Viscosity [Pa·s].
+    /// Viscosity \[Pa·s\].
     pub pa_s: f64,
-    /// Temperature of the measurement [°C].
+    /// Temperature of the measurement \[°C\].
     pub temperature_c: f64,
     /// Where the number comes from.
     pub provenance: Provenance,
@@ -26,11 +26,11 @@ pub struct Viscosity {
 /// A published or quoted `(field, τ_y)` point the fluid model can be compared against.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ReferencePoint {
-    /// Flux density [T], if given.
+    /// Flux density \[T\], if given.
     pub b_t: Option<f64>,
-    /// Field strength [A/m], if given.
+    /// Field strength \[A/m\], if given.
     pub h_a_per_m: Option<f64>,
-    /// Yield stress [Pa].
+    /// Yield stress \[Pa\].
     pub tau_y_pa: f64,
     /// Where the point comes from.
     pub source: String,
@@ -41,7 +41,7 @@ pub struct ReferencePoint {
 pub struct ReferenceCheck {
     /// The reference point.
     pub reference: ReferencePoint,
-    /// The model's `τ_y` [Pa] at the point's B (or at its H when no B is given).
+    /// The model's `τ_y` \[Pa\] at the point's B (or at its H when no B is given).
     pub model_tau_y_pa: f64,
     /// `(model − reference)/reference` in percent.
     pub error_percent: f64,
@@ -59,7 +59,7 @@ pub struct MrFluid {
     pub carrier: String,
     /// Off-state viscosities, the first at 30 °C (the default used by [`MrFluid::viscosity_pa_s`]).
     pub viscosities: Vec<Viscosity>,
-    /// Density [kg/m³] with its source.
+    /// Density \[kg/m³\] with its source.
     pub density_kg_m3: Sourced<f64>,
     /// Points to compare the model against.
     pub reference_points: Vec<ReferencePoint>,
@@ -103,7 +103,7 @@ impl MrFluid {
         &self.yield_stress
     }
 
-    /// Yield stress `τ_y` [Pa] at flux density `b` [T] in the fluid; any `b` (saturates above the data).
+    /// Yield stress `τ_y` \[Pa\] at flux density `b` \[T\] in the fluid; any `b` (saturates above the data).
     pub fn tau_y_of_b(&self, b: f64) -> f64 {
         match self.yield_stress.variable() {
             FieldVariable::FluxDensity => self.yield_stress.tau_y(b),
@@ -111,7 +111,7 @@ impl MrFluid {
         }
     }
 
-    /// Yield stress `τ_y` [Pa] at field strength `h` [A/m] in the fluid, through the B-H curve.
+    /// Yield stress `τ_y` \[Pa\] at field strength `h` \[A/m\] in the fluid, through the B-H curve.
     pub fn tau_y_of_h(&self, h: f64) -> f64 {
         match self.yield_stress.variable() {
             FieldVariable::FluxDensity => self.yield_stress.tau_y(self.bh.b_of_h(h)),
@@ -119,12 +119,12 @@ impl MrFluid {
         }
     }
 
-    /// The value `τ_y` tends to at high field [Pa].
+    /// The value `τ_y` tends to at high field \[Pa\].
     pub fn tau_y_ceiling_pa(&self) -> f64 {
         self.yield_stress.ceiling_pa()
     }
 
-    /// The default off-state viscosity [Pa·s] (the first listed, at 30 °C).
+    /// The default off-state viscosity \[Pa·s\] (the first listed, at 30 °C).
     pub fn viscosity_pa_s(&self) -> f64 {
         self.viscosities.first().map(|v| v.pa_s).unwrap_or(f64::NAN)
     }

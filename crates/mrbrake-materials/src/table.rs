@@ -28,7 +28,12 @@ impl Row {
     }
 
     /// Field `index` as an optional number: empty means `None`.
-    pub fn optional_number(&self, index: usize, column: &str, file: &str) -> Result<Option<f64>, MaterialError> {
+    pub fn optional_number(
+        &self,
+        index: usize,
+        column: &str,
+        file: &str,
+    ) -> Result<Option<f64>, MaterialError> {
         match self.fields.get(index).map(String::as_str) {
             None | Some("") => Ok(None),
             Some(_) => self.number(index, column, file).map(Some),
@@ -43,7 +48,11 @@ impl Row {
 
 /// Reads `text` (the content of `file`) as CSV whose header must be exactly `header` (case-insensitive)
 /// and whose rows must have exactly `header.len()` fields.
-pub(crate) fn read_rows(text: &str, file: &str, header: &[&str]) -> Result<Vec<Row>, MaterialError> {
+pub(crate) fn read_rows(
+    text: &str,
+    file: &str,
+    header: &[&str],
+) -> Result<Vec<Row>, MaterialError> {
     let mut rows = Vec::new();
     let mut header_seen = false;
     for (index, raw) in text.lines().enumerate() {
@@ -64,7 +73,11 @@ pub(crate) fn read_rows(text: &str, file: &str, header: &[&str]) -> Result<Vec<R
                 return Err(MaterialError::Parse {
                     file: file.to_string(),
                     line,
-                    message: format!("the header must be `{}`, found `{}`", header.join(","), fields.join(",")),
+                    message: format!(
+                        "the header must be `{}`, found `{}`",
+                        header.join(","),
+                        fields.join(",")
+                    ),
                 });
             }
             header_seen = true;
@@ -123,7 +136,11 @@ fn split_fields(line: &str) -> Result<Vec<String>, String> {
 }
 
 /// Reads a two-column numeric table; returns `(line, x, y)` triples.
-pub(crate) fn read_xy(text: &str, file: &str, header: [&str; 2]) -> Result<Vec<(u64, f64, f64)>, MaterialError> {
+pub(crate) fn read_xy(
+    text: &str,
+    file: &str,
+    header: [&str; 2],
+) -> Result<Vec<(u64, f64, f64)>, MaterialError> {
     read_rows(text, file, &header)?
         .into_iter()
         .map(|row| Ok((row.line, row.number(0, header[0], file)?, row.number(1, header[1], file)?)))
@@ -154,7 +171,8 @@ mod tests {
 
     #[test]
     fn not_a_number_and_field_count_name_the_line() {
-        let err = read_xy("H_A_per_m,B_T\n0,0\n5,abc\n", "f.csv", ["H_A_per_m", "B_T"]).unwrap_err();
+        let err =
+            read_xy("H_A_per_m,B_T\n0,0\n5,abc\n", "f.csv", ["H_A_per_m", "B_T"]).unwrap_err();
         assert!(err.to_string().starts_with("f.csv:3:"), "{err}");
         assert!(err.to_string().contains("B_T"), "{err}");
         let err = read_xy("H_A_per_m,B_T\n0,0,1\n", "f.csv", ["H_A_per_m", "B_T"]).unwrap_err();
@@ -167,7 +185,10 @@ mod tests {
 
     #[test]
     fn quoted_fields_keep_commas() {
-        assert_eq!(split_fields(r#""Aluminum, 6061-T6",1.0, 2.459e+07"#).unwrap(), ["Aluminum, 6061-T6", "1.0", "2.459e+07"]);
+        assert_eq!(
+            split_fields(r#""Aluminum, 6061-T6",1.0, 2.459e+07"#).unwrap(),
+            ["Aluminum, 6061-T6", "1.0", "2.459e+07"]
+        );
         assert_eq!(split_fields(r#""say ""hi""",x"#).unwrap(), [r#"say "hi""#, "x"]);
     }
 }

@@ -16,16 +16,16 @@ use serde::Serialize;
 
 use crate::{MaterialError, Provenance, Trust};
 
-/// Resistivity of IACS annealed copper at 20 °C [Ω·m] (IEC 60028:1925: 1/58 Ω·mm²/m).
+/// Resistivity of IACS annealed copper at 20 °C \[Ω·m\] (IEC 60028:1925: 1/58 Ω·mm²/m).
 pub const COPPER_RESISTIVITY_20C_OHM_M: f64 = 1.0 / 58.0e6;
 
-/// Temperature coefficient of resistance of IACS annealed copper at 20 °C [1/K] (IEC 60028:1925).
+/// Temperature coefficient of resistance of IACS annealed copper at 20 °C \[1/K\] (IEC 60028:1925).
 pub const COPPER_TEMPERATURE_COEFFICIENT_PER_K: f64 = 0.00393;
 
 /// Smallest and largest AWG gauge in the vendored table.
 pub const AWG_RANGE: std::ops::RangeInclusive<u32> = 18..=32;
 
-/// Temperatures [°C] where the linear resistance law is used.
+/// Temperatures \[°C\] where the linear resistance law is used.
 pub const TEMPERATURE_RANGE_C: std::ops::RangeInclusive<f64> = -50.0..=200.0;
 
 const AWG_CSV: &str = include_str!("../data/awg_copper_18_32.csv");
@@ -40,19 +40,19 @@ const THESIS_TABLE_4_6_RATINGS_A: [(u32, f64); 7] =
 pub struct AwgRow {
     /// Gauge number.
     pub awg: u32,
-    /// Diameter from the AWG definition [m].
+    /// Diameter from the AWG definition \[m\].
     pub d_m: f64,
-    /// Area `π d²/4` [m²].
+    /// Area `π d²/4` \[m²\].
     pub a_m2: f64,
-    /// `ρ20/A` [Ω/m].
+    /// `ρ20/A` \[Ω/m\].
     pub r_ohm_per_m_20c: f64,
-    /// Diameter FEMM stores for the even gauges [m].
+    /// Diameter FEMM stores for the even gauges \[m\].
     pub d_femm_m: Option<f64>,
-    /// Diameter copied from a public AWG table [m].
+    /// Diameter copied from a public AWG table \[m\].
     pub d_table_m: f64,
-    /// Area copied from the same table [m²].
+    /// Area copied from the same table \[m²\].
     pub a_table_m2: f64,
-    /// Resistance copied from the same table [Ω/m].
+    /// Resistance copied from the same table \[Ω/m\].
     pub r_table_ohm_per_m: f64,
 }
 
@@ -61,23 +61,29 @@ pub struct AwgRow {
 pub struct CopperWire {
     /// AWG gauge, when the wire was chosen by gauge.
     pub awg: Option<u32>,
-    /// Bare diameter [m].
+    /// Bare diameter \[m\].
     pub diameter_m: f64,
-    /// Conductor cross-section [m²].
+    /// Conductor cross-section \[m²\].
     pub area_m2: f64,
-    /// Resistance per metre at 20 °C [Ω/m].
+    /// Resistance per metre at 20 °C \[Ω/m\].
     pub resistance_ohm_per_m_20c: f64,
-    /// Current rating from the thesis's Table 4.6 [A] (AWG 20–26 only; unsourced there: low trust).
+    /// Current rating from the thesis's Table 4.6 \[A\] (AWG 20–26 only; unsourced there: low trust).
     pub thesis_current_rating_a: Option<f64>,
 }
 
 impl CopperWire {
     /// The wire of gauge `awg` (18–32) from the vendored table.
     pub fn awg(awg: u32) -> Result<Self, MaterialError> {
-        let row = awg_table()?.iter().find(|r| r.awg == awg).ok_or_else(|| MaterialError::OutOfRange {
-            quantity: "AWG gauge".to_string(),
-            value: f64::from(awg),
-            allowed: format!("{}..={} (the vendored table)", AWG_RANGE.start(), AWG_RANGE.end()),
+        let row = awg_table()?.iter().find(|r| r.awg == awg).ok_or_else(|| {
+            MaterialError::OutOfRange {
+                quantity: "AWG gauge".to_string(),
+                value: f64::from(awg),
+                allowed: format!(
+                    "{}..={} (the vendored table)",
+                    AWG_RANGE.start(),
+                    AWG_RANGE.end()
+                ),
+            }
         })?;
         Ok(Self {
             awg: Some(awg),
@@ -107,7 +113,7 @@ impl CopperWire {
         })
     }
 
-    /// Resistance per metre [Ω/m] at `temperature_c` [°C]: `R'20 (1 + α20 (T − 20))`.
+    /// Resistance per metre \[Ω/m\] at `temperature_c` \[°C\]: `R'20 (1 + α20 (T − 20))`.
     pub fn resistance_ohm_per_m_at(&self, temperature_c: f64) -> Result<f64, MaterialError> {
         if !TEMPERATURE_RANGE_C.contains(&temperature_c) {
             return Err(MaterialError::OutOfRange {
@@ -120,7 +126,8 @@ impl CopperWire {
                 ),
             });
         }
-        Ok(self.resistance_ohm_per_m_20c * (1.0 + COPPER_TEMPERATURE_COEFFICIENT_PER_K * (temperature_c - 20.0)))
+        Ok(self.resistance_ohm_per_m_20c
+            * (1.0 + COPPER_TEMPERATURE_COEFFICIENT_PER_K * (temperature_c - 20.0)))
     }
 
     /// The AWG gauge (18–32) whose diameter is nearest to this wire's, on a log scale.
@@ -144,12 +151,12 @@ impl CopperWire {
     }
 }
 
-/// AWG diameter by definition (ASTM B258): `0.127 mm · 92^((36 − n)/39)` [m].
+/// AWG diameter by definition (ASTM B258): `0.127 mm · 92^((36 − n)/39)` \[m\].
 pub fn awg_diameter_m(awg: u32) -> f64 {
     0.127e-3 * 92f64.powf((36.0 - f64::from(awg)) / 39.0)
 }
 
-/// The thesis's Table 4.6 current rating [A] for AWG 20–26 (the thesis does not name its source).
+/// The thesis's Table 4.6 current rating \[A\] for AWG 20–26 (the thesis does not name its source).
 pub fn thesis_current_rating_a(awg: u32) -> Option<f64> {
     THESIS_TABLE_4_6_RATINGS_A.iter().find(|r| r.0 == awg).map(|r| r.1)
 }
@@ -167,8 +174,16 @@ pub fn awg_table() -> Result<&'static [AwgRow], MaterialError> {
 }
 
 fn parse_awg_table(text: &str, file: &str) -> Result<Vec<AwgRow>, MaterialError> {
-    const HEADER: [&str; 8] =
-        ["AWG", "d_m", "A_m2", "R_ohm_per_m_20C", "d_femm_m", "d_table_m", "A_table_m2", "R_table_ohm_per_m"];
+    const HEADER: [&str; 8] = [
+        "AWG",
+        "d_m",
+        "A_m2",
+        "R_ohm_per_m_20C",
+        "d_femm_m",
+        "d_table_m",
+        "A_table_m2",
+        "R_table_ohm_per_m",
+    ];
     crate::table::read_rows(text, file, &HEADER)?
         .into_iter()
         .map(|row| {
@@ -211,8 +226,14 @@ mod tests {
             let d = awg_diameter_m(row.awg);
             assert!((row.d_m / d - 1.0).abs() < 1e-5, "AWG {}", row.awg);
             let by_diameter = CopperWire::from_diameter(row.d_m).unwrap();
-            assert!((by_diameter.resistance_ohm_per_m_20c / row.r_ohm_per_m_20c - 1.0).abs() < 1e-5);
-            assert!((row.r_table_ohm_per_m / row.r_ohm_per_m_20c - 1.0).abs() < 3e-4, "AWG {}", row.awg);
+            assert!(
+                (by_diameter.resistance_ohm_per_m_20c / row.r_ohm_per_m_20c - 1.0).abs() < 1e-5
+            );
+            assert!(
+                (row.r_table_ohm_per_m / row.r_ohm_per_m_20c - 1.0).abs() < 3e-4,
+                "AWG {}",
+                row.awg
+            );
             assert_eq!(by_diameter.nearest_awg(), Some(row.awg));
         }
         assert_eq!(awg_table().unwrap().len(), 15);
@@ -221,7 +242,15 @@ mod tests {
     #[test]
     fn thesis_table_4_6_resistances_agree() {
         // Thesis Table 4.6, mΩ/m.
-        for (awg, r_mohm) in [(20, 33.31), (21, 42.00), (22, 52.96), (23, 66.79), (24, 84.22), (25, 106.2), (26, 133.9)] {
+        for (awg, r_mohm) in [
+            (20, 33.31),
+            (21, 42.00),
+            (22, 52.96),
+            (23, 66.79),
+            (24, 84.22),
+            (25, 106.2),
+            (26, 133.9),
+        ] {
             let w = CopperWire::awg(awg).unwrap();
             assert!((w.resistance_ohm_per_m_20c * 1e3 / r_mohm - 1.0).abs() < 1e-3, "AWG {awg}");
         }

@@ -47,7 +47,7 @@ impl FieldVariable {
     }
 }
 
-/// Yield stress `τ_y` [Pa] of one field variable, monotone C¹, saturating above the data.
+/// Yield stress `τ_y` \[Pa\] of one field variable, monotone C¹, saturating above the data.
 #[derive(Debug, Clone, PartialEq)]
 pub struct YieldStressCurve {
     variable: FieldVariable,
@@ -55,9 +55,9 @@ pub struct YieldStressCurve {
     curve: PiecewiseCubic,
     x_last: f64,
     tau_last: f64,
-    /// Ceiling the tail tends to [Pa].
+    /// Ceiling the tail tends to \[Pa\].
     tau_ceiling_pa: f64,
-    /// Decay rate `k` of the tail [1/unit of x].
+    /// Decay rate `k` of the tail \[1/unit of x\].
     tail_rate: f64,
     provenance: Provenance,
 }
@@ -95,7 +95,13 @@ impl YieldStressCurve {
         tau_ceiling_pa: f64,
         provenance: Provenance,
     ) -> Result<Self, MaterialError> {
-        validate_increasing_from_origin(rows, file, variable.name_and_unit(), ("tau_y", "Pa"), MIN_YIELD_POINTS)?;
+        validate_increasing_from_origin(
+            rows,
+            file,
+            variable.name_and_unit(),
+            ("tau_y", "Pa"),
+            MIN_YIELD_POINTS,
+        )?;
         let x: Vec<f64> = rows.iter().map(|r| r.1).collect();
         let tau: Vec<f64> = rows.iter().map(|r| r.2).collect();
         let n = x.len();
@@ -112,7 +118,16 @@ impl YieldStressCurve {
         }
         let d = hermite::steffen_slopes(&x, &tau);
         let pieces: Vec<Piece> = (0..n - 1)
-            .map(|k| Piece::Cubic(hermite::hermite_cubic(x[k], x[k + 1], tau[k], tau[k + 1], d[k], d[k + 1])))
+            .map(|k| {
+                Piece::Cubic(hermite::hermite_cubic(
+                    x[k],
+                    x[k + 1],
+                    tau[k],
+                    tau[k + 1],
+                    d[k],
+                    d[k + 1],
+                ))
+            })
             .collect();
         let curve = PiecewiseCubic::from_pieces(&x, &pieces);
         Ok(Self {
@@ -127,16 +142,17 @@ impl YieldStressCurve {
         })
     }
 
-    /// `τ_y` [Pa] at field value `x` (T or A/m, see [`YieldStressCurve::variable`]); even in `x`.
+    /// `τ_y` \[Pa\] at field value `x` (T or A/m, see [`YieldStressCurve::variable`]); even in `x`.
     pub fn tau_y(&self, x: f64) -> f64 {
         self.tau_y_and_slope(x).0
     }
 
-    /// `τ_y` [Pa] and `dτ_y/dx` at `|x|`.
+    /// `τ_y` \[Pa\] and `dτ_y/dx` at `|x|`.
     pub fn tau_y_and_slope(&self, x: f64) -> (f64, f64) {
         let x = x.abs();
         if x >= self.x_last {
-            let gap = (self.tau_ceiling_pa - self.tau_last) * (-self.tail_rate * (x - self.x_last)).exp();
+            let gap =
+                (self.tau_ceiling_pa - self.tau_last) * (-self.tail_rate * (x - self.x_last)).exp();
             (self.tau_ceiling_pa - gap, self.tail_rate * gap)
         } else {
             self.curve.value_and_slope(x)
@@ -153,7 +169,7 @@ impl YieldStressCurve {
         &self.points
     }
 
-    /// The ceiling [Pa] the curve tends to above the data.
+    /// The ceiling \[Pa\] the curve tends to above the data.
     pub fn ceiling_pa(&self) -> f64 {
         self.tau_ceiling_pa
     }

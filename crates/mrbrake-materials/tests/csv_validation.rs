@@ -85,7 +85,10 @@ fn a_missing_file_is_an_input_error() {
 
 #[test]
 fn in_memory_points_name_the_point_number() {
-    let err = BhCurve::from_points(&[(0.0, 0.0), (1.0, 0.1), (0.5, 0.2), (3.0, 0.3)], Provenance::user_file("x"))
-        .unwrap_err();
+    let err = BhCurve::from_points(
+        &[(0.0, 0.0), (1.0, 0.1), (0.5, 0.2), (3.0, 0.3)],
+        Provenance::user_file("x"),
+    )
+    .unwrap_err();
     assert!(err.to_string().starts_with("points:3: rule `strictly increasing H`"), "{err}");
 }

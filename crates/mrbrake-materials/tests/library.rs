@@ -15,7 +15,9 @@ fn every_listed_name_loads_with_provenance_and_density() {
         let density = m.density_kg_m3.as_ref().unwrap_or_else(|| panic!("{name} has no density"));
         assert!(density.value > 1.0 && !density.provenance.source.is_empty(), "{name}");
         match (&m.magnetic, kind) {
-            (Magnetic::Linear { mu_r }, MaterialKind::Linear) => assert!((mu_r - 1.0).abs() < 1e-12),
+            (Magnetic::Linear { mu_r }, MaterialKind::Linear) => {
+                assert!((mu_r - 1.0).abs() < 1e-12)
+            }
             (Magnetic::NonLinear(_), MaterialKind::Steel | MaterialKind::MrFluid) => {}
             _ => panic!("{name}: magnetic law does not fit its kind"),
         }
@@ -53,7 +55,10 @@ fn lookups_are_case_insensitive_and_unknown_names_list_the_known_ones() {
     let err = library::get("unobtainium").unwrap_err();
     assert!(err.is_input_error());
     let msg = err.to_string();
-    assert!(msg.contains("unobtainium") && msg.contains("steel-1008") && msg.contains("mrf-140cg"), "{msg}");
+    assert!(
+        msg.contains("unobtainium") && msg.contains("steel-1008") && msg.contains("mrf-140cg"),
+        "{msg}"
+    );
     // A material that exists but is not a fluid: the error lists the fluids.
     let err = library::fluid("air").unwrap_err();
     let MaterialError::UnknownMaterial { known, .. } = err else { panic!("wrong error") };
@@ -69,7 +74,11 @@ fn densities_and_conductivities_carry_their_sources() {
     assert!((cu.conductivity_s_per_m.as_ref().unwrap().value - 5.8e7).abs() < 1.0);
     let al = library::get("aluminium").unwrap();
     assert!((al.density_kg_m3.as_ref().unwrap().value - 2700.0).abs() < 1e-9);
-    assert!((library::get("stainless-304").unwrap().density_kg_m3.as_ref().unwrap().value - 8000.0).abs() < 1e-9);
+    assert!(
+        (library::get("stainless-304").unwrap().density_kg_m3.as_ref().unwrap().value - 8000.0)
+            .abs()
+            < 1e-9
+    );
     let s1008 = library::get("steel-1008").unwrap();
     assert!((s1008.density_kg_m3.as_ref().unwrap().value - 7872.0).abs() < 1e-9);
     assert_eq!(s1008.provenance.trust, Trust::MediumHigh);
@@ -98,7 +107,10 @@ fn steel_curves_agree_with_the_documented_spread_table() {
         let c = library::bh_curve(name).unwrap();
         for (h, b_doc) in fields.iter().zip(expected) {
             let b = c.b_of_h(*h);
-            println!("{name:22} H = {h:6} A/m: B = {b:.3} T (SOURCES.md {b_doc:.3}, {:+.1} %)", 100.0 * (b / b_doc - 1.0));
+            println!(
+                "{name:22} H = {h:6} A/m: B = {b:.3} T (SOURCES.md {b_doc:.3}, {:+.1} %)",
+                100.0 * (b / b_doc - 1.0)
+            );
             assert!((b / b_doc - 1.0).abs() < tolerance, "{name} at {h} A/m: {b} vs {b_doc}");
         }
     }

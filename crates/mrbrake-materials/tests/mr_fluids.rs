@@ -96,8 +96,13 @@ fn carlson_fluids_match_the_closed_form_fit_between_the_table_points() {
         // The first piece of H(B) is odd (a1 B + a3 B³, for a finite dν/dB² at B = 0) while Carlson's
         // B(H) has an H² term at the origin: the first interval pays for it (about 0.3 %).
         println!("{name}: B error on the first piece (H < 5 kA/m): {worst_b_first_piece:.2e}");
-        assert!(worst_b_first_piece < 4e-3, "{name}: B off by {worst_b_first_piece} on the first piece");
-        println!("{name}: worst relative error vs the fit formula: B {worst_b:.2e}, tau_y {worst_tau:.2e}");
+        assert!(
+            worst_b_first_piece < 4e-3,
+            "{name}: B off by {worst_b_first_piece} on the first piece"
+        );
+        println!(
+            "{name}: worst relative error vs the fit formula: B {worst_b:.2e}, tau_y {worst_tau:.2e}"
+        );
         assert!(worst_b < 2e-3, "{name}: B off by {worst_b}");
         assert!(worst_tau < 1e-3, "{name}: tau_y off by {worst_tau}");
     }
@@ -118,7 +123,10 @@ fn carlson_tau_of_b_matches_the_vendored_tau_b_tables() {
             let mut fields = line.split(',').map(|f| f.parse::<f64>().unwrap());
             let (b, tau) = (fields.next().unwrap(), fields.next().unwrap());
             let model = fluid.tau_y_of_b(b);
-            assert!((model - tau).abs() <= 2e-5 * tau + 0.05, "{name} at B = {b}: {model} vs {tau}");
+            assert!(
+                (model - tau).abs() <= 2e-5 * tau + 0.05,
+                "{name} at B = {b}: {model} vs {tau}"
+            );
         }
     }
 }
@@ -126,7 +134,8 @@ fn carlson_tau_of_b_matches_the_vendored_tau_b_tables() {
 #[test]
 fn the_generic_carlson_fit_misses_the_thesis_points_as_documented() {
     // data/SOURCES.md computes these errors independently (Carlson φ = 0.22 vs the thesis points).
-    let documented = [2.9, 15.0, 10.0, 7.7, 3.5, 1.6, 1.3, -2.1, -10.0, -9.6, -10.8, -10.9, -22.8, -21.9];
+    let documented =
+        [2.9, 15.0, 10.0, 7.7, 3.5, 1.6, 1.3, -2.1, -10.0, -9.6, -10.8, -10.9, -22.8, -21.9];
     let fluid = library::fluid("mrf-122eg-carlson").unwrap();
     let checks = fluid.reference_checks();
     assert_eq!(checks.len(), documented.len());
@@ -146,8 +155,13 @@ fn spot_values_and_properties_are_loaded() {
         let fluid = library::fluid(name).unwrap();
         assert_eq!(fluid.reference_points.len(), 3, "{name}");
         for check in fluid.reference_checks() {
-            println!("{name}: B = {:?} T: spot {:.0} Pa, model {:.0} Pa ({:+.1} %)",
-                check.reference.b_t, check.reference.tau_y_pa, check.model_tau_y_pa, check.error_percent);
+            println!(
+                "{name}: B = {:?} T: spot {:.0} Pa, model {:.0} Pa ({:+.1} %)",
+                check.reference.b_t,
+                check.reference.tau_y_pa,
+                check.model_tau_y_pa,
+                check.error_percent
+            );
             assert!(check.error_percent.is_finite());
         }
     }

@@ -64,3 +64,68 @@ fn spring_energy_per_cycle_matches_the_closed_form() {
     assert!(motor_test_energy(k, 0.0, b * 1.001, t) < 0.0);
     assert!(motor_test_energy(k, 0.0, b * 0.999, t) > 0.0);
 }
+
+/// Spectral radius of the exact sampled-data loop: `J ẇ = −b w + τ_k` held over `[kT, (k+1)T)`,
+/// `τ_k = −K p_k − B (p_k − p_{k−1})/T`, state `[p_k, w_k, p_{k−1}]`, estimated from the growth of
+/// `‖M^(2^m)‖` by repeated squaring.
+fn spectral_radius(k: f64, bv: f64, b: f64, j: f64, t: f64) -> f64 {
+    let a = b / j;
+    let e = (-a * t).exp();
+    let g = (1.0 - e) / a; // ∫₀ᵀ e^{−aτ} dτ
+    // Position and velocity after one hold with torque τ: p⁺ = p + g w + (T − g) τ / b, w⁺ = e w + (1 − e) τ / b.
+    let tau = [-(k + bv / t), 0.0, bv / t]; // τ as a row over the state
+    let mut m = [[0.0; 3]; 3];
+    for c in 0..3 {
+        m[0][c] = (t - g) / b * tau[c];
+        m[1][c] = (1.0 - e) / b * tau[c];
+    }
+    m[0][0] += 1.0;
+    m[0][1] += g;
+    m[1][1] += e;
+    m[2][0] = 1.0;
+    let mut log_scale = 0.0;
+    let mut power = 1.0;
+    for _ in 0..14 {
+        let mut sq = [[0.0; 3]; 3];
+        for r in 0..3 {
+            for c in 0..3 {
+                sq[r][c] = (0..3).map(|q| m[r][q] * m[q][c]).sum();
+            }
+        }
+        let norm = sq.iter().flatten().fold(0.0f64, |x, y| x.max(y.abs())).max(1e-300);
+        for row in sq.iter_mut() {
+            for x in row.iter_mut() {
+                *x /= norm;
+            }
+        }
+        log_scale = 2.0 * log_scale + norm.ln();
+        power *= 2.0;
+        m = sq;
+    }
+    (log_scale / power).exp()
+}
+
+#[test]
+fn stability_classification_matches_the_exact_sampled_data_eigenvalues() {
+    let c = ZWidthConfig::default();
+    let (t, b, j) = (c.sample_period_s, c.physical_damping_nms_per_rad, c.inertia_kg_m2);
+    let (mut checked, mut agree) = (0, 0);
+    for i in 0..=20 {
+        for n in 0..=10 {
+            let k = 100.0 * i as f64 / 20.0;
+            let bv = 0.05 * n as f64 / 10.0;
+            let rho = spectral_radius(k, bv, b, j, t);
+            if (rho - 1.0).abs() < 0.01 {
+                continue;
+            }
+            checked += 1;
+            if (rho < 1.0) == free_response_decays(k, bv, b, j, t) {
+                agree += 1;
+            } else {
+                println!("K = {k}, B = {bv}: spectral radius {rho:.4}");
+            }
+        }
+    }
+    println!("{agree}/{checked} free responses agree with the exact spectral radius");
+    assert_eq!(agree, checked);
+}

@@ -22,7 +22,7 @@ pub enum SysidError {
         message: String,
     },
     /// A file could not be opened or read.
-    #[error("cannot read '{path}': {source}")]
+    #[error("cannot read '{path}'")]
     Io {
         /// The file.
         path: PathBuf,

@@ -486,6 +486,25 @@ mod tests {
     }
 
     #[test]
+    fn non_convergence_is_a_numerical_error_with_history() {
+        let truth = TransferFunction::new(vec![1.0], vec![1.791e-5, 0.01702, 1.0]).unwrap();
+        let omega = logspace(0.1, 1000.0, 41);
+        let mut frd = frd_of(&truth, &omega);
+        for (k, g) in frd.response.iter_mut().enumerate() {
+            *g = *g + Complex::new((k as f64).sin(), (k as f64 * 1.3).cos()).scale(0.05 * g.abs());
+        }
+        let mut o = TfestOptions::new(2, 0);
+        o.max_sk_iterations = 0;
+        o.max_lm_iterations = 1;
+        match tfest(&frd, &o) {
+            Err(SysidError::Numerical { history, .. }) => {
+                assert!(history.len() >= 2, "{history:?}")
+            }
+            other => panic!("expected a numerical error, got {other:?}"),
+        }
+    }
+
+    #[test]
     fn improper_request_is_an_input_error() {
         let frd = Frd {
             omega_rad_s: vec![1.0, 2.0],

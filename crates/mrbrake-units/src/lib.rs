@@ -264,7 +264,7 @@ mod tests {
         let msg = e.to_string();
         assert!(matches!(e, UnitError::WrongUnit { .. }));
         assert!(msg.contains("kg") && msg.contains("mm") && msg.contains("a length"), "{msg}");
-        assert!(matches!(parse("0.46", Dimension::Dimensionless), Ok(_)));
+        assert!(parse("0.46", Dimension::Dimensionless).is_ok());
         assert!(matches!(parse("3mm", Dimension::Current), Err(UnitError::WrongUnit { .. })));
     }
 

@@ -58,12 +58,13 @@ pub fn run(args: CharacterizeArgs) -> anyhow::Result<()> {
     let (current, torque) = (&log.channels[0], &log.channels[1]);
     let c =
         characterize(current, torque, CharacterizeOptions { order: args.order, bins: args.bins })?;
-    let report = json!({
-        "log": args.log,
-        "samples": log.len(),
-        "sample_rate_Hz": log.mean_sample_rate_hz(),
-        "characterization": &c,
-    });
+    // The characterisation's own fields at the top level (as in the model file), plus the log's.
+    let mut report = serde_json::to_value(&c)?;
+    if let Some(map) = report.as_object_mut() {
+        map.insert("log".into(), json!(args.log));
+        map.insert("samples".into(), json!(log.len()));
+        map.insert("sample_rate_Hz".into(), json!(log.mean_sample_rate_hz()));
+    }
     if let Some(path) = &args.save_model {
         let text = serde_json::to_string_pretty(&c)?;
         mrbrake_report::write_atomic(path, text.as_bytes())?;

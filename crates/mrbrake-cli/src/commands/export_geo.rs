@@ -33,7 +33,11 @@ pub fn run(args: ExportGeoArgs) -> anyhow::Result<()> {
         None => default_spec(),
     };
     let level = MeshLevel::parse(&args.mesh)?;
-    let warnings = spec.validate()?;
+    let origin = args
+        .spec
+        .as_ref()
+        .map_or("the embedded default spec".to_string(), |p| p.display().to_string());
+    let warnings = spec.validate().with_context(|| origin.clone())?;
     for w in &warnings {
         eprintln!("{w}");
     }

@@ -46,7 +46,8 @@ pub struct FreqRespArgs {
 /// Runs `mrbrake freqresp`.
 pub fn run(args: FreqRespArgs) -> anyhow::Result<()> {
     let settle_s = parse(&args.settle, Dimension::Time)?;
-    if !(settle_s >= 0.0) || !(args.discard_periods >= 0.0) {
+    let non_negative = |v: f64| v.is_finite() && v >= 0.0;
+    if !non_negative(settle_s) || !non_negative(args.discard_periods) {
         return Err(InputError("--settle and --discard-periods must be non-negative".into()).into());
     }
     let options = FreqRespOptions {

@@ -208,7 +208,7 @@ fn print_text(m: &Material, b_values: &[f64], h_values: &[f64], with_points: boo
                 curve.points().len()
             );
             println!(
-                "    initial relative permeability {:.0}",
+                "    initial relative permeability {:.1}",
                 curve.initial_relative_permeability()
             );
             for &h in h_values {

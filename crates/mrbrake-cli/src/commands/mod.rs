@@ -12,6 +12,7 @@ mod freqresp;
 mod haptic;
 mod materials;
 mod rig;
+mod study;
 mod tfest;
 
 /// The subcommands of `mrbrake`.
@@ -41,6 +42,9 @@ pub enum Command {
     /// Virtual test rig: simulate the thesis's experiments and write their logs.
     #[command(subcommand)]
     Rig(rig::RigCommand),
+    /// Design studies: the thesis's comparison tables on mrbrake's geometries.
+    #[command(subcommand)]
+    Study(study::StudyCommand),
     /// Write the brake geometry and its physical groups as a Gmsh .geo file (cross-check in other solvers).
     ExportGeo(export_geo::ExportGeoArgs),
 }
@@ -57,6 +61,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Tfest(a) => tfest::run(a),
         Command::Rig(c) => rig::run(c),
         Command::Fem(c) => fem::run(c),
+        Command::Study(c) => study::run(c),
         Command::ExportGeo(a) => export_geo::run(a),
     }
 }

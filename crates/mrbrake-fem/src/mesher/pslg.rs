@@ -70,7 +70,13 @@ impl Pslg {
 
     /// An empty graph whose vertices closer than `snap_m` (m) are merged.
     pub fn with_snap(snap_m: f64) -> Self {
-        Self { vertices: Vec::new(), lookup: HashMap::new(), segments: Vec::new(), seeds: Vec::new(), snap_m }
+        Self {
+            vertices: Vec::new(),
+            lookup: HashMap::new(),
+            segments: Vec::new(),
+            seeds: Vec::new(),
+            snap_m,
+        }
     }
 
     /// The snapping tolerance (m).
@@ -102,7 +108,8 @@ impl Pslg {
                 point[0], point[1]
             )));
         }
-        let key = ((point[0] / self.snap_m).round() as i64, (point[1] / self.snap_m).round() as i64);
+        let key =
+            ((point[0] / self.snap_m).round() as i64, (point[1] / self.snap_m).round() as i64);
         if let Some(&index) = self.lookup.get(&key) {
             return Ok(index);
         }
@@ -112,7 +119,12 @@ impl Pslg {
     }
 
     /// Adds a segment between two points (vertices are added or found).
-    pub fn add_segment(&mut self, a: [f64; 2], b: [f64; 2], tag: Option<u32>) -> Result<(), FemError> {
+    pub fn add_segment(
+        &mut self,
+        a: [f64; 2],
+        b: [f64; 2],
+        tag: Option<u32>,
+    ) -> Result<(), FemError> {
         let ia = self.add_vertex(a)?;
         let ib = self.add_vertex(b)?;
         if ia == ib {
@@ -128,7 +140,10 @@ impl Pslg {
     /// Adds a closed polygon (its edges become untagged constraints).
     pub fn add_polygon(&mut self, points: &[[f64; 2]]) -> Result<(), FemError> {
         if points.len() < 3 {
-            return Err(FemError::Input(format!("mesher: a polygon needs at least 3 points, got {}", points.len())));
+            return Err(FemError::Input(format!(
+                "mesher: a polygon needs at least 3 points, got {}",
+                points.len()
+            )));
         }
         for i in 0..points.len() {
             self.add_segment(points[i], points[(i + 1) % points.len()], None)?;
@@ -203,7 +218,8 @@ impl Pslg {
                 }
             }
         }
-        let segments: Vec<Segment> = order.iter().map(|&(a, b)| Segment { a, b, tag: pieces[&(a, b)] }).collect();
+        let segments: Vec<Segment> =
+            order.iter().map(|&(a, b)| Segment { a, b, tag: pieces[&(a, b)] }).collect();
         check_no_crossings(&self.vertices, &segments, tol)?;
         Ok(NormalizedPslg { vertices: self.vertices.clone(), segments, seeds: self.seeds.clone() })
     }
@@ -211,7 +227,11 @@ impl Pslg {
 
 /// Rejects segments whose interiors cross (a crossing would need an intersection vertex the caller
 /// did not ask for) or overlap collinearly without sharing vertices.
-fn check_no_crossings(vertices: &[[f64; 2]], segments: &[Segment], tol: f64) -> Result<(), FemError> {
+fn check_no_crossings(
+    vertices: &[[f64; 2]],
+    segments: &[Segment],
+    tol: f64,
+) -> Result<(), FemError> {
     let boxes: Vec<[f64; 4]> = segments
         .iter()
         .map(|s| {
@@ -257,7 +277,9 @@ fn segments_intersect(p: [f64; 2], q: [f64; 2], u: [f64; 2], v: [f64; 2]) -> boo
     let d2 = orient(u, v, q);
     let d3 = orient(p, q, u);
     let d4 = orient(p, q, v);
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
         return true;
     }
     let on = |a: [f64; 2], b: [f64; 2], c: [f64; 2], o: f64| {

@@ -23,7 +23,8 @@ pub fn min_angle_deg(p: [[f64; 2]; 3]) -> f64 {
         let (a, b, c) = (p[i], p[(i + 1) % 3], p[(i + 2) % 3]);
         let u = [b[0] - a[0], b[1] - a[1]];
         let v = [c[0] - a[0], c[1] - a[1]];
-        let cos = (u[0] * v[0] + u[1] * v[1]) / ((u[0] * u[0] + u[1] * u[1]).sqrt() * (v[0] * v[0] + v[1] * v[1]).sqrt());
+        let cos = (u[0] * v[0] + u[1] * v[1])
+            / ((u[0] * u[0] + u[1] * u[1]).sqrt() * (v[0] * v[0] + v[1] * v[1]).sqrt());
         smallest = smallest.min(cos.clamp(-1.0, 1.0).acos().to_degrees());
     }
     smallest

@@ -136,7 +136,11 @@ mod tests {
         let field = SizeField::uniform(1.0).with_region(5, 0.01);
         let resolved = ResolvedSizeField {
             field,
-            fine: vec![FineRegion { edge_m: 0.01, segments: vec![[[0.0, 0.0], [0.0, 1.0]]], bbox: [0.0, 0.0, 0.0, 1.0] }],
+            fine: vec![FineRegion {
+                edge_m: 0.01,
+                segments: vec![[[0.0, 0.0], [0.0, 1.0]]],
+                bbox: [0.0, 0.0, 0.0, 1.0],
+            }],
         };
         assert!((resolved.at([0.5, 0.5], None) - (0.01 + 0.3 * 0.5)).abs() < 1e-12);
         assert!((resolved.at([0.5, 0.5], Some(5)) - 0.01).abs() < 1e-12);

@@ -9,7 +9,8 @@ fn sample() -> (Pslg, Vec<(u32, f64)>) {
     // Air box [0, 0.05] x [0, 0.04] minus the parts below, given as the outer boundary + parts.
     g.add_rectangle(0.0, 0.05, 0.0, 0.04).unwrap();
     // L-shaped steel: polygon.
-    let l = [[0.005, 0.005], [0.025, 0.005], [0.025, 0.01], [0.01, 0.01], [0.01, 0.03], [0.005, 0.03]];
+    let l =
+        [[0.005, 0.005], [0.025, 0.005], [0.025, 0.01], [0.01, 0.01], [0.01, 0.03], [0.005, 0.03]];
     g.add_polygon(&l).unwrap();
     // A 0.5 mm gap beside the L's vertical leg.
     g.add_rectangle(0.01, 0.0105, 0.015, 0.025).unwrap();
@@ -53,7 +54,9 @@ fn min_angle_respects_the_limit() {
     let (g, _) = sample();
     let options = MeshOptions { min_angle_deg: 28.0, ..MeshOptions::default() };
     let mesh = triangulate(&g, &size(0.004), &options).unwrap();
-    let worst = (0..mesh.triangles.len()).map(|t| min_angle_deg(triangle_points(&mesh, t))).fold(f64::INFINITY, f64::min);
+    let worst = (0..mesh.triangles.len())
+        .map(|t| min_angle_deg(triangle_points(&mesh, t)))
+        .fold(f64::INFINITY, f64::min);
     // All input angles are 90° or 180°, so no exception applies; allow round-off.
     assert!(worst >= 28.0 - 1e-6, "smallest angle {worst}°");
 }
@@ -64,7 +67,8 @@ fn no_node_inside_a_region_of_another_tag() {
     let mesh = triangulate(&g, &size(0.004), &MeshOptions::default()).unwrap();
     // Every triangle's centroid lies in the region its tag says (regions known analytically).
     let region_of = |p: [f64; 2]| -> u32 {
-        let in_rect = |r0: f64, r1: f64, z0: f64, z1: f64| p[0] > r0 && p[0] < r1 && p[1] > z0 && p[1] < z1;
+        let in_rect =
+            |r0: f64, r1: f64, z0: f64, z1: f64| p[0] > r0 && p[0] < r1 && p[1] > z0 && p[1] < z1;
         if in_rect(0.005, 0.025, 0.005, 0.01) || in_rect(0.005, 0.01, 0.01, 0.03) {
             3
         } else if in_rect(0.01, 0.0105, 0.015, 0.025) {
@@ -114,16 +118,21 @@ fn thin_gap_gets_its_target_size() {
     let (g, _) = sample();
     let mesh = triangulate(&g, &size(0.004), &MeshOptions::default()).unwrap();
     let h_gap = 0.004 / 16.0;
+    let max_area = 3f64.sqrt() / 4.0 * h_gap * h_gap;
+    let mut longest = 0.0f64;
     for (t, tag) in mesh.triangle_tags.iter().enumerate() {
         if *tag == 4 {
             let p = triangle_points(&mesh, t);
+            let area = quality::signed_area(p[0], p[1], p[2]);
+            assert!(area <= max_area * (1.0 + 1e-6), "gap triangle area {area} > {max_area}");
             for i in 0..3 {
                 let (a, b) = (p[i], p[(i + 1) % 3]);
-                let len = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
-                assert!(len <= h_gap * (1.0 + 1e-9), "gap edge {len} > {h_gap}");
+                longest = longest.max(((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt());
             }
         }
     }
+    // With the 28° bound, an area-limited triangle has edges below ~2 h.
+    assert!(longest <= 2.0 * h_gap, "longest gap edge {longest} vs h {h_gap}");
 }
 
 #[test]
@@ -131,8 +140,10 @@ fn node_count_grows_about_fourfold_when_size_halves() {
     let mut g = Pslg::new();
     g.add_rectangle(0.0, 0.04, 0.0, 0.03).unwrap();
     g.add_seed([0.01, 0.01], 1);
-    let n1 = triangulate(&g, &SizeField::uniform(0.002), &MeshOptions::default()).unwrap().nodes.len();
-    let n2 = triangulate(&g, &SizeField::uniform(0.001), &MeshOptions::default()).unwrap().nodes.len();
+    let n1 =
+        triangulate(&g, &SizeField::uniform(0.002), &MeshOptions::default()).unwrap().nodes.len();
+    let n2 =
+        triangulate(&g, &SizeField::uniform(0.001), &MeshOptions::default()).unwrap().nodes.len();
     let ratio = n2 as f64 / n1 as f64;
     assert!((3.2..=4.8).contains(&ratio), "nodes {n1} -> {n2}, ratio {ratio}");
 }
@@ -150,5 +161,52 @@ fn missing_seed_and_open_region_are_input_errors() {
     let mut h = Pslg::new();
     h.add_rectangle(0.0, 1.0, 0.0, 1.0).unwrap();
     h.add_seed([2.0, 2.0], 1);
-    assert!(triangulate(&h, &SizeField::uniform(0.2), &MeshOptions::default()).unwrap_err().is_input_error());
+    assert!(
+        triangulate(&h, &SizeField::uniform(0.2), &MeshOptions::default())
+            .unwrap_err()
+            .is_input_error()
+    );
+}
+
+mod properties {
+    use proptest::prelude::*;
+
+    use super::super::quality::{area_by_tag, min_angle_deg, triangle_points};
+    use super::super::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+        /// Any grid of rectangles (random column widths and row heights, one region per cell, one
+        /// random cell refined 8×) meshes with exact cell areas and the angle bound.
+        #[test]
+        fn random_rectangle_grids_mesh_exactly(
+            widths in proptest::collection::vec(0.2f64..3.0, 1..4),
+            heights in proptest::collection::vec(0.05f64..3.0, 1..4),
+            fine_pick in 0usize..16,
+        ) {
+            let rs: Vec<f64> = std::iter::once(0.0).chain(widths.iter().scan(0.0, |s, w| { *s += w; Some(*s) })).collect();
+            let zs: Vec<f64> = std::iter::once(0.0).chain(heights.iter().scan(0.0, |s, h| { *s += h; Some(*s) })).collect();
+            let mut g = Pslg::new();
+            let mut expected = Vec::new();
+            let mut tag = 0;
+            for i in 0..widths.len() {
+                for j in 0..heights.len() {
+                    tag += 1;
+                    g.add_rectangle(rs[i], rs[i + 1], zs[j], zs[j + 1]).unwrap();
+                    g.add_seed([0.5 * (rs[i] + rs[i + 1]), 0.5 * (zs[j] + zs[j + 1])], tag);
+                    expected.push((tag, widths[i] * heights[j]));
+                }
+            }
+            let fine_tag = (fine_pick % expected.len()) as u32 + 1;
+            let size = SizeField::uniform(0.5).with_region(fine_tag, 0.0625);
+            let mesh = triangulate(&g, &size, &MeshOptions::default()).unwrap();
+            let areas = area_by_tag(&mesh);
+            for (tag, a) in expected {
+                prop_assert!((areas[&tag] - a).abs() <= 1e-12 * a.max(1.0), "tag {} area {} vs {}", tag, areas[&tag], a);
+            }
+            let worst = (0..mesh.triangles.len()).map(|t| min_angle_deg(triangle_points(&mesh, t))).fold(f64::INFINITY, f64::min);
+            prop_assert!(worst >= 28.0 - 1e-6, "smallest angle {}", worst);
+        }
+    }
 }

@@ -9,7 +9,7 @@
 //!    segment), and triangulate again: boundary vertices now carry the grading.
 //! 4. Repeat: Ruppert/Chew Delaunay refinement with the angle limit (spade `refine`, which also
 //!    splits encroached constraint segments); flood fill; insert the centroid of every triangle whose
-//!    longest edge exceeds h at its centroid. Stop after a refinement pass that leaves no triangle
+//!    area exceeds that of the equilateral triangle of edge h at its centroid. Stop after a refinement pass that leaves no triangle
 //!    too large. The final step is always a quality refinement, so the angle bound holds.
 //! 5. Extract nodes, counter-clockwise triangles with their tags, and the tagged edges found by
 //!    walking the constraint edges along each tagged input segment.
@@ -18,8 +18,8 @@ use std::collections::VecDeque;
 
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
 use spade::{
-    AngleLimit, ConstrainedDelaunayTriangulation, Point2, PositionInTriangulation, RefinementParameters,
-    Triangulation,
+    AngleLimit, ConstrainedDelaunayTriangulation, Point2, PositionInTriangulation,
+    RefinementParameters, Triangulation,
 };
 
 use super::pslg::{NormalizedPslg, Pslg};
@@ -61,11 +61,14 @@ pub fn triangulate(pslg: &Pslg, size: &SizeField, options: &MeshOptions) -> Resu
     }
     let graph = pslg.normalized()?;
     if graph.seeds.is_empty() && options.default_tag.is_none() {
-        return Err(FemError::Input("mesher: no region seed given (every region needs one)".into()));
+        return Err(FemError::Input(
+            "mesher: no region seed given (every region needs one)".into(),
+        ));
     }
 
     // Stage A: coarse CDT of the input graph, to learn which regions every segment bounds.
-    let cdt_a = load(&graph.vertices, &graph.segments.iter().map(|s| [s.a, s.b]).collect::<Vec<_>>())?;
+    let cdt_a =
+        load(&graph.vertices, &graph.segments.iter().map(|s| [s.a, s.b]).collect::<Vec<_>>())?;
     let tags_a = flood_fill(&cdt_a, &graph, options.default_tag)?;
     let resolved = resolve_size_field(&cdt_a, &tags_a, &graph, size);
 
@@ -99,22 +102,23 @@ pub fn triangulate(pslg: &Pslg, size: &SizeField, options: &MeshOptions) -> Resu
             let Some(tag) = tags[face.fix().index()].region() else { continue };
             let p = face.positions();
             let c = [(p[0].x + p[1].x + p[2].x) / 3.0, (p[0].y + p[1].y + p[2].y) / 3.0];
-            let longest2 = (0..3)
-                .map(|i| {
-                    let (u, v) = (p[i], p[(i + 1) % 3]);
-                    (u.x - v.x).powi(2) + (u.y - v.y).powi(2)
-                })
-                .fold(0.0, f64::max);
+            // Size test by area, like spade's own max-area rule: a triangle is too large when its
+            // area exceeds that of the equilateral triangle of edge h(centroid). (A longest-edge
+            // test would over-refine: the refiner's 28°-quality triangles are not equilateral.)
+            let area = 0.5
+                * ((p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x))
+                    .abs();
             let h = resolved.at(c, Some(tag));
-            // A relative tolerance keeps segments subdivided at exactly h from being split again.
-            if longest2 > h * h * (1.0 + 1e-9) {
+            if area > 3f64.sqrt() / 4.0 * h * h * (1.0 + 1e-9) {
                 centroids.push(Point2::new(c[0], c[1]));
             }
         }
         if centroids.is_empty() {
             break tags;
         }
-        if passes >= options.max_passes || cdt.num_vertices() + centroids.len() > options.max_vertices {
+        if passes >= options.max_passes
+            || cdt.num_vertices() + centroids.len() > options.max_vertices
+        {
             return Err(FemError::Numerical(format!(
                 "size refinement did not converge: {} triangles still larger than the size field after \
                  {passes} passes ({} vertices)",
@@ -123,7 +127,8 @@ pub fn triangulate(pslg: &Pslg, size: &SizeField, options: &MeshOptions) -> Resu
             )));
         }
         for c in centroids {
-            cdt.insert(c).map_err(|e| FemError::Numerical(format!("inserting a refinement point: {e:?}")))?;
+            cdt.insert(c)
+                .map_err(|e| FemError::Numerical(format!("inserting a refinement point: {e:?}")))?;
         }
     };
     Ok(extract(&cdt, &tags, &vertices_b, &tagged_b))
@@ -152,8 +157,10 @@ impl FaceRegion {
 fn load(vertices: &[[f64; 2]], edges: &[[usize; 2]]) -> Result<Cdt, FemError> {
     let points: Vec<Point2<f64>> = vertices.iter().map(|p| Point2::new(p[0], p[1])).collect();
     let mut conflicts = Vec::new();
-    let cdt = Cdt::try_bulk_load_cdt(points, edges.to_vec(), |e| conflicts.push(e))
-        .map_err(|e| FemError::Input(format!("mesher: the triangulation rejected the input: {e:?}")))?;
+    let cdt =
+        Cdt::try_bulk_load_cdt(points, edges.to_vec(), |e| conflicts.push(e)).map_err(|e| {
+            FemError::Input(format!("mesher: the triangulation rejected the input: {e:?}"))
+        })?;
     if cdt.num_vertices() != vertices.len() {
         return Err(FemError::Input("mesher: duplicate vertices survived normalisation".into()));
     }
@@ -168,7 +175,12 @@ fn load(vertices: &[[f64; 2]], edges: &[[usize; 2]]) -> Result<Cdt, FemError> {
 }
 
 /// Neighbour faces across non-constraint edges.
-fn flood(cdt: &Cdt, tags: &mut [FaceRegion], start: FixedFaceHandle<InnerTag>, value: FaceRegion) -> Result<(), [f64; 2]> {
+fn flood(
+    cdt: &Cdt,
+    tags: &mut [FaceRegion],
+    start: FixedFaceHandle<InnerTag>,
+    value: FaceRegion,
+) -> Result<(), [f64; 2]> {
     let mut queue = VecDeque::from([start]);
     tags[start.index()] = value;
     while let Some(f) = queue.pop_front() {
@@ -193,7 +205,11 @@ fn flood(cdt: &Cdt, tags: &mut [FaceRegion], start: FixedFaceHandle<InnerTag>, v
     Ok(())
 }
 
-fn flood_fill(cdt: &Cdt, graph: &NormalizedPslg, default_tag: Option<u32>) -> Result<Vec<FaceRegion>, FemError> {
+fn flood_fill(
+    cdt: &Cdt,
+    graph: &NormalizedPslg,
+    default_tag: Option<u32>,
+) -> Result<Vec<FaceRegion>, FemError> {
     let mut tags = vec![FaceRegion::Unset; cdt.num_all_faces()];
     // Outside: inner faces adjacent to the convex hull through a non-constraint hull edge.
     let hull_starts: Vec<_> = cdt
@@ -203,16 +219,17 @@ fn flood_fill(cdt: &Cdt, graph: &NormalizedPslg, default_tag: Option<u32>) -> Re
         .collect();
     for f in hull_starts {
         if tags[f.index()] == FaceRegion::Unset {
-            flood(cdt, &mut tags, f, FaceRegion::Outside).map_err(|_| {
-                FemError::Input("mesher: the outer boundary is not closed".into())
-            })?;
+            flood(cdt, &mut tags, f, FaceRegion::Outside)
+                .map_err(|_| FemError::Input("mesher: the outer boundary is not closed".into()))?;
         }
     }
     for seed in &graph.seeds {
         let p = Point2::new(seed.point[0], seed.point[1]);
         let face = match cdt.locate(p) {
             PositionInTriangulation::OnFace(f) => Some(f),
-            PositionInTriangulation::OnEdge(e) if !cdt.directed_edge(e).as_undirected().is_constraint_edge() => {
+            PositionInTriangulation::OnEdge(e)
+                if !cdt.directed_edge(e).as_undirected().is_constraint_edge() =>
+            {
                 cdt.directed_edge(e).face().as_inner().map(|f| f.fix())
             }
             // A seed on a Steiner point inside its region: any face around the point will do.
@@ -253,14 +270,18 @@ fn flood_fill(cdt: &Cdt, graph: &NormalizedPslg, default_tag: Option<u32>) -> Re
             ))
         })?;
     }
-    let unset: Vec<_> = cdt.fixed_inner_faces().filter(|f| tags[f.index()] == FaceRegion::Unset).collect();
+    let unset: Vec<_> =
+        cdt.fixed_inner_faces().filter(|f| tags[f.index()] == FaceRegion::Unset).collect();
     for f in unset {
         if tags[f.index()] != FaceRegion::Unset {
             continue;
         }
         match default_tag {
             Some(t) => flood(cdt, &mut tags, f, FaceRegion::Tag(t)).map_err(|c| {
-                FemError::Input(format!("mesher: an unseeded area near ({:.6}, {:.6}) is open", c[0], c[1]))
+                FemError::Input(format!(
+                    "mesher: an unseeded area near ({:.6}, {:.6}) is open",
+                    c[0], c[1]
+                ))
             })?,
             None => {
                 let c = cdt.face(f).center();
@@ -276,13 +297,25 @@ fn flood_fill(cdt: &Cdt, graph: &NormalizedPslg, default_tag: Option<u32>) -> Re
 
 /// Finds the tags on both sides of every input segment and collects the boundaries of the regions
 /// with a target size below the global maximum.
-fn resolve_size_field(cdt: &Cdt, tags: &[FaceRegion], graph: &NormalizedPslg, size: &SizeField) -> ResolvedSizeField {
+fn resolve_size_field(
+    cdt: &Cdt,
+    tags: &[FaceRegion],
+    graph: &NormalizedPslg,
+    size: &SizeField,
+) -> ResolvedSizeField {
     let mut fine: Vec<(u32, FineRegion)> = size
         .region_edge_m
         .iter()
         .filter(|(_, h)| **h < size.max_edge_m)
         .map(|(t, h)| {
-            (*t, FineRegion { edge_m: *h, segments: Vec::new(), bbox: [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY] })
+            (
+                *t,
+                FineRegion {
+                    edge_m: *h,
+                    segments: Vec::new(),
+                    bbox: [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY],
+                },
+            )
         })
         .collect();
     for seg in &graph.segments {
@@ -299,7 +332,10 @@ fn resolve_size_field(cdt: &Cdt, tags: &[FaceRegion], graph: &NormalizedPslg, si
             }
         }
     }
-    ResolvedSizeField { field: size.clone(), fine: fine.into_iter().map(|(_, r)| r).filter(|r| !r.segments.is_empty()).collect() }
+    ResolvedSizeField {
+        field: size.clone(),
+        fine: fine.into_iter().map(|(_, r)| r).filter(|r| !r.segments.is_empty()).collect(),
+    }
 }
 
 /// The region tags on the two sides of the input segment between vertices a and b.
@@ -307,7 +343,8 @@ fn side_tags(cdt: &Cdt, tags: &[FaceRegion], a: usize, b: usize) -> [Option<u32>
     let va = FixedVertexHandle::from_index(a);
     let vb = FixedVertexHandle::from_index(b);
     match cdt.get_edge_from_neighbors(va, vb) {
-        Some(e) => [e.face(), e.rev().face()].map(|f| f.as_inner().and_then(|f| tags[f.fix().index()].region())),
+        Some(e) => [e.face(), e.rev().face()]
+            .map(|f| f.as_inner().and_then(|f| tags[f.fix().index()].region())),
         None => [None, None],
     }
 }
@@ -327,9 +364,8 @@ fn subdivide_segments(
     for seg in &graph.segments {
         let (p, q) = (graph.vertices[seg.a], graph.vertices[seg.b]);
         let side = side_tags(cdt, tags, seg.a, seg.b);
-        let h_at = |x: [f64; 2]| {
-            side.iter().map(|t| resolved.at(x, *t)).fold(f64::INFINITY, f64::min)
-        };
+        let h_at =
+            |x: [f64; 2]| side.iter().map(|t| resolved.at(x, *t)).fold(f64::INFINITY, f64::min);
         let len = ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt();
         // Walk with the local size, then stretch the steps so that the walk ends exactly at q.
         let mut ts = vec![0.0];
@@ -365,7 +401,12 @@ fn subdivide_segments(
     (vertices, edges, tagged)
 }
 
-fn extract(cdt: &Cdt, tags: &[FaceRegion], vertices: &[[f64; 2]], tagged: &[(usize, usize, u32)]) -> Mesh {
+fn extract(
+    cdt: &Cdt,
+    tags: &[FaceRegion],
+    vertices: &[[f64; 2]],
+    tagged: &[(usize, usize, u32)],
+) -> Mesh {
     let mut node_of = vec![usize::MAX; cdt.num_vertices()];
     let mut mesh = Mesh::default();
     for face in cdt.inner_faces() {
@@ -400,14 +441,18 @@ fn extract(cdt: &Cdt, tags: &[FaceRegion], vertices: &[[f64; 2]], tagged: &[(usi
             guard += 1;
             let here = cdt.vertex(cur).position();
             let t_here = (here.x - pa[0]) * dir[0] + (here.y - pa[1]) * dir[1];
-            let next = cdt.vertex(cur).out_edges().filter(|e| e.as_undirected().is_constraint_edge()).find(|e| {
-                let to = e.to().position();
-                let w = [to.x - here.x, to.y - here.y];
-                let wl = (w[0] * w[0] + w[1] * w[1]).sqrt();
-                let along = (w[0] * dir[0] + w[1] * dir[1]) / wl;
-                let t_to = (to.x - pa[0]) * dir[0] + (to.y - pa[1]) * dir[1];
-                along > 1.0 - 1e-9 && t_to > t_here && t_to <= len * (1.0 + 1e-12)
-            });
+            let next = cdt
+                .vertex(cur)
+                .out_edges()
+                .filter(|e| e.as_undirected().is_constraint_edge())
+                .find(|e| {
+                    let to = e.to().position();
+                    let w = [to.x - here.x, to.y - here.y];
+                    let wl = (w[0] * w[0] + w[1] * w[1]).sqrt();
+                    let along = (w[0] * dir[0] + w[1] * dir[1]) / wl;
+                    let t_to = (to.x - pa[0]) * dir[0] + (to.y - pa[1]) * dir[1];
+                    along > 1.0 - 1e-9 && t_to > t_here && t_to <= len * (1.0 + 1e-12)
+                });
             let Some(next) = next else { break };
             let to = next.to().fix();
             let (i, j) = (node_of[cur.index()], node_of[to.index()]);

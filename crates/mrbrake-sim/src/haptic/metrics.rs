@@ -60,7 +60,9 @@ pub struct WallMetrics {
     /// Largest running total of the energy supplied by the device, J.
     #[serde(rename = "device_energy_peak_J")]
     pub device_energy_peak_j: f64,
-    /// The device never supplied net energy (peak running total ≤ 1 µJ) and the run stayed stable.
+    /// The device supplied no net energy at any time of this run (running total ≤ 1 µJ) and the run
+    /// stayed stable. A run-level check: worst-case passivity over all motions is what
+    /// [`super::zwidth`] tests.
     pub passive: bool,
     /// The run stayed finite and bounded (|ω| < 100 rad/s, |θ| < 2π).
     pub stable: bool,

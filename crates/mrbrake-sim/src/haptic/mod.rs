@@ -3,7 +3,7 @@
 //!
 //! Brief overview: a [`HapticConfig`] (device kind, [`DeviceParameters`], [`HandModel`],
 //! [`Scenario`], virtual wall, [`BrakeModel`]s and the controller's inverse models) is run by
-//! [`simulate`], which closes the loop around the `no_std` controller of `mrbrake-control` at 1 kHz
+//! [`simulate()`], which closes the loop around the `no_std` controller of `mrbrake-control` at 1 kHz
 //! with zero-order hold and integrates the plant on a finer step; it returns [`WallMetrics`] and,
 //! optionally, a [`Trace`]. [`zwidth`] sweeps stiffness and damping and classifies each pair as
 //! passive, stable or unstable. [`characterization`] converts an identification JSON into the

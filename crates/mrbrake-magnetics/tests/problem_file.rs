@@ -1,0 +1,167 @@
+//! Problem files: the shipped example solves; bad input gives input errors naming the file and field;
+//! Newton failure is a numerical error carrying the residual history.
+
+use std::path::{Path, PathBuf};
+
+use mrbrake_magnetics::MagneticsError;
+use mrbrake_magnetics::problem_file::solve_file;
+
+fn repo_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn fixture_mesh() -> String {
+    repo_root().join("crates/mrbrake-fem/tests/fixtures/two_regions_v41.msh").display().to_string()
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn example_potcore_solves_and_reports() {
+    let (report, _solver, _solution) =
+        solve_file(&repo_root().join("examples/fem/potcore.toml")).unwrap();
+    assert!(report.converged);
+    assert!(report.newton_iterations >= 2, "steel is non-linear");
+    assert_eq!(report.probes.len(), 3);
+    let pole = report.probes.iter().find(|p| p.name == "pole_gap").unwrap();
+    // Magnetic-circuit bound: B in the 1 mm gap cannot exceed μ0 N I / g = 1.26 T.
+    assert!(pole.b_abs_t > 0.3 && pole.b_abs_t < 1.26, "{}", pole.b_abs_t);
+    let axis = report.probes.iter().find(|p| p.name == "axis_centre").unwrap();
+    assert!(axis.b_r_t.abs() < 1e-12);
+    assert_eq!(report.coils.len(), 1);
+    let coil = &report.coils[0];
+    assert!(coil.inductance_h > 0.0 && coil.incremental_inductance_h > 0.0);
+    assert!(report.energy_j > 0.0);
+    let json = serde_json::to_value(&report).unwrap();
+    for key in [
+        "probes",
+        "regions",
+        "coils",
+        "energy_J",
+        "newton_iterations",
+        "converged",
+        "nodes",
+        "elements",
+        "timings_s",
+    ] {
+        assert!(json.get(key).is_some(), "missing {key}");
+    }
+    for key in ["read", "assemble", "solve", "total"] {
+        assert!(json["timings_s"].get(key).is_some(), "missing timings_s.{key}");
+    }
+    assert!(json["probes"][0].get("B_abs_T").is_some());
+    assert!(json["regions"][0].get("mean_B_T").is_some());
+    assert!(json["coils"][0].get("flux_linkage_Wb").is_some());
+}
+
+fn input_error(toml: &str, extra: &[(&str, &str)]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in extra {
+        write(dir.path(), name, text);
+    }
+    let path = write(dir.path(), "p.toml", toml);
+    match solve_file(&path) {
+        Err(e) => {
+            assert!(e.is_input_error(), "expected an input error, got {e}");
+            e.to_string()
+        }
+        Ok(_) => panic!("expected an error"),
+    }
+}
+
+#[test]
+fn bad_problem_files_are_input_errors_naming_the_field() {
+    let mesh = fixture_mesh();
+    let ok_regions = "[[region]]\nphysical = 1\nmaterial = { mu_r = 100.0 }\nsource = { current_density_A_per_m2 = 1e6 }\n[[region]]\nphysical = 2\nmaterial = \"air\"\n";
+    let head = format!("mesh = {mesh:?}\nlength_unit = \"mm\"\n");
+
+    let e = input_error(
+        &format!("{head}{ok_regions}[[region]]\nphysical = 7\nmaterial = \"air\"\n"),
+        &[],
+    );
+    assert!(e.contains("physical = 7") && e.contains("not a physical surface"), "{e}");
+
+    let e = input_error(&format!("{head}[[region]]\nphysical = 1\nmaterial = \"air\"\n"), &[]);
+    assert!(e.contains("surface 2 has no [[region]]"), "{e}");
+
+    let e = input_error(
+        &format!("{head}[[region]]\nphysical = 1\n[[region]]\nphysical = 2\nmaterial = \"air\"\n"),
+        &[],
+    );
+    assert!(e.contains("region[0]") && e.contains("missing `material`"), "{e}");
+
+    let e = input_error(
+        &format!("{head}{ok_regions}[[boundary]]\nphysical = 11\nkind = \"magic\"\n"),
+        &[],
+    );
+    assert!(e.contains("kind = \"magic\""), "{e}");
+
+    let e = input_error(
+        &format!("{head}{ok_regions}[[boundary]]\nphysical = 99\nkind = \"dirichlet\"\n"),
+        &[],
+    );
+    assert!(e.contains("no curve with physical tag 99"), "{e}");
+
+    let e = input_error(&format!("mesh = {mesh:?}\nlength_unit = \"furlong\"\n{ok_regions}"), &[]);
+    assert!(e.contains("length_unit"), "{e}");
+
+    let e = input_error(
+        &format!("{head}{ok_regions}[[probe]]\nname = \"far\"\nr = 100.0\nz = 0.0\n"),
+        &[],
+    );
+    assert!(e.contains("probe `far`") && e.contains("outside the mesh"), "{e}");
+
+    let e = input_error(
+        &format!(
+            "{head}[[region]]\nphysical = 1\nmaterial = \"unobtainium\"\n[[region]]\nphysical = 2\nmaterial = \"air\"\n"
+        ),
+        &[],
+    );
+    assert!(e.contains("unobtainium"), "{e}");
+
+    // A non-monotone B-H curve.
+    let bh = "H_A_per_m,B_T\n0,0\n100,0.5\n200,0.4\n400,1.0\n800,1.2\n";
+    let e = input_error(
+        &format!(
+            "{head}[[region]]\nphysical = 1\nmaterial = {{ bh_csv = \"bh.csv\" }}\n[[region]]\nphysical = 2\nmaterial = \"air\"\n"
+        ),
+        &[("bh.csv", bh)],
+    );
+    assert!(e.contains("bh.csv"), "{e}");
+
+    let e = input_error(
+        &format!(
+            "{head}[[region]]\nphysical = 1\nmaterial = \"air\"\nsource = {{ turns = 10 }}\n[[region]]\nphysical = 2\nmaterial = \"air\"\n"
+        ),
+        &[],
+    );
+    assert!(e.contains("current_A"), "{e}");
+
+    let e = input_error("mesh = \"missing.msh\"\n", &[]);
+    assert!(e.contains("missing.msh"), "{e}");
+
+    let e = input_error(&format!("{head}{ok_regions}typo = 3\n"), &[]);
+    assert!(e.contains("typo"), "{e}");
+}
+
+#[test]
+fn newton_failure_is_numerical_with_history() {
+    let mesh = fixture_mesh();
+    let toml = format!(
+        "mesh = {mesh:?}\nlength_unit = \"mm\"\n[solver]\nmax_iterations = 1\n[[region]]\nphysical = 1\nmaterial = \"steel-1010\"\nsource = {{ current_density_A_per_m2 = 5e8 }}\n[[region]]\nphysical = 2\nmaterial = \"air\"\n[[boundary]]\nphysical = 11\nkind = \"dirichlet\"\n"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "p.toml", &toml);
+    match solve_file(&path) {
+        Err(e @ MagneticsError::NotConverged { .. }) => {
+            assert!(!e.is_input_error());
+            let text = e.to_string();
+            assert!(text.contains("residual history") && text.contains("#1"), "{text}");
+        }
+        other => panic!("expected NotConverged, got {:?}", other.map(|r| r.0.newton_iterations)),
+    }
+}
