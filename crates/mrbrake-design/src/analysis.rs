@@ -44,7 +44,7 @@ use crate::spec::BrakeSpec;
 /// Number of trapezoid intervals along each gap's mid-line for the local torque integral.
 pub const GAP_SAMPLES: usize = 64;
 
-/// Density of annealed copper [kg/m³] (IEC 60028: 8.89 g/cm³ at 20 °C).
+/// Density of annealed copper (kg/m³) (IEC 60028: 8.89 g/cm³ at 20 °C).
 const COPPER_DENSITY_KG_M3: f64 = 8890.0;
 
 /// What to compute.
@@ -54,11 +54,11 @@ pub struct AnalysisOptions {
     pub mesh: MeshLevel,
     /// Number of currents in the torque–current sweep, from 0 to the maximum current (≥ 2).
     pub points: usize,
-    /// Relative speed for the viscous torque [rad/s].
+    /// Relative speed for the viscous torque (rad/s).
     pub speed_rad_s: f64,
-    /// Constant seal / bearing friction added to every torque [N·m].
+    /// Constant seal / bearing friction added to every torque (N·m).
     pub seal_friction_nm: f64,
-    /// Copper temperature for the resistance [°C].
+    /// Copper temperature for the resistance (°C).
     pub temperature_c: f64,
 }
 
@@ -79,22 +79,22 @@ impl Default for AnalysisOptions {
 /// One point of the torque–current curve.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CurvePoint {
-    /// Coil current [A].
+    /// Coil current (A).
     #[serde(rename = "current_A")]
     pub current_a: f64,
-    /// Total braking torque of direction 1 (local Bingham + viscous + seal) [N·m].
+    /// Total braking torque of direction 1 (local Bingham + viscous + seal) (N·m).
     #[serde(rename = "torque_Nm")]
     pub torque_nm: f64,
-    /// Yield torque from the local |B| alone [N·m].
+    /// Yield torque from the local |B| alone (N·m).
     #[serde(rename = "yield_torque_Nm")]
     pub yield_torque_nm: f64,
-    /// Thesis method at this current [N·m].
+    /// Thesis method at this current (N·m).
     #[serde(rename = "thesis_formula_Nm")]
     pub thesis_formula_nm: f64,
-    /// Volume-mean |B| over direction 1's gaps [T].
+    /// Volume-mean |B| over direction 1's gaps (T).
     #[serde(rename = "mean_B_T")]
     pub mean_b_t: f64,
-    /// Flux linkage of the energised coil [Wb].
+    /// Flux linkage of the energised coil (Wb).
     #[serde(rename = "flux_linkage_Wb")]
     pub flux_linkage_wb: f64,
     /// Newton iterations of this solve.
@@ -108,30 +108,30 @@ pub struct GapResult {
     pub index: usize,
     /// Unit (0 or 1).
     pub unit: usize,
-    /// Shear radius R (drums: R_k of (4.4); discs: mean radius) [m].
+    /// Shear radius R (drums: R_k of (4.4); discs: mean radius) (m).
     pub r_m: f64,
-    /// Sheared height (drums) or radial span (discs) [m].
+    /// Sheared height (drums) or radial span (discs) (m).
     pub height_m: f64,
-    /// Gap width g [m].
+    /// Gap width g (m).
     pub width_m: f64,
     /// `cylindrical` or `annular`.
     pub orientation: &'static str,
-    /// Volume-mean |B| in the gap [T].
+    /// Volume-mean |B| in the gap (T).
     #[serde(rename = "mean_B_T")]
     pub mean_b_t: f64,
-    /// Largest |B| in the gap [T].
+    /// Largest |B| in the gap (T).
     #[serde(rename = "max_B_T")]
     pub max_b_t: f64,
-    /// Yield stress at the mean |B| [Pa].
+    /// Yield stress at the mean |B| (Pa).
     #[serde(rename = "tau_y_Pa")]
     pub tau_y_pa: f64,
-    /// Local Bingham yield torque [N·m].
+    /// Local Bingham yield torque (N·m).
     #[serde(rename = "torque_Nm")]
     pub torque_nm: f64,
-    /// Viscous torque at the analysis speed [N·m].
+    /// Viscous torque at the analysis speed (N·m).
     #[serde(rename = "viscous_torque_Nm")]
     pub viscous_torque_nm: f64,
-    /// |B| along the mid-line: (position along the gap [m], |B| [T]).
+    /// |B| along the mid-line: (position along the gap (m), |B| (T)).
     #[serde(skip)]
     pub profile: Vec<(f64, f64)>,
 }
@@ -139,21 +139,21 @@ pub struct GapResult {
 /// Torque summary.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct TorqueSummary {
-    /// Total torque of direction 1 at the maximum current [N·m].
+    /// Total torque of direction 1 at the maximum current (N·m).
     #[serde(rename = "at_max_current_Nm")]
     pub at_max_current_nm: f64,
-    /// Torque at zero current (viscous + seal) [N·m].
+    /// Torque at zero current (viscous + seal) (N·m).
     #[serde(rename = "off_state_Nm")]
     pub off_state_nm: f64,
-    /// Thesis method at the maximum current [N·m].
+    /// Thesis method at the maximum current (N·m).
     #[serde(rename = "thesis_formula_Nm")]
     pub thesis_formula_nm: f64,
-    /// Mean |B| over direction 1's gaps at the maximum current [T].
+    /// Mean |B| over direction 1's gaps at the maximum current (T).
     #[serde(rename = "mean_B_T")]
     pub mean_b_t: f64,
     /// Dynamic range T_on / T_off (infinite when the off-state torque is 0).
     pub dynamic_range: f64,
-    /// Direction 2's torque at the maximum current with its own coil (bidirectional only) [N·m].
+    /// Direction 2's torque at the maximum current with its own coil (bidirectional only) (N·m).
     #[serde(rename = "direction2_at_max_current_Nm")]
     pub direction2_at_max_current_nm: Option<f64>,
     /// Yield torque that appears in the idle unit's gaps when only unit 1 is energised, as a fraction
@@ -166,45 +166,45 @@ pub struct TorqueSummary {
 pub struct CoilResult {
     /// Turns.
     pub turns: u32,
-    /// Bare wire diameter [m].
+    /// Bare wire diameter (m).
     pub wire_diameter_m: f64,
-    /// Wire length of one coil [m].
+    /// Wire length of one coil (m).
     pub wire_length_m: f64,
-    /// Resistance at 20 °C [Ω].
+    /// Resistance at 20 °C (Ω).
     #[serde(rename = "resistance_20C_ohm")]
     pub resistance_20c_ohm: f64,
-    /// Resistance at the analysis temperature [Ω].
+    /// Resistance at the analysis temperature (Ω).
     pub resistance_ohm: f64,
-    /// Thesis current density (4.1) at the maximum current [A/mm²].
+    /// Thesis current density (4.1) at the maximum current (A/mm²).
     #[serde(rename = "current_density_A_per_mm2")]
     pub current_density_a_per_mm2: f64,
-    /// Ohmic power at the maximum current [W].
+    /// Ohmic power at the maximum current (W).
     #[serde(rename = "power_W")]
     pub power_w: f64,
-    /// Secant inductance λ/I at the maximum current [H].
+    /// Secant inductance λ/I at the maximum current (H).
     #[serde(rename = "inductance_H")]
     pub inductance_h: f64,
-    /// Incremental inductance dλ/dI at the maximum current [H].
+    /// Incremental inductance dλ/dI at the maximum current (H).
     #[serde(rename = "incremental_inductance_H")]
     pub incremental_inductance_h: f64,
-    /// L/R time constant with the secant inductance [s].
+    /// L/R time constant with the secant inductance (s).
     pub time_constant_s: f64,
 }
 
 /// Mechanical figures.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Mechanics {
-    /// Mass of all modelled parts (air excluded) [kg].
+    /// Mass of all modelled parts (air excluded) (kg).
     pub mass_kg: f64,
-    /// Envelope volume of the device (its bounding cylinder) [m³].
+    /// Envelope volume of the device (its bounding cylinder) (m³).
     pub volume_m3: f64,
-    /// Moment of inertia of the parts that turn with the shaft in direction 1 [kg·m²].
+    /// Moment of inertia of the parts that turn with the shaft in direction 1 (kg·m²).
     pub rotor_inertia_kg_m2: f64,
-    /// The same for direction 2 (bidirectional only) [kg·m²].
+    /// The same for direction 2 (bidirectional only) (kg·m²).
     pub rotor_inertia_direction2_kg_m2: Option<f64>,
-    /// Torque at the maximum current per envelope volume [N·m/m³].
+    /// Torque at the maximum current per envelope volume (N·m/m³).
     pub torque_density_nm_per_m3: f64,
-    /// Torque at the maximum current per mass [N·m/kg].
+    /// Torque at the maximum current per mass (N·m/kg).
     pub torque_density_nm_per_kg: f64,
 }
 
@@ -217,7 +217,7 @@ pub struct MeshSummary {
     pub elements: usize,
 }
 
-/// Wall-clock split [s].
+/// Wall-clock split (s).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
 pub struct Timings {
     /// Geometry and mesh.
@@ -239,7 +239,7 @@ pub struct Analysis {
     pub name: String,
     /// Configuration name.
     pub configuration: &'static str,
-    /// Maximum current [A].
+    /// Maximum current (A).
     #[serde(rename = "max_current_A")]
     pub max_current_a: f64,
     /// The sweep, direction 1.
@@ -255,7 +255,7 @@ pub struct Analysis {
     pub mechanics: Mechanics,
     /// Mesh size.
     pub mesh: MeshSummary,
-    /// Analysis speed for the viscous term [rad/s].
+    /// Analysis speed for the viscous term (rad/s).
     pub speed_rad_s: f64,
     /// Timings.
     pub timings_s: Timings,
@@ -650,7 +650,7 @@ fn coil_result(
     })
 }
 
-/// Density of a library material [kg/m³] (0 for air / unknown with a clear error otherwise).
+/// Density of a library material (kg/m³) (0 for air / unknown with a clear error otherwise).
 fn density(material: &str) -> Result<f64, DesignError> {
     let m = library::get(material).map_err(material_error)?;
     if let Some(fluid) = &m.fluid {

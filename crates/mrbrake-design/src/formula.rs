@@ -31,22 +31,22 @@ use crate::DesignError;
 /// The viscous (Newtonian) part of the Bingham model (3.4): fluid viscosity, relative speed and gap.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Viscous {
-    /// Off-state (Newtonian) viscosity eta [Pa·s].
+    /// Off-state (Newtonian) viscosity eta (Pa·s).
     pub eta_pa_s: f64,
-    /// Relative angular speed omega between the rotating and static surfaces [rad/s].
+    /// Relative angular speed omega between the rotating and static surfaces (rad/s).
     pub omega_rad_s: f64,
-    /// Fluid gap g across which the fluid is sheared [m].
+    /// Fluid gap g across which the fluid is sheared (m).
     pub gap_m: f64,
 }
 
 /// Brake torque split into its field-dependent (yield) and speed-dependent (viscous) parts.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BrakeTorque {
-    /// Torque from the yield stress alone [N·m].
+    /// Torque from the yield stress alone (N·m).
     pub yield_nm: f64,
-    /// Torque from viscous shear at the given speed [N·m] (0 when no speed was given).
+    /// Torque from viscous shear at the given speed (N·m) (0 when no speed was given).
     pub viscous_nm: f64,
-    /// Sum of both [N·m].
+    /// Sum of both (N·m).
     pub total_nm: f64,
 }
 
@@ -194,7 +194,7 @@ pub fn multi_drum(
     Ok(BrakeTorque::new(yield_nm, viscous_nm))
 }
 
-/// Coil current density as the thesis defines it, (4.1): `J_D = I / (√3 d²)` [A/m²], the current
+/// Coil current density as the thesis defines it, (4.1): `J_D = I / (√3 d²)` (A/m²), the current
 /// spread over the cell a wire of diameter `d` occupies in the winding (Figure 4.5).
 ///
 /// 2 A in 0.5 mm wire gives 4.62 A/mm² (thesis 4.2.2). Note that the current density in the copper
@@ -205,7 +205,7 @@ pub fn current_density_thesis(current_a: f64, wire_diameter_m: f64) -> Result<f6
     Ok(current_a.abs() / (3f64.sqrt() * wire_diameter_m * wire_diameter_m))
 }
 
-/// Current density in the copper cross-section, `I / (π d² / 4)` [A/m²].
+/// Current density in the copper cross-section, `I / (π d² / 4)` (A/m²).
 pub fn conductor_current_density(current_a: f64, wire_diameter_m: f64) -> Result<f64, DesignError> {
     non_negative("current", current_a.abs())?;
     positive("wire diameter", wire_diameter_m)?;
@@ -254,19 +254,19 @@ pub fn turns_in_window(
 pub struct CoilElectrics {
     /// Number of turns.
     pub turns: u32,
-    /// Wire length `N · 2π r_mean` [m].
+    /// Wire length `N · 2π r_mean` (m).
     pub wire_length_m: f64,
-    /// Resistance at 20 °C [Ω].
+    /// Resistance at 20 °C (Ω).
     pub resistance_20c_ohm: f64,
-    /// Resistance at the given temperature [Ω].
+    /// Resistance at the given temperature (Ω).
     pub resistance_ohm: f64,
-    /// Current density by the thesis's definition (4.1) [A/mm²].
+    /// Current density by the thesis's definition (4.1) (A/mm²).
     pub current_density_a_per_mm2: f64,
-    /// Current density in the copper [A/mm²].
+    /// Current density in the copper (A/mm²).
     pub conductor_current_density_a_per_mm2: f64,
-    /// Ohmic power `I² R` at the given current and temperature [W].
+    /// Ohmic power `I² R` at the given current and temperature (W).
     pub power_w: f64,
-    /// Supply voltage `I R` [V].
+    /// Supply voltage `I R` (V).
     pub voltage_v: f64,
 }
 

@@ -24,23 +24,23 @@ pub const STUDY_BASE_TOML: &str = include_str!("../../../examples/specs/study-si
 pub struct StudyRow {
     /// What this row is (e.g. `d = 1.5 mm`).
     pub label: String,
-    /// Mean |B| over the fluid gaps, ours [T].
+    /// Mean |B| over the fluid gaps, ours (T).
     #[serde(rename = "mean_B_T")]
     pub mean_b_t: f64,
-    /// τ_y at that mean |B|, ours [kPa].
+    /// τ_y at that mean |B|, ours (kPa).
     #[serde(rename = "tau_y_kPa")]
     pub tau_y_kpa: f64,
-    /// Torque by the thesis's method (mean B → τ_y → formula), ours [N·m].
+    /// Torque by the thesis's method (mean B → τ_y → formula), ours (N·m).
     #[serde(rename = "thesis_method_Nm")]
     pub thesis_method_nm: f64,
-    /// Torque from the local |B| along the gaps, ours [N·m].
+    /// Torque from the local |B| along the gaps, ours (N·m).
     #[serde(rename = "local_Nm")]
     pub local_nm: f64,
-    /// The thesis's printed B [T].
+    /// The thesis's printed B (T).
     pub thesis_b_t: f64,
-    /// The thesis's printed τ_y [kPa].
+    /// The thesis's printed τ_y (kPa).
     pub thesis_tau_y_kpa: f64,
-    /// The thesis's printed torque [N·m].
+    /// The thesis's printed torque (N·m).
     pub thesis_torque_nm: f64,
 }
 
@@ -51,7 +51,7 @@ pub struct StudyTable {
     pub table: &'static str,
     /// What it compares.
     pub title: &'static str,
-    /// Current used [A].
+    /// Current used (A).
     #[serde(rename = "current_A")]
     pub current_a: f64,
     /// The rows.

@@ -28,7 +28,8 @@ use crate::ReportError;
 static FONT: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
 static REGISTER_FONT: Once = Once::new();
 
-fn ensure_font() {
+/// Registers the embedded font with plotters once per process (every plot module calls this).
+pub(crate) fn ensure_font() {
     REGISTER_FONT.call_once(|| {
         // The embedded font is a valid TrueType file; failing here would be a build defect.
         let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);

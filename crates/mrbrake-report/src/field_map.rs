@@ -9,15 +9,11 @@
 
 use std::collections::HashMap;
 use std::path::Path;
-use std::sync::Once;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::ReportError;
-
-static FONT: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
-static REGISTER_FONT: Once = Once::new();
 
 /// The data of a field map.
 #[derive(Debug, Clone, Copy)]
@@ -158,9 +154,7 @@ fn draw<DB: DrawingBackend>(
     map: &FieldMap<'_>,
     root: &DrawingArea<DB, Shift>,
 ) -> Result<(), ReportError> {
-    REGISTER_FONT.call_once(|| {
-        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
-    });
+    crate::chart::ensure_font();
     let be = |e: DrawingAreaErrorKind<DB::ErrorType>| ReportError::Backend(e.to_string());
     root.fill(&WHITE).map_err(be)?;
     let (width, _) = root.dim_in_pixel();

@@ -5,7 +5,7 @@
 //! (Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, §4.3.3)
 //!
 //! ```text
-//! x[k+1] = Φ x[k] + Γ u[k],  Φ = e^{AΔt},  Γ = ∫₀^Δt e^{Aσ} dσ B,
+//! x\[k+1\] = Φ x\[k\] + Γ u\[k\],  Φ = e^{AΔt},  Γ = ∫₀^Δt e^{Aσ} dσ B,
 //! ```
 //!
 //! both read off one matrix exponential exp([[A, B], [0, 0]]·Δt) (Van Loan 1978). The realisation is the
@@ -22,7 +22,7 @@
 //! let y: Vec<f64> = (0..=10).map(|_| sys.step(1.0)).collect();
 //! assert!((y[10] - (1.0 - (-1.0f64).exp())).abs() < 1e-12);
 //! ```
-//! (`step` returns the output at the start of the step, then advances the state: y[k] = C x[k] + D u[k].)
+//! (`step` returns the output at the start of the step, then advances the state: `y[k] = C x[k] + D u[k]`.)
 
 use crate::SimError;
 
@@ -184,8 +184,8 @@ impl DiscreteStateSpace {
         })
     }
 
-    /// Output for input `u` at the current state, then advances one step: y[k] = C x[k] + D u[k],
-    /// x[k+1] = Φ x[k] + Γ u[k].
+    /// Output for input `u` at the current state, then advances one step: `y[k] = C x[k] + D u[k]`,
+    /// x\[k+1\] = Φ x\[k\] + Γ u\[k\].
     pub fn step(&mut self, u: f64) -> f64 {
         let y = self.output(u);
         let n = self.n;

@@ -20,7 +20,7 @@ pub enum FemCommand {
 /// Arguments of `mrbrake fem solve`.
 #[derive(Debug, Args)]
 pub struct SolveArgs {
-    /// Problem file (TOML): mesh = "file.msh", [[region]], [[boundary]], [[probe]], [[line]].
+    /// Problem file (TOML): `mesh = "file.msh"`, `[[region]]`, `[[boundary]]`, `[[probe]]`, `[[line]]`.
     problem: PathBuf,
     /// Print a JSON object (probes, regions, coils, energy_J, newton_iterations, converged, nodes,
     /// elements, timings_s) instead of text.

@@ -12,8 +12,8 @@
 //! torque sensor: T·(V_fs/T_fs) + Gaussian noise ──► 16-bit ADC over ±V_fs ──► logged torque
 //! ```
 //!
-//! The static hysteresis is a play-type (clamp) model: T_s[k] = clamp(T_s[k−1], T_up(I[k]),
-//! T_down(I[k])) with T_down ≥ T_up. On a full ramp it follows the rising branch up and the falling
+//! The static hysteresis is a play-type (clamp) model: T_s\[k\] = clamp(T_s\[k−1\], T_up(I\[k\]),
+//! T_down(I\[k\])) with T_down ≥ T_up. On a full ramp it follows the rising branch up and the falling
 //! branch down, exactly the loop the characterisation fits; on a reversal inside the loop the torque
 //! holds until the other branch is reached, so the loop stays continuous.
 //!
