@@ -203,8 +203,10 @@ pub struct Mechanics {
     /// The same for direction 2 (bidirectional only) (kg·m²).
     pub rotor_inertia_direction2_kg_m2: Option<f64>,
     /// Torque at the maximum current per envelope volume (N·m/m³).
+    #[serde(rename = "torque_density_Nm_per_m3")]
     pub torque_density_nm_per_m3: f64,
     /// Torque at the maximum current per mass (N·m/kg).
+    #[serde(rename = "torque_density_Nm_per_kg")]
     pub torque_density_nm_per_kg: f64,
 }
 

@@ -37,10 +37,13 @@ pub struct StudyRow {
     #[serde(rename = "local_Nm")]
     pub local_nm: f64,
     /// The thesis's printed B (T).
+    #[serde(rename = "thesis_B_T")]
     pub thesis_b_t: f64,
     /// The thesis's printed τ_y (kPa).
+    #[serde(rename = "thesis_tau_y_kPa")]
     pub thesis_tau_y_kpa: f64,
     /// The thesis's printed torque (N·m).
+    #[serde(rename = "thesis_torque_Nm")]
     pub thesis_torque_nm: f64,
 }
 

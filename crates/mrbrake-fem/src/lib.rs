@@ -40,7 +40,7 @@ pub enum FemError {
         message: String,
     },
     /// A file could not be read or written.
-    #[error("{path}: {source}")]
+    #[error("{path}: cannot read or write the file")]
     Io {
         /// The file.
         path: String,

@@ -168,7 +168,15 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     let scale = unit_scale(raw.length_unit.as_deref().unwrap_or("m"), &file)?;
     let mesh_path = dir.join(&raw.mesh);
     let start = Instant::now();
-    let gmsh = mrbrake_fem::gmsh::read_msh(&mesh_path, scale)?;
+    let gmsh = mrbrake_fem::gmsh::read_msh(&mesh_path, scale).map_err(|e| match e {
+        // Name the problem file and its `mesh` field, not only the resolved mesh path.
+        mrbrake_fem::FemError::Io { source, .. } => MagneticsError::Input(format!(
+            "{file}: mesh = \"{}\": cannot read {}: {source}",
+            raw.mesh,
+            mesh_path.display()
+        )),
+        other => other.into(),
+    })?;
     let mesh_read_s = start.elapsed().as_secs_f64();
 
     let mut regions = Vec::new();

@@ -18,7 +18,7 @@ pub use atomic::write_atomic;
 #[non_exhaustive]
 pub enum ReportError {
     /// Writing an output file failed (directory missing, permission, disk full).
-    #[error("cannot write '{path}': {source}")]
+    #[error("cannot write '{path}'")]
     Io {
         /// The file that could not be written.
         path: std::path::PathBuf,

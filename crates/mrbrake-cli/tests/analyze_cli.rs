@@ -1,0 +1,202 @@
+//! CLI behaviour of `mrbrake analyze`, `mrbrake export-geo` and `mrbrake study thesis-tables`: the
+//! JSON fields issue 4 asks for on the embedded thesis brake (coarse mesh, short sweep), their
+//! internal consistency (P = I²R, τ = L/R, gap torques adding up), the plots, the Gmsh export, the
+//! four study tables, and a bad spec (negative gap) giving a message naming the field and exit code 2.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn mrbrake(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mrbrake"))
+        .args(args)
+        .output()
+        .expect("the mrbrake binary runs")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = mrbrake(args);
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
+}
+
+fn number(v: &serde_json::Value, field: &str) -> f64 {
+    v[field].as_f64().unwrap_or_else(|| panic!("field '{field}' is not a number in {v}"))
+}
+
+fn close(actual: f64, expected: f64, relative: f64) -> bool {
+    (actual - expected).abs() <= relative * expected.abs()
+}
+
+fn examples_specs() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/specs")
+}
+
+fn default_analysis() -> serde_json::Value {
+    json(&["analyze", "--mesh", "coarse", "--points", "3", "--json"])
+}
+
+#[test]
+fn default_brake_json_has_the_issue_fields() {
+    let v = default_analysis();
+
+    let curve = v["torque_current_curve"].as_array().expect("torque_current_curve is an array");
+    assert_eq!(curve.len(), 3);
+    for point in curve {
+        for field in ["current_A", "torque_Nm", "mean_B_T"] {
+            assert!(number(point, field).is_finite(), "{point}");
+        }
+    }
+    // The sweep runs from 0 to the maximum current (2 A for the thesis design).
+    assert!(number(&curve[0], "current_A").abs() < 1e-12);
+    assert!(close(number(&curve[2], "current_A"), 2.0, 1e-12));
+
+    let torque = &v["torque"];
+    let at_max = number(torque, "at_max_current_Nm");
+    let off_state = number(torque, "off_state_Nm");
+    let thesis_formula = number(torque, "thesis_formula_Nm");
+    assert!(at_max > 1.0 && off_state >= 0.0 && off_state < at_max, "{torque}");
+    assert!(thesis_formula > 0.0, "{torque}");
+    assert!(close(at_max, number(&curve[2], "torque_Nm"), 1e-12), "{torque}");
+    assert!(close(off_state, number(&curve[0], "torque_Nm"), 1e-12), "{torque}");
+
+    // Four fluid surfaces per unit, two units.
+    let gaps = v["gaps"].as_array().expect("gaps is an array");
+    assert_eq!(gaps.len(), 8);
+    for (i, gap) in gaps.iter().enumerate() {
+        assert_eq!(gap["index"].as_u64(), Some(i as u64), "{gap}");
+        for field in ["r_m", "height_m", "mean_B_T", "tau_y_Pa", "torque_Nm"] {
+            assert!(number(gap, field) > 0.0, "{gap}");
+        }
+        // The thesis design: 9 mm high drums from R0 = 25 mm outwards.
+        assert!(close(number(gap, "height_m"), 9e-3, 1e-9), "{gap}");
+        assert!(number(gap, "r_m") >= 0.025 - 1e-12, "{gap}");
+    }
+    // The gaps of one unit carry the yield torque of one direction at the maximum current.
+    let unit0_torque: f64 =
+        gaps.iter().filter(|g| g["unit"] == 0).map(|g| number(g, "torque_Nm")).sum();
+    let yield_at_max = number(&curve[2], "yield_torque_Nm");
+    assert!(close(unit0_torque, yield_at_max, 1e-9), "{unit0_torque} vs {yield_at_max}");
+
+    let coil = &v["coil"];
+    for field in [
+        "turns",
+        "wire_length_m",
+        "resistance_ohm",
+        "current_density_A_per_mm2",
+        "power_W",
+        "inductance_H",
+        "time_constant_s",
+    ] {
+        assert!(number(coil, field) > 0.0, "coil.{field}: {coil}");
+    }
+    assert_eq!(coil["turns"].as_u64(), Some(450));
+    let resistance = number(coil, "resistance_ohm");
+    assert!(close(number(coil, "power_W"), 2.0 * 2.0 * resistance, 1e-9), "{coil}");
+    assert!(
+        close(number(coil, "time_constant_s"), number(coil, "inductance_H") / resistance, 1e-9),
+        "{coil}"
+    );
+    // Thesis (4.1) with 0.5 mm wire at 2 A: 4.62 A/mm² (same figure as `formula coil`).
+    assert!((number(coil, "current_density_A_per_mm2") - 4.62).abs() < 5e-3, "{coil}");
+
+    let mechanics = &v["mechanics"];
+    for field in ["mass_kg", "volume_m3", "rotor_inertia_kg_m2"] {
+        assert!(number(mechanics, field) > 0.0, "mechanics.{field}: {mechanics}");
+    }
+    // An 80 mm × 124 mm envelope holds at most π · 0.04² · 0.124 m³.
+    let envelope = std::f64::consts::PI * 0.04f64.powi(2) * 0.124;
+    assert!(number(mechanics, "volume_m3") <= envelope * (1.0 + 1e-9), "{mechanics}");
+
+    let mesh = &v["mesh"];
+    let nodes = mesh["nodes"].as_u64().expect("mesh.nodes is an integer");
+    let elements = mesh["elements"].as_u64().expect("mesh.elements is an integer");
+    assert!(nodes > 100 && elements > nodes, "{mesh}");
+    assert!(number(&v["timings_s"], "total") > 0.0);
+}
+
+#[test]
+fn mechanics_torque_density_uses_the_issue_field_name() {
+    // Issue 4 names the field `torque_density_Nm_per_m3`; it is torque at max current / volume.
+    let v = default_analysis();
+    let mechanics = &v["mechanics"];
+    let density = number(mechanics, "torque_density_Nm_per_m3");
+    let expected = number(&v["torque"], "at_max_current_Nm") / number(mechanics, "volume_m3");
+    assert!(close(density, expected, 1e-9), "{density} vs {expected}");
+}
+
+#[test]
+fn torque_increases_with_current() {
+    let v = json(&["analyze", "--mesh", "coarse", "--points", "4", "--json"]);
+    let curve = v["torque_current_curve"].as_array().expect("torque_current_curve is an array");
+    assert_eq!(curve.len(), 4);
+    for pair in curve.windows(2) {
+        let (a, b) = (&pair[0], &pair[1]);
+        assert!(number(b, "current_A") > number(a, "current_A"), "{a} → {b}");
+        assert!(number(b, "torque_Nm") > number(a, "torque_Nm"), "{a} → {b}");
+        assert!(number(b, "mean_B_T") > number(a, "mean_B_T"), "{a} → {b}");
+    }
+}
+
+#[test]
+fn plot_dir_gets_the_three_plots() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let plots = dir.path().join("plots");
+    let out = mrbrake(&[
+        "analyze",
+        "--mesh",
+        "coarse",
+        "--points",
+        "2",
+        "--plot-dir",
+        plots.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for name in ["field_map.svg", "torque_current.svg", "gap_flux_density.svg"] {
+        let text = std::fs::read_to_string(plots.join(name))
+            .unwrap_or_else(|e| panic!("{name} not written: {e}"));
+        assert!(text.contains("<svg") && text.trim_end().ends_with("</svg>"), "{name}");
+    }
+}
+
+#[test]
+fn negative_gap_exits_2_naming_the_field() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let drum = std::fs::read_to_string(examples_specs().join("drum.toml")).expect("drum.toml");
+    assert!(drum.contains("gap = \"0.5mm\""), "the example changed; update this test");
+    let bad = dir.path().join("negative-gap.toml");
+    std::fs::write(&bad, drum.replace("gap = \"0.5mm\"", "gap = \"-0.5mm\"")).unwrap();
+    let out = mrbrake(&["analyze", bad.to_str().unwrap(), "--mesh", "coarse", "--points", "2"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
+    assert!(err.contains("drum.gap"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn export_geo_writes_physical_groups() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let geo = dir.path().join("x.geo");
+    let spec = examples_specs().join("drum.toml");
+    let out = mrbrake(&["export-geo", spec.to_str().unwrap(), "-o", geo.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(&geo).expect("the .geo file is written");
+    assert!(text.contains("Physical Surface"), "{text}");
+    assert!(text.contains("Point(") && text.contains("Plane Surface"), "{text}");
+}
+
+#[test]
+fn study_thesis_tables_returns_four_tables() {
+    let v = json(&["study", "thesis-tables", "--mesh", "coarse", "--json"]);
+    let tables = v.as_array().expect("a JSON array of tables");
+    assert_eq!(tables.len(), 4);
+    for (table, expected) in tables.iter().zip(["4.1", "4.2", "4.3", "4.4"]) {
+        let name = table["table"].as_str().expect("table name");
+        assert!(name.contains(expected), "{name} should be Table {expected}");
+        let rows = table["rows"].as_array().expect("rows");
+        assert!(rows.len() >= 2, "{table}");
+        for row in rows {
+            assert!(row["label"].is_string(), "{row}");
+            assert!(number(row, "local_Nm") > 0.0, "{row}");
+        }
+    }
+}
