@@ -3,29 +3,11 @@
 //! internal consistency (P = I²R, τ = L/R, gap torques adding up), the plots, the Gmsh export, the
 //! four study tables, and a bad spec (negative gap) giving a message naming the field and exit code 2.
 
+mod common;
+
+use common::{close, json, mrbrake, number};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn mrbrake(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mrbrake"))
-        .args(args)
-        .output()
-        .expect("the mrbrake binary runs")
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = mrbrake(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
-}
-
-fn number(v: &serde_json::Value, field: &str) -> f64 {
-    v[field].as_f64().unwrap_or_else(|| panic!("field '{field}' is not a number in {v}"))
-}
-
-fn close(actual: f64, expected: f64, relative: f64) -> bool {
-    (actual - expected).abs() <= relative * expected.abs()
-}
 
 fn examples_specs() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/specs")

@@ -3,21 +3,11 @@
 //! circuit estimate, the `.vtu` and SVG outputs, and bad problem files (missing file, unknown
 //! physical group, region without material) giving a message that names the culprit and exit code 2.
 
+mod common;
+
+use common::{expect_input_error, json, mrbrake, number};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn mrbrake(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mrbrake"))
-        .args(args)
-        .output()
-        .expect("the mrbrake binary runs")
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = mrbrake(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
-}
 
 fn examples_fem() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/fem")
@@ -25,20 +15,6 @@ fn examples_fem() -> PathBuf {
 
 fn potcore_problem() -> String {
     examples_fem().join("potcore.toml").to_str().expect("UTF-8 path").to_owned()
-}
-
-fn number(v: &serde_json::Value, field: &str) -> f64 {
-    v[field].as_f64().unwrap_or_else(|| panic!("field '{field}' is not a number in {v}"))
-}
-
-fn expect_input_error(args: &[&str], needles: &[&str]) {
-    let out = mrbrake(args);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?} should exit 2; stderr: {err}");
-    for n in needles {
-        assert!(err.contains(n), "{args:?}: stderr lacks '{n}': {err}");
-    }
-    assert!(!err.contains("panicked"), "{err}");
 }
 
 #[test]

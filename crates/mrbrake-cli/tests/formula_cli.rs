@@ -1,20 +1,9 @@
 //! CLI behaviour of `mrbrake formula`: the thesis numbers end to end, JSON fields, and bad input
 //! (wrong unit, negative length, R2 < R1) giving a clear message and exit code 2.
 
-use std::process::{Command, Output};
+mod common;
 
-fn mrbrake(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mrbrake"))
-        .args(args)
-        .output()
-        .expect("the mrbrake binary runs")
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = mrbrake(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
-}
+use common::{expect_input_error, json};
 
 #[test]
 fn single_disc_0958() {
@@ -153,16 +142,6 @@ fn coil_fields_and_thesis_current_density() {
         "--json",
     ]);
     assert!(v["turns"].as_u64().unwrap() > 100);
-}
-
-fn expect_input_error(args: &[&str], needles: &[&str]) {
-    let out = mrbrake(args);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?} should exit 2; stderr: {err}");
-    for n in needles {
-        assert!(err.contains(n), "{args:?}: stderr lacks '{n}': {err}");
-    }
-    assert!(!err.contains("panicked"), "{err}");
 }
 
 #[test]

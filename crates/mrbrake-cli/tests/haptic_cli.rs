@@ -3,24 +3,9 @@
 //! the Z-width map CSV agreeing with the passivity condition (2.2), and a bad `--duration` unit
 //! giving a clear message and exit code 2.
 
-use std::process::{Command, Output};
+mod common;
 
-fn mrbrake(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mrbrake"))
-        .args(args)
-        .output()
-        .expect("the mrbrake binary runs")
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = mrbrake(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
-}
-
-fn number(v: &serde_json::Value, field: &str) -> f64 {
-    v[field].as_f64().unwrap_or_else(|| panic!("field '{field}' is not a number in {v}"))
-}
+use common::{json, mrbrake, number};
 
 fn wall(device: &str) -> serde_json::Value {
     let v = json(&["haptic", "wall", "--device", device, "--json"]);

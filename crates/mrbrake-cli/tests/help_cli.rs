@@ -1,14 +1,9 @@
 //! The command tree of `mrbrake`: the top-level help lists every subcommand, and every subcommand
 //! (and every nested one) answers `--help` with exit code 0 and a usage line.
 
-use std::process::{Command, Output};
+mod common;
 
-fn mrbrake(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mrbrake"))
-        .args(args)
-        .output()
-        .expect("the mrbrake binary runs")
-}
+use common::mrbrake;
 
 const SUBCOMMANDS: [&str; 11] = [
     "analyze",

@@ -1,19 +1,8 @@
 //! CLI behaviour of `mrbrake materials`: list, show (text and JSON), and bad input (exit code 2).
 
-use std::process::{Command, Output};
+mod common;
 
-fn mrbrake(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mrbrake"))
-        .args(args)
-        .output()
-        .expect("the mrbrake binary runs")
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = mrbrake(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
-}
+use common::{json, mrbrake};
 
 #[test]
 fn list_shows_every_required_material() {

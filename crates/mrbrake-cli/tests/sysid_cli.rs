@@ -3,39 +3,11 @@
 //! hysteresis figures and the poles of its brake dynamics; plus `tfest` on exact synthetic data and
 //! bad input (a NaN torque in a log, more zeros than poles) giving a clear message and exit code 2.
 
+mod common;
+
+use common::{expect_input_error, json, mrbrake, number, path_str};
+
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn mrbrake(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mrbrake"))
-        .args(args)
-        .output()
-        .expect("the mrbrake binary runs")
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = mrbrake(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
-}
-
-fn number(v: &serde_json::Value, field: &str) -> f64 {
-    v[field].as_f64().unwrap_or_else(|| panic!("field '{field}' is not a number in {v}"))
-}
-
-fn path_str(path: &Path) -> &str {
-    path.to_str().expect("UTF-8 temporary path")
-}
-
-fn expect_input_error(args: &[&str], needles: &[&str]) {
-    let out = mrbrake(args);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?} should exit 2; stderr: {err}");
-    for n in needles {
-        assert!(err.contains(n), "{args:?}: stderr lacks '{n}': {err}");
-    }
-    assert!(!err.contains("panicked"), "{err}");
-}
 
 /// Real poles (rad/s, positive) of `a s² + b s + 1`.
 fn real_poles_of_quadratic(a: f64, b: f64) -> [f64; 2] {
