@@ -73,23 +73,14 @@ pub struct SingleDiscArgs {
     fluid: FluidArgs,
 }
 
-/// Arguments of `formula multi-disc`.
+/// Arguments of `formula multi-disc`: the single disc's plus the number of discs.
 #[derive(Debug, Args)]
 pub struct MultiDiscArgs {
     /// Number of rotating discs n (each sheared on both faces).
     #[arg(long, value_name = "N")]
     discs: u32,
-    /// Inner radius R1 of the fluid annuli.
-    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
-    r1: String,
-    /// Outer radius R2 of the fluid annuli.
-    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
-    r2: String,
-    /// Fluid gap g on each side of each disc (needed only with --speed).
-    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
-    gap: Option<String>,
     #[command(flatten)]
-    fluid: FluidArgs,
+    disc: SingleDiscArgs,
 }
 
 /// Arguments of `formula drum`.
@@ -166,24 +157,8 @@ pub struct CoilArgs {
 /// Runs `mrbrake formula …`.
 pub fn run(command: FormulaCommand) -> anyhow::Result<()> {
     match command {
-        FormulaCommand::SingleDisc(a) => {
-            let r1 = length("--r1", &a.r1)?;
-            let r2 = length("--r2", &a.r2)?;
-            let fluid = resolve_fluid(&a.fluid)?;
-            let viscous = fluid.viscous(a.gap.as_deref())?;
-            let t = formula::single_disc(r1, r2, fluid.tau_y_pa, viscous)?;
-            let inputs = json!({ "r1_m": r1, "r2_m": r2 });
-            report("single-disc", "(3.6)/(3.7)", inputs, &fluid, viscous, t, a.fluid.json)
-        }
-        FormulaCommand::MultiDisc(a) => {
-            let r1 = length("--r1", &a.r1)?;
-            let r2 = length("--r2", &a.r2)?;
-            let fluid = resolve_fluid(&a.fluid)?;
-            let viscous = fluid.viscous(a.gap.as_deref())?;
-            let t = formula::multi_disc(a.discs, r1, r2, fluid.tau_y_pa, viscous)?;
-            let inputs = json!({ "discs": a.discs, "r1_m": r1, "r2_m": r2 });
-            report("multi-disc", "(3.8)", inputs, &fluid, viscous, t, a.fluid.json)
-        }
+        FormulaCommand::SingleDisc(a) => disc(1, &a, "single-disc", "(3.6)/(3.7)"),
+        FormulaCommand::MultiDisc(a) => disc(a.discs, &a.disc, "multi-disc", "(3.8)"),
         FormulaCommand::Drum(a) => {
             let r = length("--r", &a.r)?;
             let h = length("--h", &a.h)?;
@@ -211,6 +186,17 @@ pub fn run(command: FormulaCommand) -> anyhow::Result<()> {
         }
         FormulaCommand::Coil(a) => coil(a),
     }
+}
+
+/// Single disc (n = 1) or multi-disc brake torque, (3.6)–(3.8).
+fn disc(n: u32, a: &SingleDiscArgs, configuration: &str, equation: &str) -> anyhow::Result<()> {
+    let r1 = length("--r1", &a.r1)?;
+    let r2 = length("--r2", &a.r2)?;
+    let fluid = resolve_fluid(&a.fluid)?;
+    let viscous = fluid.viscous(a.gap.as_deref())?;
+    let t = formula::multi_disc(n, r1, r2, fluid.tau_y_pa, viscous)?;
+    let inputs = json!({ "discs": n, "r1_m": r1, "r2_m": r2 });
+    report(configuration, equation, inputs, &fluid, viscous, t, a.fluid.json)
 }
 
 fn length(flag: &str, text: &str) -> anyhow::Result<f64> {
