@@ -271,10 +271,12 @@ impl Solver {
         let cholesky = SparseCholesky::new(&pattern, options.threads)?;
         let symbolic_s = start.elapsed().as_secs_f64();
         let n_tri = mesh.triangles.len();
+        let rule = triangle_rule(options.quadrature_degree);
+        let data = ElementData::new(&mesh, &rule, region_index.clone());
         let mut solver = Self {
-            rule: triangle_rule(options.quadrature_degree),
+            rule,
             materials,
-            data: ElementData { material: region_index.clone(), current_density: vec![0.0; n_tri] },
+            data,
             region_index,
             region_area,
             dof,
