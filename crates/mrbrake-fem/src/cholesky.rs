@@ -1,13 +1,16 @@
 //! Sparse Cholesky factorisation (faer) with the symbolic analysis done once per pattern.
 //!
-//! The symbolic step (AMD fill-reducing ordering, elimination tree, supernode partition) depends only
-//! on the [`SymmetricPattern`]; it is computed in [`SparseCholesky::new`] and shared (`Arc`) by every
+//! The symbolic step (fill-reducing ordering, elimination tree, supernode partition) depends only
+//! on the [`SymmetricPattern`]; the ordering is faer's AMD or one given by the caller (e.g. the
+//! geometric nested dissection of [`crate::ordering`]); it is computed in [`SparseCholesky::new`] and shared (`Arc`) by every
 //! later numeric factorisation: all Newton iterations and all solves on the same mesh. The numeric
 //! factor and its workspace are allocated once and overwritten.
 
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::SymmetricOrdering;
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, factorize_symbolic_cholesky};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
@@ -37,8 +40,29 @@ impl std::fmt::Debug for SparseCholesky {
 }
 
 impl SparseCholesky {
-    /// Symbolic analysis of `pattern` (upper triangle). `threads = 0` uses rayon's global pool size.
+    /// Symbolic analysis of `pattern` (upper triangle) with the AMD ordering. `threads = 0` uses
+    /// rayon's global pool size.
     pub fn new(pattern: &SymmetricPattern, threads: usize) -> Result<Self, FemError> {
+        Self::with_order(pattern, threads, None)
+    }
+
+    /// Symbolic analysis with the elimination order `order` (`order[k]` = the row eliminated k-th,
+    /// a permutation of `0..n`), or AMD when `None`. A list that is not a permutation is an error.
+    pub fn with_order(
+        pattern: &SymmetricPattern,
+        threads: usize,
+        order: Option<&[usize]>,
+    ) -> Result<Self, FemError> {
+        let inverse = match order {
+            Some(order) => Some(inverse_permutation(order, pattern.n)?),
+            None => None,
+        };
+        let ordering = match (order, &inverse) {
+            (Some(forward), Some(inverse)) => {
+                SymmetricOrdering::Custom(PermRef::new_checked(forward, inverse, pattern.n))
+            }
+            _ => SymmetricOrdering::Amd,
+        };
         let structure = SymbolicSparseColMat::new_checked(
             pattern.n,
             pattern.n,
@@ -49,7 +73,7 @@ impl SparseCholesky {
         let symbolic = factorize_symbolic_cholesky(
             structure.as_ref(),
             Side::Upper,
-            faer::sparse::linalg::cholesky::SymmetricOrdering::Amd,
+            ordering,
             Default::default(),
         )
         .map_err(|e| FemError::Numerical(format!("symbolic Cholesky analysis failed: {e:?}")))?;
@@ -127,6 +151,23 @@ impl SparseCholesky {
     }
 }
 
+/// `inverse[order[k]] = k`, checking that `order` is a permutation of `0..n`.
+fn inverse_permutation(order: &[usize], n: usize) -> Result<Vec<usize>, FemError> {
+    let not_a_permutation =
+        || FemError::Numerical(format!("elimination order is not a permutation of 0..{n}"));
+    if order.len() != n {
+        return Err(not_a_permutation());
+    }
+    let mut inverse = vec![usize::MAX; n];
+    for (k, &v) in order.iter().enumerate() {
+        if v >= n || inverse[v] != usize::MAX {
+            return Err(not_a_permutation());
+        }
+        inverse[v] = k;
+    }
+    Ok(inverse)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -160,6 +201,32 @@ mod tests {
         rhs[n - 1] = 1.0;
         chol.solve_in_place(&mut rhs).unwrap();
         assert!((rhs[n - 1] - n as f64 / 2.0).abs() < 1e-10);
+    }
+
+    #[test]
+    fn custom_order_gives_the_same_solution_and_bad_orders_are_errors() {
+        let n = 30;
+        let mut dofs = vec![crate::pattern::CONSTRAINED, 0];
+        for i in 0..n - 1 {
+            dofs.extend([i, i + 1]);
+        }
+        let pattern = SymmetricPattern::new(n, 2, &dofs);
+        let element_upper: Vec<f64> = (0..n).flat_map(|_| [1.0, -1.0, 1.0]).collect();
+        let mut values = vec![0.0; pattern.nnz()];
+        pattern.assemble(&element_upper, &mut values);
+        let reversed: Vec<usize> = (0..n).rev().collect();
+        let mut chol = SparseCholesky::with_order(&pattern, 1, Some(&reversed)).unwrap();
+        chol.factorize(&values).unwrap();
+        let mut rhs = vec![0.0; n];
+        rhs[n - 1] = 1.0;
+        chol.solve_in_place(&mut rhs).unwrap();
+        for (i, x) in rhs.iter().enumerate() {
+            assert!((x - (i + 1) as f64).abs() < 1e-10);
+        }
+        let mut repeated = reversed.clone();
+        repeated[0] = repeated[1];
+        assert!(SparseCholesky::with_order(&pattern, 1, Some(&repeated)).is_err());
+        assert!(SparseCholesky::with_order(&pattern, 1, Some(&reversed[1..])).is_err());
     }
 
     #[test]

@@ -8,7 +8,8 @@
 //! - [`quadrature`] gives triangle and interval rules; [`element`] the P1 triangle geometry
 //!   (barycentric gradients) used by the forms.
 //! - [`pattern::SymmetricPattern`] is the sparsity pattern with a precomputed element scatter map, and
-//!   [`cholesky::SparseCholesky`] the faer sparse Cholesky with the symbolic analysis done once.
+//!   [`cholesky::SparseCholesky`] the faer sparse Cholesky with the symbolic analysis done once;
+//!   [`ordering`] gives it a nested-dissection elimination order for 2D meshes.
 //! - [`locate::PointLocator`] finds the triangle containing a point (uniform bucket grid).
 
 pub mod cholesky;
@@ -17,6 +18,7 @@ pub mod gmsh;
 pub mod locate;
 pub mod mesh;
 pub mod mesher;
+pub mod ordering;
 pub mod pattern;
 pub mod quadrature;
 pub mod structured;

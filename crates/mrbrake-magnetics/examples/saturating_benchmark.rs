@@ -47,7 +47,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .report
                 .history
                 .iter()
-                .map(|h| format!("{:.1e}@{:.2}", h.relative_residual, h.step_length))
+                .map(|h| format!(
+                    "{:.1e}@{:.2}{}",
+                    h.relative_residual,
+                    h.step_length,
+                    if h.cg_iterations > 0 {
+                        format!("cg{}", h.cg_iterations)
+                    } else {
+                        String::new()
+                    }
+                ))
                 .collect::<Vec<_>>()
         );
         let total = start.elapsed().as_secs_f64();
@@ -62,10 +71,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             solution.report.iterations,
         ));
         println!(
-            "nodes {nodes} unknowns {} factor nnz {} | iterations {} | total {total:.3} s = setup {setup:.3} (symbolic {:.3}) + assemble {:.3} + factor {:.3} + solve {:.3} + post {post:.3} | max |B| steel {:.3} T, gap B {:.3} T, λ {:.4e} Wb, W {energy:.4e} J",
+            "nodes {nodes} unknowns {} factor nnz {} | iterations {} ({} factorisations) | total {total:.3} s = setup {setup:.3} (symbolic {:.3}) + assemble {:.3} + factor {:.3} + solve {:.3} + post {post:.3} | max |B| steel {:.3} T, gap B {:.3} T, λ {:.4e} Wb, W {energy:.4e} J",
             solver.unknowns(),
             solver.factor_nnz(),
             solution.report.iterations,
+            solution.report.factorizations,
             solver.symbolic_factorisation_s(),
             t.assemble_s,
             t.factor_s,

@@ -42,6 +42,66 @@ pub(crate) struct ElementData {
     pub material: Vec<u32>,
     /// Source current density J_phi (A/m²), per triangle.
     pub current_density: Vec<f64>,
+    /// Geometric stiffness `G_ij = Σ_q w_q curl φ_i · curl φ_j` (upper triangle, same pair order as
+    /// the Jacobian) per triangle, with the same quadrature as [`element_kernel`]: for a linear
+    /// material the element residual is `ν G a − J f` and the Jacobian `ν G`, so those elements
+    /// (air, coils: most of a mesh) need no quadrature loop during the Newton iterations.
+    pub geometric_stiffness: Vec<[f64; 6]>,
+    /// Load per unit current density `f_i = Σ_q w_q φ_i` per triangle.
+    pub unit_load: Vec<[f64; 3]>,
+}
+
+impl ElementData {
+    /// Material indices per triangle, zero sources, and the precomputed linear element matrices.
+    pub fn new(mesh: &Mesh, rule: &[TrianglePoint], material: Vec<u32>) -> Self {
+        let n = mesh.triangles.len();
+        let mut geometric_stiffness = vec![[0.0; 6]; n];
+        let mut unit_load = vec![[0.0; 3]; n];
+        geometric_stiffness
+            .par_iter_mut()
+            .zip(unit_load.par_iter_mut())
+            .enumerate()
+            .with_min_len(2048)
+            .for_each(|(t, (g, f))| {
+                let tri = triangle(mesh, t);
+                for q in rule {
+                    let v = point_values(&tri, q);
+                    let mut p = 0;
+                    for i in 0..3 {
+                        f[i] += v.weight * v.basis[i];
+                        for j in i..3 {
+                            g[p] += v.weight
+                                * (v.curl[i][0] * v.curl[j][0] + v.curl[i][1] * v.curl[j][1]);
+                            p += 1;
+                        }
+                    }
+                }
+            });
+        Self { material, current_density: vec![0.0; n], geometric_stiffness, unit_load }
+    }
+}
+
+/// Residual `ν G a − J f` and Jacobian `ν G` of an element with a linear material.
+#[inline]
+fn linear_element(
+    nu: f64,
+    g: &[f64; 6],
+    f: &[f64; 3],
+    current_density: f64,
+    a: [f64; 3],
+    residual: &mut [f64],
+    jacobian: Option<&mut [f64]>,
+) {
+    let full = [[g[0], g[1], g[2]], [g[1], g[3], g[4]], [g[2], g[4], g[5]]];
+    for i in 0..3 {
+        let ga = full[i][0] * a[0] + full[i][1] * a[1] + full[i][2] * a[2];
+        residual[i] = nu * ga - current_density * f[i];
+    }
+    if let Some(out) = jacobian {
+        for (o, gp) in out.iter_mut().zip(g) {
+            *o = nu * gp;
+        }
+    }
 }
 
 /// Values of the form at one quadrature point of one element.
@@ -143,8 +203,14 @@ pub(crate) fn assemble_elements(
     const MIN_LEN: usize = 2048;
     let kernel = |t: usize, res: &mut [f64], jac: Option<&mut [f64]>| {
         let [n0, n1, n2] = mesh.triangles[t];
-        let tri = P1Triangle::new([mesh.nodes[n0], mesh.nodes[n1], mesh.nodes[n2]]);
         let material = &materials[data.material[t] as usize];
+        if let MagneticMaterial::Linear { .. } = material {
+            let nu = material.nu_and_dnu_db2(0.0).0;
+            let (g, f) = (&data.geometric_stiffness[t], &data.unit_load[t]);
+            linear_element(nu, g, f, data.current_density[t], [a[n0], a[n1], a[n2]], res, jac);
+            return;
+        }
+        let tri = P1Triangle::new([mesh.nodes[n0], mesh.nodes[n1], mesh.nodes[n2]]);
         element_kernel(
             &tri,
             rule,

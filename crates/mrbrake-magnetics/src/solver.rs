@@ -18,6 +18,19 @@
 //!    makes saturated problems converge from `A = 0`, where the first Newton step (with the initial
 //!    permeability of the iron) overshoots by orders of magnitude.
 //!
+//! Tail phase (inexact Newton–Krylov, Eisenstat & Walker, SIAM J. Sci. Comput. 17(1) 1996, 16–32):
+//! once a full Newton step has cut the residual at least tenfold (`‖R_k‖ <= 0.1 ‖R_{k−1}‖`, the
+//! quadratic phase has begun), the Jacobian changes little between iterations, so the new system
+//! `K_k δ = −R_k` is first solved by conjugate gradients preconditioned with the *previous* Cholesky
+//! factor, to the forcing tolerance `‖K_k δ + R_k‖ <= η_k ‖R_k‖`,
+//! `η_k = min(0.1, max(0.9 (‖R_k‖/‖R_{k−1}‖)², 0.5 rtol s / ‖R_k‖))` (Eisenstat–Walker choice 2,
+//! which keeps the local convergence superlinear, floored where a more accurate step could not
+//! change the outcome of the stopping test). If CG has not reached `η_k` within
+//! [`TAIL_CG_MAX_ITERATIONS`] iterations, the Jacobian is factorised and the step solved exactly as
+//! before. The CG step starts from 0, so it minimises the quadratic model on a Krylov space and is a
+//! descent direction (`δ·R = −δᵀK_kδ < 0` at every CG iterate): the line search and its guarantee
+//! are unchanged, and so is the stopping rule (always evaluated on the true residual).
+//!
 //! A step that cannot be found (40 trials), a non-finite residual, a failed factorisation or the
 //! iteration limit gives [`MagneticsError::NotConverged`] with the whole residual history.
 //!
@@ -30,6 +43,7 @@ use std::time::Instant;
 
 use mrbrake_fem::cholesky::SparseCholesky;
 use mrbrake_fem::mesh::Mesh;
+use mrbrake_fem::ordering::nested_dissection;
 use mrbrake_fem::pattern::{CONSTRAINED, SymmetricPattern};
 use mrbrake_fem::quadrature::{TrianglePoint, gauss_legendre_unit, triangle_rule};
 use serde::Serialize;
@@ -62,6 +76,13 @@ impl Default for SolverOptions {
 /// Line-search acceptance: `|g(α)| <= LINE_SEARCH_SLOPE |g(0)|` (see the module docs).
 const LINE_SEARCH_SLOPE: f64 = 0.3;
 
+/// Largest number of conjugate-gradient iterations (each costs one pair of triangular solves, about a
+/// fifth of a numeric factorisation) tried with the previous factor before refactorising.
+pub const TAIL_CG_MAX_ITERATIONS: usize = 4;
+
+/// Residual reduction of a full Newton step that marks the start of the tail phase (module docs).
+const TAIL_PHASE_REDUCTION: f64 = 0.1;
+
 /// One Newton iteration in the history.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct NewtonStep {
@@ -73,6 +94,9 @@ pub struct NewtonStep {
     pub step_length: f64,
     /// `‖α δ‖∞ / ‖A‖∞` after the step.
     pub relative_update: f64,
+    /// Conjugate-gradient iterations that gave the step with the previous factor (tail phase), or 0
+    /// when the Jacobian was factorised and the step solved directly.
+    pub cg_iterations: usize,
 }
 
 /// Timings of one solve (seconds).
@@ -91,8 +115,10 @@ pub struct SolveTimings {
 /// Outcome of the Newton iterations.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct NewtonReport {
-    /// Number of linear solves performed.
+    /// Number of Newton steps (linear systems solved, directly or by preconditioned CG).
     pub iterations: usize,
+    /// Number of numeric Cholesky factorisations (at most `iterations`).
+    pub factorizations: usize,
     /// True when the stopping rule was met.
     pub converged: bool,
     /// Residual scale `s` of the stopping rule.
@@ -243,13 +269,20 @@ impl Solver {
         let pattern = SymmetricPattern::new(n_free, 3, &element_dofs);
         let open_terms = open_boundary_terms(&mesh, &problem, &dof, &pattern)?;
         let start = Instant::now();
-        let cholesky = SparseCholesky::new(&pattern, options.threads)?;
+        // Nested dissection on the node coordinates: less work per numeric factorisation than AMD
+        // on 2D meshes (see mrbrake_fem::ordering).
+        let free_coordinates: Vec<[f64; 2]> =
+            (0..n).filter(|&v| dof[v] != CONSTRAINED).map(|v| mesh.nodes[v]).collect();
+        let order = nested_dissection(&pattern, &free_coordinates);
+        let cholesky = SparseCholesky::with_order(&pattern, options.threads, Some(&order))?;
         let symbolic_s = start.elapsed().as_secs_f64();
         let n_tri = mesh.triangles.len();
+        let rule = triangle_rule(options.quadrature_degree);
+        let data = ElementData::new(&mesh, &rule, region_index.clone());
         let mut solver = Self {
-            rule: triangle_rule(options.quadrature_degree),
+            rule,
             materials,
-            data: ElementData { material: region_index.clone(), current_density: vec![0.0; n_tri] },
+            data,
             region_index,
             region_area,
             dof,
@@ -433,6 +466,10 @@ impl Solver {
         let mut delta = vec![0.0; self.n_free];
         let mut converged = false;
         let mut iterations = 0;
+        let mut factorizations = 0;
+        // Residual norm before the previous step, and whether that step was a full step.
+        let mut previous: Option<(f64, bool)> = None;
+        let mut cg = ConjugateGradientWork::default();
         loop {
             let r_norm = norm2(&residual);
             if !r_norm.is_finite() {
@@ -450,21 +487,39 @@ impl Solver {
                 break;
             }
             iterations += 1;
-            let t = Instant::now();
-            if let Err(e) = self.cholesky.factorize(&self.values) {
-                return Err(self.failure(
-                    &format!("{e} (Jacobian not positive definite: is a B-H curve non-monotone?)"),
-                    history,
-                    scale,
-                ));
+            // Tail phase: try CG preconditioned by the previous factor (module docs).
+            let mut cg_iterations = 0;
+            if let Some((previous_norm, true)) = previous
+                && factorizations > 0
+                && r_norm <= TAIL_PHASE_REDUCTION * previous_norm
+            {
+                let ratio = r_norm / previous_norm;
+                let forcing = (0.9 * ratio * ratio).max(0.5 * rtol * scale / r_norm).min(0.1);
+                let t = Instant::now();
+                let outcome = self.stale_factor_cg(&residual, forcing, &mut delta, &mut cg)?;
+                timings.solve_s += t.elapsed().as_secs_f64();
+                cg_iterations = outcome.unwrap_or(0);
             }
-            timings.factor_s += t.elapsed().as_secs_f64();
-            let t = Instant::now();
-            for (d, r) in delta.iter_mut().zip(&residual) {
-                *d = -r;
+            if cg_iterations == 0 {
+                let t = Instant::now();
+                if let Err(e) = self.cholesky.factorize(&self.values) {
+                    return Err(self.failure(
+                        &format!(
+                            "{e} (Jacobian not positive definite: is a B-H curve non-monotone?)"
+                        ),
+                        history,
+                        scale,
+                    ));
+                }
+                factorizations += 1;
+                timings.factor_s += t.elapsed().as_secs_f64();
+                let t = Instant::now();
+                for (d, r) in delta.iter_mut().zip(&residual) {
+                    *d = -r;
+                }
+                self.cholesky.solve_in_place(&mut delta)?;
+                timings.solve_s += t.elapsed().as_secs_f64();
             }
-            self.cholesky.solve_in_place(&mut delta)?;
-            timings.solve_s += t.elapsed().as_secs_f64();
 
             // Line search on the convex energy (module docs): g(α) = δ·R(A + αδ) = dW/dα is
             // increasing in α with g(0) = −δᵀKδ < 0. The full step is tried first.
@@ -520,6 +575,7 @@ impl Solver {
                 relative_residual: r_norm / scale,
                 step_length: if accepted { alpha } else { 0.0 },
                 relative_update: d_max / a_max.max(f64::MIN_POSITIVE),
+                cg_iterations,
             });
             if !accepted {
                 return Err(self.failure(
@@ -528,6 +584,7 @@ impl Solver {
                     scale,
                 ));
             }
+            previous = Some((r_norm, trial_is_full_step(alpha)));
             std::mem::swap(&mut a, &mut trial);
             std::mem::swap(&mut residual, &mut trial_residual);
             // With only linear materials the first solve is exact up to the round-off of the direct
@@ -541,6 +598,7 @@ impl Solver {
         timings.total_s = start.elapsed().as_secs_f64();
         let report = NewtonReport {
             iterations,
+            factorizations,
             converged,
             residual_scale: scale,
             final_relative_residual: final_relative,
@@ -558,6 +616,58 @@ impl Solver {
             });
         }
         Ok(Solution::new(a, report))
+    }
+
+    /// Preconditioned conjugate gradients on `K δ = −R` (`K` the current Jacobian in `self.values`,
+    /// the preconditioner the Cholesky factor of an earlier Jacobian), from `δ = 0`, until
+    /// `‖K δ + R‖ <= forcing ‖R‖`. Returns the iteration count, or `None` (and `delta` undefined)
+    /// when [`TAIL_CG_MAX_ITERATIONS`] did not suffice or the curvature `pᵀKp` was not positive.
+    fn stale_factor_cg(
+        &mut self,
+        residual: &[f64],
+        forcing: f64,
+        delta: &mut [f64],
+        work: &mut ConjugateGradientWork,
+    ) -> Result<Option<usize>, MagneticsError> {
+        let n = residual.len();
+        work.resize(n);
+        let ConjugateGradientWork { r, z, p, kp } = work;
+        delta.iter_mut().for_each(|d| *d = 0.0);
+        for (ri, res) in r.iter_mut().zip(residual) {
+            *ri = -res;
+        }
+        let target = forcing * norm2(r);
+        z.copy_from_slice(r);
+        self.cholesky.solve_in_place(z)?;
+        p.copy_from_slice(z);
+        let mut rz = dot(r, z);
+        for iteration in 1..=TAIL_CG_MAX_ITERATIONS {
+            self.pattern.symmetric_mul(&self.values, p, kp);
+            let curvature = dot(p, kp);
+            if !(curvature > 0.0 && curvature.is_finite()) {
+                return Ok(None);
+            }
+            let step = rz / curvature;
+            for i in 0..n {
+                delta[i] += step * p[i];
+                r[i] -= step * kp[i];
+            }
+            if norm2(r) <= target {
+                return Ok(Some(iteration));
+            }
+            if iteration == TAIL_CG_MAX_ITERATIONS {
+                break;
+            }
+            z.copy_from_slice(r);
+            self.cholesky.solve_in_place(z)?;
+            let rz_next = dot(r, z);
+            let beta = rz_next / rz;
+            rz = rz_next;
+            for i in 0..n {
+                p[i] = z[i] + beta * p[i];
+            }
+        }
+        Ok(None)
     }
 
     fn failure(&self, reason: &str, history: Vec<NewtonStep>, scale: f64) -> MagneticsError {
@@ -618,6 +728,32 @@ impl Solver {
 
 fn norm2(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// True when the accepted line-search factor is the full Newton step.
+fn trial_is_full_step(alpha: f64) -> bool {
+    (alpha - 1.0).abs() <= f64::EPSILON
+}
+
+/// Work vectors of [`Solver::stale_factor_cg`], kept between iterations.
+#[derive(Debug, Default)]
+struct ConjugateGradientWork {
+    r: Vec<f64>,
+    z: Vec<f64>,
+    p: Vec<f64>,
+    kp: Vec<f64>,
+}
+
+impl ConjugateGradientWork {
+    fn resize(&mut self, n: usize) {
+        for v in [&mut self.r, &mut self.z, &mut self.p, &mut self.kp] {
+            v.resize(n, 0.0);
+        }
+    }
 }
 
 /// Open-boundary (asymptotic) terms `ν0/R ∫_edge φ_a φ_b r dl` (2-point Gauss, exact: the integrand
