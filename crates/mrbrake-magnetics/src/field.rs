@@ -309,6 +309,12 @@ impl Solver {
         (energy, coenergy)
     }
 
+    /// The flux function `ψ = r A_phi` (Wb/rad) at every node: the flux through the disc of radius r at
+    /// height z is `2π ψ`, so flux lines are its level lines (field maps, VTU output).
+    pub fn flux_function(&self, solution: &Solution) -> Vec<f64> {
+        self.problem.mesh.nodes.iter().zip(&solution.a_phi).map(|(p, a)| p[0] * a).collect()
+    }
+
     /// B at the centroid of every triangle: `[B_r, B_z]` pairs (T), for maps and VTU output.
     pub fn element_b(&self, solution: &Solution) -> Vec<[f64; 2]> {
         let mesh = &self.problem.mesh;

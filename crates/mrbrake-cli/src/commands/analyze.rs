@@ -204,8 +204,7 @@ fn write_plots(
     let mesh = field.solver.mesh();
     let element_b = field.solver.element_b(&field.solution);
     let b_abs: Vec<f64> = element_b.iter().map(|b| b[0].hypot(b[1])).collect();
-    let psi: Vec<f64> =
-        mesh.nodes.iter().zip(field.solution.a_phi()).map(|(p, a)| p[0] * a).collect();
+    let psi = field.solver.flux_function(&field.solution);
     let title = format!("{}: |B| and flux lines at {} A", a.name, a.max_current_a);
     let map = FieldMap {
         title: &title,

@@ -51,9 +51,7 @@ fn solve(args: SolveArgs) -> anyhow::Result<()> {
     let (element_b, b_abs, flux_function) = if need_fields {
         let element_b = solver.element_b(&solution);
         let b_abs: Vec<f64> = element_b.iter().map(|b| b[0].hypot(b[1])).collect();
-        let psi: Vec<f64> =
-            mesh.nodes.iter().zip(solution.a_phi()).map(|(p, a)| p[0] * a).collect();
-        (element_b, b_abs, psi)
+        (element_b, b_abs, solver.flux_function(&solution))
     } else {
         (Vec::new(), Vec::new(), Vec::new())
     };
