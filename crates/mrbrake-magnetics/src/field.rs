@@ -289,24 +289,30 @@ impl Solver {
 
     /// Stored magnetic energy `W` and co-energy `W'` (J), whole body of revolution.
     pub fn energy(&self, solution: &Solution) -> (f64, f64) {
+        use rayon::prelude::*;
         let mesh = &self.problem.mesh;
-        let mut energy = 0.0;
-        let mut coenergy = 0.0;
-        for (t, nodes) in mesh.triangles.iter().enumerate() {
-            let material = &self.materials[self.region_index[t] as usize];
-            let tri = triangle(mesh, t);
-            let a = nodes.map(|v| solution.a_phi[v]);
-            for q in &self.rule {
-                let v = point_values(&tri, q);
-                let b = flux_density(&v, a);
-                let b2 = b[0] * b[0] + b[1] * b[1];
-                let w = material.energy_density(b2.sqrt());
-                let hb = material.nu_and_dnu_db2(b2).0 * b2;
-                energy += TWO_PI * v.weight * w;
-                coenergy += TWO_PI * v.weight * (hb - w);
-            }
-        }
-        (energy, coenergy)
+        // Element sums in parallel (independent per triangle); the reduction order only affects
+        // round-off.
+        (0..mesh.triangles.len())
+            .into_par_iter()
+            .map(|t| {
+                let material = &self.materials[self.region_index[t] as usize];
+                let tri = triangle(mesh, t);
+                let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
+                let mut w_sum = 0.0;
+                let mut co_sum = 0.0;
+                for q in &self.rule {
+                    let v = point_values(&tri, q);
+                    let b = flux_density(&v, a);
+                    let b2 = b[0] * b[0] + b[1] * b[1];
+                    let w = material.energy_density(b2.sqrt());
+                    let hb = material.nu_and_dnu_db2(b2).0 * b2;
+                    w_sum += TWO_PI * v.weight * w;
+                    co_sum += TWO_PI * v.weight * (hb - w);
+                }
+                (w_sum, co_sum)
+            })
+            .reduce(|| (0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1))
     }
 
     /// The flux function `ψ = r A_phi` (Wb/rad) at every node: the flux through the disc of radius r at
