@@ -160,21 +160,32 @@ impl Solver {
             }
         }
         let axis_tol = 1e-9 * mesh.size_scale();
+        let area: Vec<f64> = (0..mesh.triangles.len()).map(|t| mesh.signed_area(t)).collect();
         let mut corners = vec![[0.0; 2]; 3 * mesh.triangles.len()];
+        // Per node: one area-weighted sum per region tag around it (usually one or two tags), then
+        // every corner takes the average of its own region. Linear in the node's valence.
+        let mut by_tag: Vec<(u32, [f64; 2], f64)> = Vec::with_capacity(4);
         for v in 0..n {
             let around = &corner_of[start[v]..start[v + 1]];
+            by_tag.clear();
+            for &d in around {
+                let t = d / 3;
+                let tag = mesh.triangle_tags[t];
+                let entry = match by_tag.iter().position(|e| e.0 == tag) {
+                    Some(i) => &mut by_tag[i],
+                    None => {
+                        by_tag.push((tag, [0.0; 2], 0.0));
+                        by_tag.last_mut().expect("just pushed")
+                    }
+                };
+                entry.1[0] += area[t] * centroid_b[t][0];
+                entry.1[1] += area[t] * centroid_b[t][1];
+                entry.2 += area[t];
+            }
             for &c in around {
                 let tag = mesh.triangle_tags[c / 3];
-                let (mut sum, mut weight) = ([0.0; 2], 0.0);
-                for &d in around {
-                    let t = d / 3;
-                    if mesh.triangle_tags[t] == tag {
-                        let area = mesh.signed_area(t);
-                        sum[0] += area * centroid_b[t][0];
-                        sum[1] += area * centroid_b[t][1];
-                        weight += area;
-                    }
-                }
+                let (_, sum, weight) =
+                    by_tag.iter().find(|e| e.0 == tag).expect("every corner's tag was summed");
                 let mut b = [sum[0] / weight, sum[1] / weight];
                 if mesh.nodes[v][0] <= axis_tol {
                     b[0] = 0.0;
@@ -323,9 +334,11 @@ impl Solver {
 
     /// B at the centroid of every triangle: `[B_r, B_z]` pairs (T), for maps and VTU output.
     pub fn element_b(&self, solution: &Solution) -> Vec<[f64; 2]> {
+        use rayon::prelude::*;
         let mesh = &self.problem.mesh;
         let scale = mesh.size_scale();
         (0..mesh.triangles.len())
+            .into_par_iter()
             .map(|t| {
                 let tri = triangle(mesh, t);
                 let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
