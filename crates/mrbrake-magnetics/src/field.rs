@@ -119,15 +119,19 @@ impl Solver {
         self.locator.get_or_init(|| PointLocator::new(&self.problem.mesh))
     }
 
-    /// Recovered B at `[r, z]` (m) (see the module docs); an error if the point is outside the mesh.
-    pub fn b_at(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
-        let mesh = &self.problem.mesh;
-        let (t, bary) = self.locator().locate(mesh, p).ok_or_else(|| {
+    /// The triangle containing `p` and its barycentric coordinates, or an input error naming `p`.
+    fn locate(&self, p: [f64; 2]) -> Result<(usize, [f64; 3]), MagneticsError> {
+        self.locator().locate(&self.problem.mesh, p).ok_or_else(|| {
             MagneticsError::Input(format!(
                 "point (r = {} m, z = {} m) is outside the mesh",
                 p[0], p[1]
             ))
-        })?;
+        })
+    }
+
+    /// Recovered B at `[r, z]` (m) (see the module docs); an error if the point is outside the mesh.
+    pub fn b_at(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
+        let (t, bary) = self.locate(p)?;
         let corners = solution.recovered.get_or_init(|| self.recover_b(solution));
         let mut b = [0.0; 2];
         for k in 0..3 {
@@ -199,12 +203,7 @@ impl Solver {
     /// Unrecovered B of the P1 potential in the triangle containing `[r, z]`.
     pub fn b_at_raw(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
         let mesh = &self.problem.mesh;
-        let (t, bary) = self.locator().locate(mesh, p).ok_or_else(|| {
-            MagneticsError::Input(format!(
-                "point (r = {} m, z = {} m) is outside the mesh",
-                p[0], p[1]
-            ))
-        })?;
+        let (t, bary) = self.locate(p)?;
         let tri = triangle(mesh, t);
         let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
         let b = b_in_triangle(&tri, a, bary, p[0], mesh.size_scale());

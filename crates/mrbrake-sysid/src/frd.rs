@@ -61,15 +61,8 @@ pub fn read_frd_from(
     text: &str,
     weight_col: Option<&str>,
 ) -> Result<Frd, SysidError> {
-    let file_err = |line: Option<u64>, message: String| SysidError::File {
-        file: source.to_path_buf(),
-        line,
-        message,
-    };
-    let mut rdr = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .from_reader(text.as_bytes());
+    let file_err = crate::log::file_error(source);
+    let mut rdr = crate::log::csv_reader(text.as_bytes(), false);
     let header: Vec<String> = rdr
         .headers()
         .map_err(|e| file_err(Some(1), format!("cannot read the header row: {e}")))?

@@ -176,15 +176,8 @@ pub fn read_manifest(path: &Path) -> Result<Vec<ManifestEntry>, SysidError> {
     let text = std::fs::read_to_string(path)
         .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
     let base = path.parent().unwrap_or(Path::new("."));
-    let file_err = |line: Option<u64>, message: String| SysidError::File {
-        file: path.to_path_buf(),
-        line,
-        message,
-    };
-    let mut rdr = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .from_reader(text.as_bytes());
+    let file_err = crate::log::file_error(path);
+    let mut rdr = crate::log::csv_reader(text.as_bytes(), false);
     let header = rdr
         .headers()
         .map_err(|e| file_err(Some(1), format!("cannot read the header row: {e}")))?

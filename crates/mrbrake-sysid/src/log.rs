@@ -93,16 +93,8 @@ pub fn read_columns_from(
     reader: impl Read,
     names: &[&str],
 ) -> Result<Vec<Vec<f64>>, SysidError> {
-    let file_err = |line: Option<u64>, message: String| SysidError::File {
-        file: source.to_path_buf(),
-        line,
-        message,
-    };
-    let mut rdr = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .flexible(true)
-        .from_reader(reader);
+    let file_err = file_error(source);
+    let mut rdr = csv_reader(reader, true);
     let header = rdr
         .headers()
         .map_err(|e| file_err(Some(1), format!("cannot read the header row: {e}")))?
@@ -170,6 +162,21 @@ fn check_time(source: &Path, time_s: &[f64], time_col: &str) -> Result<(), Sysid
         }
     }
     Ok(())
+}
+
+/// The CSV reader every sysid file uses: header row, fields trimmed, `#` comment lines skipped;
+/// `flexible` allows rows of differing length (logs with trailing annotation columns).
+pub(crate) fn csv_reader<R: Read>(reader: R, flexible: bool) -> csv::Reader<R> {
+    csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .flexible(flexible)
+        .from_reader(reader)
+}
+
+/// A constructor of [`SysidError::File`] errors for `file` (line, message).
+pub(crate) fn file_error(file: &Path) -> impl Fn(Option<u64>, String) -> SysidError + '_ {
+    move |line, message| SysidError::File { file: file.to_path_buf(), line, message }
 }
 
 #[cfg(test)]
