@@ -29,6 +29,12 @@ pub fn code_for(err: &anyhow::Error) -> i32 {
             || cause.downcast_ref::<mrbrake_sim::SimError>().is_some_and(|e| e.is_input_error())
             || cause
                 .downcast_ref::<mrbrake_report::ReportError>()
+                .is_some_and(|e| e.is_input_error())
+            || cause
+                .downcast_ref::<mrbrake_store::StoreError>()
+                .is_some_and(|e| e.is_input_error())
+            || cause
+                .downcast_ref::<mrbrake_explore::ExploreError>()
                 .is_some_and(|e| e.is_input_error());
         if input {
             return 2;

@@ -198,6 +198,10 @@ pub struct Mechanics {
     pub mass_kg: f64,
     /// Envelope volume of the device (its bounding cylinder) (m³).
     pub volume_m3: f64,
+    /// Outer diameter of the modelled device (m).
+    pub outer_diameter_m: f64,
+    /// Axial length of the modelled device (m).
+    pub length_m: f64,
     /// Moment of inertia of the parts that turn with the shaft in direction 1 (kg·m²).
     pub rotor_inertia_kg_m2: f64,
     /// The same for direction 2 (bidirectional only) (kg·m²).
@@ -208,6 +212,20 @@ pub struct Mechanics {
     /// Torque at the maximum current per mass (N·m/kg).
     #[serde(rename = "torque_density_Nm_per_kg")]
     pub torque_density_nm_per_kg: f64,
+}
+
+/// Flux density in the steel flux path at the maximum current: how close the circuit is to saturation
+/// (the thesis sized the flux path by hand so that the steel stays near 1 T, 4.4.1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FluxPathField {
+    /// Largest |B| at any quadrature point of any flux-path part (T). Re-entrant steel corners make
+    /// this a local, mesh-dependent peak.
+    pub max_b_t: f64,
+    /// The largest of the parts' volume-weighted 90 % quantiles of |B| (T): the level that a tenth
+    /// of the most loaded part exceeds; robust to corner peaks, so better for a saturation limit.
+    pub q90_b_t: f64,
+    /// Volume-weighted mean |B| over all flux-path parts (T).
+    pub mean_b_t: f64,
 }
 
 /// Mesh size.
@@ -255,6 +273,8 @@ pub struct Analysis {
     pub coil: CoilResult,
     /// Mechanics.
     pub mechanics: Mechanics,
+    /// |B| in the steel flux path at the maximum current (unit 1 energised).
+    pub flux_path: FluxPathField,
     /// Mesh size.
     pub mesh: MeshSummary,
     /// Analysis speed for the viscous term (rad/s).
@@ -372,6 +392,7 @@ pub fn analyze_with_field(
     let last = *curve.last().expect("the sweep has at least two points");
     let first = curve[0];
     let mechanics = mechanics(&geometry, spec, last.torque_nm)?;
+    let flux_path = flux_path_field(&solver, &solution_max, &geometry)?;
     let torque = TorqueSummary {
         at_max_current_nm: last.torque_nm,
         off_state_nm: first.torque_nm,
@@ -395,6 +416,7 @@ pub fn analyze_with_field(
         gaps,
         coil,
         mechanics,
+        flux_path,
         mesh: MeshSummary { nodes: mesh.nodes.len(), elements: mesh.triangles.len() },
         speed_rad_s: options.speed_rad_s,
         timings_s: Timings {
@@ -407,6 +429,27 @@ pub fn analyze_with_field(
         warnings,
     };
     Ok((analysis, FieldAtMaxCurrent { solver, solution: solution_max, geometry }))
+}
+
+/// |B| statistics over the flux-path parts ([`PartKind::FluxPath`]).
+fn flux_path_field(
+    solver: &Solver,
+    solution: &Solution,
+    geometry: &BrakeGeometry,
+) -> Result<FluxPathField, DesignError> {
+    let mut field = FluxPathField { max_b_t: 0.0, q90_b_t: 0.0, mean_b_t: 0.0 };
+    let mut volume = 0.0;
+    for region in geometry.regions.iter().filter(|r| r.kind == PartKind::FluxPath) {
+        let stats = solver.region_stats(solution, region.tag).map_err(numerical)?;
+        field.max_b_t = field.max_b_t.max(stats.max_b_t);
+        field.q90_b_t = field.q90_b_t.max(stats.quantiles_b_t[2]);
+        field.mean_b_t += stats.mean_b_t * stats.volume_m3;
+        volume += stats.volume_m3;
+    }
+    if volume > 0.0 {
+        field.mean_b_t /= volume;
+    }
+    Ok(field)
 }
 
 fn numerical(e: mrbrake_magnetics::MagneticsError) -> DesignError {
@@ -718,6 +761,8 @@ fn mechanics(
     Ok(Mechanics {
         mass_kg: mass,
         volume_m3: volume,
+        outer_diameter_m: 2.0 * d.r1,
+        length_m: d.z1 - d.z0,
         rotor_inertia_kg_m2: inertia[0],
         rotor_inertia_direction2_kg_m2: (geometry.units > 1).then_some(inertia[1]),
         torque_density_nm_per_m3: torque_nm / volume,

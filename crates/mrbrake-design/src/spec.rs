@@ -16,7 +16,7 @@
 //! by a rotating and a static wall, envelope) are checked there too, and reported through
 //! [`BrakeSpec::validate`].
 
-use serde::{Deserialize, Deserializer};
+use serde::{Deserialize, Deserializer, Serialize};
 
 use mrbrake_units::{Dimension, parse};
 
@@ -33,7 +33,8 @@ pub fn default_spec() -> BrakeSpec {
 }
 
 /// A length read from TOML: a string with a unit (`"25mm"`) or a bare number in metres.
-#[derive(Debug, Clone, Copy, PartialEq, PartialOrd)]
+/// Serialised as a bare SI number (metres), which the reader accepts.
+#[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Serialize)]
 pub struct Length(pub f64);
 
 impl Length {
@@ -44,7 +45,8 @@ impl Length {
 }
 
 /// A current read from TOML: a string with a unit (`"2A"`, `"500mA"`) or a bare number in amperes.
-#[derive(Debug, Clone, Copy, PartialEq, PartialOrd)]
+/// Serialised as a bare SI number (amperes), which the reader accepts.
+#[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Serialize)]
 pub struct Current(pub f64);
 
 impl Current {
@@ -82,7 +84,7 @@ impl<'de> Deserialize<'de> for Current {
 }
 
 /// The brake configuration (thesis 3.1.3 and 4.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Configuration {
     /// One rotating disc between two static case faces, two fluid surfaces (3.7).
@@ -117,7 +119,7 @@ impl Configuration {
 }
 
 /// Where the coil sits (thesis 3.1.4, Figures 3.7–3.9).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum CoilPlacement {
     /// Discs: radially inside the working surfaces (around the core on the shaft side).
@@ -133,7 +135,7 @@ pub enum CoilPlacement {
 
 /// Material names of the parts, from the `mrbrake_materials` library (e.g. `steel-1008`,
 /// `aluminium`, `stainless-304`, `mrf-122eg`, `copper`, `air`).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Materials {
     /// Low-carbon steel of the flux path (core, case wall, end plates, cylinders or discs).
@@ -164,7 +166,7 @@ fn default_air() -> String {
 }
 
 /// The shaft.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Shaft {
     /// Shaft radius (thesis Table 4.5: 5 mm).
@@ -172,7 +174,7 @@ pub struct Shaft {
 }
 
 /// The static magnetic circuit and the non-magnetic closures around the working surfaces.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Housing {
     /// Outer radius of the case (half the device diameter).
@@ -195,7 +197,7 @@ pub struct Housing {
 }
 
 /// Multi-drum working surfaces (thesis 4.4, 4.5, Figure 4.15).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Drum {
     /// R0: outer radius of the static inner core, the first fluid surface.
@@ -223,7 +225,7 @@ impl Drum {
 }
 
 /// Disc working surfaces (thesis 3.6–3.8, Figure 3.11).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Disc {
     /// R1: inner radius of the fluid annulus.
@@ -239,7 +241,7 @@ pub struct Disc {
 }
 
 /// The wire: by AWG gauge or by bare copper diameter.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Wire {
     /// American wire gauge (thesis Table 4.6).
@@ -255,7 +257,7 @@ pub struct Wire {
 }
 
 /// The coil (thesis 4.2.2: window C_w × C_h, (4.1)–(4.3)).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Coil {
     /// Where the coil sits.
@@ -276,7 +278,7 @@ pub struct Coil {
 }
 
 /// The spacer between the two units of a bidirectional brake.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Spacer {
     /// Axial thickness of the non-magnetic spacer.
@@ -284,7 +286,7 @@ pub struct Spacer {
 }
 
 /// The envelope the device must fit in.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Envelope {
     /// Maximum outer diameter.
@@ -294,7 +296,7 @@ pub struct Envelope {
 }
 
 /// Model (not device) settings.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Model {
     /// Air margin around the device, radially and axially, before the outer (A = 0) boundary.
@@ -308,7 +310,7 @@ impl Default for Model {
 }
 
 /// A whole brake specification.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BrakeSpec {
     /// A short name for reports.
@@ -404,6 +406,14 @@ impl BrakeSpec {
     /// Parses TOML text; `origin` (a file name) prefixes error messages.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, DesignError> {
         toml::from_str(text).map_err(|e| DesignError::Input(format!("{origin}: {e}")))
+    }
+
+    /// The spec as TOML, lengths and currents as bare SI numbers: a file [`Self::from_toml_str`] reads
+    /// back to an equal spec (design studies write their chosen designs this way).
+    pub fn to_toml_string(&self) -> Result<String, DesignError> {
+        toml::to_string(self).map_err(|e| {
+            DesignError::Numerical(format!("cannot write spec '{}' as TOML: {e}", self.name))
+        })
     }
 
     /// Reads and parses a spec file.

@@ -10,6 +10,7 @@ pub mod chart;
 pub mod field_map;
 pub mod haptic;
 pub mod hysteresis;
+pub mod pareto;
 
 pub use atomic::write_atomic;
 

@@ -84,42 +84,47 @@ pub fn run(a: AnalyzeArgs) -> anyhow::Result<()> {
 
 fn print_text(a: &Analysis, spec: Option<&Path>) {
     let source = spec.map_or("embedded default".to_string(), |p| p.display().to_string());
-    println!("{} ({}, {source})", a.name, a.configuration);
-    println!("mesh: {} nodes, {} triangles", a.mesh.nodes, a.mesh.elements);
-    println!();
-    println!("torque–current curve (direction 1, speed {} rad/s):", a.speed_rad_s);
-    println!("  current [A]  torque [N·m]  thesis method [N·m]  mean B [T]  Newton its");
+    crate::outln!("{} ({}, {source})", a.name, a.configuration);
+    crate::outln!("mesh: {} nodes, {} triangles", a.mesh.nodes, a.mesh.elements);
+    crate::outln!();
+    crate::outln!("torque–current curve (direction 1, speed {} rad/s):", a.speed_rad_s);
+    crate::outln!("  current [A]  torque [N·m]  thesis method [N·m]  mean B [T]  Newton its");
     for p in &a.torque_current_curve {
-        println!(
+        crate::outln!(
             "  {:>10.3}  {:>12.4}  {:>19.4}  {:>10.4}  {:>10}",
-            p.current_a, p.torque_nm, p.thesis_formula_nm, p.mean_b_t, p.newton_iterations
+            p.current_a,
+            p.torque_nm,
+            p.thesis_formula_nm,
+            p.mean_b_t,
+            p.newton_iterations
         );
     }
     let t = &a.torque;
-    println!();
-    println!("at {:.3} A:", a.max_current_a);
-    println!("  torque (local Bingham + viscous) {:.4} N·m", t.at_max_current_nm);
-    println!(
+    crate::outln!();
+    crate::outln!("at {:.3} A:", a.max_current_a);
+    crate::outln!("  torque (local Bingham + viscous) {:.4} N·m", t.at_max_current_nm);
+    crate::outln!(
         "  thesis method (mean B -> tau_y)  {:.4} N·m at mean B = {:.4} T",
-        t.thesis_formula_nm, t.mean_b_t
+        t.thesis_formula_nm,
+        t.mean_b_t
     );
-    println!("  off-state torque                 {:.4} N·m", t.off_state_nm);
+    crate::outln!("  off-state torque                 {:.4} N·m", t.off_state_nm);
     if let Some(t2) = t.direction2_at_max_current_nm {
-        println!("  direction 2 (own coil)           {t2:.4} N·m");
+        crate::outln!("  direction 2 (own coil)           {t2:.4} N·m");
     }
     if let Some(c) = t.cross_coupling {
-        println!(
+        crate::outln!(
             "  cross-coupling into idle unit    {:.2} % of the active unit's yield torque",
             100.0 * c
         );
     }
-    println!();
-    println!("gaps at the maximum current:");
-    println!(
+    crate::outln!();
+    crate::outln!("gaps at the maximum current:");
+    crate::outln!(
         "  gap unit  R [mm]  h [mm]  g [mm]  mean B [T]  max B [T]  tau_y(mean B) [kPa]  torque [N·m]"
     );
     for g in &a.gaps {
-        println!(
+        crate::outln!(
             "  {:>3} {:>4} {:>7.2} {:>7.2} {:>7.2} {:>11.4} {:>10.4} {:>20.3} {:>13.4}",
             g.index,
             g.unit + 1,
@@ -133,8 +138,8 @@ fn print_text(a: &Analysis, spec: Option<&Path>) {
         );
     }
     let c = &a.coil;
-    println!();
-    println!(
+    crate::outln!();
+    crate::outln!(
         "coil: {} turns of {:.3} mm wire, {:.1} m, {:.3} Ω at 20 °C ({:.3} Ω hot), J = {:.2} A/mm² (4.1), {:.2} W",
         c.turns,
         c.wire_diameter_m * 1e3,
@@ -144,33 +149,37 @@ fn print_text(a: &Analysis, spec: Option<&Path>) {
         c.current_density_a_per_mm2,
         c.power_w
     );
-    println!(
+    crate::outln!(
         "      L = {:.2} mH (secant), {:.2} mH (incremental) at max current; L/R = {:.2} ms",
         c.inductance_h * 1e3,
         c.incremental_inductance_h * 1e3,
         c.time_constant_s * 1e3
     );
     let m = &a.mechanics;
-    print!(
+    crate::out!(
         "mechanics: mass {:.3} kg, envelope {:.1} cm³, rotor inertia {:.1} kg·mm²",
         m.mass_kg,
         m.volume_m3 * 1e6,
         m.rotor_inertia_kg_m2 * 1e6
     );
     if let Some(j2) = m.rotor_inertia_direction2_kg_m2 {
-        print!(" (direction 2: {:.1} kg·mm²)", j2 * 1e6);
+        crate::out!(" (direction 2: {:.1} kg·mm²)", j2 * 1e6);
     }
-    println!();
-    println!(
+    crate::outln!();
+    crate::outln!(
         "           torque density {:.1} kN·m/m³, {:.3} N·m/kg",
         m.torque_density_nm_per_m3 / 1e3,
         m.torque_density_nm_per_kg
     );
     let tm = &a.timings_s;
-    println!();
-    println!(
+    crate::outln!();
+    crate::outln!(
         "time: {:.3} s (mesh {:.3}, setup {:.3}, solve {:.3}, post {:.3})",
-        tm.total, tm.mesh, tm.setup, tm.solve, tm.post
+        tm.total,
+        tm.mesh,
+        tm.setup,
+        tm.solve,
+        tm.post
     );
 }
 

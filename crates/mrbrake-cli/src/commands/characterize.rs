@@ -96,27 +96,30 @@ pub fn run(args: CharacterizeArgs) -> anyhow::Result<()> {
     if args.json {
         return print_json(&report);
     }
-    println!(
+    crate::outln!(
         "log: {} ({} samples, {:.1} Hz)",
         args.log.display(),
         log.len(),
         log.mean_sample_rate_hz()
     );
-    println!("repetitions: {}", c.repetitions);
-    println!("current range: {:.4} .. {:.4} A", c.current_min_a, c.current_max_a);
+    crate::outln!("repetitions: {}", c.repetitions);
+    crate::outln!("current range: {:.4} .. {:.4} A", c.current_min_a, c.current_max_a);
     for (name, b) in [("rising", &c.rising), ("falling", &c.falling)] {
         let coeffs: Vec<String> = b.coefficients.iter().map(|v| format!("{v:.6e}")).collect();
-        println!("{name:8} T(I) = [{}] (ascending powers of I in A, N·m)", coeffs.join(", "));
-        println!(
+        crate::outln!("{name:8} T(I) = [{}] (ascending powers of I in A, N·m)", coeffs.join(", "));
+        crate::outln!(
             "{:8} fit {:.2} % (raw samples), {:.2} % (averaged)",
-            "", b.fit_percent, b.fit_percent_mean
+            "",
+            b.fit_percent,
+            b.fit_percent_mean
         );
     }
-    println!("off-state torque: {:.4} N·m", c.off_state_torque_nm);
-    println!("max torque: {:.4} N·m", c.max_torque_nm);
-    println!(
+    crate::outln!("off-state torque: {:.4} N·m", c.off_state_torque_nm);
+    crate::outln!("max torque: {:.4} N·m", c.max_torque_nm);
+    crate::outln!(
         "max hysteresis: {:.4} N·m at {:.3} A",
-        c.max_hysteresis_nm, c.max_hysteresis_current_a
+        c.max_hysteresis_nm,
+        c.max_hysteresis_current_a
     );
     Ok(())
 }

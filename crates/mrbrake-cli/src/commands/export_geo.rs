@@ -79,7 +79,7 @@ pub fn run(args: ExportGeoArgs) -> anyhow::Result<()> {
             "warnings": warnings.iter().map(ToString::to_string).collect::<Vec<_>>(),
         }))
     } else {
-        println!(
+        crate::outln!(
             "wrote {} ({} regions, {} fluid gaps, {} coils; mesh it with: gmsh -2 {})",
             args.output.display(),
             geometry.regions.len(),

@@ -86,7 +86,7 @@ fn solve(args: SolveArgs) -> anyhow::Result<()> {
     if args.json {
         return print_json(&report);
     }
-    println!(
+    crate::outln!(
         "{}: {} nodes, {} triangles, {} unknowns; Newton {} iteration(s), converged: {}",
         args.problem.display(),
         report.nodes,
@@ -96,7 +96,7 @@ fn solve(args: SolveArgs) -> anyhow::Result<()> {
         report.converged
     );
     for p in &report.probes {
-        println!(
+        crate::outln!(
             "  probe {:<16} r = {:>9.4} mm  z = {:>9.4} mm  B_r = {:>9.5} T  B_z = {:>9.5} T  |B| = {:.5} T",
             p.name,
             p.r * 1e3,
@@ -107,30 +107,40 @@ fn solve(args: SolveArgs) -> anyhow::Result<()> {
         );
     }
     for r in &report.regions {
-        println!(
+        crate::outln!(
             "  region {:>4}: area {:.4e} m²  mean |B| {:.4} T  max |B| {:.4} T",
-            r.physical, r.area_m2, r.mean_b_t, r.max_b_t
+            r.physical,
+            r.area_m2,
+            r.mean_b_t,
+            r.max_b_t
         );
     }
     for c in &report.coils {
-        println!(
+        crate::outln!(
             "  coil {:>4}: flux linkage {:.5e} Wb  L = {:.5e} H  dλ/dI = {:.5e} H",
-            c.physical, c.flux_linkage_wb, c.inductance_h, c.incremental_inductance_h
+            c.physical,
+            c.flux_linkage_wb,
+            c.inductance_h,
+            c.incremental_inductance_h
         );
     }
     for l in &report.lines {
-        println!(
+        crate::outln!(
             "  line {}: {} samples, max |B| {:.4} T",
             l.name,
             l.points.len(),
             l.points.iter().map(|p| p.b_abs_t).fold(0.0, f64::max)
         );
     }
-    println!("  energy {:.5e} J, co-energy {:.5e} J", report.energy_j, report.coenergy_j);
+    crate::outln!("  energy {:.5e} J, co-energy {:.5e} J", report.energy_j, report.coenergy_j);
     let t = report.timings_s;
-    println!(
+    crate::outln!(
         "  time: read {:.3} s, assemble {:.3} s, solve {:.3} s, post {:.3} s, total {:.3} s",
-        t.read, t.assemble, t.solve, t.post, t.total
+        t.read,
+        t.assemble,
+        t.solve,
+        t.post,
+        t.total
     );
     Ok(())
 }

@@ -313,20 +313,24 @@ fn report(
             "viscous_torque_Nm": t.viscous_nm,
         }));
     }
-    println!("{configuration} brake, thesis {equation}");
-    println!("  yield stress   tau_y = {:.4} kPa  ({})", fluid.tau_y_pa / 1e3, fluid.tau_y_source);
+    crate::outln!("{configuration} brake, thesis {equation}");
+    crate::outln!(
+        "  yield stress   tau_y = {:.4} kPa  ({})",
+        fluid.tau_y_pa / 1e3,
+        fluid.tau_y_source
+    );
     if let Some(v) = viscous {
-        println!(
+        crate::outln!(
             "  viscous term   eta = {} Pa·s ({}), omega = {:.4} rad/s, g = {} mm",
             v.eta_pa_s,
             fluid.eta_source,
             v.omega_rad_s,
             v.gap_m * 1e3
         );
-        println!("  yield torque   {:.4} N·m", t.yield_nm);
-        println!("  viscous torque {:.4} N·m", t.viscous_nm);
+        crate::outln!("  yield torque   {:.4} N·m", t.yield_nm);
+        crate::outln!("  viscous torque {:.4} N·m", t.viscous_nm);
     }
-    println!("  torque         T = {:.4} N·m", t.total_nm);
+    crate::outln!("  torque         T = {:.4} N·m", t.total_nm);
     Ok(())
 }
 
@@ -380,28 +384,36 @@ fn coil(a: CoilArgs) -> anyhow::Result<()> {
         }));
     }
     let gauge = wire.awg.map_or(String::new(), |g| format!("AWG {g}, "));
-    println!("coil, thesis (4.1)-(4.3)");
-    println!(
+    crate::outln!("coil, thesis (4.1)-(4.3)");
+    crate::outln!(
         "  window         {:.3} mm (radial) × {:.3} mm (axial), inner radius {:.3} mm",
         cw * 1e3,
         ch * 1e3,
         inner * 1e3
     );
-    println!("  wire           {gauge}{:.4} mm bare copper", wire.diameter_m * 1e3);
-    println!(
+    crate::outln!("  wire           {gauge}{:.4} mm bare copper", wire.diameter_m * 1e3);
+    crate::outln!(
         "  layers i       {} (4.2); turns that fit N_c = {:.2} -> {} (4.3)",
-        window.layers_i, window.turns_exact, window.turns
+        window.layers_i,
+        window.turns_exact,
+        window.turns
     );
-    println!("  turns used     {turns}");
-    println!("  wire length    {:.2} m (mean radius {:.3} mm)", e.wire_length_m, mean_radius * 1e3);
-    println!(
+    crate::outln!("  turns used     {turns}");
+    crate::outln!(
+        "  wire length    {:.2} m (mean radius {:.3} mm)",
+        e.wire_length_m,
+        mean_radius * 1e3
+    );
+    crate::outln!(
         "  resistance     {:.3} Ω at 20 °C, {:.3} Ω at {temperature} °C",
-        e.resistance_20c_ohm, e.resistance_ohm
+        e.resistance_20c_ohm,
+        e.resistance_ohm
     );
-    println!(
+    crate::outln!(
         "  current        {current} A: J_D = {:.3} A/mm² (4.1), {:.3} A/mm² in the copper",
-        e.current_density_a_per_mm2, e.conductor_current_density_a_per_mm2
+        e.current_density_a_per_mm2,
+        e.conductor_current_density_a_per_mm2
     );
-    println!("  power          {:.3} W at {:.3} V", e.power_w, e.voltage_v);
+    crate::outln!("  power          {:.3} W at {:.3} V", e.power_w, e.voltage_v);
     Ok(())
 }

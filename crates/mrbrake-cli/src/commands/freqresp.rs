@@ -71,13 +71,18 @@ pub fn run(args: FreqRespArgs) -> anyhow::Result<()> {
     if args.json {
         return print_json(&json!({ "frd_file": out, "points": points }));
     }
-    println!("frequency response of {} tests → {}", points.len(), out.display());
-    println!(
+    crate::outln!("frequency response of {} tests → {}", points.len(), out.display());
+    crate::outln!(
         "{:>12} {:>10} {:>10} {:>9} {:>10} {:>8}",
-        "omega rad/s", "gain dB", "phase deg", "quality%", "RMSE N·m", "RMSE %"
+        "omega rad/s",
+        "gain dB",
+        "phase deg",
+        "quality%",
+        "RMSE N·m",
+        "RMSE %"
     );
     for p in &points {
-        println!(
+        crate::outln!(
             "{:>12.4} {:>10.3} {:>10.2} {:>9.2} {:>10.4} {:>8.2}",
             p.omega_rad_s,
             p.magnitude_db,

@@ -226,15 +226,18 @@ fn wall(args: WallArgs) -> anyhow::Result<()> {
     if args.json {
         return print_json(m);
     }
-    println!("device {}, scenario {}", m.device, m.scenario);
-    println!("  max penetration            {:.4} rad", m.max_penetration_rad);
+    crate::outln!("device {}, scenario {}", m.device, m.scenario);
+    crate::outln!("  max penetration            {:.4} rad", m.max_penetration_rad);
     match m.displayed_stiffness_nm_per_rad {
         Some(k) => {
-            println!("  displayed stiffness        {k:.2} N·m/rad (virtual {})", args.stiffness)
+            crate::outln!(
+                "  displayed stiffness        {k:.2} N·m/rad (virtual {})",
+                args.stiffness
+            )
         }
-        None => println!("  displayed stiffness        n/a"),
+        None => crate::outln!("  displayed stiffness        n/a"),
     }
-    println!(
+    crate::outln!(
         "  withdraw resisting torque  peak {:.3} N·m, mean {:.3} N·m (excess over {:.3} N·m drag: peak {:.3}, mean {:.3})",
         m.withdraw_resisting_torque_nm.peak,
         m.withdraw_resisting_torque_nm.mean,
@@ -242,20 +245,26 @@ fn wall(args: WallArgs) -> anyhow::Result<()> {
         m.withdraw_excess_torque_nm.peak,
         m.withdraw_excess_torque_nm.mean
     );
-    println!(
+    crate::outln!(
         "  withdraw energy            {:.5} J over {:.3} s",
-        m.withdraw_energy_j, m.withdraw_duration_s
+        m.withdraw_energy_j,
+        m.withdraw_duration_s
     );
     match m.release_time_s {
-        Some(t) => println!("  release time               {t:.3} s"),
-        None => println!("  release time               not released / no withdrawal"),
+        Some(t) => crate::outln!("  release time               {t:.3} s"),
+        None => crate::outln!("  release time               not released / no withdrawal"),
     }
-    println!(
+    crate::outln!(
         "  device energy              {:.5} J (running peak {:.2e} J)",
-        m.device_energy_j, m.device_energy_peak_j
+        m.device_energy_j,
+        m.device_energy_peak_j
     );
-    println!("  passive                    {} (stable {})", m.passive, m.stable);
-    println!("  peak coil current          {:.3} A, faults {}", m.current_peak_a, m.fault_ticks);
+    crate::outln!("  passive                    {} (stable {})", m.passive, m.stable);
+    crate::outln!(
+        "  peak coil current          {:.3} A, faults {}",
+        m.current_peak_a,
+        m.fault_ticks
+    );
     Ok(())
 }
 
@@ -328,6 +337,6 @@ fn zwidth(args: ZwidthArgs) -> anyhow::Result<()> {
     if args.json {
         return print_json(&summary);
     }
-    println!("{}", serde_json::to_string_pretty(&summary)?);
+    crate::outln!("{}", serde_json::to_string_pretty(&summary)?);
     Ok(())
 }

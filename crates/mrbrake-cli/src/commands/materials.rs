@@ -76,9 +76,9 @@ fn list(a: &ListArgs) -> anyhow::Result<()> {
             &json!({ "default_fluid": library::DEFAULT_FLUID, "materials": materials }),
         );
     }
-    println!("{:<22} {:<9} {:<12} description", "name", "kind", "trust");
+    crate::outln!("{:<22} {:<9} {:<12} description", "name", "kind", "trust");
     for m in rows {
-        println!(
+        crate::outln!(
             "{:<22} {:<9} {:<12} {}",
             m.name,
             m.kind.as_str(),
@@ -186,36 +186,38 @@ fn show_json(m: &Material, b_values: &[f64], h_values: &[f64]) -> Value {
 }
 
 fn print_text(m: &Material, b_values: &[f64], h_values: &[f64], with_points: bool) {
-    println!("{} ({}): {}", m.name, m.kind.as_str(), m.description);
-    println!("  source  {}", m.provenance.source);
-    println!("  method  {}", m.provenance.method);
-    println!("  trust   {}", m.provenance.trust);
+    crate::outln!("{} ({}): {}", m.name, m.kind.as_str(), m.description);
+    crate::outln!("  source  {}", m.provenance.source);
+    crate::outln!("  method  {}", m.provenance.method);
+    crate::outln!("  trust   {}", m.provenance.trust);
     if let Some(d) = &m.density_kg_m3 {
-        println!(
+        crate::outln!(
             "  density {} kg/m³ ({}; trust {})",
-            d.value, d.provenance.source, d.provenance.trust
+            d.value,
+            d.provenance.source,
+            d.provenance.trust
         );
     }
     if let Some(s) = &m.conductivity_s_per_m {
-        println!("  conductivity {:.4e} S/m", s.value);
+        crate::outln!("  conductivity {:.4e} S/m", s.value);
     }
     match &m.magnetic {
-        Magnetic::Linear { mu_r } => println!("  magnetic: linear, mu_r = {mu_r}"),
+        Magnetic::Linear { mu_r } => crate::outln!("  magnetic: linear, mu_r = {mu_r}"),
         Magnetic::NonLinear(curve) => {
             let (h_last, b_last) = curve.last_point();
-            println!(
+            crate::outln!(
                 "  magnetic: B-H curve, {} points up to H = {h_last} A/m, B = {b_last} T; slope mu0 beyond",
                 curve.points().len()
             );
-            println!(
+            crate::outln!(
                 "    initial relative permeability {:.1}",
                 curve.initial_relative_permeability()
             );
             for &h in h_values {
-                println!("    B({:>9.0} A/m) = {:.4} T", h, curve.b_of_h(h));
+                crate::outln!("    B({:>9.0} A/m) = {:.4} T", h, curve.b_of_h(h));
             }
             if let Some(mu_r) = m.mu_r_linear {
-                println!("    (the source's constant mu_r for linear solves: {mu_r})");
+                crate::outln!("    (the source's constant mu_r for linear solves: {mu_r})");
             }
         }
     }
@@ -223,43 +225,55 @@ fn print_text(m: &Material, b_values: &[f64], h_values: &[f64], with_points: boo
         print_fluid(fluid, b_values);
     }
     if let (true, Magnetic::NonLinear(curve)) = (with_points, &m.magnetic) {
-        println!("  B-H points:");
-        println!("    {:>14} {:>10}", "H [A/m]", "B [T]");
+        crate::outln!("  B-H points:");
+        crate::outln!("    {:>14} {:>10}", "H [A/m]", "B [T]");
         for (h, b) in curve.points() {
-            println!("    {h:>14.6} {b:>10.6}");
+            crate::outln!("    {h:>14.6} {b:>10.6}");
         }
     }
 }
 
 fn print_fluid(fluid: &MrFluid, b_values: &[f64]) {
     let ys = fluid.yield_stress();
-    println!("  yield stress: {}", ys.provenance().method);
-    println!("    source {}", ys.provenance().source);
-    println!("    trust  {}", ys.provenance().trust);
-    println!("    tends to {:.0} Pa at high field", fluid.tau_y_ceiling_pa());
-    println!("    {:>8} {:>12} {:>12}", "B [T]", "H [A/m]", "tau_y [Pa]");
+    crate::outln!("  yield stress: {}", ys.provenance().method);
+    crate::outln!("    source {}", ys.provenance().source);
+    crate::outln!("    trust  {}", ys.provenance().trust);
+    crate::outln!("    tends to {:.0} Pa at high field", fluid.tau_y_ceiling_pa());
+    crate::outln!("    {:>8} {:>12} {:>12}", "B [T]", "H [A/m]", "tau_y [Pa]");
     for &b in b_values {
-        println!("    {:>8.4} {:>12.0} {:>12.1}", b, fluid.bh().h_of_b(b), fluid.tau_y_of_b(b));
-    }
-    for v in &fluid.viscosities {
-        println!(
-            "  viscosity {} Pa.s at {} °C ({}; trust {})",
-            v.pa_s, v.temperature_c, v.provenance.source, v.provenance.trust
+        crate::outln!(
+            "    {:>8.4} {:>12.0} {:>12.1}",
+            b,
+            fluid.bh().h_of_b(b),
+            fluid.tau_y_of_b(b)
         );
     }
-    println!(
+    for v in &fluid.viscosities {
+        crate::outln!(
+            "  viscosity {} Pa.s at {} °C ({}; trust {})",
+            v.pa_s,
+            v.temperature_c,
+            v.provenance.source,
+            v.provenance.trust
+        );
+    }
+    crate::outln!(
         "  iron volume fraction {} ; carrier {}",
-        fluid.iron_volume_fraction.value, fluid.carrier
+        fluid.iron_volume_fraction.value,
+        fluid.carrier
     );
     let checks = fluid.reference_checks();
     if !checks.is_empty() {
-        println!("  reference points (model vs reference):");
-        println!("    {:>8} {:>12} {:>12} {:>9}", "B [T]", "ref [Pa]", "model [Pa]", "error");
+        crate::outln!("  reference points (model vs reference):");
+        crate::outln!("    {:>8} {:>12} {:>12} {:>9}", "B [T]", "ref [Pa]", "model [Pa]", "error");
         for c in checks {
             let b = c.reference.b_t.map_or("-".to_string(), |b| format!("{b:.4}"));
-            println!(
+            crate::outln!(
                 "    {:>8} {:>12.1} {:>12.1} {:>8.2}%",
-                b, c.reference.tau_y_pa, c.model_tau_y_pa, c.error_percent
+                b,
+                c.reference.tau_y_pa,
+                c.model_tau_y_pa,
+                c.error_percent
             );
         }
     }

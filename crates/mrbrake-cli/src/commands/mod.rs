@@ -11,8 +11,10 @@ mod formula;
 mod freqresp;
 mod haptic;
 mod materials;
+mod optimize;
 mod rig;
 mod study;
+mod sweep;
 mod tfest;
 
 /// The subcommands of `mrbrake`.
@@ -47,6 +49,16 @@ pub enum Command {
     Study(study::StudyCommand),
     /// Write the brake geometry and its physical groups as a Gmsh .geo file (cross-check in other solvers).
     ExportGeo(export_geo::ExportGeoArgs),
+    /// Parameter sweep over spec fields (grid, Latin hypercube, Sobol'), every design analysed by the
+    /// FEA and kept in a resumable SQLite store; shardable over processes.
+    Sweep(sweep::SweepArgs),
+    /// Constrained single- or multi-objective design optimisation (NSGA-II, pattern search) from a
+    /// problem file: Pareto front, plots and ready-to-analyse spec files.
+    Optimize(optimize::OptimizeArgs),
+    /// Merge results stores (e.g. one per shard) into one, without duplicates.
+    Merge(sweep::MergeArgs),
+    /// Export a results store as CSV or JSON.
+    Export(sweep::ExportArgs),
 }
 
 /// Runs one subcommand.
@@ -63,5 +75,9 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Fem(c) => fem::run(c),
         Command::Study(c) => study::run(c),
         Command::ExportGeo(a) => export_geo::run(a),
+        Command::Sweep(a) => sweep::run_sweep(a),
+        Command::Optimize(a) => optimize::run(a),
+        Command::Merge(a) => sweep::run_merge(a),
+        Command::Export(a) => sweep::run_export(a),
     }
 }

@@ -84,7 +84,7 @@ fn write_files(dir: &Path, config: &RigConfig, files: &[RigFile]) -> anyhow::Res
 pub fn run(command: RigCommand) -> anyhow::Result<()> {
     match command {
         RigCommand::Config => {
-            print!("{}", RigConfig::default().to_toml());
+            crate::out!("{}", RigConfig::default().to_toml());
             Ok(())
         }
         RigCommand::Characterize(args) => {
@@ -115,11 +115,11 @@ fn report(args: &RigArgs, written: &[PathBuf], what: &str) -> anyhow::Result<()>
     if args.json {
         return print_json(&serde_json::json!({ "files": written }));
     }
-    println!("{what}: {} files in {}", written.len(), args.out.display());
+    crate::outln!("{what}: {} files in {}", written.len(), args.out.display());
     for p in written.iter().filter(|p| {
         p.file_name().is_some_and(|n| n == "manifest.csv" || n == "characterization.csv")
     }) {
-        println!("  {}", p.display());
+        crate::outln!("  {}", p.display());
     }
     Ok(())
 }

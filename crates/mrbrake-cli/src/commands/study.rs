@@ -38,8 +38,8 @@ pub fn run(command: StudyCommand) -> anyhow::Result<()> {
                 return print_json(&tables);
             }
             for t in &tables {
-                println!("{}: {} — ours | thesis", t.table, t.title);
-                println!(
+                crate::outln!("{}: {} — ours | thesis", t.table, t.title);
+                crate::outln!(
                     "  {:<32} {:>8} {:>10} {:>10} {:>10} | {:>8} {:>10} {:>8}",
                     "",
                     "B [T]",
@@ -51,7 +51,7 @@ pub fn run(command: StudyCommand) -> anyhow::Result<()> {
                     "T [N·m]"
                 );
                 for r in &t.rows {
-                    println!(
+                    crate::outln!(
                         "  {:<32} {:>8.4} {:>10.3} {:>10.3} {:>10.3} | {:>8.4} {:>10.4} {:>8.2}",
                         r.label,
                         r.mean_b_t,
@@ -63,7 +63,7 @@ pub fn run(command: StudyCommand) -> anyhow::Result<()> {
                         r.thesis_torque_nm
                     );
                 }
-                println!();
+                crate::outln!();
             }
             Ok(())
         }

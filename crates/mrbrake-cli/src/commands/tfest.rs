@@ -108,24 +108,26 @@ pub fn run(args: TfestArgs) -> anyhow::Result<()> {
     if args.json {
         return print_json(&summary);
     }
-    println!(
+    crate::outln!(
         "G(s) = N(s)/D(s), highest power first{}",
         if delay_s > 0.0 { format!(", times e^(-{delay_s} s)") } else { String::new() }
     );
-    println!("  numerator:   {:?}", summary.numerator);
-    println!("  denominator: {:?}", summary.denominator);
+    crate::outln!("  numerator:   {:?}", summary.numerator);
+    crate::outln!("  denominator: {:?}", summary.denominator);
     for p in &summary.poles {
-        println!("  pole: {:.6} {:+.6}j rad/s", p[0], p[1]);
+        crate::outln!("  pole: {:.6} {:+.6}j rad/s", p[0], p[1]);
     }
-    println!("  corner frequencies: {:?} rad/s", summary.corner_frequencies_rad_s);
+    crate::outln!("  corner frequencies: {:?} rad/s", summary.corner_frequencies_rad_s);
     match summary.bandwidth_rad_s {
-        Some(b) => println!("  bandwidth (−3 dB): {b:.4} rad/s"),
-        None => println!("  bandwidth (−3 dB): undefined"),
+        Some(b) => crate::outln!("  bandwidth (−3 dB): {b:.4} rad/s"),
+        None => crate::outln!("  bandwidth (−3 dB): undefined"),
     }
-    println!("  DC gain: {:.6}", summary.dc_gain);
-    println!(
+    crate::outln!("  DC gain: {:.6}", summary.dc_gain);
+    crate::outln!(
         "  fit: {:.3} %, MSE {:.4e}, stable: {}",
-        summary.fit_percent, summary.mse, summary.stable
+        summary.fit_percent,
+        summary.mse,
+        summary.stable
     );
     Ok(())
 }

@@ -1,0 +1,284 @@
+//! `mrbrake sweep`, `mrbrake merge` and `mrbrake export`: parameter sweeps over brake-spec fields
+//! into a results store, combining the stores of shards, and exporting a store to CSV / JSON.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Args;
+use mrbrake_design::mesh_build::MeshLevel;
+use mrbrake_design::spec::DEFAULT_SPEC_TOML;
+use mrbrake_explore::plan::{self, Sampling, Shard, VarySpec};
+use mrbrake_explore::{DesignSpace, EvaluationSettings, Runner};
+use mrbrake_store::{Record, Status, Store};
+use mrbrake_units::{Dimension, parse};
+
+use crate::exit::InputError;
+use crate::output::print_json;
+use crate::progress::ProgressDisplay;
+
+/// Arguments of `mrbrake sweep`.
+#[derive(Debug, Args)]
+pub struct SweepArgs {
+    /// Base brake specification (TOML). Omitted: the embedded thesis bidirectional brake.
+    spec: Option<PathBuf>,
+    /// A variable and its values: a list `g=0.5mm,0.75mm,1mm`, a range with a count
+    /// `h=5mm..10mm:6`, or bounds `R0=20mm..30mm` for --sample. Names: a spec field (drum.gap,
+    /// coil.turns, …) or a thesis symbol (g, h, d, R0, R1, R2, n, N, I, AWG). Repeat for several.
+    #[arg(long = "vary", value_name = "NAME=VALUES", required = true)]
+    vary: Vec<String>,
+    /// A fixed change to the base spec, e.g. `coil.turns=fill` (turns fill the window) or
+    /// `housing.case_thickness=4mm`. Repeatable.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    set: Vec<String>,
+    /// Sample instead of a full-factorial grid: `lhs:N` (Latin hypercube) or `sobol:N`.
+    #[arg(long, value_name = "KIND:N")]
+    sample: Option<String>,
+    /// Seed of the Latin hypercube.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Results store (SQLite file). Created if missing; an existing store needs --resume.
+    #[arg(long, value_name = "FILE")]
+    store: PathBuf,
+    /// Continue an existing store: designs already in it are not recomputed.
+    #[arg(long)]
+    resume: bool,
+    /// Analyses run at the same time (0: one per core).
+    #[arg(long, default_value_t = 0)]
+    jobs: usize,
+    /// Evaluate only shard K of N of the plan (0-based, e.g. `$SLURM_ARRAY_TASK_ID/4`); each shard
+    /// fills its own store, `mrbrake merge` combines them.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<String>,
+    /// Mesh density of every analysis: coarse, default or fine.
+    #[arg(long, default_value = "default")]
+    mesh: String,
+    /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
+    #[arg(long, default_value = "1rad/s")]
+    speed: String,
+    /// Also write this sweep's designs as CSV.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
+    /// Print a JSON object (designs and run summary) instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Arguments of `mrbrake merge`.
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The store to merge into (created if missing).
+    output: PathBuf,
+    /// Stores to merge (e.g. one per shard).
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+}
+
+/// Arguments of `mrbrake export`.
+#[derive(Debug, Args)]
+pub struct ExportArgs {
+    /// The store.
+    store: PathBuf,
+    /// Write every design as CSV to this file.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
+    /// Print every design as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+fn split_pair(text: &str, flag: &str) -> anyhow::Result<(String, String)> {
+    let (a, b) = text
+        .split_once('=')
+        .ok_or_else(|| InputError(format!("{flag} '{text}': expected NAME=VALUE")))?;
+    Ok((a.trim().to_string(), b.trim().to_string()))
+}
+
+/// The evaluation settings from the common flags.
+pub fn settings_from(mesh: &str, speed: &str) -> anyhow::Result<EvaluationSettings> {
+    Ok(EvaluationSettings {
+        mesh: MeshLevel::parse(mesh)?,
+        speed_rad_s: parse(speed, Dimension::AngularVelocity).context("--speed")?,
+        ..EvaluationSettings::default()
+    })
+}
+
+/// Runs `mrbrake sweep`.
+pub fn run_sweep(a: SweepArgs) -> anyhow::Result<()> {
+    let (spec_text, origin) = match &a.spec {
+        Some(path) => (
+            std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read the spec {}", path.display()))?,
+            path.display().to_string(),
+        ),
+        None => (DEFAULT_SPEC_TOML.to_string(), "thesis-bidirectional.toml (embedded)".into()),
+    };
+    let overrides: Vec<(String, String)> =
+        a.set.iter().map(|s| split_pair(s, "--set")).collect::<Result<_, _>>()?;
+    let pairs: Vec<(String, String)> =
+        a.vary.iter().map(|v| VarySpec::split(v)).collect::<Result<_, _>>()?;
+    let names: Vec<String> = pairs.iter().map(|(n, _)| n.clone()).collect();
+    let settings = settings_from(&a.mesh, &a.speed)?;
+    let space = DesignSpace::new(&spec_text, &origin, &overrides, &names, settings)?;
+    let specs: Vec<VarySpec> = space
+        .variables()
+        .iter()
+        .zip(&pairs)
+        .map(|(v, (_, text))| VarySpec::parse(v, text))
+        .collect::<Result<_, _>>()?;
+    let sampling = match &a.sample {
+        Some(text) => Sampling::parse(text, a.seed)?,
+        None => Sampling::FullFactorial,
+    };
+    let shard = match &a.shard {
+        Some(text) => Shard::parse(text)?,
+        None => Shard::ALL,
+    };
+    let points = plan::points(space.variables(), &specs, sampling)?;
+    let mine: Vec<Vec<f64>> =
+        points.iter().enumerate().filter(|(i, _)| shard.owns(*i)).map(|(_, p)| p.clone()).collect();
+    let designs = mine.iter().map(|p| space.design(p)).collect::<Result<Vec<_>, _>>()?;
+
+    let mut store = Store::open_or_create(&a.store, a.resume)?;
+    if store.meta("created_by")?.is_none() {
+        store.set_meta("created_by", &format!("mrbrake {}", env!("CARGO_PKG_VERSION")))?;
+    }
+    let mut display = ProgressDisplay::new("sweep", a.json);
+    let mut runner = Runner::new(&mut store, settings, a.jobs);
+    let (records, summary) = runner.run(&designs, &mut |p| display.update(p))?;
+    display.finish();
+
+    if let Some(path) = &a.csv {
+        mrbrake_report::write_atomic(path, &mrbrake_store::to_csv(&records)?)?;
+    }
+    let p = summary.progress;
+    let rate = if p.elapsed_s > 0.0 { p.computed as f64 * 60.0 / p.elapsed_s } else { 0.0 };
+    let overhead = if p.elapsed_s > 0.0 { summary.store_s / p.elapsed_s } else { 0.0 };
+    if a.json {
+        return print_json(&serde_json::json!({
+            "store": a.store.display().to_string(),
+            "plan_points": points.len(),
+            "shard": format!("{}/{}", shard.index, shard.count),
+            "designs": mrbrake_store::to_json(&records),
+            "summary": {
+                "computed": p.computed, "reused": p.reused, "infeasible": p.infeasible,
+                "failed": p.failed, "elapsed_s": p.elapsed_s,
+                "evaluations_per_min": rate, "evaluation_s": summary.evaluation_s,
+                "store_s": summary.store_s, "store_overhead": overhead,
+            },
+        }));
+    }
+    crate::outln!(
+        "{} — {} of {} plan points (shard {}/{}), store {}",
+        space.base_design()?.spec.map(|s| s.name).unwrap_or_default(),
+        designs.len(),
+        points.len(),
+        shard.index,
+        shard.count,
+        a.store.display()
+    );
+    print_table(&space, &records);
+    crate::outln!(
+        "computed {} ({} infeasible, {} failed), reused {} from the store; {:.1} s wall, \
+         {:.0} evaluations/min, store writes {:.3} s ({:.2} % of the wall time)",
+        p.computed,
+        p.infeasible,
+        p.failed,
+        p.reused,
+        p.elapsed_s,
+        rate,
+        summary.store_s,
+        overhead * 100.0
+    );
+    Ok(())
+}
+
+/// Prints one line per design: the variables, then the headline metrics or the reason.
+fn print_table(space: &DesignSpace, records: &[Record]) {
+    let columns = [
+        ("torque_max_nm", "T_max[N·m]", 1.0),
+        ("torque_off_nm", "T_off[N·m]", 1.0),
+        ("mean_b_fluid_t", "B_gap[T]", 1.0),
+        ("flux_path_q90_b_t", "B_steel90[T]", 1.0),
+        ("volume_m3", "V[cm³]", 1e6),
+        ("rotor_inertia_kg_m2", "J[kg·mm²]", 1e6),
+        ("power_w", "P[W]", 1.0),
+    ];
+    let mut header = String::new();
+    for v in space.variables() {
+        header.push_str(&format!("{:>12} ", v.name));
+    }
+    header.push_str(&format!("{:>11} ", "status"));
+    for (_, title, _) in &columns {
+        header.push_str(&format!("{title:>13} "));
+    }
+    crate::outln!("{}", header.trim_end());
+    for r in records {
+        let mut line = String::new();
+        for (v, (_, value)) in space.variables().iter().zip(&r.variables) {
+            line.push_str(&format!("{:>12} ", v.display_value(*value)));
+        }
+        line.push_str(&format!("{:>11} ", r.status.as_str()));
+        if r.status == Status::Ok {
+            for (name, _, scale) in &columns {
+                match r.metrics.iter().find(|(k, _)| k == name) {
+                    Some((_, v)) => line.push_str(&format!("{:>13.4} ", v * scale)),
+                    None => line.push_str(&format!("{:>13} ", "—")),
+                }
+            }
+        } else if let Some(reason) = &r.reason {
+            let last = reason.lines().map(str::trim).rfind(|l| !l.is_empty());
+            line.push_str(last.unwrap_or(""));
+        }
+        crate::outln!("{}", line.trim_end());
+    }
+}
+
+/// Runs `mrbrake merge`.
+pub fn run_merge(a: MergeArgs) -> anyhow::Result<()> {
+    let mut store = Store::open_or_create(&a.output, true)?;
+    let mut total = 0;
+    for input in &a.inputs {
+        let summary = store.merge_from(input)?;
+        total += summary.inserted;
+        crate::outln!(
+            "{}: {} added, {} already present{}",
+            input.display(),
+            summary.inserted,
+            summary.duplicates,
+            if summary.conflicts.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    ", {} CONFLICTS (same design, different results; kept the existing): {}",
+                    summary.conflicts.len(),
+                    summary.conflicts.join(", ")
+                )
+            }
+        );
+    }
+    crate::outln!("{}: {} designs ({} added)", a.output.display(), store.len()?, total);
+    Ok(())
+}
+
+/// Runs `mrbrake export`.
+pub fn run_export(a: ExportArgs) -> anyhow::Result<()> {
+    let store = Store::open(&a.store)?;
+    let records = store.records()?;
+    if let Some(path) = &a.csv {
+        mrbrake_report::write_atomic(path, &mrbrake_store::to_csv(&records)?)?;
+    }
+    if a.json {
+        return print_json(&mrbrake_store::to_json(&records));
+    }
+    if a.csv.is_none() {
+        let ok = records.iter().filter(|r| r.status == Status::Ok).count();
+        crate::outln!(
+            "{}: {} designs ({} ok, {} infeasible or failed); use --csv FILE or --json to export",
+            a.store.display(),
+            records.len(),
+            ok,
+            records.len() - ok
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,281 @@
+//! Design studies end to end through the binary: shards in separate processes merge to the
+//! single-process result; a sweep killed with SIGKILL at a random point resumes without losing or
+//! duplicating a design; corrupt or foreign stores are refused untouched; a small optimisation writes
+//! its outputs and replays from the store.
+//!
+//! The plans use the single-disc example on the coarse mesh so the debug suite stays quick.
+
+mod common;
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Instant, SystemTime, UNIX_EPOCH};
+
+use common::{expect_input_error, json, mrbrake, path_str};
+
+const SPEC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/specs/single-disc.toml");
+
+/// The plan of the tests: 4 gaps × 3 disc thicknesses, plus one infeasible outer radius.
+fn plan_args(store: &Path) -> Vec<String> {
+    [
+        SPEC,
+        "--vary",
+        "g=0.3mm..0.9mm:4",
+        "--vary",
+        "d=1mm,1.5mm,2mm",
+        "--mesh",
+        "coarse",
+        "--store",
+        path_str(store),
+        "--json",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect()
+}
+
+fn sweep(store: &Path, extra: &[&str]) -> serde_json::Value {
+    let mut args: Vec<String> = vec!["sweep".into()];
+    args.extend(plan_args(store));
+    args.extend(extra.iter().map(|s| s.to_string()));
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    json(&refs)
+}
+
+/// The store's designs by key: (status, metrics).
+fn exported(store: &Path) -> BTreeMap<String, (String, BTreeMap<String, f64>)> {
+    let v = json(&["export", path_str(store), "--json"]);
+    let mut map = BTreeMap::new();
+    for d in v.as_array().expect("an array of designs") {
+        let key = d["key"].as_str().expect("key").to_string();
+        let status = d["status"].as_str().expect("status").to_string();
+        let metrics: BTreeMap<String, f64> = d["metrics"]
+            .as_object()
+            .expect("metrics object")
+            .iter()
+            .filter_map(|(k, v)| v.as_f64().map(|x| (k.clone(), x)))
+            .collect();
+        assert!(map.insert(key.clone(), (status, metrics)).is_none(), "key {key} twice");
+    }
+    map
+}
+
+/// Same designs, same statuses, same metrics (to 1e-9 relative: the energy sum is parallel, so the
+/// last bits may differ between runs).
+fn assert_same_results(
+    a: &BTreeMap<String, (String, BTreeMap<String, f64>)>,
+    b: &BTreeMap<String, (String, BTreeMap<String, f64>)>,
+) {
+    assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>(), "different designs");
+    for (key, (status, metrics)) in a {
+        let (status_b, metrics_b) = &b[key];
+        assert_eq!(status, status_b, "{key}");
+        assert_eq!(metrics.keys().collect::<Vec<_>>(), metrics_b.keys().collect::<Vec<_>>());
+        for (name, x) in metrics {
+            let y = metrics_b[name];
+            assert!((x - y).abs() <= 1e-9 * x.abs().max(1e-30), "{key} {name}: {x} vs {y}");
+        }
+    }
+}
+
+#[test]
+fn shards_in_separate_processes_merge_to_the_single_process_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let single = dir.path().join("single.sqlite");
+    let v = sweep(&single, &["--jobs", "2"]);
+    assert_eq!(v["summary"]["computed"].as_u64(), Some(12));
+    let reference = exported(&single);
+    assert_eq!(reference.len(), 12);
+
+    let n = 3;
+    let children: Vec<_> = (0..n)
+        .map(|k| {
+            let store = dir.path().join(format!("shard-{k}.sqlite"));
+            let mut args: Vec<String> = vec!["sweep".into()];
+            args.extend(plan_args(&store));
+            args.extend(["--shard".to_string(), format!("{k}/{n}"), "--jobs".into(), "1".into()]);
+            Command::new(env!("CARGO_BIN_EXE_mrbrake"))
+                .args(&args)
+                .stdout(Stdio::null())
+                .stderr(Stdio::piped())
+                .spawn()
+                .expect("spawn a shard")
+        })
+        .collect();
+    for child in children {
+        let out = child.wait_with_output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    }
+    let merged = dir.path().join("merged.sqlite");
+    let shard_paths: Vec<String> = (0..n)
+        .map(|k| path_str(&dir.path().join(format!("shard-{k}.sqlite"))).to_string())
+        .collect();
+    let mut args = vec!["merge", path_str(&merged)];
+    args.extend(shard_paths.iter().map(String::as_str));
+    let out = mrbrake(&args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // Each shard holds a third of the plan, and no design is in two shards.
+    let sizes: Vec<usize> =
+        (0..n).map(|k| exported(&dir.path().join(format!("shard-{k}.sqlite"))).len()).collect();
+    assert_eq!(sizes, vec![4, 4, 4]);
+    assert_same_results(&reference, &exported(&merged));
+
+    // Merging again adds nothing.
+    let out = mrbrake(&args);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("12 designs (0 added)"));
+}
+
+#[test]
+fn a_sweep_killed_at_a_random_point_resumes_without_loss_or_duplicates() {
+    let dir = tempfile::tempdir().unwrap();
+    let reference_store = dir.path().join("reference.sqlite");
+    let t0 = Instant::now();
+    sweep(&reference_store, &["--jobs", "1"]);
+    let duration = t0.elapsed();
+    let reference = exported(&reference_store);
+
+    for attempt in 0..2 {
+        // A pseudo-random kill time, different on every run, between 10 % and 90 % of the
+        // uninterrupted run's duration.
+        let nanos = SystemTime::now().duration_since(UNIX_EPOCH).unwrap().subsec_nanos();
+        let fraction = 0.1 + 0.8 * f64::from(nanos % 1000) / 1000.0;
+        let store = dir.path().join(format!("killed-{attempt}.sqlite"));
+        let mut args: Vec<String> = vec!["sweep".into()];
+        args.extend(plan_args(&store));
+        args.extend(["--jobs".to_string(), "1".to_string()]);
+        let mut child = Command::new(env!("CARGO_BIN_EXE_mrbrake"))
+            .args(&args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(duration.mul_f64(fraction));
+        child.kill().expect("SIGKILL the sweep"); // SIGKILL on Unix
+        let killed = !child.wait().unwrap().success();
+
+        let before = if store.exists() { exported(&store) } else { BTreeMap::new() };
+        for key in before.keys() {
+            assert!(reference.contains_key(key), "a design not in the plan: {key}");
+        }
+        let v = sweep(&store, &["--resume", "--jobs", "1"]);
+        let computed = v["summary"]["computed"].as_u64().unwrap() as usize;
+        let reused = v["summary"]["reused"].as_u64().unwrap() as usize;
+        assert_eq!(reused, before.len(), "every stored design is reused");
+        assert_eq!(computed + reused, 12, "nothing recomputed, nothing missing");
+        assert_same_results(&reference, &exported(&store));
+        eprintln!(
+            "kill at {:.0} % of {:.2} s ({}): {} of 12 designs stored; resume computed {}",
+            fraction * 100.0,
+            duration.as_secs_f64(),
+            if killed { "killed" } else { "had already finished" },
+            before.len(),
+            computed
+        );
+    }
+}
+
+#[test]
+fn corrupt_and_foreign_stores_are_refused_and_left_untouched() {
+    let dir = tempfile::tempdir().unwrap();
+    let garbage = dir.path().join("garbage.sqlite");
+    let bytes: Vec<u8> = (0..8192u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8).collect();
+    std::fs::write(&garbage, &bytes).unwrap();
+    let mut args: Vec<String> = vec!["sweep".into()];
+    args.extend(plan_args(&garbage));
+    args.push("--resume".into());
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    expect_input_error(&refs, &["garbage.sqlite"]);
+    assert_eq!(std::fs::read(&garbage).unwrap(), bytes, "the file was modified");
+    expect_input_error(&["export", path_str(&garbage), "--json"], &["garbage.sqlite"]);
+
+    // Without --resume an existing file is never overwritten.
+    let refs: Vec<&str> = refs[..refs.len() - 1].to_vec();
+    expect_input_error(&refs, &["--resume"]);
+    assert_eq!(std::fs::read(&garbage).unwrap(), bytes);
+
+    expect_input_error(&["export", "/nonexistent/store.sqlite"], &["/nonexistent/store.sqlite"]);
+    expect_input_error(
+        &["sweep", SPEC, "--vary", "gapp=1mm", "--store", path_str(&dir.path().join("x.sqlite"))],
+        &["gapp", "drum.gap"],
+    );
+    expect_input_error(
+        &[
+            "sweep",
+            SPEC,
+            "--vary",
+            "g=1mm..0.5mm:3",
+            "--store",
+            path_str(&dir.path().join("y.sqlite")),
+        ],
+        &["g=1mm..0.5mm:3"],
+    );
+}
+
+#[test]
+fn a_small_optimisation_writes_its_outputs_and_replays_from_the_store() {
+    let dir = tempfile::tempdir().unwrap();
+    let problem = dir.path().join("problem.toml");
+    std::fs::write(
+        &problem,
+        format!(
+            r#"
+spec = "{SPEC}"
+mesh = "coarse"
+[[variable]]
+name = "g"
+min = "0.3mm"
+max = "1mm"
+[[variable]]
+name = "d"
+min = "1mm"
+max = "2mm"
+[[constraint]]
+metric = "torque_max_nm"
+min = "0.5Nm"
+[[objective]]
+metric = "rotor_inertia_kg_m2"
+[[objective]]
+metric = "torque_max_nm"
+goal = "maximize"
+[algorithm]
+kind = "nsga2"
+population = 4
+generations = 1
+seed = 7
+"#
+        ),
+    )
+    .unwrap();
+    let out_dir = dir.path().join("out");
+    let store = dir.path().join("opt.sqlite");
+    let args = [
+        "optimize",
+        path_str(&problem),
+        "--store",
+        path_str(&store),
+        "--out",
+        path_str(&out_dir),
+        "--json",
+    ];
+    let first = json(&args);
+    let evaluated = first["evaluated"].as_u64().unwrap();
+    assert!(evaluated >= 5, "reference + 2 batches of 4, minus repeats: {evaluated}");
+    for file in ["evaluations.csv", "pareto.csv", "pareto.svg", "constraints.svg"] {
+        assert!(out_dir.join(file).exists(), "{file} missing");
+    }
+    let front = first["front"].as_array().unwrap();
+    assert!(!front.is_empty());
+    // Every front design is written as a spec that analyses as it is.
+    let design = out_dir.join("designs").join("front-01.toml");
+    let v = json(&["analyze", path_str(&design), "--mesh", "coarse", "--points", "2", "--json"]);
+    assert!(v["torque"]["at_max_current_Nm"].as_f64().unwrap() > 0.5);
+
+    // The seeded optimiser replays the same designs from the store: nothing recomputed.
+    let mut resume = args.to_vec();
+    resume.push("--resume");
+    let second = json(&resume);
+    assert_eq!(second["computed"].as_u64(), Some(0));
+    assert_eq!(second["evaluated"], first["evaluated"]);
+    assert_eq!(second["front"], first["front"]);
+}

@@ -1,0 +1,289 @@
+//! One design of a study: a base spec with variables set, and its canonical key.
+//!
+//! Brief overview: a [`DesignSpace`] holds the base spec (as a TOML table, after fixed overrides),
+//! the study's [`Variable`]s and the [`EvaluationSettings`]; [`DesignSpace::design`] sets the
+//! variables to a point and returns a [`Design`]: the spec text (ready to analyse), the parsed spec or
+//! the reason it is invalid, and the key under which the results store keeps it.
+//!
+//! # The key
+//! The SHA-256 (FIPS 180-4) of a canonical JSON document holding everything the result depends on:
+//! * the parsed spec with every length and current in SI (so `"25mm"` and `0.025` are one design)
+//!   and without its `name` (a label, not a property);
+//! * a signature of every material the spec names: its B-H curve (ν(B²) at 48 flux densities), its
+//!   density, and for the fluid τ_y(B) at the same flux densities and the viscosity. The signature
+//!   samples the curves rather than hashing the data files, so it also changes when the
+//!   interpolation code changes the curve;
+//! * the [`EvaluationSettings`] (mesh level, speed, friction, temperature, convection);
+//! * [`MODEL_REVISION`] and this crate's version.
+//!
+//! JSON objects are written with sorted keys and floats in Rust's shortest round-trip form, so the
+//! document, and hence the key, is the same on every machine.
+
+use mrbrake_design::spec::BrakeSpec;
+use serde_json::{Value, json};
+use sha2::{Digest, Sha256};
+
+use crate::ExploreError;
+use crate::evaluate::EvaluationSettings;
+use crate::variable::{Variable, apply_override, set_field};
+
+/// Bumped whenever the analysis would give a different answer for the same inputs (a new torque
+/// model, a mesher change): stored results of older revisions then no longer match any key.
+pub const MODEL_REVISION: u32 = 1;
+
+/// The solver version written with every record.
+pub fn solver_version() -> String {
+    format!("mrbrake {} (model revision {MODEL_REVISION})", env!("CARGO_PKG_VERSION"))
+}
+
+/// The space a study explores: a base spec and the variables it varies.
+#[derive(Debug, Clone)]
+pub struct DesignSpace {
+    base: toml::Table,
+    base_name: String,
+    is_drum: bool,
+    variables: Vec<Variable>,
+    settings: EvaluationSettings,
+}
+
+/// One point of a [`DesignSpace`].
+#[derive(Debug, Clone)]
+pub struct Design {
+    /// The variables' values (name, SI value), in the space's order.
+    pub variables: Vec<(String, f64)>,
+    /// The full spec as TOML (lengths in metres), ready for `mrbrake analyze`.
+    pub spec_toml: String,
+    /// The parsed spec, or why this point is not a valid brake.
+    pub spec: Result<BrakeSpec, String>,
+    /// The results-store key (64 hex digits).
+    pub key: String,
+}
+
+impl DesignSpace {
+    /// A space over `base_toml` (a spec file's text; `origin` names it in messages) with fixed
+    /// `overrides` (`PATH`, `VALUE` pairs, see [`apply_override`]) and the given variables (names
+    /// resolved by [`crate::variable::resolve`]).
+    pub fn new(
+        base_toml: &str,
+        origin: &str,
+        overrides: &[(String, String)],
+        variable_names: &[String],
+        settings: EvaluationSettings,
+    ) -> Result<Self, ExploreError> {
+        let mut base: toml::Table = toml::from_str(base_toml)
+            .map_err(|e| ExploreError::Input(format!("{origin}: not a TOML spec: {e}")))?;
+        // Parse once to learn the configuration and to report a broken base spec early.
+        let spec = BrakeSpec::from_toml_str(base_toml, origin)?;
+        let is_drum = spec.configuration.is_drum();
+        for (path, value) in overrides {
+            apply_override(&mut base, path, value, is_drum)
+                .map_err(|e| ExploreError::Input(format!("{origin}: --set {path}={value}: {e}")))?;
+        }
+        let mut variables = Vec::with_capacity(variable_names.len());
+        for name in variable_names {
+            let variable = crate::variable::resolve(name, is_drum)?;
+            if variables.iter().any(|v: &Variable| v.field == variable.field) {
+                return Err(ExploreError::Input(format!(
+                    "variable '{name}' ({}) is given twice",
+                    variable.field.path
+                )));
+            }
+            variables.push(variable);
+        }
+        Ok(Self { base, base_name: spec.name, is_drum, variables, settings })
+    }
+
+    /// The variables.
+    pub fn variables(&self) -> &[Variable] {
+        &self.variables
+    }
+
+    /// The evaluation settings.
+    pub fn settings(&self) -> &EvaluationSettings {
+        &self.settings
+    }
+
+    /// True when the base spec is a drum brake (symbols resolve to drum fields).
+    pub fn is_drum(&self) -> bool {
+        self.is_drum
+    }
+
+    /// The base design itself (no variable set): the reference a study compares with.
+    pub fn base_design(&self) -> Result<Design, ExploreError> {
+        self.build(&[], self.base.clone(), self.base_name.clone())
+    }
+
+    /// The design at `values` (SI, one per variable, in order).
+    pub fn design(&self, values: &[f64]) -> Result<Design, ExploreError> {
+        if values.len() != self.variables.len() {
+            return Err(ExploreError::Input(format!(
+                "a design needs {} values, got {}",
+                self.variables.len(),
+                values.len()
+            )));
+        }
+        let mut table = self.base.clone();
+        let mut named = Vec::with_capacity(values.len());
+        let mut label = Vec::with_capacity(values.len());
+        for (variable, &value) in self.variables.iter().zip(values) {
+            set_field(&mut table, &variable.field, value)?;
+            named.push((variable.name.clone(), value));
+            label.push(format!("{}={}", variable.name, variable.display_value(value)));
+        }
+        let name = if label.is_empty() {
+            self.base_name.clone()
+        } else {
+            format!("{} [{}]", self.base_name, label.join(", "))
+        };
+        self.build(&named, table, name)
+    }
+
+    fn build(
+        &self,
+        variables: &[(String, f64)],
+        mut table: toml::Table,
+        name: String,
+    ) -> Result<Design, ExploreError> {
+        table.insert("name".into(), toml::Value::String(name));
+        let text = toml::to_string(&table)
+            .map_err(|e| ExploreError::Internal(format!("cannot write a design as TOML: {e}")))?;
+        let parsed =
+            BrakeSpec::from_toml_str(&text, "design").map_err(|e| e.to_string()).and_then(|spec| {
+                match spec.validate() {
+                    Ok(_) => Ok(spec),
+                    Err(e) => Err(e.to_string()),
+                }
+            });
+        let (spec_toml, key) = match &parsed {
+            // A valid design is written and keyed from the parsed spec: SI numbers, canonical.
+            Ok(spec) => (spec.to_toml_string()?, design_key(spec, &self.settings)?),
+            // An invalid one is keyed by its table (it can't be parsed), so it is stored once too.
+            Err(_) => {
+                let mut canonical = table.clone();
+                canonical.remove("name");
+                let document = json!({
+                    "invalid_spec": serde_json::to_value(&canonical).map_err(internal)?,
+                    "settings": self.settings.canonical(),
+                    "solver": solver_version(),
+                });
+                (text, sha256_hex(&document.to_string()))
+            }
+        };
+        Ok(Design { variables: variables.to_vec(), spec_toml, spec: parsed, key })
+    }
+}
+
+fn internal(e: impl std::fmt::Display) -> ExploreError {
+    ExploreError::Internal(e.to_string())
+}
+
+/// The key of a valid spec under the given settings (see the module docs).
+pub fn design_key(spec: &BrakeSpec, settings: &EvaluationSettings) -> Result<String, ExploreError> {
+    let mut spec_value = serde_json::to_value(spec).map_err(internal)?;
+    if let Value::Object(map) = &mut spec_value {
+        map.remove("name");
+    }
+    let m = &spec.materials;
+    let mut names: Vec<&str> =
+        vec![&m.flux_path, &m.non_magnetic, &m.shaft, &m.fluid, &m.coil, &m.surroundings];
+    if let Some(spacer) = &m.spacer {
+        names.push(spacer);
+    }
+    names.sort_unstable();
+    names.dedup();
+    let materials: Vec<Value> =
+        names.iter().map(|n| material_signature(n)).collect::<Result<_, _>>()?;
+    let document = json!({
+        "spec": spec_value,
+        "materials": materials,
+        "settings": settings.canonical(),
+        "solver": solver_version(),
+    });
+    Ok(sha256_hex(&document.to_string()))
+}
+
+/// Flux densities at which material curves are sampled for the signature (T): 0.05 … 2.4.
+fn signature_flux_densities() -> impl Iterator<Item = f64> {
+    (1..=48).map(|k| 0.05 * k as f64)
+}
+
+fn material_signature(name: &str) -> Result<Value, ExploreError> {
+    let material = mrbrake_materials::library::get(name)?;
+    let nu: Vec<f64> =
+        signature_flux_densities().map(|b| material.magnetic.nu_of_b2(b * b)).collect();
+    let mut signature = json!({
+        "name": name.trim().to_ascii_lowercase(),
+        "nu_of_b": nu,
+        "density": material.density_kg_m3.as_ref().map(|d| d.value),
+    });
+    if let Some(fluid) = &material.fluid {
+        let tau: Vec<f64> = signature_flux_densities().map(|b| fluid.tau_y_of_b(b)).collect();
+        signature["tau_y_of_b"] = json!(tau);
+        signature["viscosity"] = json!(fluid.viscosity_pa_s());
+    }
+    Ok(signature)
+}
+
+/// Lower-case hex SHA-256 of a text.
+pub fn sha256_hex(text: &str) -> String {
+    let digest = Sha256::digest(text.as_bytes());
+    digest.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn space(vars: &[&str]) -> DesignSpace {
+        DesignSpace::new(
+            mrbrake_design::spec::DEFAULT_SPEC_TOML,
+            "default",
+            &[],
+            &vars.iter().map(|s| s.to_string()).collect::<Vec<_>>(),
+            EvaluationSettings::default(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn the_key_ignores_units_and_names_but_not_values() {
+        let s = space(&["g"]);
+        let a = s.design(&[0.5e-3]).unwrap();
+        let base = s.base_design().unwrap();
+        // The thesis spec writes g = "0.5mm"; setting 0.5e-3 m is the same design.
+        assert_eq!(a.key, base.key);
+        let b = s.design(&[0.6e-3]).unwrap();
+        assert_ne!(a.key, b.key);
+        assert_eq!(a.key.len(), 64);
+    }
+
+    #[test]
+    fn settings_change_the_key() {
+        let s = space(&[]);
+        let coarse = EvaluationSettings {
+            mesh: mrbrake_design::mesh_build::MeshLevel::Coarse,
+            ..EvaluationSettings::default()
+        };
+        let s2 = DesignSpace::new(mrbrake_design::spec::DEFAULT_SPEC_TOML, "d", &[], &[], coarse)
+            .unwrap();
+        assert_ne!(s.base_design().unwrap().key, s2.base_design().unwrap().key);
+    }
+
+    #[test]
+    fn an_invalid_point_is_a_design_with_a_reason() {
+        let s = space(&["drum.gap"]);
+        let d = s.design(&[-1e-3]).unwrap();
+        let reason = d.spec.unwrap_err();
+        assert!(reason.contains("drum.gap"), "{reason}");
+        assert_eq!(d.key.len(), 64);
+    }
+
+    #[test]
+    fn sha256_matches_the_fips_example() {
+        // FIPS 180-4 example "abc".
+        assert_eq!(
+            sha256_hex("abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
+    }
+}

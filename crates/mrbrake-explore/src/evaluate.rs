@@ -1,0 +1,236 @@
+//! One design evaluation: the real FEA analysis (`mrbrake analyze` at zero and maximum current)
+//! reduced to the named metrics that studies constrain, optimise and store.
+//!
+//! Brief overview: [`EvaluationSettings`] fixes what every evaluation of a study shares (mesh level,
+//! speed for the viscous torque, friction, copper temperature, convection coefficient);
+//! [`evaluate`] runs [`mrbrake_design::analysis::analyze`] with a two-point sweep (off state and
+//! maximum current) and returns an [`Outcome`]: `ok` with [`METRICS`], `infeasible` with the reason
+//! (the spec breaks a rule: overlapping parts, a coil that does not fit, …), or `failed` with the
+//! numerical error (e.g. Newton not converging, with its history). Nothing is approximated by a
+//! surrogate: every number comes from the field solution and the thesis's formulas.
+
+use mrbrake_design::analysis::{Analysis, AnalysisOptions, analyze};
+use mrbrake_design::mesh_build::MeshLevel;
+use mrbrake_design::spec::BrakeSpec;
+use mrbrake_store::Status;
+use serde_json::{Value, json};
+
+/// What all evaluations of a study share.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EvaluationSettings {
+    /// Mesh density of every analysis.
+    pub mesh: MeshLevel,
+    /// Relative speed for the viscous (off-state) torque (rad/s).
+    pub speed_rad_s: f64,
+    /// Constant seal / bearing friction added to every torque (N·m).
+    pub seal_friction_nm: f64,
+    /// Copper temperature for the coil resistance (°C).
+    pub temperature_c: f64,
+    /// Heat-transfer coefficient from the device's outer surface to the room (W/(m²·K)) for the
+    /// steady temperature rise; 10 W/(m²·K) is still air (free convection of gases, 2–25 W/(m²·K):
+    /// Incropera & DeWitt, *Fundamentals of Heat and Mass Transfer*, Table 1.1).
+    pub convection_w_m2k: f64,
+}
+
+impl Default for EvaluationSettings {
+    fn default() -> Self {
+        let analysis = AnalysisOptions::default();
+        Self {
+            mesh: MeshLevel::Default,
+            speed_rad_s: analysis.speed_rad_s,
+            seal_friction_nm: analysis.seal_friction_nm,
+            temperature_c: analysis.temperature_c,
+            convection_w_m2k: 10.0,
+        }
+    }
+}
+
+impl EvaluationSettings {
+    /// The settings as a canonical JSON value (part of every design key).
+    pub fn canonical(&self) -> Value {
+        json!({
+            "mesh": format!("{:?}", self.mesh).to_ascii_lowercase(),
+            "speed_rad_s": self.speed_rad_s,
+            "seal_friction_nm": self.seal_friction_nm,
+            "temperature_c": self.temperature_c,
+            "convection_w_m2k": self.convection_w_m2k,
+            "points": 2,
+        })
+    }
+
+    fn analysis_options(&self) -> AnalysisOptions {
+        AnalysisOptions {
+            mesh: self.mesh,
+            points: 2,
+            speed_rad_s: self.speed_rad_s,
+            seal_friction_nm: self.seal_friction_nm,
+            temperature_c: self.temperature_c,
+        }
+    }
+}
+
+/// A metric's name, unit and meaning.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MetricInfo {
+    /// The name used in stores, CSV files and problem files.
+    pub name: &'static str,
+    /// SI unit (or `1` for ratios and counts).
+    pub unit: &'static str,
+    /// What it is.
+    pub meaning: &'static str,
+}
+
+const fn metric(name: &'static str, unit: &'static str, meaning: &'static str) -> MetricInfo {
+    MetricInfo { name, unit, meaning }
+}
+
+/// Every metric an `ok` evaluation reports, in store order. `torque_dir2_nm` and
+/// `wire_rated_current_a`/`current_to_rating` appear only where they apply (bidirectional brake; a
+/// wire with a known rating).
+pub const METRICS: &[MetricInfo] = &[
+    metric(
+        "torque_max_nm",
+        "N·m",
+        "torque at the maximum current, direction 1: local Bingham yield torque + viscous + friction",
+    ),
+    metric("torque_off_nm", "N·m", "off-state torque (zero current): viscous (3.4) + friction"),
+    metric("dynamic_range", "1", "torque_max_nm / torque_off_nm"),
+    metric("torque_dir2_nm", "N·m", "bidirectional: direction 2 with its own coil at max current"),
+    metric("thesis_torque_nm", "N·m", "thesis method: mean |B| in the gaps → τ_y → (4.4)/(3.7)"),
+    metric("mean_b_fluid_t", "T", "volume-mean |B| over the direction-1 fluid gaps"),
+    metric("max_b_fluid_t", "T", "largest |B| on a gap mid-line"),
+    metric("flux_path_max_b_t", "T", "largest |B| at a quadrature point of the steel flux path"),
+    metric("flux_path_q90_b_t", "T", "largest per-part 90 % quantile of |B| in the flux path"),
+    metric("flux_path_mean_b_t", "T", "volume-mean |B| over the flux path"),
+    metric("volume_m3", "m³", "envelope volume of the modelled device (bounding cylinder)"),
+    metric("mass_kg", "kg", "mass of all modelled parts"),
+    metric("rotor_inertia_kg_m2", "kg·m²", "inertia of the parts turning in direction 1"),
+    metric("outer_diameter_m", "m", "outer diameter of the modelled device"),
+    metric("length_m", "m", "axial length of the modelled device"),
+    metric("torque_density_nm_per_m3", "N·m/m³", "torque_max_nm / volume_m3"),
+    metric("torque_density_nm_per_kg", "N·m/kg", "torque_max_nm / mass_kg"),
+    metric("min_gap_m", "m", "narrowest fluid gap"),
+    metric(
+        "min_wall_m",
+        "m",
+        "thinnest structural wall: case, end plate, cylinders or discs, covers",
+    ),
+    metric("max_current_a", "A", "maximum coil current"),
+    metric("turns", "1", "turns per coil"),
+    metric("current_density_a_per_mm2", "A/mm²", "thesis current density (4.1) at max current"),
+    metric("wire_rated_current_a", "A", "the wire's current rating (given or thesis Table 4.6)"),
+    metric("current_to_rating", "1", "max_current_a / wire_rated_current_a"),
+    metric("resistance_ohm", "Ω", "coil resistance at the settings' temperature"),
+    metric("power_w", "W", "ohmic power of one coil at max current"),
+    metric(
+        "temperature_rise_k",
+        "K",
+        "steady rise: power_w / (h · outer surface), h = the settings' convection coefficient",
+    ),
+    metric("inductance_h", "H", "secant inductance λ/I at max current"),
+    metric("incremental_inductance_h", "H", "incremental inductance dλ/dI at max current"),
+    metric("time_constant_s", "s", "L/R with the secant inductance"),
+    metric("nodes", "1", "mesh nodes"),
+    metric("newton_iterations", "1", "Newton iterations of the max-current solve"),
+];
+
+/// The result of one evaluation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outcome {
+    /// ok, infeasible (the design breaks a rule) or failed (numerical failure).
+    pub status: Status,
+    /// Why it is infeasible or failed.
+    pub reason: Option<String>,
+    /// The metrics (empty unless ok), in [`METRICS`] order.
+    pub metrics: Vec<(String, f64)>,
+}
+
+impl Outcome {
+    /// An infeasible design and the rule it breaks.
+    pub fn infeasible(reason: impl Into<String>) -> Self {
+        Self { status: Status::Infeasible, reason: Some(reason.into()), metrics: Vec::new() }
+    }
+}
+
+/// Analyses one valid spec and reduces it to metrics.
+pub fn evaluate(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
+    match analyze(spec, &settings.analysis_options()) {
+        Ok(analysis) => Outcome {
+            status: Status::Ok,
+            reason: None,
+            metrics: metrics_of(spec, &analysis, settings),
+        },
+        // An input error raised during the analysis (a material that does not suit its part, a
+        // mesh the geometry cannot have) is a property of the design: infeasible, not a crash.
+        Err(e) if e.is_input_error() => Outcome::infeasible(e.to_string()),
+        Err(e) => Outcome { status: Status::Failed, reason: Some(e.to_string()), metrics: vec![] },
+    }
+}
+
+fn metrics_of(spec: &BrakeSpec, a: &Analysis, settings: &EvaluationSettings) -> Vec<(String, f64)> {
+    let mut m: Vec<(&'static str, f64)> = Vec::with_capacity(METRICS.len());
+    let t = &a.torque;
+    m.push(("torque_max_nm", t.at_max_current_nm));
+    m.push(("torque_off_nm", t.off_state_nm));
+    m.push(("dynamic_range", t.dynamic_range));
+    if let Some(t2) = t.direction2_at_max_current_nm {
+        m.push(("torque_dir2_nm", t2));
+    }
+    m.push(("thesis_torque_nm", t.thesis_formula_nm));
+    m.push(("mean_b_fluid_t", t.mean_b_t));
+    let max_b_fluid = a.gaps.iter().map(|g| g.max_b_t).fold(0.0, f64::max);
+    m.push(("max_b_fluid_t", max_b_fluid));
+    m.push(("flux_path_max_b_t", a.flux_path.max_b_t));
+    m.push(("flux_path_q90_b_t", a.flux_path.q90_b_t));
+    m.push(("flux_path_mean_b_t", a.flux_path.mean_b_t));
+    let mech = &a.mechanics;
+    m.push(("volume_m3", mech.volume_m3));
+    m.push(("mass_kg", mech.mass_kg));
+    m.push(("rotor_inertia_kg_m2", mech.rotor_inertia_kg_m2));
+    m.push(("outer_diameter_m", mech.outer_diameter_m));
+    m.push(("length_m", mech.length_m));
+    m.push(("torque_density_nm_per_m3", mech.torque_density_nm_per_m3));
+    m.push(("torque_density_nm_per_kg", mech.torque_density_nm_per_kg));
+    m.push(("min_gap_m", a.gaps.iter().map(|g| g.width_m).fold(f64::INFINITY, f64::min)));
+    m.push(("min_wall_m", min_wall_m(spec)));
+    m.push(("max_current_a", a.max_current_a));
+    let coil = &a.coil;
+    m.push(("turns", f64::from(coil.turns)));
+    m.push(("current_density_a_per_mm2", coil.current_density_a_per_mm2));
+    if let Some(rating) = spec.coil.wire.rated_current_a() {
+        m.push(("wire_rated_current_a", rating));
+        m.push(("current_to_rating", a.max_current_a / rating));
+    }
+    m.push(("resistance_ohm", coil.resistance_ohm));
+    m.push(("power_w", coil.power_w));
+    // Steady state of a body losing heat through its outer surface only (cylinder side + ends):
+    // ΔT = P / (h A) (Newton's law of cooling).
+    let (d, l) = (mech.outer_diameter_m, mech.length_m);
+    let surface = std::f64::consts::PI * d * l + std::f64::consts::PI * d * d / 2.0;
+    m.push(("temperature_rise_k", coil.power_w / (settings.convection_w_m2k * surface)));
+    m.push(("inductance_h", coil.inductance_h));
+    m.push(("incremental_inductance_h", coil.incremental_inductance_h));
+    m.push(("time_constant_s", coil.time_constant_s));
+    m.push(("nodes", a.mesh.nodes as f64));
+    let iterations = a.torque_current_curve.last().map_or(0, |p| p.newton_iterations);
+    m.push(("newton_iterations", iterations as f64));
+    m.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
+}
+
+/// The thinnest structural wall of the spec (m): case shell, end plate, inner case, the drum
+/// cylinders or discs, and the rotor disc and cover where given.
+fn min_wall_m(spec: &BrakeSpec) -> f64 {
+    let h = &spec.housing;
+    let mut walls =
+        vec![h.case_thickness.m(), h.end_plate_thickness.m(), h.inner_case_thickness.m()];
+    walls.extend(h.cover_thickness.map(|l| l.m()));
+    walls.extend(h.rotor_disc_thickness.map(|l| l.m()));
+    walls.extend(spec.drum.as_ref().map(|d| d.cylinder_thickness.m()));
+    walls.extend(spec.disc.as_ref().map(|d| d.thickness.m()));
+    walls.into_iter().fold(f64::INFINITY, f64::min)
+}
+
+/// Looks up a metric's documentation.
+pub fn metric_info(name: &str) -> Option<&'static MetricInfo> {
+    METRICS.iter().find(|m| m.name == name)
+}

@@ -1,0 +1,67 @@
+//! Design-space exploration for MR brakes: sweeps and optimisation over the fields of a brake spec,
+//! where every design is analysed by the real FEA (`mrbrake analyze`) and kept in a durable,
+//! resumable results store.
+//!
+//! Brief overview, in data-flow order:
+//! * [`variable`]: which spec fields a study may vary (`drum.gap`, or the thesis symbol `g`), their
+//!   units, and how a value is written into a spec;
+//! * [`design`]: a [`design::DesignSpace`] (base spec + variables + settings) and its points, each a
+//!   [`design::Design`] with a canonical SHA-256 key over everything its result depends on;
+//! * [`evaluate`]: one analysis reduced to named metrics ([`evaluate::METRICS`]), or the reason the
+//!   design is infeasible or failed;
+//! * [`runner`]: evaluates a batch of designs in parallel, storing each result in the
+//!   [`mrbrake_store::Store`] the moment it completes and never recomputing a stored design;
+//! * [`plan`]: sweep plans (lists, ranges, Latin hypercube, Sobol') and deterministic shards;
+//! * [`problem`] and [`optimize`]: optimisation problem files (variables, constraints, objectives)
+//!   solved by NSGA-II or pattern search from [`mrbrake_optim`], every evaluation through the store.
+
+pub mod design;
+pub mod evaluate;
+pub mod optimize;
+pub mod plan;
+pub mod problem;
+pub mod runner;
+pub mod variable;
+
+pub use design::{Design, DesignSpace};
+pub use evaluate::{EvaluationSettings, METRICS, Outcome};
+pub use runner::{Progress, RunSummary, Runner};
+
+/// Errors of this crate.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ExploreError {
+    /// Bad input: a variable, value, problem-file field or plan that is not allowed (the message
+    /// names it and the allowed values).
+    #[error("{0}")]
+    Input(String),
+    /// The base spec or the analysis set-up.
+    #[error(transparent)]
+    Design(#[from] mrbrake_design::DesignError),
+    /// A material name or curve.
+    #[error(transparent)]
+    Material(#[from] mrbrake_materials::MaterialError),
+    /// The results store (a foreign or corrupt file, an existing store without `--resume`, I/O).
+    #[error(transparent)]
+    Store(#[from] mrbrake_store::StoreError),
+    /// The optimiser's set-up.
+    #[error(transparent)]
+    Optim(#[from] mrbrake_optim::OptimError),
+    /// A defect or an unexpected internal state.
+    #[error("internal error: {0}")]
+    Internal(String),
+}
+
+impl ExploreError {
+    /// True when the error comes from bad input (the CLI exits with code 2).
+    pub fn is_input_error(&self) -> bool {
+        match self {
+            Self::Input(_) => true,
+            Self::Design(e) => e.is_input_error(),
+            Self::Material(e) => e.is_input_error(),
+            Self::Store(e) => e.is_input_error(),
+            Self::Optim(e) => e.is_input_error(),
+            Self::Internal(_) => false,
+        }
+    }
+}

@@ -1,0 +1,275 @@
+//! Optimisation of a brake design: an [`OptimizationProblem`] solved by NSGA-II or pattern search,
+//! every evaluation analysed by the FEA through the results store.
+//!
+//! Brief overview: [`StudyProblem`] adapts a problem file to [`mrbrake_optim::Problem`]: a vector
+//! of variable values becomes a [`crate::Design`], each batch (one NSGA-II generation, one
+//! pattern-search poll) goes through the [`Runner`] (parallel, stored, never recomputed), and each
+//! record becomes an [`Evaluation`]: the objectives (maximised ones negated) and the total normalised
+//! constraint violation ([`crate::problem::Constraint::violation`]); infeasible or failed designs get
+//! an infinite violation so that every evaluated design beats them (Deb's feasibility rules).
+//! Because the algorithms are seeded and deterministic, re-running an interrupted optimisation on
+//! the same store replays the same designs: stored ones are read back, the rest are computed.
+//! [`run`] returns every evaluated design, the feasible Pareto front and the reference design.
+
+use mrbrake_optim::pareto::{Evaluation, pareto_front};
+use mrbrake_optim::space::Bounds;
+use mrbrake_optim::{Problem, RunError, nsga2, pattern_search};
+use mrbrake_store::{Record, Status, Store};
+
+use crate::design::DesignSpace;
+use crate::problem::{Algorithm, Goal, OptimizationProblem};
+use crate::runner::{Progress, RunSummary, Runner};
+use crate::variable::Quantity;
+use crate::{Design, ExploreError};
+
+/// One evaluated design of an optimisation.
+#[derive(Debug, Clone)]
+pub struct Evaluated {
+    /// The stored record (variables, metrics, spec).
+    pub record: Record,
+    /// What the optimiser saw.
+    pub evaluation: Evaluation,
+}
+
+/// An optimisation's outcome.
+#[derive(Debug, Clone)]
+pub struct OptimizationResult {
+    /// Every distinct design evaluated, in the order first asked for.
+    pub evaluated: Vec<Evaluated>,
+    /// Indices into `evaluated` of the feasible Pareto front (sorted by the first objective); for
+    /// one objective, the best feasible design.
+    pub front: Vec<usize>,
+    /// The base spec evaluated as the reference design (when the problem asks for it).
+    pub reference: Option<Evaluated>,
+    /// Batches run, and the summed run statistics.
+    pub batches: usize,
+    /// Designs asked for by the algorithm (repeats included).
+    pub requested: usize,
+    /// Sum of all batches' run summaries (computed, reused, timings).
+    pub totals: RunSummary,
+    /// The design variables (for display).
+    pub variables: Vec<crate::variable::Variable>,
+}
+
+/// The [`mrbrake_optim::Problem`] of an optimisation problem file.
+pub struct StudyProblem<'s, 'p> {
+    problem: &'p OptimizationProblem,
+    space: DesignSpace,
+    bounds: Vec<Bounds>,
+    runner: Runner<'s>,
+    evaluated: Vec<Evaluated>,
+    seen: std::collections::HashMap<String, usize>,
+    batches: usize,
+    requested: usize,
+    totals: Option<RunSummary>,
+    on_progress: &'p mut dyn FnMut(&Progress),
+}
+
+impl<'s, 'p> StudyProblem<'s, 'p> {
+    /// Sets up the problem: reads the base spec, resolves the variables and their bounds.
+    pub fn new(
+        problem: &'p OptimizationProblem,
+        store: &'s mut Store,
+        jobs: usize,
+        on_progress: &'p mut dyn FnMut(&Progress),
+    ) -> Result<Self, ExploreError> {
+        let spec_text = std::fs::read_to_string(&problem.spec_path).map_err(|e| {
+            ExploreError::Input(format!(
+                "{}: spec = '{}': cannot read it: {e}",
+                problem.path.display(),
+                problem.spec_path.display()
+            ))
+        })?;
+        let names: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
+        let space = DesignSpace::new(
+            &spec_text,
+            &problem.spec_path.display().to_string(),
+            &problem.overrides,
+            &names,
+            problem.settings,
+        )?;
+        let bounds = space
+            .variables()
+            .iter()
+            .zip(&problem.variables)
+            .map(|(v, b)| match v.field.quantity {
+                Quantity::Integer => Bounds::integer(b.min, b.max),
+                _ => Bounds::continuous(b.min, b.max),
+            })
+            .collect();
+        Ok(Self {
+            problem,
+            space,
+            bounds,
+            runner: Runner::new(store, problem.settings, jobs),
+            evaluated: Vec::new(),
+            seen: Default::default(),
+            batches: 0,
+            requested: 0,
+            totals: None,
+            on_progress,
+        })
+    }
+
+    /// The design space (base spec and variables).
+    pub fn space(&self) -> &DesignSpace {
+        &self.space
+    }
+
+    /// What the optimiser sees of a record.
+    pub fn evaluation_of(&self, record: &Record) -> Evaluation {
+        let n = self.problem.objectives.len();
+        if record.status != Status::Ok {
+            return Evaluation::failed(n);
+        }
+        let metric = |name: &str| {
+            record.metrics.iter().find(|(k, _)| k == name).map_or(f64::NAN, |(_, v)| *v)
+        };
+        let objectives: Vec<f64> = self
+            .problem
+            .objectives
+            .iter()
+            .map(|o| {
+                let v = metric(&o.metric);
+                let v = if v.is_finite() { v } else { f64::INFINITY };
+                match o.goal {
+                    Goal::Minimize => v,
+                    Goal::Maximize => -v,
+                }
+            })
+            .collect();
+        let violation: f64 =
+            self.problem.constraints.iter().map(|c| c.violation(metric(&c.metric))).sum();
+        if objectives.iter().any(|v| !v.is_finite()) {
+            return Evaluation::failed(n);
+        }
+        Evaluation::new(objectives, violation)
+    }
+
+    fn run_batch(&mut self, designs: &[Design]) -> Result<Vec<Record>, ExploreError> {
+        let (records, summary) = self.runner.run(designs, self.on_progress)?;
+        self.batches += 1;
+        self.requested += designs.len();
+        self.totals = Some(match self.totals.take() {
+            None => summary,
+            Some(mut t) => {
+                let (a, b) = (&mut t.progress, &summary.progress);
+                a.to_compute += b.to_compute;
+                a.computed += b.computed;
+                a.reused += b.reused;
+                a.infeasible += b.infeasible;
+                a.failed += b.failed;
+                a.elapsed_s += b.elapsed_s;
+                t.evaluation_s += summary.evaluation_s;
+                t.store_s += summary.store_s;
+                t
+            }
+        });
+        Ok(records)
+    }
+}
+
+impl Problem for StudyProblem<'_, '_> {
+    type Error = ExploreError;
+
+    fn bounds(&self) -> &[Bounds] {
+        &self.bounds
+    }
+
+    fn objectives(&self) -> usize {
+        self.problem.objectives.len()
+    }
+
+    fn evaluate_batch(&mut self, xs: &[Vec<f64>]) -> Result<Vec<Evaluation>, ExploreError> {
+        let designs: Vec<Design> =
+            xs.iter().map(|x| self.space.design(x)).collect::<Result<_, _>>()?;
+        let records = self.run_batch(&designs)?;
+        let mut evaluations = Vec::with_capacity(records.len());
+        for record in records {
+            let evaluation = self.evaluation_of(&record);
+            if !self.seen.contains_key(&record.key) {
+                self.seen.insert(record.key.clone(), self.evaluated.len());
+                self.evaluated.push(Evaluated { record, evaluation: evaluation.clone() });
+            }
+            evaluations.push(evaluation);
+        }
+        Ok(evaluations)
+    }
+}
+
+fn run_error(e: RunError<ExploreError>) -> ExploreError {
+    match e {
+        RunError::Optim(e) => ExploreError::Optim(e),
+        RunError::Problem(e) => e,
+    }
+}
+
+/// Runs the optimisation of `problem` with results in `store`, `jobs` analyses at a time.
+pub fn run(
+    problem: &OptimizationProblem,
+    store: &mut Store,
+    jobs: usize,
+    on_progress: &mut dyn FnMut(&Progress),
+) -> Result<OptimizationResult, ExploreError> {
+    let mut study = StudyProblem::new(problem, store, jobs, on_progress)?;
+    let reference = if problem.reference {
+        let base = study.space.base_design()?;
+        let record = study
+            .run_batch(std::slice::from_ref(&base))?
+            .pop()
+            .ok_or_else(|| ExploreError::Internal("the reference design was not stored".into()))?;
+        let evaluation = study.evaluation_of(&record);
+        Some(Evaluated { record, evaluation })
+    } else {
+        None
+    };
+    match problem.algorithm {
+        Algorithm::Nsga2 { population, generations, seed } => {
+            let options = nsga2::Nsga2Options {
+                population,
+                generations,
+                seed,
+                ..nsga2::Nsga2Options::default()
+            };
+            nsga2::run(&mut study, &options, &mut |_| {}).map_err(run_error)?;
+        }
+        Algorithm::PatternSearch { max_evaluations, seed } => {
+            let options = pattern_search::PatternSearchOptions {
+                max_evaluations,
+                seed,
+                ..pattern_search::PatternSearchOptions::default()
+            };
+            pattern_search::run(&mut study, &options, &mut |_, _| {}).map_err(run_error)?;
+        }
+    }
+    let evaluations: Vec<Evaluation> =
+        study.evaluated.iter().map(|e| e.evaluation.clone()).collect();
+    let front = if problem.objectives.len() == 1 {
+        best_feasible(&evaluations).into_iter().collect()
+    } else {
+        pareto_front(&evaluations)
+    };
+    let totals = study
+        .totals
+        .clone()
+        .ok_or_else(|| ExploreError::Internal("the optimiser evaluated no design".into()))?;
+    Ok(OptimizationResult {
+        variables: study.space.variables().to_vec(),
+        evaluated: study.evaluated,
+        front,
+        reference,
+        batches: study.batches,
+        requested: study.requested,
+        totals,
+    })
+}
+
+/// The feasible design with the smallest objective.
+fn best_feasible(evaluations: &[Evaluation]) -> Option<usize> {
+    evaluations
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| e.feasible())
+        .min_by(|a, b| a.1.objectives[0].total_cmp(&b.1.objectives[0]))
+        .map(|(i, _)| i)
+}

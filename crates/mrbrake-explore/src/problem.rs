@@ -1,0 +1,468 @@
+//! Optimisation problem files (TOML): the base spec, design variables with bounds, constraints on
+//! metrics, objectives, and the algorithm.
+//!
+//! ```toml
+//! spec = "../specs/thesis-bidirectional.toml"   # relative to this file
+//! mesh = "default"                             # coarse | default | fine
+//! [set]                                        # fixed changes to the base spec
+//! "coil.turns" = "fill"                        # the turns fill the window, (4.2), (4.3)
+//! [[variable]]
+//! name = "drum.r0"                             # a spec field or a thesis symbol (R0)
+//! min = "18mm"
+//! max = "30mm"
+//! [[constraint]]
+//! metric = "torque_max_nm"                     # any metric of `mrbrake optimize --list-metrics`
+//! min = "3Nm"                                  # and/or max; a number (SI) or a quantity with unit
+//! [[objective]]
+//! metric = "rotor_inertia_kg_m2"
+//! goal = "minimize"                            # or "maximize"
+//! [algorithm]
+//! kind = "nsga2"                               # or "pattern-search" (one objective)
+//! population = 24
+//! generations = 10
+//! seed = 1
+//! ```
+//!
+//! Every field is checked when the file is read; an error names the file, the table and the field
+//! and what is allowed.
+
+use std::path::{Path, PathBuf};
+
+use mrbrake_design::mesh_build::MeshLevel;
+use mrbrake_units::{Dimension, parse};
+use serde::Deserialize;
+
+use crate::ExploreError;
+use crate::evaluate::{EvaluationSettings, METRICS, metric_info};
+
+/// A number (SI) or a quantity with its unit.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(untagged)]
+enum RawQuantity {
+    Number(f64),
+    Integer(i64),
+    Text(String),
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawProblem {
+    spec: String,
+    #[serde(default)]
+    mesh: Option<String>,
+    #[serde(default)]
+    speed: Option<String>,
+    #[serde(default)]
+    set: toml::Table,
+    #[serde(default)]
+    reference: Option<bool>,
+    #[serde(default, rename = "variable")]
+    variables: Vec<RawVariable>,
+    #[serde(default, rename = "constraint")]
+    constraints: Vec<RawConstraint>,
+    #[serde(default, rename = "objective")]
+    objectives: Vec<RawObjective>,
+    algorithm: RawAlgorithm,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawVariable {
+    name: String,
+    min: RawQuantity,
+    max: RawQuantity,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawConstraint {
+    metric: String,
+    #[serde(default)]
+    min: Option<RawQuantity>,
+    #[serde(default)]
+    max: Option<RawQuantity>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawObjective {
+    metric: String,
+    #[serde(default = "minimize")]
+    goal: String,
+}
+
+fn minimize() -> String {
+    "minimize".into()
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawAlgorithm {
+    kind: String,
+    #[serde(default)]
+    population: Option<usize>,
+    #[serde(default)]
+    generations: Option<usize>,
+    #[serde(default)]
+    max_evaluations: Option<usize>,
+    #[serde(default)]
+    seed: Option<u64>,
+}
+
+/// A design variable with its bounds (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VariableBounds {
+    /// The name (spec field or thesis symbol).
+    pub name: String,
+    /// Lower bound (SI).
+    pub min: f64,
+    /// Upper bound (SI).
+    pub max: f64,
+}
+
+/// A bound on a metric (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Constraint {
+    /// The metric.
+    pub metric: String,
+    /// Lower limit.
+    pub min: Option<f64>,
+    /// Upper limit.
+    pub max: Option<f64>,
+}
+
+impl Constraint {
+    /// The normalised violation of `value`: 0 when within the limits, else the distance to the
+    /// violated limit relative to its magnitude (so constraints of different units add up, as in
+    /// Deb 2000, *An efficient constraint handling method for genetic algorithms*, eq. 2).
+    pub fn violation(&self, value: f64) -> f64 {
+        if !value.is_finite() {
+            return f64::INFINITY;
+        }
+        let scale = |limit: f64| limit.abs().max(1e-12);
+        let below = self.min.map_or(0.0, |lo| ((lo - value) / scale(lo)).max(0.0));
+        let above = self.max.map_or(0.0, |hi| ((value - hi) / scale(hi)).max(0.0));
+        below + above
+    }
+
+    /// The signed margin to the nearest limit, relative to its magnitude: positive inside, zero on
+    /// the limit (an active constraint), negative when violated.
+    pub fn margin(&self, value: f64) -> f64 {
+        let scale = |limit: f64| limit.abs().max(1e-12);
+        let lo = self.min.map_or(f64::INFINITY, |lo| (value - lo) / scale(lo));
+        let hi = self.max.map_or(f64::INFINITY, |hi| (hi - value) / scale(hi));
+        lo.min(hi)
+    }
+}
+
+/// Minimise or maximise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Goal {
+    /// Smaller is better.
+    Minimize,
+    /// Larger is better.
+    Maximize,
+}
+
+/// An objective.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Objective {
+    /// The metric.
+    pub metric: String,
+    /// Its goal.
+    pub goal: Goal,
+}
+
+/// The optimisation algorithm.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Algorithm {
+    /// NSGA-II (Deb et al. 2002).
+    Nsga2 {
+        /// Population size (even, ≥ 4).
+        population: usize,
+        /// Generations after the initial population.
+        generations: usize,
+        /// Seed.
+        seed: u64,
+    },
+    /// Pattern search (one objective).
+    PatternSearch {
+        /// Evaluation budget.
+        max_evaluations: usize,
+        /// Seed (poll order).
+        seed: u64,
+    },
+}
+
+/// A whole, checked problem file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OptimizationProblem {
+    /// The problem file.
+    pub path: PathBuf,
+    /// The base spec file (resolved against the problem file's folder).
+    pub spec_path: PathBuf,
+    /// Fixed overrides `PATH = VALUE` applied to the base spec.
+    pub overrides: Vec<(String, String)>,
+    /// Evaluate the base spec too and show it as the reference design.
+    pub reference: bool,
+    /// The evaluation settings.
+    pub settings: EvaluationSettings,
+    /// Variables.
+    pub variables: Vec<VariableBounds>,
+    /// Constraints.
+    pub constraints: Vec<Constraint>,
+    /// Objectives.
+    pub objectives: Vec<Objective>,
+    /// Algorithm.
+    pub algorithm: Algorithm,
+}
+
+impl OptimizationProblem {
+    /// Reads and checks a problem file.
+    pub fn from_path(path: &Path) -> Result<Self, ExploreError> {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            ExploreError::Input(format!("{}: cannot read the problem file: {e}", path.display()))
+        })?;
+        Self::from_toml_str(&text, path)
+    }
+
+    /// Parses problem-file text; `path` locates the spec and names the file in messages.
+    pub fn from_toml_str(text: &str, path: &Path) -> Result<Self, ExploreError> {
+        let origin = path.display().to_string();
+        let bad = |what: String| ExploreError::Input(format!("{origin}: {what}"));
+        let raw: RawProblem = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
+        let folder = path.parent().unwrap_or_else(|| Path::new("."));
+        let spec_path = folder.join(&raw.spec);
+
+        let mut settings = EvaluationSettings::default();
+        if let Some(mesh) = &raw.mesh {
+            settings.mesh = MeshLevel::parse(mesh).map_err(|e| bad(format!("mesh: {e}")))?;
+        }
+        if let Some(speed) = &raw.speed {
+            settings.speed_rad_s =
+                parse(speed, Dimension::AngularVelocity).map_err(|e| bad(format!("speed: {e}")))?;
+        }
+        let mut overrides = Vec::new();
+        for (field, value) in &raw.set {
+            let text = match value {
+                toml::Value::String(s) => s.clone(),
+                other => other.to_string(),
+            };
+            overrides.push((field.clone(), text));
+        }
+
+        if raw.variables.is_empty() {
+            return Err(bad("no [[variable]]: give at least one design variable".into()));
+        }
+        let mut variables = Vec::new();
+        for (i, v) in raw.variables.iter().enumerate() {
+            let where_ = format!("variable {} ('{}')", i + 1, v.name);
+            // Bounds read with the variable's own unit; the symbol resolves against the spec
+            // later, so read them with the field the name denotes for either configuration.
+            let field_quantity = crate::variable::resolve(&v.name, true)
+                .or_else(|_| crate::variable::resolve(&v.name, false))
+                .map_err(|e| bad(format!("{where_}: {e}")))?;
+            let read = |q: &RawQuantity, which: &str| -> Result<f64, ExploreError> {
+                let text = match q {
+                    RawQuantity::Number(x) => return Ok(*x),
+                    RawQuantity::Integer(i) => return Ok(*i as f64),
+                    RawQuantity::Text(t) => t,
+                };
+                field_quantity.parse_value(text).map_err(|e| bad(format!("{where_}.{which}: {e}")))
+            };
+            let (min, max) = (read(&v.min, "min")?, read(&v.max, "max")?);
+            if !(min.is_finite() && max.is_finite() && min < max) {
+                return Err(bad(format!("{where_}: needs min < max, got {min} and {max}")));
+            }
+            variables.push(VariableBounds { name: v.name.clone(), min, max });
+        }
+
+        let mut constraints = Vec::new();
+        for (i, c) in raw.constraints.iter().enumerate() {
+            let where_ = format!("constraint {} ('{}')", i + 1, c.metric);
+            let info = known_metric(&c.metric).map_err(|e| bad(format!("{where_}: {e}")))?;
+            let read =
+                |q: &Option<RawQuantity>, which: &str| -> Result<Option<f64>, ExploreError> {
+                    q.as_ref()
+                        .map(|q| {
+                            metric_value(q, info.unit)
+                                .map_err(|e| bad(format!("{where_}.{which}: {e}")))
+                        })
+                        .transpose()
+                };
+            let (min, max) = (read(&c.min, "min")?, read(&c.max, "max")?);
+            if min.is_none() && max.is_none() {
+                return Err(bad(format!("{where_}: give min, max or both")));
+            }
+            if let (Some(lo), Some(hi)) = (min, max) {
+                if lo > hi {
+                    return Err(bad(format!("{where_}: min {lo} is above max {hi}")));
+                }
+            }
+            constraints.push(Constraint { metric: info.name.to_string(), min, max });
+        }
+
+        if raw.objectives.is_empty() {
+            return Err(bad("no [[objective]]: give one (pattern search) or more (nsga2)".into()));
+        }
+        let mut objectives = Vec::new();
+        for (i, o) in raw.objectives.iter().enumerate() {
+            let where_ = format!("objective {} ('{}')", i + 1, o.metric);
+            let info = known_metric(&o.metric).map_err(|e| bad(format!("{where_}: {e}")))?;
+            let goal = match o.goal.trim().to_ascii_lowercase().as_str() {
+                "minimize" | "minimise" | "min" => Goal::Minimize,
+                "maximize" | "maximise" | "max" => Goal::Maximize,
+                other => {
+                    return Err(bad(format!(
+                        "{where_}.goal: '{other}' is not allowed; use minimize or maximize"
+                    )));
+                }
+            };
+            objectives.push(Objective { metric: info.name.to_string(), goal });
+        }
+
+        let a = &raw.algorithm;
+        let seed = a.seed.unwrap_or(1);
+        let algorithm = match a.kind.trim().to_ascii_lowercase().as_str() {
+            "nsga2" | "nsga-ii" => {
+                let population = a.population.unwrap_or(24);
+                if population < 4 || population % 2 == 1 {
+                    return Err(bad(format!(
+                        "algorithm.population: {population} is not allowed; use an even number ≥ 4"
+                    )));
+                }
+                Algorithm::Nsga2 { population, generations: a.generations.unwrap_or(10), seed }
+            }
+            "pattern-search" | "pattern_search" => {
+                if objectives.len() != 1 {
+                    return Err(bad(format!(
+                        "algorithm.kind = pattern-search optimises one objective; {} are given \
+                         (use nsga2 for several)",
+                        objectives.len()
+                    )));
+                }
+                Algorithm::PatternSearch { max_evaluations: a.max_evaluations.unwrap_or(200), seed }
+            }
+            other => {
+                return Err(bad(format!(
+                    "algorithm.kind: '{other}' is not allowed; use nsga2 or pattern-search"
+                )));
+            }
+        };
+
+        Ok(Self {
+            path: path.to_path_buf(),
+            spec_path,
+            overrides,
+            reference: raw.reference.unwrap_or(true),
+            settings,
+            variables,
+            constraints,
+            objectives,
+            algorithm,
+        })
+    }
+}
+
+fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
+    metric_info(name.trim()).ok_or_else(|| {
+        ExploreError::Input(format!(
+            "unknown metric '{name}'; allowed: {}",
+            METRICS.iter().map(|m| m.name).collect::<Vec<_>>().join(", ")
+        ))
+    })
+}
+
+/// A metric limit: a bare number in the metric's SI unit, or a quantity with a unit of the
+/// metric's dimension (`"3Nm"`, `"80mm"`, `"1.6T"`).
+fn metric_value(q: &RawQuantity, unit: &str) -> Result<f64, ExploreError> {
+    match q {
+        RawQuantity::Number(x) => Ok(*x),
+        RawQuantity::Integer(i) => Ok(*i as f64),
+        RawQuantity::Text(text) => {
+            let dimension = match unit {
+                "m" => Dimension::Length,
+                "T" => Dimension::FluxDensity,
+                "A" => Dimension::Current,
+                "N·m" => Dimension::Torque,
+                "s" => Dimension::Time,
+                _ => {
+                    return text.trim().parse::<f64>().map_err(|_| {
+                        ExploreError::Input(format!(
+                            "'{text}': give a bare number in {unit} for this metric"
+                        ))
+                    });
+                }
+            };
+            parse(text, dimension).map_err(|e| ExploreError::Input(e.to_string()))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+spec = "../specs/thesis-bidirectional.toml"
+mesh = "coarse"
+[set]
+"coil.turns" = "fill"
+[[variable]]
+name = "R0"
+min = "18mm"
+max = "30mm"
+[[variable]]
+name = "n"
+min = 1
+max = 3
+[[constraint]]
+metric = "torque_max_nm"
+min = "3Nm"
+[[constraint]]
+metric = "outer_diameter_m"
+max = "80mm"
+[[objective]]
+metric = "rotor_inertia_kg_m2"
+[[objective]]
+metric = "volume_m3"
+[algorithm]
+kind = "nsga2"
+population = 8
+generations = 2
+"#;
+
+    #[test]
+    fn a_good_file_reads_with_units() {
+        let p = OptimizationProblem::from_toml_str(GOOD, Path::new("ex/p.toml")).unwrap();
+        assert_eq!(p.spec_path, Path::new("ex/../specs/thesis-bidirectional.toml"));
+        assert!((p.variables[0].min - 0.018).abs() < 1e-15);
+        assert!((p.constraints[0].min.unwrap() - 3.0).abs() < 1e-12);
+        assert!((p.constraints[1].max.unwrap() - 0.08).abs() < 1e-15);
+        assert_eq!(p.overrides, vec![("coil.turns".to_string(), "fill".to_string())]);
+        assert_eq!(p.settings.mesh, MeshLevel::Coarse);
+    }
+
+    #[test]
+    fn errors_name_the_file_and_field() {
+        let bad = GOOD.replace("torque_max_nm", "torque_maximum");
+        let e = OptimizationProblem::from_toml_str(&bad, Path::new("p.toml")).unwrap_err();
+        let text = e.to_string();
+        assert!(text.contains("p.toml") && text.contains("constraint 1"), "{text}");
+        assert!(e.is_input_error());
+        let odd = GOOD.replace("population = 8", "population = 7");
+        let text = OptimizationProblem::from_toml_str(&odd, Path::new("p.toml")).unwrap_err();
+        assert!(text.to_string().contains("algorithm.population"), "{text}");
+        let ps = GOOD.replace("kind = \"nsga2\"", "kind = \"pattern-search\"");
+        assert!(OptimizationProblem::from_toml_str(&ps, Path::new("p.toml")).is_err());
+    }
+
+    #[test]
+    fn violation_and_margin_are_relative() {
+        let c = Constraint { metric: "torque_max_nm".into(), min: Some(3.0), max: None };
+        assert!(c.violation(3.5).abs() < 1e-15);
+        assert!((c.violation(1.5) - 0.5).abs() < 1e-12);
+        assert!((c.margin(3.3) - 0.1).abs() < 1e-12);
+        assert!(c.violation(f64::NAN).is_infinite());
+    }
+}

@@ -1,0 +1,179 @@
+//! Evaluates batches of designs in parallel and stores each result the moment it completes.
+//!
+//! Brief overview: [`Runner::run`] takes a batch of [`Design`]s, skips those whose key the store
+//! already holds (and duplicates within the batch), records invalid designs as `infeasible`
+//! without analysis, and analyses the rest on a pool of `jobs` worker threads (rayon). Workers send
+//! each outcome over a channel to the calling thread, the store's single writer, which inserts it
+//! in its own durable transaction before reporting [`Progress`]. A run that is killed at any point
+//! therefore loses at most the evaluations in flight; re-running the same batch recomputes only
+//! those. The records of the whole batch are returned in batch order.
+
+use std::collections::HashSet;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::Instant;
+
+use mrbrake_store::{Record, Status, Store};
+use rayon::prelude::*;
+
+use crate::ExploreError;
+use crate::design::{Design, solver_version};
+use crate::evaluate::{EvaluationSettings, Outcome, evaluate};
+
+/// Where a run stands, reported after every stored evaluation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    /// Evaluations to compute in this run (designs not yet in the store).
+    pub to_compute: usize,
+    /// Evaluations computed and stored so far.
+    pub computed: usize,
+    /// Designs of the batch found in the store (not recomputed).
+    pub reused: usize,
+    /// Of the computed: infeasible designs.
+    pub infeasible: usize,
+    /// Of the computed: numerical failures.
+    pub failed: usize,
+    /// Wall time since the run started (s).
+    pub elapsed_s: f64,
+}
+
+/// What a run did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// The final progress.
+    pub progress: Progress,
+    /// Sum of the analyses' own wall times (s) (exceeds the elapsed time with several jobs).
+    pub evaluation_s: f64,
+    /// Wall time spent inserting into the store (s), on the writer thread.
+    pub store_s: f64,
+}
+
+/// Evaluates designs into a store.
+pub struct Runner<'a> {
+    store: &'a mut Store,
+    settings: EvaluationSettings,
+    jobs: usize,
+}
+
+impl<'a> Runner<'a> {
+    /// A runner writing to `store`, analysing with `settings` on `jobs` threads (0: one per core).
+    pub fn new(store: &'a mut Store, settings: EvaluationSettings, jobs: usize) -> Self {
+        Self { store, settings, jobs }
+    }
+
+    /// The store.
+    pub fn store(&self) -> &Store {
+        self.store
+    }
+
+    /// Evaluates `designs` (see the module docs), calling `on_progress` after each stored result,
+    /// and returns every design's record, in order, with the run's summary.
+    pub fn run(
+        &mut self,
+        designs: &[Design],
+        on_progress: &mut dyn FnMut(&Progress),
+    ) -> Result<(Vec<Record>, RunSummary), ExploreError> {
+        let start = Instant::now();
+        let stored = self.store.keys()?;
+        let mut seen = HashSet::new();
+        let mut todo: Vec<&Design> = Vec::new();
+        let mut reused = 0;
+        for design in designs {
+            if stored.contains(&design.key) {
+                reused += 1;
+            } else if seen.insert(design.key.as_str()) {
+                todo.push(design);
+            }
+        }
+        let mut progress = Progress {
+            to_compute: todo.len(),
+            computed: 0,
+            reused,
+            infeasible: 0,
+            failed: 0,
+            elapsed_s: 0.0,
+        };
+        let mut store_s = 0.0;
+        let mut evaluation_s = 0.0;
+        on_progress(&progress);
+
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(self.jobs)
+            .thread_name(|i| format!("mrbrake-eval-{i}"))
+            .build()
+            .map_err(|e| ExploreError::Internal(format!("cannot start worker threads: {e}")))?;
+        let stop = AtomicBool::new(false);
+        let settings = self.settings;
+        let (sender, receiver) = mpsc::channel::<(usize, Outcome, f64)>();
+        let mut first_error: Option<ExploreError> = None;
+        std::thread::scope(|scope| {
+            let todo = &todo;
+            let stop = &stop;
+            scope.spawn(move || {
+                pool.install(|| {
+                    todo.par_iter().enumerate().for_each_with(sender, |sender, (i, design)| {
+                        if stop.load(Ordering::Relaxed) {
+                            return;
+                        }
+                        let t0 = Instant::now();
+                        let outcome = match &design.spec {
+                            Ok(spec) => evaluate(spec, &settings),
+                            Err(reason) => Outcome::infeasible(reason.clone()),
+                        };
+                        // The receiver only hangs up after an error; then the result is moot.
+                        let _ = sender.send((i, outcome, t0.elapsed().as_secs_f64()));
+                    });
+                });
+            });
+            // This thread is the store's single writer.
+            for (i, outcome, seconds) in receiver {
+                if first_error.is_some() {
+                    continue;
+                }
+                let record = record_of(todo[i], outcome, seconds);
+                let t0 = Instant::now();
+                if let Err(e) = self.store.insert(&record) {
+                    stop.store(true, Ordering::Relaxed);
+                    first_error = Some(e.into());
+                    continue;
+                }
+                store_s += t0.elapsed().as_secs_f64();
+                evaluation_s += seconds;
+                progress.computed += 1;
+                match record.status {
+                    Status::Infeasible => progress.infeasible += 1,
+                    Status::Failed => progress.failed += 1,
+                    Status::Ok => {}
+                }
+                progress.elapsed_s = start.elapsed().as_secs_f64();
+                on_progress(&progress);
+            }
+        });
+        if let Some(e) = first_error {
+            return Err(e);
+        }
+        progress.elapsed_s = start.elapsed().as_secs_f64();
+
+        let mut records = Vec::with_capacity(designs.len());
+        for design in designs {
+            let record = self.store.get(&design.key)?.ok_or_else(|| {
+                ExploreError::Internal(format!("design {} missing from the store", design.key))
+            })?;
+            records.push(record);
+        }
+        Ok((records, RunSummary { progress, evaluation_s, store_s }))
+    }
+}
+
+fn record_of(design: &Design, outcome: Outcome, seconds: f64) -> Record {
+    Record {
+        key: design.key.clone(),
+        status: outcome.status,
+        reason: outcome.reason,
+        variables: design.variables.clone(),
+        metrics: outcome.metrics,
+        spec_toml: design.spec_toml.clone(),
+        eval_seconds: seconds,
+        solver_version: solver_version(),
+    }
+}

@@ -1,0 +1,187 @@
+//! Merging stores: [`Store::merge_from`] and its [`MergeSummary`].
+//!
+//! Shards of one study (`--shard K/N`) each fill their own store; merging copies every record
+//! whose key is absent. A key present on both sides is a *duplicate* when the two evaluations
+//! agree (same status, same metric names, every metric within a relative
+//! [`MERGE_RELATIVE_TOLERANCE`]) and a *conflict* otherwise; either way the record already in the
+//! destination is kept. The whole merge is one transaction: it lands completely or not at all.
+
+use std::path::Path;
+
+use rusqlite::{OptionalExtension, TransactionBehavior};
+
+use crate::named_values;
+use crate::store::{RECORD_COLUMNS_SQL, insert_new, read_row};
+use crate::{Status, Store, StoreError};
+
+/// Relative tolerance under which two values of the same metric count as equal in a merge:
+/// `|a - b| <= 1e-9 * max(|a|, |b|)`. NaN equals NaN and an infinity equals the same infinity.
+/// Two runs of the same design and solver differ at most by floating-point summation order,
+/// far below this.
+pub const MERGE_RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// What [`Store::merge_from`] did.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct MergeSummary {
+    /// Records copied because their key was absent.
+    pub inserted: usize,
+    /// Records whose key was present with an agreeing evaluation (not copied).
+    pub duplicates: usize,
+    /// Keys present on both sides with a different status or different metrics (not copied; the
+    /// destination's record is kept), in the source's insertion order.
+    pub conflicts: Vec<String>,
+}
+
+impl Store {
+    /// Copies into this store every record of the store at `other` whose key is absent here,
+    /// in `other`'s insertion order and keeping its creation times.
+    ///
+    /// `other` is opened read-only with the same checks as [`Store::open`] (so a corrupt, foreign
+    /// or newer-schema file is refused and left untouched). Meta data is not merged; compare it
+    /// first with [`Store::open_read_only`] and [`Store::meta`] if the stores must belong to the
+    /// same study. Merging a store into itself fails with [`StoreError::Conflict`].
+    pub fn merge_from(&mut self, other: &Path) -> Result<MergeSummary, StoreError> {
+        self.refuse_if_read_only()?;
+        if is_same_file(self.path(), other) {
+            return Err(StoreError::Conflict {
+                path: self.path().to_owned(),
+                other: other.to_owned(),
+                detail: "they are the same file".to_owned(),
+            });
+        }
+        let source = Store::open_read_only(other)?;
+        let self_path = self.path().to_owned();
+        let write_error = |error| crate::schema::sqlite_error(&self_path, error);
+
+        let mut summary = MergeSummary::default();
+        let transaction = self
+            .connection_mut()
+            .transaction_with_behavior(TransactionBehavior::Immediate)
+            .map_err(write_error)?;
+        {
+            let mut rows = source
+                .connection()
+                .prepare(&format!("SELECT {RECORD_COLUMNS_SQL} FROM evaluations ORDER BY seq"))
+                .map_err(|error| source.sqlite_error(error))?;
+            let rows = rows.query_map([], read_row).map_err(|error| source.sqlite_error(error))?;
+            for row in rows {
+                let row = row.map_err(|error| source.sqlite_error(error))?;
+                let incoming = source.decode(row)?;
+                let existing =
+                    existing_outcome(&transaction, &incoming.record.key).map_err(write_error)?;
+                match existing {
+                    None => {
+                        insert_new(&transaction, &incoming.record, incoming.created_unix_s)
+                            .map_err(write_error)?;
+                        summary.inserted += 1;
+                    }
+                    Some((status, metrics)) => {
+                        let agrees = status == incoming.record.status
+                            && metrics_agree(&metrics, &incoming.record.metrics);
+                        if agrees {
+                            summary.duplicates += 1;
+                        } else {
+                            summary.conflicts.push(incoming.record.key.clone());
+                        }
+                    }
+                }
+            }
+        }
+        transaction.commit().map_err(write_error)?;
+        Ok(summary)
+    }
+}
+
+/// Status and metrics of a stored record.
+type StoredOutcome = (Status, Vec<(String, f64)>);
+
+/// Status and metrics of the record stored under `key`, if any. A stored row that cannot be
+/// decoded counts as a conflict (status `Failed`, no metrics would rarely match).
+fn existing_outcome(
+    transaction: &rusqlite::Transaction<'_>,
+    key: &str,
+) -> rusqlite::Result<Option<StoredOutcome>> {
+    let row: Option<(String, String)> = transaction
+        .prepare_cached("SELECT status, metrics FROM evaluations WHERE key = ?1")?
+        .query_row([key], |row| Ok((row.get(0)?, row.get(1)?)))
+        .optional()?;
+    Ok(row.map(|(status, metrics)| {
+        (
+            status.parse().unwrap_or(Status::Failed),
+            named_values::decode(&metrics).unwrap_or_default(),
+        )
+    }))
+}
+
+/// True when both lists hold the same metric names (in any order) with agreeing values.
+pub fn metrics_agree(a: &[(String, f64)], b: &[(String, f64)]) -> bool {
+    a.len() == b.len()
+        && a.iter().all(|(name, value)| {
+            b.iter()
+                .find(|(other_name, _)| other_name == name)
+                .is_some_and(|(_, other)| values_agree(*value, *other))
+        })
+}
+
+/// `|a - b| <= MERGE_RELATIVE_TOLERANCE * max(|a|, |b|)`, with NaN equal to NaN and each infinity
+/// equal only to itself.
+pub fn values_agree(a: f64, b: f64) -> bool {
+    if a.is_nan() || b.is_nan() {
+        return a.is_nan() && b.is_nan();
+    }
+    if a.is_infinite() || b.is_infinite() {
+        return a.is_infinite() && b.is_infinite() && a.is_sign_positive() == b.is_sign_positive();
+    }
+    (a - b).abs() <= MERGE_RELATIVE_TOLERANCE * a.abs().max(b.abs())
+}
+
+/// True when both paths name the same file (same device and inode on Unix, same canonical path
+/// elsewhere); false when either cannot be inspected (the open then reports the problem).
+fn is_same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        match (std::fs::metadata(a), std::fs::metadata(b)) {
+            (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+            _ => false,
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+            (Ok(a), Ok(b)) => a == b,
+            _ => false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_agree_within_relative_tolerance_only() {
+        assert!(values_agree(1.0, 1.0 + 0.5e-9));
+        assert!(!values_agree(1.0, 1.0 + 2e-9));
+        assert!(values_agree(0.0, 0.0));
+        assert!(values_agree(0.0, -0.0));
+        assert!(!values_agree(0.0, 1e-300), "purely relative: any non-zero differs from zero");
+        assert!(values_agree(f64::NAN, f64::NAN));
+        assert!(!values_agree(f64::NAN, 1.0));
+        assert!(values_agree(f64::INFINITY, f64::INFINITY));
+        assert!(!values_agree(f64::INFINITY, f64::NEG_INFINITY));
+        assert!(!values_agree(f64::INFINITY, f64::MAX));
+    }
+
+    #[test]
+    fn metrics_agree_ignores_order_but_not_names() {
+        let a = vec![("t".to_owned(), 1.0), ("v".to_owned(), 2.0)];
+        let reordered = vec![("v".to_owned(), 2.0), ("t".to_owned(), 1.0)];
+        let renamed = vec![("t".to_owned(), 1.0), ("w".to_owned(), 2.0)];
+        let shorter = vec![("t".to_owned(), 1.0)];
+        assert!(metrics_agree(&a, &reordered));
+        assert!(!metrics_agree(&a, &renamed));
+        assert!(!metrics_agree(&a, &shorter));
+        assert!(!metrics_agree(&shorter, &a));
+    }
+}

@@ -1,0 +1,122 @@
+//! Text encoding of the `variables` and `metrics` columns: a JSON array of `[name, value]` pairs.
+//!
+//! An array of pairs (rather than a JSON object) keeps the caller's order, which a JSON object
+//! read back through `serde_json` (without its `preserve_order` feature) would lose. JSON has no
+//! NaN or infinity, so non-finite values are written as the strings `"NaN"`, `"inf"` and `"-inf"`;
+//! finite values are written with the shortest digits that round-trip (serde_json uses `ryu`)
+//! and read back with Rust's correctly rounded `f64::from_str`, so every value, including `-0.0`,
+//! comes back bit for bit.
+
+use serde_json::value::RawValue;
+
+/// The JSON text of a non-finite value, or `None` when the value is finite.
+pub(crate) fn non_finite_text(value: f64) -> Option<&'static str> {
+    if value.is_nan() {
+        Some("NaN")
+    } else if value.is_infinite() {
+        Some(if value > 0.0 { "inf" } else { "-inf" })
+    } else {
+        None
+    }
+}
+
+/// A value as a JSON value: a number when finite, otherwise `"NaN"`, `"inf"` or `"-inf"`.
+pub(crate) fn value_to_json(value: f64) -> serde_json::Value {
+    match serde_json::Number::from_f64(value) {
+        Some(number) => serde_json::Value::Number(number),
+        None => serde_json::Value::String(non_finite_text(value).unwrap_or("NaN").to_owned()),
+    }
+}
+
+/// Encodes `(name, value)` pairs as `[["name", value], ...]`.
+pub(crate) fn encode(values: &[(String, f64)]) -> String {
+    let pairs: Vec<(&str, serde_json::Value)> =
+        values.iter().map(|(name, value)| (name.as_str(), value_to_json(*value))).collect();
+    // Serialising strings and numbers into a String cannot fail.
+    serde_json::to_string(&pairs).expect("a list of (string, number) pairs always serialises")
+}
+
+/// Decodes the text written by [`encode`]; the error says what is wrong.
+pub(crate) fn decode(text: &str) -> Result<Vec<(String, f64)>, String> {
+    let pairs: Vec<(String, Box<RawValue>)> = serde_json::from_str(text)
+        .map_err(|error| format!("expected a JSON array of [name, value] pairs: {error}"))?;
+    pairs
+        .into_iter()
+        .map(|(name, raw)| {
+            let value = decode_value(raw.get())
+                .ok_or_else(|| format!("value of {name:?} is not a number: {}", raw.get()))?;
+            Ok((name, value))
+        })
+        .collect()
+}
+
+fn decode_value(raw: &str) -> Option<f64> {
+    match raw.trim() {
+        "\"NaN\"" => Some(f64::NAN),
+        "\"inf\"" => Some(f64::INFINITY),
+        "\"-inf\"" => Some(f64::NEG_INFINITY),
+        // A quoted string other than the three above, `null`, `true`, ... are refused; Rust's
+        // parser accepts every JSON number form (sign, fraction, exponent with sign).
+        number if number.starts_with(['-', '0', '1', '2', '3', '4', '5', '6', '7', '8', '9']) => {
+            number.parse().ok()
+        }
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn same_bits(a: &[(String, f64)], b: &[(String, f64)]) -> bool {
+        a.len() == b.len()
+            && a.iter().zip(b).all(|((na, va), (nb, vb))| na == nb && va.to_bits() == vb.to_bits())
+    }
+
+    #[test]
+    fn non_finite_values_are_strings() {
+        let values = vec![
+            ("nan".to_owned(), f64::NAN),
+            ("inf".to_owned(), f64::INFINITY),
+            ("ninf".to_owned(), f64::NEG_INFINITY),
+            ("neg_zero".to_owned(), -0.0),
+            ("tiny".to_owned(), 5e-324),
+        ];
+        let text = encode(&values);
+        assert_eq!(
+            text,
+            r#"[["nan","NaN"],["inf","inf"],["ninf","-inf"],["neg_zero",-0.0],["tiny",5e-324]]"#
+        );
+        let back = decode(&text).expect("decodes");
+        assert!(back[0].1.is_nan());
+        assert!(same_bits(&back[1..], &values[1..]));
+    }
+
+    #[test]
+    fn malformed_text_is_refused_with_a_reason() {
+        for bad in ["{}", "[[\"a\"]]", "[[\"a\", null]]", "[[\"a\", \"x\"]]", "[[\"a\", true]]"] {
+            let error = decode(bad).expect_err(bad);
+            assert!(!error.is_empty());
+        }
+        assert_eq!(decode("[]"), Ok(vec![]));
+    }
+
+    proptest! {
+        /// Every finite f64 (any bit pattern) and any name survives encode/decode bit for bit.
+        #[test]
+        fn finite_values_round_trip_exactly(
+            bits in proptest::collection::vec(any::<u64>(), 0..8),
+            names in proptest::collection::vec("\\PC{0,12}", 8),
+        ) {
+            let values: Vec<(String, f64)> = bits
+                .iter()
+                .zip(&names)
+                .map(|(&bits, name)| (name.clone(), f64::from_bits(bits)))
+                .filter(|(_, value)| value.is_finite())
+                .collect();
+            let back = decode(&encode(&values)).expect("decodes");
+            prop_assert!(same_bits(&values, &back), "{values:?} != {back:?}");
+        }
+    }
+}
