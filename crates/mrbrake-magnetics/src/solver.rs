@@ -156,7 +156,8 @@ pub struct Solver {
     pub(crate) open_terms: OpenTerms,
     pub(crate) any_nonlinear: bool,
     pub(crate) symbolic_s: f64,
-    pub(crate) locator: std::sync::OnceLock<mrbrake_fem::locate::PointLocator>,
+    /// Point-location and recovery tables, built on the first point query.
+    pub(crate) queries: crate::field::QueryCache,
     element_residual: Vec<f64>,
     element_jacobian: Vec<f64>,
     values: Vec<f64>,
@@ -300,7 +301,7 @@ impl Solver {
             open_terms,
             any_nonlinear,
             symbolic_s,
-            locator: std::sync::OnceLock::new(),
+            queries: Default::default(),
             problem,
             options,
         };
