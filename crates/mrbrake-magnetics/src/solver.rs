@@ -57,7 +57,7 @@ use mrbrake_fem::quadrature::{TrianglePoint, gauss_legendre_unit, triangle_rule}
 use serde::Serialize;
 
 use crate::MagneticsError;
-use crate::assembly::{ElementData, assemble_elements};
+use crate::assembly::{ElementData, assemble_elements, linear_jacobians};
 use crate::field::Solution;
 use crate::material::{MU_0, MagneticMaterial};
 use crate::problem::{BoundaryCondition, Problem, Source};
@@ -169,6 +169,11 @@ pub struct Solver {
     element_residual: Vec<f64>,
     element_jacobian: Vec<f64>,
     values: Vec<f64>,
+    /// Jacobian of the linear-material elements plus the open-boundary terms: constant, so it is
+    /// assembled once and each Newton Jacobian starts from a copy of it.
+    linear_values: Vec<f64>,
+    /// Triangles with a non-linear material (the only element Jacobians assembled per iteration).
+    nonlinear_triangles: Vec<usize>,
 }
 
 impl Solver {
@@ -292,6 +297,15 @@ impl Solver {
         let n_tri = mesh.triangles.len();
         let rule = triangle_rule(options.quadrature_degree);
         let data = ElementData::new(&mesh, &rule, region_index.clone());
+        let mut element_jacobian = vec![0.0; 6 * n_tri];
+        linear_jacobians(&materials, &data, &mut element_jacobian);
+        let mut linear_values = vec![0.0; pattern.nnz()];
+        pattern.assemble(&element_jacobian, &mut linear_values);
+        for &(pos, value) in &open_terms.matrix {
+            linear_values[pos as usize] += value;
+        }
+        let nonlinear_triangles: Vec<usize> =
+            (0..n_tri).filter(|&t| materials[region_index[t] as usize].is_nonlinear()).collect();
         let mut solver = Self {
             rule,
             materials,
@@ -302,8 +316,10 @@ impl Solver {
             fixed_values,
             n_free,
             element_residual: vec![0.0; 3 * n_tri],
-            element_jacobian: vec![0.0; 6 * n_tri],
+            element_jacobian,
             values: vec![0.0; pattern.nnz()],
+            linear_values,
+            nonlinear_triangles,
             pattern,
             cholesky,
             open_terms,
@@ -410,10 +426,12 @@ impl Solver {
             }
         }
         if jacobian {
-            self.pattern.assemble(&self.element_jacobian, &mut self.values);
-            for &(pos, value) in &self.open_terms.matrix {
-                self.values[pos as usize] += value;
-            }
+            self.values.copy_from_slice(&self.linear_values);
+            self.pattern.add_elements(
+                &self.nonlinear_triangles,
+                &self.element_jacobian,
+                &mut self.values,
+            );
         }
     }
 
@@ -581,8 +599,7 @@ impl Solver {
                 // (bisection while the right end is unbounded); the trial is kept off the ends by
                 // 1 % of the bracket so that the bracket always shrinks.
                 let margin = 0.01 * (hi - lo);
-                alpha = if slope > 0.0 && newton_alpha > lo + margin && newton_alpha < hi - margin
-                {
+                alpha = if slope > 0.0 && newton_alpha > lo + margin && newton_alpha < hi - margin {
                     newton_alpha
                 } else if g_hi.is_finite() {
                     lo - g_lo * (hi - lo) / (g_hi - g_lo)
