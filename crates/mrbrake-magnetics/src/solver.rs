@@ -30,7 +30,9 @@
 //! once a full Newton step has cut the residual at least tenfold (`‖R_k‖ <= 0.1 ‖R_{k−1}‖`, the
 //! quadratic phase has begun), the Jacobian changes little between iterations, so the new system
 //! `K_k δ = −R_k` is first solved by conjugate gradients preconditioned with the *previous* Cholesky
-//! factor, to the forcing tolerance `‖K_k δ + R_k‖ <= η_k ‖R_k‖`,
+//! factor (rounded to single precision, `SparseCholesky::precondition_in_place`: the preconditioner
+//! stays symmetric positive definite and its triangular solves, bound by reading the factor, take
+//! half the memory traffic), to the forcing tolerance `‖K_k δ + R_k‖ <= η_k ‖R_k‖`,
 //! `η_k = min(0.1, max(0.9 (‖R_k‖/‖R_{k−1}‖)², 0.5 rtol s / ‖R_k‖))` (Eisenstat–Walker choice 2,
 //! which keeps the local convergence superlinear, floored where a more accurate step could not
 //! change the outcome of the stopping test). If CG has not reached `η_k` within
@@ -88,8 +90,9 @@ impl Default for SolverOptions {
 /// Line-search acceptance: `|g(α)| <= LINE_SEARCH_SLOPE |g(0)|` (see the module docs).
 const LINE_SEARCH_SLOPE: f64 = 0.3;
 
-/// Largest number of conjugate-gradient iterations (each costs one pair of triangular solves, about a
-/// fifth of a numeric factorisation) tried with the previous factor before refactorising.
+/// Largest number of conjugate-gradient iterations (each costs one pair of single-precision
+/// triangular solves, about a tenth of a numeric factorisation) tried with the previous factor
+/// before refactorising.
 pub const TAIL_CG_MAX_ITERATIONS: usize = 4;
 
 /// Residual reduction of a full Newton step that marks the start of the tail phase (module docs).
@@ -659,7 +662,8 @@ impl Solver {
     }
 
     /// Preconditioned conjugate gradients on `K δ = −R` (`K` the current Jacobian in `self.values`,
-    /// the preconditioner the Cholesky factor of an earlier Jacobian), from `δ = 0`, until
+    /// the preconditioner the Cholesky factor of an earlier Jacobian rounded to single precision),
+    /// from `δ = 0`, until
     /// `‖K δ + R‖ <= forcing ‖R‖`. Returns the iteration count, or `None` (and `delta` undefined)
     /// when [`TAIL_CG_MAX_ITERATIONS`] did not suffice or the curvature `pᵀKp` was not positive.
     fn stale_factor_cg(
@@ -678,7 +682,7 @@ impl Solver {
         }
         let target = forcing * norm2(r);
         z.copy_from_slice(r);
-        self.cholesky.solve_in_place(z)?;
+        self.cholesky.precondition_in_place(z)?;
         p.copy_from_slice(z);
         let mut rz = dot(r, z);
         for iteration in 1..=TAIL_CG_MAX_ITERATIONS {
@@ -699,7 +703,7 @@ impl Solver {
                 break;
             }
             z.copy_from_slice(r);
-            self.cholesky.solve_in_place(z)?;
+            self.cholesky.precondition_in_place(z)?;
             let rz_next = dot(r, z);
             let beta = rz_next / rz;
             rz = rz_next;
