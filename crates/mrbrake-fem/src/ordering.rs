@@ -125,18 +125,21 @@ impl Dissection<'_> {
         for &v in &vertices[split..] {
             self.part[v] = right_id;
         }
-        let touches = |v: usize, other: u32, part: &[u32]| {
-            self.adjacency.of(v).iter().any(|&w| part[w] == other)
-        };
-        let left_boundary =
-            vertices[..split].iter().filter(|&&v| touches(v, right_id, &self.part)).count();
-        let right_boundary =
-            vertices[split..].iter().filter(|&&v| touches(v, left_id, &self.part)).count();
-        let (separator_side, other_side) =
-            if left_boundary <= right_boundary { (left_id, right_id) } else { (right_id, left_id) };
+        // One adjacency scan per vertex: is it on the boundary of its half?
+        let on_boundary: Vec<bool> = vertices
+            .iter()
+            .enumerate()
+            .map(|(k, &v)| {
+                let other = if k < split { right_id } else { left_id };
+                self.adjacency.of(v).iter().any(|&w| self.part[w] == other)
+            })
+            .collect();
+        let left_boundary = on_boundary[..split].iter().filter(|b| **b).count();
+        let right_boundary = on_boundary[split..].iter().filter(|b| **b).count();
+        let separator_side = if left_boundary <= right_boundary { left_id } else { right_id };
         let (mut left, mut right, mut separator) = (Vec::new(), Vec::new(), Vec::new());
-        for &v in &vertices {
-            if self.part[v] == separator_side && touches(v, other_side, &self.part) {
+        for (&v, &boundary) in vertices.iter().zip(&on_boundary) {
+            if self.part[v] == separator_side && boundary {
                 separator.push(v);
             } else if self.part[v] == left_id {
                 left.push(v);
