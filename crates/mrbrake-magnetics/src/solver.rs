@@ -73,11 +73,12 @@ pub struct SolverOptions {
     pub max_iterations: usize,
     /// Relative residual tolerance `rtol` of the stopping rule.
     pub residual_tolerance: f64,
-    /// Threads for the sparse factorisation and triangular solves (0: rayon's global pool; assembly
-    /// always uses the pool). The default is 1: on the 2-core machines we measure on, faer's
-    /// sequential supernodal factorisation of the 96.7 k-node benchmark took 0.49 s for 7
-    /// factorisations against 1.02 s with two threads (`RAYON_NUM_THREADS=1` vs `2`, see the
-    /// `saturating_benchmark` example); on a larger machine try 0.
+    /// Threads for faer's numeric factorisation (0: rayon's global pool; assembly always uses the
+    /// pool, and so do the triangular solves, which run the two halves of the top
+    /// nested-dissection separator in parallel). The default is 1: on the 2-core machines we
+    /// measure on, faer's sequential supernodal factorisation of the 96.7 k-node benchmark took
+    /// 0.49 s for 7 factorisations against 1.02 s with two threads (faer parallelises the dense
+    /// kernels inside each supernode, which are small here); on a larger machine try 0.
     pub threads: usize,
 }
 
