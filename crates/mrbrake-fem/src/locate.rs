@@ -4,6 +4,10 @@
 //! triangles whose bounding boxes overlap each bucket. Building it is O(triangles); a query tests the
 //! few triangles of one bucket. A point just outside the mesh (round-off on the boundary) is given to
 //! the triangle of its bucket with the least negative barycentric coordinate, if within a tolerance.
+//!
+//! For a handful of points, building the grid (two passes over the triangles with a bucket range
+//! each) costs more than testing every triangle once: [`locate_by_scan`] does that, with the same
+//! answer (the lowest-numbered triangle containing the point).
 
 use crate::element::P1Triangle;
 use crate::mesh::Mesh;
@@ -79,7 +83,7 @@ impl PointLocator {
     pub fn locate(&self, mesh: &Mesh, p: [f64; 2]) -> Option<(usize, [f64; 3])> {
         let i = ((p[0] - self.origin[0]) / self.cell[0]).floor();
         let j = ((p[1] - self.origin[1]) / self.cell[1]).floor();
-        let tol = 1e-9;
+        let tol = OUTSIDE_TOLERANCE;
         let inside_box = |x: f64, n: usize| x >= -1.0 && x <= n as f64;
         if !p[0].is_finite()
             || !p[1].is_finite()
@@ -108,6 +112,40 @@ impl PointLocator {
     }
 }
 
+/// Barycentric tolerance for points just outside the mesh (round-off on the boundary).
+const OUTSIDE_TOLERANCE: f64 = 1e-9;
+
+/// The lowest-numbered triangle of `mesh` containing `p`, with the barycentric coordinates of `p`,
+/// by testing every triangle (O(triangles), no set-up); `None` outside the mesh beyond the same
+/// tolerance as [`PointLocator::locate`].
+pub fn locate_by_scan(mesh: &Mesh, p: [f64; 2]) -> Option<(usize, [f64; 3])> {
+    if !p[0].is_finite() || !p[1].is_finite() {
+        return None;
+    }
+    let mut best: Option<(usize, [f64; 3], f64)> = None;
+    for (t, &[a, b, d]) in mesh.triangles.iter().enumerate() {
+        let (na, nb, nd) = (mesh.nodes[a], mesh.nodes[b], mesh.nodes[d]);
+        // Cheap bounding-box rejection before the barycentric coordinates.
+        let outside_box = |k: usize| {
+            let (lo, hi) = (na[k].min(nb[k]).min(nd[k]), na[k].max(nb[k]).max(nd[k]));
+            let slack = OUTSIDE_TOLERANCE * (hi - lo);
+            p[k] < lo - slack || p[k] > hi + slack
+        };
+        if outside_box(0) || outside_box(1) {
+            continue;
+        }
+        let l = P1Triangle::new([na, nb, nd]).barycentric(p);
+        let worst = l[0].min(l[1]).min(l[2]);
+        if worst >= 0.0 {
+            return Some((t, l));
+        }
+        if best.as_ref().is_none_or(|b| worst > b.2) {
+            best = Some((t, l, worst));
+        }
+    }
+    best.filter(|b| b.2 > -OUTSIDE_TOLERANCE).map(|(t, l, _)| (t, l))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -130,5 +168,12 @@ mod tests {
         }
         assert!(loc.locate(&m, [1.5, 0.0]).is_none());
         assert!(loc.locate(&m, [0.5, 1.2]).is_none());
+        // The scan gives the same triangle (the lowest-numbered one containing the point).
+        for k in 0..200 {
+            let p = [(k % 17) as f64 / 16.0, -1.0 + (k % 23) as f64 / 11.0];
+            assert_eq!(loc.locate(&m, p), locate_by_scan(&m, p), "{p:?}");
+        }
+        assert!(locate_by_scan(&m, [1.5, 0.0]).is_none());
+        assert!(locate_by_scan(&m, [f64::NAN, 0.0]).is_none());
     }
 }

@@ -10,11 +10,14 @@
 //! longer bounding-box side (a cut at a coordinate *value*, so the nodes of one mesh line stay on
 //! one side), and the separator is the smaller of the two one-sided boundaries (the vertices of one
 //! side with a neighbour on the other). Removing it disconnects the two sides, so their factor
-//! columns never interact. Recursion stops at [`LEAF_SIZE`] vertices. Cost O(n log n).
+//! columns never interact. Recursion stops at [`LEAF_SIZE`] vertices. Cost O(n log n); the two
+//! halves of large subsets are dissected in parallel (same order for any thread count).
 //!
 //! On the saturating benchmark (95 k unknowns, a graded tensor mesh) this order needs 7 % fewer
 //! multiply–adds than faer's AMD and its numeric factorisation runs about 25 % faster, the
 //! balanced tree feeding faer's supernodal kernels better.
+
+use std::sync::atomic::{AtomicU32, Ordering};
 
 use crate::pattern::SymmetricPattern;
 
@@ -26,16 +29,21 @@ pub const LEAF_SIZE: usize = 8;
 pub fn nested_dissection(pattern: &SymmetricPattern, coordinates: &[[f64; 2]]) -> Vec<usize> {
     assert_eq!(pattern.n, coordinates.len(), "one coordinate pair per matrix row");
     let adjacency = Adjacency::new(pattern);
-    let mut state = Dissection {
+    let state = Dissection {
         adjacency: &adjacency,
         coordinates,
-        part: vec![0; pattern.n],
-        next_part: 1,
-        order: Vec::with_capacity(pattern.n),
+        part: (0..pattern.n).map(|_| AtomicU32::new(0)).collect(),
+        next_part: AtomicU32::new(1),
     };
-    state.dissect((0..pattern.n).collect());
-    state.order
+    let mut order = Vec::with_capacity(pattern.n);
+    state.dissect((0..pattern.n).collect(), &mut order);
+    order
 }
+
+/// Subsets with more vertices than this are split into two halves dissected in parallel (the
+/// halves share no vertex; each reads only its own labels and compares neighbours' labels with
+/// its own fresh ones, so the order does not depend on the scheduling).
+const PARALLEL_MIN: usize = 4096;
 
 /// Full (both triangles, no diagonal) adjacency of the pattern in CSR form.
 struct Adjacency {
@@ -81,16 +89,24 @@ impl Adjacency {
 struct Dissection<'a> {
     adjacency: &'a Adjacency,
     coordinates: &'a [[f64; 2]],
-    /// Label of the half each vertex was last put in (0: numbered separator).
-    part: Vec<u32>,
-    next_part: u32,
-    order: Vec<usize>,
+    /// Label of the half each vertex was last put in (0: numbered separator); labels are unique.
+    part: Vec<AtomicU32>,
+    next_part: AtomicU32,
 }
 
 impl Dissection<'_> {
-    fn dissect(&mut self, mut vertices: Vec<usize>) {
+    fn label(&self, v: usize) -> u32 {
+        self.part[v].load(Ordering::Relaxed)
+    }
+
+    fn set_label(&self, v: usize, label: u32) {
+        self.part[v].store(label, Ordering::Relaxed);
+    }
+
+    /// Appends the elimination order of `vertices` to `order`.
+    fn dissect(&self, mut vertices: Vec<usize>, order: &mut Vec<usize>) {
         if vertices.len() <= LEAF_SIZE {
-            self.order.extend_from_slice(&vertices);
+            order.extend_from_slice(&vertices);
             return;
         }
         let xy = self.coordinates;
@@ -117,28 +133,32 @@ impl Dissection<'_> {
             // All remaining vertices share the cut coordinate: split the list in two.
             split = half;
         }
-        let (left_id, right_id) = (self.next_part, self.next_part + 1);
-        self.next_part += 2;
+        let left_id = self.next_part.fetch_add(2, Ordering::Relaxed);
+        let right_id = left_id + 1;
         for &v in &vertices[..split] {
-            self.part[v] = left_id;
+            self.set_label(v, left_id);
         }
         for &v in &vertices[split..] {
-            self.part[v] = right_id;
+            self.set_label(v, right_id);
         }
-        let touches = |v: usize, other: u32, part: &[u32]| {
-            self.adjacency.of(v).iter().any(|&w| part[w] == other)
-        };
-        let left_boundary =
-            vertices[..split].iter().filter(|&&v| touches(v, right_id, &self.part)).count();
-        let right_boundary =
-            vertices[split..].iter().filter(|&&v| touches(v, left_id, &self.part)).count();
-        let (separator_side, other_side) =
-            if left_boundary <= right_boundary { (left_id, right_id) } else { (right_id, left_id) };
+        // One adjacency scan per vertex: is it on the boundary of its half?
+        let on_boundary: Vec<bool> = vertices
+            .iter()
+            .enumerate()
+            .map(|(k, &v)| {
+                let other = if k < split { right_id } else { left_id };
+                self.adjacency.of(v).iter().any(|&w| self.label(w) == other)
+            })
+            .collect();
+        let left_boundary = on_boundary[..split].iter().filter(|b| **b).count();
+        let right_boundary = on_boundary[split..].iter().filter(|b| **b).count();
+        let separator_side = if left_boundary <= right_boundary { left_id } else { right_id };
         let (mut left, mut right, mut separator) = (Vec::new(), Vec::new(), Vec::new());
-        for &v in &vertices {
-            if self.part[v] == separator_side && touches(v, other_side, &self.part) {
+        for (&v, &boundary) in vertices.iter().zip(&on_boundary) {
+            let label = self.label(v);
+            if label == separator_side && boundary {
                 separator.push(v);
-            } else if self.part[v] == left_id {
+            } else if label == left_id {
                 left.push(v);
             } else {
                 right.push(v);
@@ -146,12 +166,29 @@ impl Dissection<'_> {
         }
         // Separator vertices are numbered: later cuts must not see them as a neighbouring half.
         for &v in &separator {
-            self.part[v] = 0;
+            self.set_label(v, 0);
         }
         drop(vertices);
-        self.dissect(left);
-        self.dissect(right);
-        self.order.extend_from_slice(&separator);
+        if left.len() + right.len() > PARALLEL_MIN {
+            let (mut left_order, mut right_order) = rayon::join(
+                || {
+                    let mut o = Vec::with_capacity(left.len());
+                    self.dissect(left, &mut o);
+                    o
+                },
+                || {
+                    let mut o = Vec::with_capacity(right.len());
+                    self.dissect(right, &mut o);
+                    o
+                },
+            );
+            order.append(&mut left_order);
+            order.append(&mut right_order);
+        } else {
+            self.dissect(left, order);
+            self.dissect(right, order);
+        }
+        order.extend_from_slice(&separator);
     }
 }
 
@@ -185,6 +222,18 @@ mod tests {
             seen[v] = true;
         }
         assert!(seen.iter().all(|s| *s));
+    }
+
+    /// The parallel recursion gives the same order as the sequential one.
+    #[test]
+    fn order_does_not_depend_on_the_thread_count() {
+        let (pattern, xy) = grid(120, 90);
+        assert!(pattern.n > 2 * PARALLEL_MIN);
+        let with_threads = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| nested_dissection(&pattern, &xy))
+        };
+        assert_eq!(with_threads(1), with_threads(2));
     }
 
     #[test]

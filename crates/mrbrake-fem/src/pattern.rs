@@ -113,6 +113,22 @@ impl SymmetricPattern {
         }
     }
 
+    /// Adds the upper parts of the matrices of the listed `elements` only (`element_upper` holds
+    /// `k(k+1)/2` values for *every* element, in the order of [`Self::assemble`]) into `values`,
+    /// which is not zeroed: e.g. the elements whose matrix changed, on top of a stored sum of the
+    /// constant ones.
+    pub fn add_elements(&self, elements: &[usize], element_upper: &[f64], values: &mut [f64]) {
+        let pairs = self.dofs_per_element * (self.dofs_per_element + 1) / 2;
+        for &e in elements {
+            let range = e * pairs..(e + 1) * pairs;
+            for (&pos, &v) in self.scatter[range.clone()].iter().zip(&element_upper[range]) {
+                if pos != NO_ENTRY {
+                    values[pos as usize] += v;
+                }
+            }
+        }
+    }
+
     /// `y = A x` for the symmetric matrix whose upper triangle is `values`.
     pub fn symmetric_mul(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
@@ -144,6 +160,11 @@ mod tests {
         let mut values = vec![0.0; p.nnz()];
         p.assemble(&ones, &mut values);
         assert_eq!(values, vec![2.0, 1.0, 1.0, 2.0, 1.0, 2.0]);
+        // Adding element 1 alone on top of element 0 alone gives the same sum.
+        let mut partial = vec![0.0; p.nnz()];
+        p.add_elements(&[0], &ones, &mut partial);
+        p.add_elements(&[1], &ones, &mut partial);
+        assert_eq!(partial, values);
         let mut y = vec![0.0; 3];
         p.symmetric_mul(&values, &[1.0, 1.0, 1.0], &mut y);
         assert_eq!(y, vec![5.0, 3.0, 5.0]);

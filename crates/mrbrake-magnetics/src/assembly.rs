@@ -189,8 +189,10 @@ pub(crate) fn element_kernel(
     }
 }
 
-/// Computes all element residuals (and Jacobians) in parallel into `element_residual` (3 per
-/// triangle) and `element_jacobian` (6 per triangle, when `Some`).
+/// Computes all element residuals in parallel into `element_residual` (3 per triangle) and, when
+/// `element_jacobian` is `Some` (6 per triangle), the Jacobians of the elements with a
+/// *non-linear* material. A linear element's Jacobian `ν G` never changes: the solver assembles
+/// those once ([`linear_jacobians`]) and adds only the non-linear ones per Newton iteration.
 pub(crate) fn assemble_elements(
     mesh: &Mesh,
     rule: &[TrianglePoint],
@@ -202,12 +204,13 @@ pub(crate) fn assemble_elements(
 ) {
     const MIN_LEN: usize = 2048;
     let kernel = |t: usize, res: &mut [f64], jac: Option<&mut [f64]>| {
+        // (`jac` is left untouched for linear elements.)
         let [n0, n1, n2] = mesh.triangles[t];
         let material = &materials[data.material[t] as usize];
         if let MagneticMaterial::Linear { .. } = material {
             let nu = material.nu_and_dnu_db2(0.0).0;
             let (g, f) = (&data.geometric_stiffness[t], &data.unit_load[t]);
-            linear_element(nu, g, f, data.current_density[t], [a[n0], a[n1], a[n2]], res, jac);
+            linear_element(nu, g, f, data.current_density[t], [a[n0], a[n1], a[n2]], res, None);
             return;
         }
         let tri = P1Triangle::new([mesh.nodes[n0], mesh.nodes[n1], mesh.nodes[n2]]);
@@ -234,6 +237,26 @@ pub(crate) fn assemble_elements(
             .with_min_len(MIN_LEN)
             .for_each(|(t, res)| kernel(t, res, None)),
     }
+}
+
+/// The constant element Jacobians `ν G` of the linear-material elements (6 per triangle, upper
+/// pairs), zero for the non-linear ones.
+pub(crate) fn linear_jacobians(
+    materials: &[MagneticMaterial],
+    data: &ElementData,
+    element_jacobian: &mut [f64],
+) {
+    element_jacobian.par_chunks_mut(6).enumerate().with_min_len(2048).for_each(|(t, jac)| {
+        let material = &materials[data.material[t] as usize];
+        if let MagneticMaterial::Linear { .. } = material {
+            let nu = material.nu_and_dnu_db2(0.0).0;
+            for (j, g) in jac.iter_mut().zip(&data.geometric_stiffness[t]) {
+                *j = nu * g;
+            }
+        } else {
+            jac.iter_mut().for_each(|j| *j = 0.0);
+        }
+    });
 }
 
 #[cfg(test)]

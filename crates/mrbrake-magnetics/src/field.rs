@@ -14,13 +14,19 @@
 //! linearly inside the triangle — the simple averaging recovery of Zienkiewicz & Zhu (Int. J. Numer.
 //! Meth. Eng. 24 (1987) 337), which is second-order accurate at interior nodes of regular meshes (the
 //! thick-coil validation measures it on the axis). On the axis `B_r = 0` is imposed (symmetry).
+//! Only the three corners of the triangle holding the point are recovered, from the triangles
+//! around each corner (a node-to-triangle table built once per solver), so a probe costs
+//! O(valence) and no pass over the whole mesh beyond locating the point (a scan for the first
+//! few points, a bucket grid after [`LOCATOR_AFTER_QUERIES`] queries).
 //! [`Solver::b_at_raw`] gives the unrecovered element value; on the axis (`r → 0`, where `A = 0`) it
 //! uses the limit `B_z = 2 ∂A/∂r`.
 
 use serde::Serialize;
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use mrbrake_fem::element::P1Triangle;
-use mrbrake_fem::locate::PointLocator;
+use mrbrake_fem::locate::{PointLocator, locate_by_scan};
 
 use crate::MagneticsError;
 use crate::assembly::{flux_density, point_values, triangle};
@@ -28,19 +34,21 @@ use crate::solver::{NewtonReport, Solver};
 
 const TWO_PI: f64 = 2.0 * std::f64::consts::PI;
 
+/// Point queries answered by scanning every triangle before the bucket grid is built: the grid
+/// costs about as much to build as a few scans (two passes over the triangles).
+pub const LOCATOR_AFTER_QUERIES: usize = 4;
+
 /// The converged potential and the Newton report.
 #[derive(Debug, Clone)]
 pub struct Solution {
     a_phi: Vec<f64>,
-    /// Recovered B at the corners of every triangle (3 per triangle), computed on first use.
-    recovered: std::sync::OnceLock<Vec<[f64; 2]>>,
     /// Newton iterations, history and timings.
     pub report: NewtonReport,
 }
 
 impl Solution {
     pub(crate) fn new(a_phi: Vec<f64>, report: NewtonReport) -> Self {
-        Self { a_phi, recovered: std::sync::OnceLock::new(), report }
+        Self { a_phi, report }
     }
 
     /// Nodal values of `A_phi` (Wb/m), one per mesh node (usable as a warm start).
@@ -114,37 +122,15 @@ pub(crate) fn coil_flux(solver: &Solver, a: &[f64], ri: usize, turns: f64) -> f6
     TWO_PI * integral * turns / solver.region_area[ri]
 }
 
-impl Solver {
-    fn locator(&self) -> &PointLocator {
-        self.locator.get_or_init(|| PointLocator::new(&self.problem.mesh))
-    }
+/// The corners `3 t + k` of the triangles around every node (compressed rows, ascending `t`).
+#[derive(Debug, Clone)]
+pub(crate) struct NodeCorners {
+    start: Vec<usize>,
+    corners: Vec<usize>,
+}
 
-    /// The triangle containing `p` and its barycentric coordinates, or an input error naming `p`.
-    fn locate(&self, p: [f64; 2]) -> Result<(usize, [f64; 3]), MagneticsError> {
-        self.locator().locate(&self.problem.mesh, p).ok_or_else(|| {
-            MagneticsError::Input(format!(
-                "point (r = {} m, z = {} m) is outside the mesh",
-                p[0], p[1]
-            ))
-        })
-    }
-
-    /// Recovered B at `[r, z]` (m) (see the module docs); an error if the point is outside the mesh.
-    pub fn b_at(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
-        let (t, bary) = self.locate(p)?;
-        let corners = solution.recovered.get_or_init(|| self.recover_b(solution));
-        let mut b = [0.0; 2];
-        for k in 0..3 {
-            b[0] += bary[k] * corners[3 * t + k][0];
-            b[1] += bary[k] * corners[3 * t + k][1];
-        }
-        Ok(PointField { r: p[0], z: p[1], b_r_t: b[0], b_z_t: b[1], b_abs_t: b[0].hypot(b[1]) })
-    }
-
-    /// Same-region nodal averaging of the centroid B (module docs), per triangle corner.
-    fn recover_b(&self, solution: &Solution) -> Vec<[f64; 2]> {
-        let mesh = &self.problem.mesh;
-        let centroid_b = self.element_b(solution);
+impl NodeCorners {
+    fn new(mesh: &mrbrake_fem::mesh::Mesh) -> Self {
         let n = mesh.nodes.len();
         let mut start = vec![0usize; n + 1];
         for tri in &mesh.triangles {
@@ -156,48 +142,87 @@ impl Solver {
             start[i + 1] += start[i];
         }
         let mut fill = start.clone();
-        let mut corner_of = vec![0usize; start[n]];
+        let mut corners = vec![0usize; start[n]];
         for (t, tri) in mesh.triangles.iter().enumerate() {
             for (k, &v) in tri.iter().enumerate() {
-                corner_of[fill[v]] = 3 * t + k;
+                corners[fill[v]] = 3 * t + k;
                 fill[v] += 1;
             }
         }
-        let axis_tol = 1e-9 * mesh.size_scale();
-        let area: Vec<f64> = (0..mesh.triangles.len()).map(|t| mesh.signed_area(t)).collect();
-        let mut corners = vec![[0.0; 2]; 3 * mesh.triangles.len()];
-        // Per node: one area-weighted sum per region tag around it (usually one or two tags), then
-        // every corner takes the average of its own region. Linear in the node's valence.
-        let mut by_tag: Vec<(u32, [f64; 2], f64)> = Vec::with_capacity(4);
-        for v in 0..n {
-            let around = &corner_of[start[v]..start[v + 1]];
-            by_tag.clear();
-            for &d in around {
-                let t = d / 3;
-                let tag = mesh.triangle_tags[t];
-                let entry = match by_tag.iter().position(|e| e.0 == tag) {
-                    Some(i) => &mut by_tag[i],
-                    None => {
-                        by_tag.push((tag, [0.0; 2], 0.0));
-                        by_tag.last_mut().expect("just pushed")
-                    }
-                };
-                entry.1[0] += area[t] * centroid_b[t][0];
-                entry.1[1] += area[t] * centroid_b[t][1];
-                entry.2 += area[t];
+        Self { start, corners }
+    }
+
+    fn of(&self, v: usize) -> &[usize] {
+        &self.corners[self.start[v]..self.start[v + 1]]
+    }
+}
+
+/// Lazily built point-query helpers of a solver (mesh-only, shared by every solution).
+#[derive(Debug, Default)]
+pub(crate) struct QueryCache {
+    locator: std::sync::OnceLock<PointLocator>,
+    node_corners: std::sync::OnceLock<NodeCorners>,
+    queries: AtomicUsize,
+}
+
+impl Solver {
+    /// The triangle containing `p` and its barycentric coordinates, or an input error naming `p`.
+    fn locate(&self, p: [f64; 2]) -> Result<(usize, [f64; 3]), MagneticsError> {
+        let mesh = &self.problem.mesh;
+        let cache = &self.queries;
+        let found = match cache.locator.get() {
+            Some(locator) => locator.locate(mesh, p),
+            None if cache.queries.fetch_add(1, Ordering::Relaxed) < LOCATOR_AFTER_QUERIES => {
+                locate_by_scan(mesh, p)
             }
-            for &c in around {
-                let tag = mesh.triangle_tags[c / 3];
-                let (_, sum, weight) =
-                    by_tag.iter().find(|e| e.0 == tag).expect("every corner's tag was summed");
-                let mut b = [sum[0] / weight, sum[1] / weight];
-                if mesh.nodes[v][0] <= axis_tol {
-                    b[0] = 0.0;
-                }
-                corners[c] = b;
-            }
+            None => cache.locator.get_or_init(|| PointLocator::new(mesh)).locate(mesh, p),
+        };
+        found.ok_or_else(|| {
+            MagneticsError::Input(format!(
+                "point (r = {} m, z = {} m) is outside the mesh",
+                p[0], p[1]
+            ))
+        })
+    }
+
+    /// Recovered B at `[r, z]` (m) (see the module docs); an error if the point is outside the mesh.
+    pub fn b_at(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
+        let (t, bary) = self.locate(p)?;
+        let scale = self.problem.mesh.size_scale();
+        let mut b = [0.0; 2];
+        for k in 0..3 {
+            let corner = self.recovered_corner_b(solution, t, k, scale);
+            b[0] += bary[k] * corner[0];
+            b[1] += bary[k] * corner[1];
         }
-        corners
+        Ok(PointField { r: p[0], z: p[1], b_r_t: b[0], b_z_t: b[1], b_abs_t: b[0].hypot(b[1]) })
+    }
+
+    /// Same-region nodal average of the centroid B (module docs) at corner `k` of triangle `t`:
+    /// the area-weighted mean over the triangles around that node with the same region tag
+    /// (`scale`: the mesh size scale, for the axis test).
+    fn recovered_corner_b(&self, solution: &Solution, t: usize, k: usize, scale: f64) -> [f64; 2] {
+        let mesh = &self.problem.mesh;
+        let node_corners = self.queries.node_corners.get_or_init(|| NodeCorners::new(mesh));
+        let v = mesh.triangles[t][k];
+        let tag = mesh.triangle_tags[t];
+        let (mut sum, mut weight) = ([0.0; 2], 0.0);
+        for &c in node_corners.of(v) {
+            let around = c / 3;
+            if mesh.triangle_tags[around] != tag {
+                continue;
+            }
+            let area = mesh.signed_area(around);
+            let centroid_b = centroid_b(mesh, solution, around, scale);
+            sum[0] += area * centroid_b[0];
+            sum[1] += area * centroid_b[1];
+            weight += area;
+        }
+        let mut b = [sum[0] / weight, sum[1] / weight];
+        if mesh.nodes[v][0] <= 1e-9 * scale {
+            b[0] = 0.0;
+        }
+        b
     }
 
     /// Unrecovered B of the P1 potential in the triangle containing `[r, z]`.
@@ -338,12 +363,7 @@ impl Solver {
         let scale = mesh.size_scale();
         (0..mesh.triangles.len())
             .into_par_iter()
-            .map(|t| {
-                let tri = triangle(mesh, t);
-                let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
-                let centroid = tri.point([1.0 / 3.0; 3]);
-                b_in_triangle(&tri, a, [1.0 / 3.0; 3], centroid[0], scale)
-            })
+            .map(|t| centroid_b(mesh, solution, t, scale))
             .collect()
     }
 
@@ -380,6 +400,19 @@ impl Solver {
             .position(|r| r.tag == tag)
             .ok_or_else(|| MagneticsError::Input(format!("no region with physical = {tag}")))
     }
+}
+
+/// B of the P1 potential at the centroid of triangle `t` (`scale`: the mesh size scale).
+fn centroid_b(
+    mesh: &mrbrake_fem::mesh::Mesh,
+    solution: &Solution,
+    t: usize,
+    scale: f64,
+) -> [f64; 2] {
+    let tri = triangle(mesh, t);
+    let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
+    let centroid = tri.point([1.0 / 3.0; 3]);
+    b_in_triangle(&tri, a, [1.0 / 3.0; 3], centroid[0], scale)
 }
 
 /// B in a triangle at barycentric `bary` (radius `r`); the axis limit `B_z = 2 ∂A/∂r` below

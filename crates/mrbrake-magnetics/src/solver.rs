@@ -13,16 +13,26 @@
 //!    for a monotone B-H curve, so along the Newton direction `g(α) = δ · R(A + αδ) = dW/dα` is
 //!    increasing, with `g(0) = −δᵀKδ < 0`. The full step is accepted when `g(1) <= 0` (W decreases on
 //!    the whole step) or `|g(1)| <= 0.3 |g(0)|`; otherwise the root of `g` in `(0, 1)` is bracketed
-//!    and approached by Illinois false position until `|g(α)| <= 0.3 |g(0)|` (an approximate exact
-//!    line search; steps with `g(α) < 0` lower W on all of `[0, α]`). Only residuals are needed, no energy values. This is what
-//!    makes saturated problems converge from `A = 0`, where the first Newton step (with the initial
-//!    permeability of the iron) overshoots by orders of magnitude.
+//!    and approached until `|g(α)| <= 0.3 |g(0)|` (an approximate exact line search; steps with
+//!    `g(α) < 0` lower W on all of `[0, α]`). Each trial is a Newton step on `g` itself,
+//!    `α ← α − g(α)/g'(α)` with `g'(α) = δᵀ K(A + αδ) δ` (one product with the Jacobian that the
+//!    trial assembled anyway), kept when it falls inside the bracket; otherwise Illinois false
+//!    position (or bisection while the bracket is open on the right) — a safeguarded Newton
+//!    iteration (Dennis & Schnabel §6.3.2; Press et al., Numerical Recipes, `rtsafe`). Only
+//!    residuals and Jacobians are needed, no energy values. This is what makes saturated problems
+//!    converge from `A = 0`, where the first Newton step (with the initial permeability of the
+//!    iron) overshoots by orders of magnitude; `g` is then flat up to the onset of saturation and
+//!    steep beyond it, so false position alone creeps in from the left (five extra assemblies on
+//!    the first step of the saturating benchmark) where Newton from the overshoot side lands near
+//!    the root at once.
 //!
 //! Tail phase (inexact Newton–Krylov, Eisenstat & Walker, SIAM J. Sci. Comput. 17(1) 1996, 16–32):
 //! once a full Newton step has cut the residual at least tenfold (`‖R_k‖ <= 0.1 ‖R_{k−1}‖`, the
 //! quadratic phase has begun), the Jacobian changes little between iterations, so the new system
 //! `K_k δ = −R_k` is first solved by conjugate gradients preconditioned with the *previous* Cholesky
-//! factor, to the forcing tolerance `‖K_k δ + R_k‖ <= η_k ‖R_k‖`,
+//! factor (rounded to single precision, `SparseCholesky::precondition_in_place`: the preconditioner
+//! stays symmetric positive definite and its triangular solves, bound by reading the factor, take
+//! half the memory traffic), to the forcing tolerance `‖K_k δ + R_k‖ <= η_k ‖R_k‖`,
 //! `η_k = min(0.1, max(0.9 (‖R_k‖/‖R_{k−1}‖)², 0.5 rtol s / ‖R_k‖))` (Eisenstat–Walker choice 2,
 //! which keeps the local convergence superlinear, floored where a more accurate step could not
 //! change the outcome of the stopping test). If CG has not reached `η_k` within
@@ -49,7 +59,7 @@ use mrbrake_fem::quadrature::{TrianglePoint, gauss_legendre_unit, triangle_rule}
 use serde::Serialize;
 
 use crate::MagneticsError;
-use crate::assembly::{ElementData, assemble_elements};
+use crate::assembly::{ElementData, assemble_elements, linear_jacobians};
 use crate::field::Solution;
 use crate::material::{MU_0, MagneticMaterial};
 use crate::problem::{BoundaryCondition, Problem, Source};
@@ -63,11 +73,12 @@ pub struct SolverOptions {
     pub max_iterations: usize,
     /// Relative residual tolerance `rtol` of the stopping rule.
     pub residual_tolerance: f64,
-    /// Threads for the sparse factorisation and triangular solves (0: rayon's global pool; assembly
-    /// always uses the pool). The default is 1: on the 2-core machines we measure on, faer's
-    /// sequential supernodal factorisation of the 96.7 k-node benchmark took 0.49 s for 7
-    /// factorisations against 1.02 s with two threads (`RAYON_NUM_THREADS=1` vs `2`, see the
-    /// `saturating_benchmark` example); on a larger machine try 0.
+    /// Threads for faer's numeric factorisation (0: rayon's global pool; assembly always uses the
+    /// pool, and so do the triangular solves, which run the two halves of the top
+    /// nested-dissection separator in parallel). The default is 1: on the 2-core machines we
+    /// measure on, faer's sequential supernodal factorisation of the 96.7 k-node benchmark took
+    /// 0.49 s for 7 factorisations against 1.02 s with two threads (faer parallelises the dense
+    /// kernels inside each supernode, which are small here); on a larger machine try 0.
     pub threads: usize,
 }
 
@@ -80,8 +91,9 @@ impl Default for SolverOptions {
 /// Line-search acceptance: `|g(α)| <= LINE_SEARCH_SLOPE |g(0)|` (see the module docs).
 const LINE_SEARCH_SLOPE: f64 = 0.3;
 
-/// Largest number of conjugate-gradient iterations (each costs one pair of triangular solves, about a
-/// fifth of a numeric factorisation) tried with the previous factor before refactorising.
+/// Largest number of conjugate-gradient iterations (each costs one pair of single-precision
+/// triangular solves, about a tenth of a numeric factorisation) tried with the previous factor
+/// before refactorising.
 pub const TAIL_CG_MAX_ITERATIONS: usize = 4;
 
 /// Residual reduction of a full Newton step that marks the start of the tail phase (module docs).
@@ -156,10 +168,16 @@ pub struct Solver {
     pub(crate) open_terms: OpenTerms,
     pub(crate) any_nonlinear: bool,
     pub(crate) symbolic_s: f64,
-    pub(crate) locator: std::sync::OnceLock<mrbrake_fem::locate::PointLocator>,
+    /// Point-location and recovery tables, built on the first point query.
+    pub(crate) queries: crate::field::QueryCache,
     element_residual: Vec<f64>,
     element_jacobian: Vec<f64>,
     values: Vec<f64>,
+    /// Jacobian of the linear-material elements plus the open-boundary terms: constant, so it is
+    /// assembled once and each Newton Jacobian starts from a copy of it.
+    linear_values: Vec<f64>,
+    /// Triangles with a non-linear material (the only element Jacobians assembled per iteration).
+    nonlinear_triangles: Vec<usize>,
 }
 
 impl Solver {
@@ -283,6 +301,15 @@ impl Solver {
         let n_tri = mesh.triangles.len();
         let rule = triangle_rule(options.quadrature_degree);
         let data = ElementData::new(&mesh, &rule, region_index.clone());
+        let mut element_jacobian = vec![0.0; 6 * n_tri];
+        linear_jacobians(&materials, &data, &mut element_jacobian);
+        let mut linear_values = vec![0.0; pattern.nnz()];
+        pattern.assemble(&element_jacobian, &mut linear_values);
+        for &(pos, value) in &open_terms.matrix {
+            linear_values[pos as usize] += value;
+        }
+        let nonlinear_triangles: Vec<usize> =
+            (0..n_tri).filter(|&t| materials[region_index[t] as usize].is_nonlinear()).collect();
         let mut solver = Self {
             rule,
             materials,
@@ -293,14 +320,16 @@ impl Solver {
             fixed_values,
             n_free,
             element_residual: vec![0.0; 3 * n_tri],
-            element_jacobian: vec![0.0; 6 * n_tri],
+            element_jacobian,
             values: vec![0.0; pattern.nnz()],
+            linear_values,
+            nonlinear_triangles,
             pattern,
             cholesky,
             open_terms,
             any_nonlinear,
             symbolic_s,
-            locator: std::sync::OnceLock::new(),
+            queries: Default::default(),
             problem,
             options,
         };
@@ -401,10 +430,12 @@ impl Solver {
             }
         }
         if jacobian {
-            self.pattern.assemble(&self.element_jacobian, &mut self.values);
-            for &(pos, value) in &self.open_terms.matrix {
-                self.values[pos as usize] += value;
-            }
+            self.values.copy_from_slice(&self.linear_values);
+            self.pattern.add_elements(
+                &self.nonlinear_triangles,
+                &self.element_jacobian,
+                &mut self.values,
+            );
         }
     }
 
@@ -468,6 +499,7 @@ impl Solver {
         let mut trial = a.clone();
         let mut trial_residual = vec![0.0; self.n_free];
         let mut delta = vec![0.0; self.n_free];
+        let mut slope_work = vec![0.0; self.n_free];
         let mut converged = false;
         let mut iterations = 0;
         let mut factorizations = 0;
@@ -548,6 +580,10 @@ impl Solver {
                     accepted = true;
                     break;
                 }
+                // Slope g'(α) = δᵀ K(A + αδ) δ with the Jacobian this trial assembled.
+                self.pattern.symmetric_mul(&self.values, &delta, &mut slope_work);
+                let slope: f64 = delta.iter().zip(&slope_work).map(|(d, k)| d * k).sum();
+                let newton_alpha = alpha - g / slope;
                 if !g.is_finite() || g > 0.0 {
                     hi = alpha;
                     g_hi = if g.is_finite() { g } else { f64::INFINITY };
@@ -563,14 +599,18 @@ impl Solver {
                     }
                     last_moved = -1;
                 }
-                // False position in [lo, hi]; bisection when the right end is unbounded, or when false
-                // position would creep (the root is kept off the ends by 1 % of the bracket).
-                alpha = if g_hi.is_finite() {
+                // Newton on g when it stays inside the bracket [lo, hi], else false position
+                // (bisection while the right end is unbounded); the trial is kept off the ends by
+                // 1 % of the bracket so that the bracket always shrinks.
+                let margin = 0.01 * (hi - lo);
+                alpha = if slope > 0.0 && newton_alpha > lo + margin && newton_alpha < hi - margin {
+                    newton_alpha
+                } else if g_hi.is_finite() {
                     lo - g_lo * (hi - lo) / (g_hi - g_lo)
                 } else {
                     0.5 * (lo + hi)
                 };
-                alpha = alpha.clamp(lo + 0.01 * (hi - lo), hi - 0.01 * (hi - lo));
+                alpha = alpha.clamp(lo + margin, hi - margin);
             }
             let a_max = a.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
             let d_max = delta.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * alpha;
@@ -623,7 +663,8 @@ impl Solver {
     }
 
     /// Preconditioned conjugate gradients on `K δ = −R` (`K` the current Jacobian in `self.values`,
-    /// the preconditioner the Cholesky factor of an earlier Jacobian), from `δ = 0`, until
+    /// the preconditioner the Cholesky factor of an earlier Jacobian rounded to single precision),
+    /// from `δ = 0`, until
     /// `‖K δ + R‖ <= forcing ‖R‖`. Returns the iteration count, or `None` (and `delta` undefined)
     /// when [`TAIL_CG_MAX_ITERATIONS`] did not suffice or the curvature `pᵀKp` was not positive.
     fn stale_factor_cg(
@@ -642,7 +683,7 @@ impl Solver {
         }
         let target = forcing * norm2(r);
         z.copy_from_slice(r);
-        self.cholesky.solve_in_place(z)?;
+        self.cholesky.precondition_in_place(z)?;
         p.copy_from_slice(z);
         let mut rz = dot(r, z);
         for iteration in 1..=TAIL_CG_MAX_ITERATIONS {
@@ -663,7 +704,7 @@ impl Solver {
                 break;
             }
             z.copy_from_slice(r);
-            self.cholesky.solve_in_place(z)?;
+            self.cholesky.precondition_in_place(z)?;
             let rz_next = dot(r, z);
             let beta = rz_next / rz;
             rz = rz_next;
