@@ -279,3 +279,49 @@ seed = 7
     assert_eq!(second["evaluated"], first["evaluated"]);
     assert_eq!(second["front"], first["front"]);
 }
+
+#[test]
+fn a_single_objective_pattern_search_returns_one_feasible_best_design() {
+    let dir = tempfile::tempdir().unwrap();
+    let problem = dir.path().join("single.toml");
+    std::fs::write(
+        &problem,
+        format!(
+            r#"
+spec = "{SPEC}"
+mesh = "coarse"
+reference = false
+[[variable]]
+name = "R2"
+min = "24mm"
+max = "30mm"
+[[constraint]]
+metric = "torque_max_nm"
+min = "1.2Nm"
+[[objective]]
+metric = "rotor_inertia_kg_m2"
+[algorithm]
+kind = "pattern-search"
+max_evaluations = 10
+"#
+        ),
+    )
+    .unwrap();
+    let store = dir.path().join("single.sqlite");
+    let v = json(&["optimize", path_str(&problem), "--store", path_str(&store), "--json"]);
+    let front = v["front"].as_array().unwrap();
+    assert_eq!(front.len(), 1, "one objective: the best feasible design");
+    let best = &front[0]["metrics"];
+    assert!(best["torque_max_nm"].as_f64().unwrap() >= 1.2);
+    let evaluated = v["evaluated"].as_u64().unwrap();
+    assert!((2..=10).contains(&evaluated), "budget respected: {evaluated}");
+    // Every evaluated design meeting the torque has at least the best design's inertia.
+    let all = json(&["export", path_str(&store), "--json"]);
+    let best_j = best["rotor_inertia_kg_m2"].as_f64().unwrap();
+    for d in all.as_array().unwrap() {
+        let m = &d["metrics"];
+        if m["torque_max_nm"].as_f64().is_some_and(|t| t >= 1.2) {
+            assert!(m["rotor_inertia_kg_m2"].as_f64().unwrap() >= best_j * (1.0 - 1e-12));
+        }
+    }
+}

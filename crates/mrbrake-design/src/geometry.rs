@@ -355,7 +355,8 @@ fn check_fit(spec: &BrakeSpec, p: &mut Problems) {
                 format!("{} is too small: the drum stack ends at r = {} and the case needs housing.case_thickness = {} beyond it; allowed > {}", fmt_mm(r_out), fmt_mm(stack_out), fmt_mm(h.case_thickness.m()), fmt_mm(stack_out + h.case_thickness.m())),
             );
         }
-        if d.r0.m() + 2.0 * b + cw > shell_in {
+        // 1 nm of slack: a window that fits exactly must not fail on rounding.
+        if d.r0.m() + 2.0 * b + cw > shell_in + 1e-9 {
             p.error(
                 "coil.window_width",
                 format!("{} does not fit between the core (r = {}) and the case shell (r = {}) with two bobbin walls: allowed ≤ {}", fmt_mm(cw), fmt_mm(d.r0.m()), fmt_mm(shell_in), fmt_mm(shell_in - d.r0.m() - 2.0 * b)),
@@ -381,7 +382,7 @@ fn check_fit(spec: &BrakeSpec, p: &mut Problems) {
         }
         if inner {
             let core_out = r_s + h.inner_case_thickness.m();
-            if core_out + 2.0 * b + cw > r1 {
+            if core_out + 2.0 * b + cw > r1 + 1e-9 {
                 p.error(
                     "coil.window_width",
                     format!("{} does not fit the inner coil between the core ring (r = {}) and disc.inner_radius = {} with two bobbin walls: allowed ≤ {}", fmt_mm(cw), fmt_mm(core_out), fmt_mm(r1), fmt_mm(r1 - core_out - 2.0 * b)),

@@ -69,25 +69,35 @@ pub struct MeshSettings {
 /// axis, the outer boundary and the gap walls tagged.
 pub fn pslg(geometry: &BrakeGeometry) -> Result<Pslg, DesignError> {
     let mut g = Pslg::new();
-    let fem = |e: mrbrake_fem::FemError| DesignError::Input(format!("geometry → mesh: {e}"));
+    // The geometry has passed validation, so a graph the mesher rejects is our defect, not the
+    // user's input: a numerical failure (exit 1; a study records the design as failed).
+    let fem = |e: mrbrake_fem::FemError| {
+        DesignError::Numerical(format!("geometry → mesh (please report this spec): {e}"))
+    };
+    // Coordinates on a 1 pm grid: parts computed along different arithmetic paths (a + b against
+    // c − d) can meet 1e-17 m apart, which the mesher would see as two crossing segments.
+    let snap = |x: f64| (x * 1e12).round() / 1e12;
+    let p = |r: f64, z: f64| [snap(r), snap(z)];
     for region in &geometry.regions {
         for rc in &region.rects {
-            g.add_rectangle(rc.r0, rc.r1, rc.z0, rc.z1).map_err(fem)?;
+            g.add_rectangle(snap(rc.r0), snap(rc.r1), snap(rc.z0), snap(rc.z1)).map_err(fem)?;
             g.add_seed(rc.centre(), region.tag);
         }
     }
     let d = geometry.domain;
-    g.add_segment([0.0, d.z0], [0.0, d.z1], Some(geometry.axis_tag)).map_err(fem)?;
-    g.add_segment([0.0, d.z0], [d.r1, d.z0], Some(geometry.outer_tag)).map_err(fem)?;
-    g.add_segment([d.r1, d.z0], [d.r1, d.z1], Some(geometry.outer_tag)).map_err(fem)?;
-    g.add_segment([0.0, d.z1], [d.r1, d.z1], Some(geometry.outer_tag)).map_err(fem)?;
+    g.add_segment(p(0.0, d.z0), p(0.0, d.z1), Some(geometry.axis_tag)).map_err(fem)?;
+    g.add_segment(p(0.0, d.z0), p(d.r1, d.z0), Some(geometry.outer_tag)).map_err(fem)?;
+    g.add_segment(p(d.r1, d.z0), p(d.r1, d.z1), Some(geometry.outer_tag)).map_err(fem)?;
+    g.add_segment(p(0.0, d.z1), p(d.r1, d.z1), Some(geometry.outer_tag)).map_err(fem)?;
     for gap in &geometry.gaps {
         let r = gap.rect;
         let (inner, outer) = match gap.orientation {
             GapOrientation::Cylindrical => {
-                (([r.r0, r.z0], [r.r0, r.z1]), ([r.r1, r.z0], [r.r1, r.z1]))
+                ((p(r.r0, r.z0), p(r.r0, r.z1)), (p(r.r1, r.z0), p(r.r1, r.z1)))
             }
-            GapOrientation::Annular => (([r.r0, r.z0], [r.r1, r.z0]), ([r.r0, r.z1], [r.r1, r.z1])),
+            GapOrientation::Annular => {
+                ((p(r.r0, r.z0), p(r.r1, r.z0)), (p(r.r0, r.z1), p(r.r1, r.z1)))
+            }
         };
         g.add_segment(inner.0, inner.1, Some(gap.inner_wall_tag)).map_err(fem)?;
         g.add_segment(outer.0, outer.1, Some(gap.outer_wall_tag)).map_err(fem)?;

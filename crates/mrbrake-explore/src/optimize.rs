@@ -49,6 +49,11 @@ pub struct OptimizationResult {
     pub totals: RunSummary,
     /// The design variables (for display).
     pub variables: Vec<crate::variable::Variable>,
+    /// NSGA-II generations or pattern-search iterations run.
+    pub iterations: usize,
+    /// Pattern search: whether the step fell below its minimum (converged) rather than the
+    /// evaluation budget running out. `None` for NSGA-II, which runs its generations.
+    pub converged: Option<bool>,
 }
 
 /// The [`mrbrake_optim::Problem`] of an optimisation problem file.
@@ -146,6 +151,36 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         Evaluation::new(objectives, violation)
     }
 
+    /// The base spec's value of every variable, clamped into its bounds (a start point).
+    pub fn base_point(&self) -> Result<Vec<f64>, ExploreError> {
+        let base = self.space.base_design()?;
+        let spec = base.spec.map_err(|reason| {
+            ExploreError::Input(format!(
+                "algorithm.start = \"base\": the base spec is invalid: {reason}"
+            ))
+        })?;
+        let table = serde_json::to_value(&spec)
+            .map_err(|e| ExploreError::Internal(format!("cannot read the base spec: {e}")))?;
+        let mut point = Vec::with_capacity(self.bounds.len());
+        for (variable, bounds) in self.space.variables().iter().zip(&self.bounds) {
+            let value = variable
+                .field
+                .path
+                .split('.')
+                .try_fold(&table, |t, part| t.get(part))
+                .and_then(serde_json::Value::as_f64)
+                .ok_or_else(|| {
+                    ExploreError::Input(format!(
+                        "algorithm.start = \"base\": the base spec has no value for {} (e.g. turns \
+                         computed from the window); give it in the spec or start at the centre",
+                        variable.field.path
+                    ))
+                })?;
+            point.push(bounds.repair(value));
+        }
+        Ok(point)
+    }
+
     fn run_batch(&mut self, designs: &[Design]) -> Result<Vec<Record>, ExploreError> {
         let (records, summary) = self.runner.run(designs, self.on_progress)?;
         self.batches += 1;
@@ -223,7 +258,7 @@ pub fn run(
     } else {
         None
     };
-    match problem.algorithm {
+    let (iterations, converged) = match problem.algorithm {
         Algorithm::Nsga2 { population, generations, seed } => {
             let options = nsga2::Nsga2Options {
                 population,
@@ -231,17 +266,27 @@ pub fn run(
                 seed,
                 ..nsga2::Nsga2Options::default()
             };
-            nsga2::run(&mut study, &options, &mut |_| {}).map_err(run_error)?;
+            let result = nsga2::run(&mut study, &options, &mut |_| {}).map_err(run_error)?;
+            (result.generations, None)
         }
-        Algorithm::PatternSearch { max_evaluations, seed } => {
+        Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base } => {
+            let start = if start_at_base { Some(study.base_point()?) } else { None };
             let options = pattern_search::PatternSearchOptions {
                 max_evaluations,
                 seed,
+                start,
+                poll: if random_poll {
+                    pattern_search::PollDirections::RandomOrthogonal
+                } else {
+                    pattern_search::PollDirections::Compass
+                },
                 ..pattern_search::PatternSearchOptions::default()
             };
-            pattern_search::run(&mut study, &options, &mut |_, _| {}).map_err(run_error)?;
+            let result =
+                pattern_search::run(&mut study, &options, &mut |_, _| {}).map_err(run_error)?;
+            (result.iterations, Some(result.converged))
         }
-    }
+    };
     let evaluations: Vec<Evaluation> =
         study.evaluated.iter().map(|e| e.evaluation.clone()).collect();
     let front = if problem.objectives.len() == 1 {
@@ -254,6 +299,8 @@ pub fn run(
         .clone()
         .ok_or_else(|| ExploreError::Internal("the optimiser evaluated no design".into()))?;
     Ok(OptimizationResult {
+        iterations,
+        converged,
         variables: study.space.variables().to_vec(),
         evaluated: study.evaluated,
         front,

@@ -21,6 +21,8 @@
 //! population = 24
 //! generations = 10
 //! seed = 1
+//! # pattern-search only: max_evaluations = 200, poll = "compass" | "random",
+//! # start = "centre" | "base" (the base spec's values)
 //! ```
 //!
 //! Every field is checked when the file is read; an error names the file, the table and the field
@@ -107,6 +109,10 @@ struct RawAlgorithm {
     max_evaluations: Option<usize>,
     #[serde(default)]
     seed: Option<u64>,
+    #[serde(default)]
+    poll: Option<String>,
+    #[serde(default)]
+    start: Option<String>,
 }
 
 /// A design variable with its bounds (SI).
@@ -189,8 +195,13 @@ pub enum Algorithm {
     PatternSearch {
         /// Evaluation budget.
         max_evaluations: usize,
-        /// Seed (poll order).
+        /// Seed of the random poll bases (no effect with compass polls).
         seed: u64,
+        /// Poll with a fresh random orthogonal basis each iteration instead of the coordinate
+        /// directions: slower, but it can follow constraints oblique to the axes.
+        random_poll: bool,
+        /// Start at the base spec's values (clamped into the bounds) instead of the bounds' centre.
+        start_at_base: bool,
     },
 }
 
@@ -341,7 +352,30 @@ impl OptimizationProblem {
                         objectives.len()
                     )));
                 }
-                Algorithm::PatternSearch { max_evaluations: a.max_evaluations.unwrap_or(200), seed }
+                let random_poll = match a.poll.as_deref().map(str::trim) {
+                    None | Some("compass") => false,
+                    Some("random" | "random-orthogonal") => true,
+                    Some(other) => {
+                        return Err(bad(format!(
+                            "algorithm.poll: '{other}' is not allowed; use compass or random"
+                        )));
+                    }
+                };
+                let start_at_base = match a.start.as_deref().map(str::trim) {
+                    None | Some("centre" | "center") => false,
+                    Some("base") => true,
+                    Some(other) => {
+                        return Err(bad(format!(
+                            "algorithm.start: '{other}' is not allowed; use centre or base"
+                        )));
+                    }
+                };
+                Algorithm::PatternSearch {
+                    max_evaluations: a.max_evaluations.unwrap_or(200),
+                    seed,
+                    random_poll,
+                    start_at_base,
+                }
             }
             other => {
                 return Err(bad(format!(

@@ -24,7 +24,7 @@ pub struct OptimizeArgs {
     /// Problem file (TOML): base spec, variables with bounds, constraints, objectives, algorithm.
     #[arg(required_unless_present = "list_metrics")]
     problem: Option<PathBuf>,
-    /// Results store (SQLite). Default: the problem file with the extension `.sqlite`. An existing
+    /// Results store (SQLite). Default: `<problem name>.sqlite` in the current folder. An existing
     /// store needs --resume.
     #[arg(long, value_name = "FILE")]
     store: Option<PathBuf>,
@@ -57,7 +57,10 @@ pub fn run(a: OptimizeArgs) -> anyhow::Result<()> {
     }
     let path = a.problem.as_ref().ok_or_else(|| InputError("give a PROBLEM.toml".into()))?;
     let problem = OptimizationProblem::from_path(path)?;
-    let store_path = a.store.clone().unwrap_or_else(|| path.with_extension("sqlite"));
+    let store_path = a.store.clone().unwrap_or_else(|| {
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("optimize");
+        PathBuf::from(format!("{stem}.sqlite"))
+    });
     let mut store = Store::open_or_create(&store_path, a.resume)?;
     if store.meta("problem")?.is_none() {
         let text = std::fs::read_to_string(path).unwrap_or_default();
@@ -82,6 +85,8 @@ pub fn run(a: OptimizeArgs) -> anyhow::Result<()> {
             "store": store_path.display().to_string(),
             "evaluated": result.evaluated.len(),
             "requested": result.requested,
+            "iterations": result.iterations,
+            "converged": result.converged,
             "computed": totals.computed,
             "reused": totals.reused,
             "elapsed_s": totals.elapsed_s,
@@ -90,15 +95,27 @@ pub fn run(a: OptimizeArgs) -> anyhow::Result<()> {
             "reference": result.reference.as_ref().map(|r| mrbrake_store::to_json(std::slice::from_ref(&r.record))),
         }));
     }
+    let how = match result.converged {
+        None => format!("{} generations", result.iterations),
+        Some(true) => format!("converged after {} iterations", result.iterations),
+        Some(false) => {
+            format!(
+                "evaluation budget spent after {} iterations (not converged)",
+                result.iterations
+            )
+        }
+    };
     crate::outln!(
-        "{}: {} designs evaluated ({} computed, {} from the store), {} batches, {:.1} s, {:.0} evaluations/min",
+        "{}: {how}; {} distinct designs{}; {} analyses run, {} answers read from the store \
+         (repeated designs and earlier runs); {:.1} s, {:.0} analyses/min; store {}",
         path.display(),
         result.evaluated.len(),
+        if result.reference.is_some() { " + the reference" } else { "" },
         totals.computed,
         totals.reused,
-        result.batches,
         totals.elapsed_s,
-        rate
+        rate,
+        store_path.display()
     );
     let feasible = result.evaluated.iter().filter(|e| e.evaluation.feasible()).count();
     crate::outln!("{feasible} feasible; front of {} designs:", result.front.len());
