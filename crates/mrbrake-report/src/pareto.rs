@@ -42,7 +42,24 @@ pub fn objective_figure(plot: &ObjectivePlot) -> Figure {
     for (k, (label, point)) in plot.references.iter().enumerate() {
         panel = panel.series(Series::points(label.clone(), vec![*point]).color(1 + 2 * k));
     }
+    let ys = plot.infeasible.iter().chain(&plot.feasible).chain(&plot.front).map(|p| p.1);
+    let references = plot.references.iter().map(|(_, p)| p.1);
+    panel.y_range = legend_headroom(ys.chain(references), None);
     Figure::new(plot.title.clone()).panel(panel)
+}
+
+/// A y range over `values` (and `include`, if given) with 35 % of the span added above, so that
+/// the legend in the upper-left corner sits above the data instead of on it.
+fn legend_headroom(values: impl Iterator<Item = f64>, include: Option<f64>) -> Option<(f64, f64)> {
+    let (lo, hi) = values
+        .chain(include)
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if !lo.is_finite() {
+        return None;
+    }
+    let span = if hi > lo { hi - lo } else { lo.abs().max(1.0) };
+    Some((lo - 0.05 * span, hi + 0.35 * span))
 }
 
 /// Constraint activity: for each front design (x: its position along the front), the relative
@@ -72,6 +89,8 @@ pub fn constraint_activity_figure(activity: &ConstraintActivity) -> Figure {
             Series::dashed("active (limit)", vec![(x_range.0, 0.0), (x_range.1, 0.0)]).color(7),
         );
     }
+    let margins = activity.constraints.iter().flat_map(|(_, points)| points.iter().map(|p| p.1));
+    panel.y_range = legend_headroom(margins, Some(0.0));
     Figure::new(activity.title.clone()).panel(panel)
 }
 
@@ -98,5 +117,14 @@ mod tests {
             constraints: vec![("T ≥ 3 N·m".into(), vec![(1.0, 0.0), (2.0, 0.2)])],
         };
         assert!(constraint_activity_figure(&activity).to_svg().unwrap().contains("active"));
+    }
+
+    #[test]
+    fn the_legend_headroom_covers_the_data_and_the_limit() {
+        let (lo, hi) = legend_headroom([0.1, 0.3].into_iter(), Some(0.0)).unwrap();
+        assert!(lo < 0.0 && (hi - (0.3 + 0.35 * 0.3)).abs() < 1e-12);
+        assert!(legend_headroom([f64::NAN].into_iter(), None).is_none());
+        let (lo, hi) = legend_headroom([2.0].into_iter(), None).unwrap();
+        assert!(lo < 2.0 && hi > 2.0);
     }
 }

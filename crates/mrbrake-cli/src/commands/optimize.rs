@@ -105,20 +105,30 @@ pub fn run(a: OptimizeArgs) -> anyhow::Result<()> {
             )
         }
     };
+    let work = if totals.computed == 0 {
+        format!("all {} answers read from the store, nothing computed", totals.reused)
+    } else {
+        format!(
+            "{} evaluated now, {} answers read from the store (repeated designs and earlier \
+             runs); {:.1} s, {rate:.0} evaluations/min",
+            totals.computed, totals.reused, totals.elapsed_s
+        )
+    };
     crate::outln!(
-        "{}: {how}; {} distinct designs{}; {} analyses run, {} answers read from the store \
-         (repeated designs and earlier runs); {:.1} s, {:.0} analyses/min; store {}",
+        "{}: {how}; {} distinct designs{}; {work}; store {}",
         path.display(),
         result.evaluated.len(),
         if result.reference.is_some() { " + the reference" } else { "" },
-        totals.computed,
-        totals.reused,
-        totals.elapsed_s,
-        rate,
         store_path.display()
     );
     let feasible = result.evaluated.iter().filter(|e| e.evaluation.feasible()).count();
-    crate::outln!("{feasible} feasible; front of {} designs:", result.front.len());
+    if result.front.is_empty() {
+        crate::outln!("no evaluated design meets every constraint");
+    } else if problem.objectives.len() == 1 {
+        crate::outln!("{feasible} feasible; the best feasible design:");
+    } else {
+        crate::outln!("{feasible} feasible; Pareto front of {} designs:", result.front.len());
+    }
     print_designs(&problem, &result, result.front.iter().map(|&i| &result.evaluated[i]), "front");
     if let Some(reference) = &result.reference {
         print_designs(&problem, &result, std::iter::once(reference), "reference (base spec)");
@@ -139,32 +149,38 @@ fn print_designs<'a>(
     designs: impl Iterator<Item = &'a Evaluated>,
     what: &str,
 ) {
-    let mut header = format!("  {what:<22}");
-    for v in &problem.variables {
-        header.push_str(&format!(" {:>12}", v.name));
-    }
     let metrics: Vec<&String> = problem
         .objectives
         .iter()
         .map(|o| &o.metric)
         .chain(problem.constraints.iter().map(|c| &c.metric))
         .collect();
-    for name in &metrics {
-        header.push_str(&format!(" {:>30}", axis(name).1));
+    // Every column as wide as its header (at least 10 characters), values right-aligned under it.
+    let mut headers: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
+    headers.extend(metrics.iter().map(|name| axis(name).1));
+    let widths: Vec<usize> = headers.iter().map(|h| h.chars().count().max(10)).collect();
+    let first = what.chars().count().max(10);
+    let mut header = format!("  {what:<first$}");
+    for (h, w) in headers.iter().zip(&widths) {
+        header.push_str(&format!(" {h:>w$}"));
     }
     crate::outln!("{header}");
     for (k, e) in designs.enumerate() {
-        let mut line = format!("  {:<22}", format!("#{}", k + 1));
-        for v in &result.variables {
-            let value = e.record.variables.iter().find(|(k, _)| *k == v.name).map(|(_, x)| *x);
-            let text = value.map_or_else(|| "base".to_string(), |x| v.display_value(x));
-            line.push_str(&format!(" {text:>12}"));
-        }
-        for name in &metrics {
-            match metric(&e.record, name) {
-                Some(v) => line.push_str(&format!(" {:>30.4}", v * axis(name).0)),
-                None => line.push_str(&format!(" {:>30}", e.record.status.as_str())),
-            }
+        let mut cells: Vec<String> = result
+            .variables
+            .iter()
+            .map(|v| {
+                let value = e.record.variables.iter().find(|(k, _)| *k == v.name).map(|(_, x)| *x);
+                value.map_or_else(|| "base".to_string(), |x| v.display_value(x))
+            })
+            .collect();
+        cells.extend(metrics.iter().map(|name| match metric(&e.record, name) {
+            Some(v) => format!("{:.4}", v * axis(name).0),
+            None => e.record.status.as_str().to_string(),
+        }));
+        let mut line = format!("  {:<first$}", format!("#{}", k + 1));
+        for (cell, w) in cells.iter().zip(&widths) {
+            line.push_str(&format!(" {cell:>w$}"));
         }
         crate::outln!("{line}");
     }
@@ -247,7 +263,9 @@ fn write_outputs(
         plot.front.sort_by(|a, b| a.0.total_cmp(&b.0));
         if let Some(reference) = &result.reference {
             if let Some(p) = point(&reference.record) {
-                plot.references.push(("reference (base spec)".into(), p));
+                let base = problem.spec_path.file_name().map(|f| f.to_string_lossy());
+                plot.references
+                    .push((format!("reference: base spec {}", base.unwrap_or_default()), p));
             }
         }
         let figure = objective_figure(&plot);

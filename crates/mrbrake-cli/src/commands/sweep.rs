@@ -177,18 +177,23 @@ pub fn run_sweep(a: SweepArgs) -> anyhow::Result<()> {
         a.store.display()
     );
     print_table(&space, &records);
-    crate::outln!(
-        "computed {} ({} infeasible, {} failed), reused {} from the store; {:.1} s wall, \
-         {:.0} evaluations/min, store writes {:.3} s ({:.2} % of the wall time)",
-        p.computed,
-        p.infeasible,
-        p.failed,
-        p.reused,
-        p.elapsed_s,
-        rate,
-        summary.store_s,
-        overhead * 100.0
-    );
+    if p.computed == 0 {
+        crate::outln!("nothing to compute: all {} designs were already in the store", p.reused);
+    } else {
+        // The writer thread inserts while the workers analyse, so the store's time overlaps the
+        // analyses; the measured cost of the store is the evaluation-rate benchmark's to report.
+        crate::outln!(
+            "computed {} ({} infeasible, {} failed), reused {} from the store; {:.1} s wall, \
+             {:.0} evaluations/min; store writes {:.3} s on the writer thread, alongside the analyses",
+            p.computed,
+            p.infeasible,
+            p.failed,
+            p.reused,
+            p.elapsed_s,
+            rate,
+            summary.store_s,
+        );
+    }
     Ok(())
 }
 
