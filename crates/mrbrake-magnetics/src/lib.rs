@@ -54,6 +54,7 @@ pub mod problem_file;
 pub mod solver;
 
 pub use field::Solution;
+pub use mrbrake_fem::dofs::ElementOrder;
 pub use solver::{NewtonStep, Solver, SolverOptions};
 
 /// Errors of this crate.
