@@ -23,10 +23,10 @@
 //!
 //! Element order: the form is written once, generic over the Lagrange basis
 //! ([`mrbrake_fem::element::TriangleBasis`]: `ElementTriP1` with 3 DOFs, `ElementTriP2` with 6),
-//! and compiled for each order ([`by_order!`] picks the instance at run time). For quadratic
-//! elements `B` is linear in each element (plus the `A/r` term) and the polynomial part of the
-//! r-weighted integrands has degree 3, so they take the degree-4 rule (Dunavant, 6 interior
-//! points) or higher.
+//! and compiled for each order (the `by_order!` macro picks the instance at run time). For
+//! quadratic elements `B` is linear in each element (plus the `A/r` term) and the polynomial part
+//! of the r-weighted integrands has degree 3, so they take the degree-4 rule (Dunavant 1985,
+//! 6 interior points) or higher.
 //!
 //! Open boundary (first-order asymptotic boundary condition): far from the sources `A_phi` is a
 //! dipole field, `A ∝ sin θ / ρ²` in spherical coordinates centred on the axis, so on a sphere of
