@@ -64,6 +64,9 @@ pub(crate) const fn pairs(k: usize) -> usize {
     k * (k + 1) / 2
 }
 
+/// Upper-triangle pairs of the largest element (P2: 6 DOFs, 21 pairs).
+const MAX_PAIRS: usize = pairs(6);
+
 /// Triangles per parallel task in the element loops.
 const MIN_LEN: usize = 2048;
 
@@ -130,6 +133,8 @@ fn linear_element<const N: usize>(
     a: [f64; N],
     residual: &mut [f64],
 ) {
+    // Slices of the known lengths: the indexing below needs no further bounds checks.
+    let (g, f, residual) = (&g[..pairs(N)], &f[..N], &mut residual[..N]);
     let mut full = [[0.0; N]; N];
     let mut p = 0;
     for i in 0..N {
@@ -179,15 +184,16 @@ pub(crate) fn point_values<E: TriangleBasis<N>, const N: usize>(
     PointValues { point, weight: q.weight * tri.area * r, curl, basis }
 }
 
-/// The (straight-sided) triangle geometry of mesh triangle `t`.
-#[inline]
+/// The (straight-sided) triangle geometry of mesh triangle `t` (always inlined: in the element
+/// loops a call costs as much as the geometry).
+#[inline(always)]
 pub(crate) fn triangle(mesh: &Mesh, t: usize) -> P1Triangle {
     let [a, b, c] = mesh.triangles[t];
     P1Triangle::new([mesh.nodes[a], mesh.nodes[b], mesh.nodes[c]])
 }
 
 /// The values of `a` at the `N` DOFs of triangle `t` (`element_dofs`: `N` global DOFs per triangle).
-#[inline]
+#[inline(always)]
 pub(crate) fn local_values<const N: usize>(
     element_dofs: &[usize],
     t: usize,
@@ -221,7 +227,8 @@ pub(crate) fn element_kernel<E: TriangleBasis<N>, const N: usize>(
     jacobian: Option<&mut [f64]>,
 ) {
     let mut res = [0.0; N];
-    let mut jac = [[0.0; N]; N];
+    // Packed upper triangle (the first N(N+1)/2 entries are used).
+    let mut jac = [0.0; MAX_PAIRS];
     let want_jacobian = jacobian.is_some();
     for q in rule {
         let v = point_values::<E, N>(tri, q);
@@ -234,24 +241,20 @@ pub(crate) fn element_kernel<E: TriangleBasis<N>, const N: usize>(
             res[i] += v.weight * (nu * b_dot_curl[i] - current_density * v.basis[i]);
         }
         if want_jacobian {
+            let mut p = 0;
             for i in 0..N {
                 for j in i..N {
                     let curl_dot = v.curl[i][0] * v.curl[j][0] + v.curl[i][1] * v.curl[j][1];
-                    jac[i][j] +=
+                    jac[p] +=
                         v.weight * (nu * curl_dot + 2.0 * dnu * b_dot_curl[i] * b_dot_curl[j]);
+                    p += 1;
                 }
             }
         }
     }
     residual.copy_from_slice(&res);
     if let Some(out) = jacobian {
-        let mut p = 0;
-        for i in 0..N {
-            for j in i..N {
-                out[p] = jac[i][j];
-                p += 1;
-            }
-        }
+        out.copy_from_slice(&jac[..pairs(N)]);
     }
 }
 
