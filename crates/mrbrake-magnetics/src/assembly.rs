@@ -273,14 +273,18 @@ pub(crate) fn assemble_elements<E: TriangleBasis<N>, const N: usize>(
     element_residual: &mut [f64],
     element_jacobian: Option<&mut [f64]>,
 ) {
-    let kernel = |t: usize, res: &mut [f64], jac: Option<&mut [f64]>| {
+    // Per-element inputs as chunks zipped with the outputs: no index arithmetic per element.
+    let inputs = element_dofs
+        .par_chunks(N)
+        .zip(data.geometric_stiffness.par_chunks(pairs(N)))
+        .zip(data.unit_load.par_chunks(N));
+    let kernel = |t: usize, ((dofs, g), f): ((&[usize], &[f64]), &[f64]), res: &mut [f64], jac| {
         // (`jac` is left untouched for linear elements.)
-        let a_local = local_values::<N>(element_dofs, t, a);
+        let dofs: &[usize; N] = dofs.try_into().expect("N DOFs per triangle");
+        let a_local = dofs.map(|d| a[d]);
         let material = &materials[data.material[t] as usize];
         if let MagneticMaterial::Linear { .. } = material {
             let nu = material.nu_and_dnu_db2(0.0).0;
-            let g = &data.geometric_stiffness[pairs(N) * t..pairs(N) * (t + 1)];
-            let f = &data.unit_load[N * t..N * (t + 1)];
             linear_element(nu, g, f, data.current_density[t], a_local, res);
             return;
         }
@@ -291,14 +295,16 @@ pub(crate) fn assemble_elements<E: TriangleBasis<N>, const N: usize>(
         Some(jac) => element_residual
             .par_chunks_mut(N)
             .zip(jac.par_chunks_mut(pairs(N)))
+            .zip(inputs)
             .enumerate()
             .with_min_len(MIN_LEN)
-            .for_each(|(t, (res, jac))| kernel(t, res, Some(jac))),
+            .for_each(|(t, ((res, jac), input))| kernel(t, input, res, Some(jac))),
         None => element_residual
             .par_chunks_mut(N)
+            .zip(inputs)
             .enumerate()
             .with_min_len(MIN_LEN)
-            .for_each(|(t, res)| kernel(t, res, None)),
+            .for_each(|(t, (res, input))| kernel(t, input, res, None)),
     }
 }
 
