@@ -10,6 +10,11 @@
 //! (for a geometric fill-reducing order and for interpolating prescribed values), the DOFs of the
 //! tagged boundary edges (a tagged edge's midpoint DOF gets the edge's condition) and the DOFs on
 //! the symmetry axis (vertices with `r = 0` and midpoints of edges with both ends there).
+//!
+//! The map shares the mesh (`Arc`): for P1 its element DOF lists and coordinates are the mesh's
+//! triangles and nodes themselves, so a P1 map costs no memory.
+
+use std::sync::Arc;
 
 use crate::mesh::Mesh;
 
@@ -59,13 +64,14 @@ impl std::fmt::Display for ElementOrder {
 /// The global numbering of the DOFs of one order on one mesh.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DofMap {
+    mesh: Arc<Mesh>,
     order: ElementOrder,
     n_vertices: usize,
     /// End vertices `[a, b]` (`a < b`) of each edge DOF `n_vertices + k`.
     edges: Vec<[usize; 2]>,
-    /// `dofs_per_triangle` global DOFs per triangle.
+    /// P2: the 6 global DOFs per triangle (P1: empty, the mesh triangles are the lists).
     element_dofs: Vec<usize>,
-    /// `[r, z]` of every DOF (vertex or edge midpoint).
+    /// P2: `[r, z]` of every DOF, vertices then edge midpoints (P1: empty, the mesh nodes).
     coordinates: Vec<[f64; 2]>,
     /// Edges by their lower vertex (compressed rows): the upper vertex and the edge index.
     edge_start: Vec<usize>,
@@ -75,12 +81,12 @@ pub struct DofMap {
 impl DofMap {
     /// Numbers the DOFs of `order` on `mesh` (which should pass [`Mesh::validate`]; node indices
     /// out of range panic).
-    pub fn new(mesh: &Mesh, order: ElementOrder) -> Self {
+    pub fn new(mesh: Arc<Mesh>, order: ElementOrder) -> Self {
         let n_vertices = mesh.nodes.len();
-        let mut coordinates = mesh.nodes.clone();
+        let mut coordinates = Vec::new();
         let (mut edges, mut edge_start, mut edge_upper) = (Vec::new(), Vec::new(), Vec::new());
         let element_dofs = match order {
-            ElementOrder::P1 => mesh.triangles.iter().flatten().copied().collect(),
+            ElementOrder::P1 => Vec::new(),
             ElementOrder::P2 => {
                 // Upper bound of the edges per lower vertex (shared edges are counted twice).
                 let mut count = vec![0usize; n_vertices + 1];
@@ -124,6 +130,8 @@ impl DofMap {
                     edge_upper.extend_from_slice(&slots[count[v]..count[v] + filled[v]]);
                     edge_start.push(edge_upper.len());
                 }
+                coordinates.reserve(n_vertices + edges.len());
+                coordinates.extend_from_slice(&mesh.nodes);
                 coordinates.extend(edges.iter().map(|&[a, b]| {
                     let (pa, pb) = (mesh.nodes[a], mesh.nodes[b]);
                     [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]
@@ -131,7 +139,12 @@ impl DofMap {
                 dofs
             }
         };
-        Self { order, n_vertices, edges, element_dofs, coordinates, edge_start, edge_upper }
+        Self { mesh, order, n_vertices, edges, element_dofs, coordinates, edge_start, edge_upper }
+    }
+
+    /// The mesh the DOFs are numbered on.
+    pub fn mesh(&self) -> &Arc<Mesh> {
+        &self.mesh
     }
 
     /// The element order.
@@ -141,12 +154,12 @@ impl DofMap {
 
     /// Total number of DOFs (vertices plus, for P2, edges).
     pub fn len(&self) -> usize {
-        self.coordinates.len()
+        self.n_vertices + self.edges.len()
     }
 
     /// True for a mesh without nodes.
     pub fn is_empty(&self) -> bool {
-        self.coordinates.is_empty()
+        self.len() == 0
     }
 
     /// Number of vertex DOFs (the mesh nodes): DOFs `0..n_vertices()`.
@@ -162,17 +175,24 @@ impl DofMap {
     /// Global DOFs of triangle `t` in local order.
     pub fn element(&self, t: usize) -> &[usize] {
         let k = self.dofs_per_triangle();
-        &self.element_dofs[t * k..(t + 1) * k]
+        &self.element_dofs()[t * k..(t + 1) * k]
     }
 
-    /// The DOF lists of all triangles, [`Self::dofs_per_triangle`] per triangle.
+    /// The DOF lists of all triangles, [`Self::dofs_per_triangle`] per triangle (for P1 the
+    /// mesh's triangles).
     pub fn element_dofs(&self) -> &[usize] {
-        &self.element_dofs
+        match self.order {
+            ElementOrder::P1 => self.mesh.triangles.as_flattened(),
+            ElementOrder::P2 => &self.element_dofs,
+        }
     }
 
-    /// `[r, z]` of every DOF: the vertex, or the midpoint of the edge.
+    /// `[r, z]` of every DOF: the vertex, or the midpoint of the edge (for P1 the mesh's nodes).
     pub fn coordinates(&self) -> &[[f64; 2]] {
-        &self.coordinates
+        match self.order {
+            ElementOrder::P1 => &self.mesh.nodes,
+            ElementOrder::P2 => &self.coordinates,
+        }
     }
 
     /// End vertices of edge DOF `dof`, or `None` for a vertex DOF (or an index out of range).
@@ -197,7 +217,8 @@ impl DofMap {
     /// DOFs of the mesh edges tagged `tag` (their vertices and, for P2, their midpoints), sorted
     /// and de-duplicated. A tagged edge that is not the side of a triangle contributes its vertices
     /// only.
-    pub fn boundary_dofs(&self, mesh: &Mesh, tag: u32) -> Vec<usize> {
+    pub fn boundary_dofs(&self, tag: u32) -> Vec<usize> {
+        let mesh = &self.mesh;
         let mut dofs = Vec::new();
         for (e, _) in mesh.edges.iter().zip(&mesh.edge_tags).filter(|(_, t)| **t == tag) {
             dofs.extend_from_slice(e);
@@ -210,8 +231,8 @@ impl DofMap {
 
     /// DOFs on the symmetry axis: the vertices of [`Mesh::axis_nodes`] and, for P2, the midpoints
     /// of edges with both ends among them. Sorted.
-    pub fn axis_dofs(&self, mesh: &Mesh) -> Vec<usize> {
-        let mut dofs = mesh.axis_nodes();
+    pub fn axis_dofs(&self) -> Vec<usize> {
+        let mut dofs = self.mesh.axis_nodes();
         let mut on_axis = vec![false; self.n_vertices];
         for &v in &dofs {
             on_axis[v] = true;
@@ -230,22 +251,23 @@ mod tests {
     use super::*;
     use crate::structured::{SideTags, graded_lines, rectangle_mesh};
 
-    fn grid(nr: usize, nz: usize) -> Mesh {
+    fn grid(nr: usize, nz: usize) -> Arc<Mesh> {
         let r = graded_lines(0.0, 1.0, nr, 2.0);
         let z = graded_lines(-1.0, 1.0, nz, 1.0);
-        rectangle_mesh(&r, &z, |_, _| 1, SideTags { r_min: 1, r_max: 2, z_min: 3, z_max: 4 })
-            .unwrap()
+        let sides = SideTags { r_min: 1, r_max: 2, z_min: 3, z_max: 4 };
+        Arc::new(rectangle_mesh(&r, &z, |_, _| 1, sides).unwrap())
     }
 
     #[test]
     fn p1_dofs_are_the_vertices() {
         let mesh = grid(3, 2);
-        let map = DofMap::new(&mesh, ElementOrder::P1);
+        let map = DofMap::new(mesh.clone(), ElementOrder::P1);
         assert_eq!(map.len(), mesh.nodes.len());
+        assert_eq!(map.coordinates(), &mesh.nodes[..]);
         assert_eq!(map.element(1), &mesh.triangles[1]);
         assert_eq!(map.edge_dof(0, 1), None);
-        assert_eq!(map.axis_dofs(&mesh), mesh.axis_nodes());
-        assert_eq!(map.boundary_dofs(&mesh, 2), mesh.boundary_nodes(2));
+        assert_eq!(map.axis_dofs(), mesh.axis_nodes());
+        assert_eq!(map.boundary_dofs(2), mesh.boundary_nodes(2));
     }
 
     /// Euler's formula for a triangulated disc: E = V + T − 1; every edge is shared by at most
@@ -253,7 +275,7 @@ mod tests {
     #[test]
     fn p2_numbers_each_edge_once() {
         let mesh = grid(5, 4);
-        let map = DofMap::new(&mesh, ElementOrder::P2);
+        let map = DofMap::new(mesh.clone(), ElementOrder::P2);
         let (v, t) = (mesh.nodes.len(), mesh.triangles.len());
         let n_edges = map.len() - v;
         assert_eq!(n_edges, v + t - 1);
@@ -288,18 +310,18 @@ mod tests {
     #[test]
     fn p2_boundary_and_axis_dofs_include_the_midpoints() {
         let mesh = grid(3, 2);
-        let map = DofMap::new(&mesh, ElementOrder::P2);
+        let map = DofMap::new(mesh, ElementOrder::P2);
         // The axis side r = 0 has 3 vertices and 2 edges.
-        let axis = map.axis_dofs(&mesh);
+        let axis = map.axis_dofs();
         assert_eq!(axis.len(), 5);
         for &d in &axis {
             assert!(map.coordinates()[d][0].abs() < 1e-15);
         }
         // The side r = r_max (tag 2) likewise; every DOF on it has r = 1.
-        let side = map.boundary_dofs(&mesh, 2);
+        let side = map.boundary_dofs(2);
         assert_eq!(side.len(), 5);
         assert!(side.iter().all(|&d| (map.coordinates()[d][0] - 1.0).abs() < 1e-15));
         // The top z = 1 (tag 4): 4 vertices, 3 midpoints.
-        assert_eq!(map.boundary_dofs(&mesh, 4).len(), 7);
+        assert_eq!(map.boundary_dofs(4).len(), 7);
     }
 }

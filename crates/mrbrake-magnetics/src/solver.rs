@@ -275,7 +275,7 @@ impl Solver {
 
         // Constrained DOFs: the axis, Dirichlet edges (vertices and, for P2, midpoints), nodes not
         // in any triangle.
-        let dofs = DofMap::new(&mesh, options.order);
+        let dofs = DofMap::new(mesh.clone(), options.order);
         let n = dofs.len();
         let coordinates = dofs.coordinates();
         let mut constrained = vec![true; n];
@@ -283,20 +283,20 @@ impl Solver {
             constrained[d] = false;
         }
         let mut fixed_values = vec![0.0; n];
-        let axis = dofs.axis_dofs(&mesh);
+        let axis = dofs.axis_dofs();
         for &d in &axis {
             constrained[d] = true;
         }
         for boundary in &problem.boundaries {
             match &boundary.condition {
                 BoundaryCondition::Dirichlet => {
-                    for d in dofs.boundary_dofs(&mesh, boundary.tag) {
+                    for d in dofs.boundary_dofs(boundary.tag) {
                         constrained[d] = true;
                     }
                 }
                 BoundaryCondition::Prescribed(g) => {
                     // Nodal interpolation of g: its values at the vertices and edge midpoints.
-                    for d in dofs.boundary_dofs(&mesh, boundary.tag) {
+                    for d in dofs.boundary_dofs(boundary.tag) {
                         constrained[d] = true;
                         fixed_values[d] = g(coordinates[d]);
                     }
