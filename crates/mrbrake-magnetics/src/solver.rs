@@ -72,7 +72,9 @@ use crate::problem::{BoundaryCondition, Problem, Source};
 pub struct SolverOptions {
     /// Element order: linear (P1, the default) or quadratic (P2, 6-node) triangles. P2 has about
     /// four times the unknowns of P1 on the same mesh and converges one order faster (A in L2 at
-    /// O(h³), B at O(h²)) where the field is smooth.
+    /// O(h³), B at O(h²)) where the field is smooth and the material interfaces are meshed
+    /// exactly; a curved interface meshed by chords (straight-sided elements) limits it to O(h²)
+    /// in A, as the permeable-sphere validation shows.
     pub order: ElementOrder,
     /// Degree of the triangle quadrature rule (2 by default; 4 for more accuracy on coarse meshes).
     /// P2 elements use at least degree 4 (a lower request is raised to 4: the 3-point rule cannot
