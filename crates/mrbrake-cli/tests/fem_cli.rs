@@ -181,3 +181,43 @@ fn bad_problem_files_exit_2_naming_the_file_and_field() {
     );
     expect_input_error(&["fem", "solve", &no_material], &["no-material.toml", "material", "2"]);
 }
+
+/// `--order 2`: quadratic triangles on the same mesh, reported in the JSON (`order`, `unknowns`);
+/// the field agrees with the P1 run to within the discretisation error, and the .vtu keeps one
+/// point per mesh node. `--order 3` is a usage error (exit 2) naming the allowed values.
+#[test]
+fn order_2_solves_the_example_with_quadratic_triangles() {
+    let p1 = json(&["fem", "solve", &potcore_problem(), "--json"]);
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let vtu = dir.path().join("p2.vtu");
+    let p2 = json(&[
+        "fem",
+        "solve",
+        &potcore_problem(),
+        "--order",
+        "2",
+        "--json",
+        "--vtu",
+        vtu.to_str().unwrap(),
+    ]);
+    assert_eq!(p1["order"], 1, "{p1}");
+    assert_eq!(p2["order"], 2, "{p2}");
+    assert_eq!(p2["converged"], true);
+    assert_eq!(p1["nodes"], p2["nodes"]);
+    let (u1, u2) = (p1["unknowns"].as_u64().unwrap(), p2["unknowns"].as_u64().unwrap());
+    assert!(u2 > 3 * u1 && u2 < 5 * u1, "unknowns P1 {u1}, P2 {u2}");
+    let pole = |v: &serde_json::Value| number(&v["probes"][1], "B_abs_T");
+    assert!((pole(&p1) - pole(&p2)).abs() < 0.05 * pole(&p2), "{} vs {}", pole(&p1), pole(&p2));
+    let vtu_text = std::fs::read_to_string(&vtu).expect("the .vtu file is written");
+    let piece = format!(
+        "NumberOfPoints=\"{}\" NumberOfCells=\"{}\"",
+        p2["nodes"].as_u64().unwrap(),
+        p2["elements"].as_u64().unwrap()
+    );
+    assert!(vtu_text.contains(&piece), "missing {piece}");
+
+    expect_input_error(
+        &["fem", "solve", &potcore_problem(), "--order", "3"],
+        &["--order", "1..=2"],
+    );
+}

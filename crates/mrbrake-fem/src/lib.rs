@@ -5,14 +5,17 @@
 //! - [`mesh::Mesh`] holds the (r, z) nodes, the triangles with their physical (region) tags and the
 //!   tagged boundary edges; [`structured`] generates simple graded meshes of blocks and half-discs;
 //!   [`gmsh`] reads Gmsh MSH 2.2 / 4.1 ASCII files; [`vtu`] writes ParaView files.
-//! - [`quadrature`] gives triangle and interval rules; [`element`] the P1 triangle geometry
-//!   (barycentric gradients) used by the forms.
+//! - [`quadrature`] gives triangle and interval rules; [`element`] the affine triangle geometry
+//!   (barycentric gradients) and the Lagrange bases [`element::ElementTriP1`] and
+//!   [`element::ElementTriP2`] used by the forms; [`dofs::DofMap`] numbers their degrees of freedom
+//!   (vertices, then one per edge for P2) and finds boundary and axis DOFs.
 //! - [`pattern::SymmetricPattern`] is the sparsity pattern with a precomputed element scatter map, and
 //!   [`cholesky::SparseCholesky`] the faer sparse Cholesky with the symbolic analysis done once;
 //!   [`ordering`] gives it a nested-dissection elimination order for 2D meshes.
 //! - [`locate::PointLocator`] finds the triangle containing a point (uniform bucket grid).
 
 pub mod cholesky;
+pub mod dofs;
 pub mod element;
 pub mod gmsh;
 pub mod locate;

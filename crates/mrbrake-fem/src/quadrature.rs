@@ -3,6 +3,8 @@
 //! Triangle rules are given in barycentric coordinates `(l1, l2, l3)` with weights that sum to one,
 //! so `∫_T f dA ≈ |T| Σ w_q f(x(l_q))`. They are symmetric rules with interior points only, which
 //! matters for the axisymmetric forms: integrands such as `A²/r` are never sampled on the axis.
+//! The r-weighted forms of quadratic (P2) elements have polynomial parts of degree 3 (plus the
+//! `A/r` terms), so they use the degree-4 rule or higher.
 //!
 //! - degree 1: centroid;
 //! - degree 2: Strang & Fix, 3 points `(2/3, 1/6, 1/6)`;

@@ -94,3 +94,38 @@ fn negative_radius_is_an_input_error() {
     assert!(err.is_input_error());
     assert!(err.to_string().contains("r >= 0"), "{err}");
 }
+
+/// Second-order meshes (`gmsh -order 2`): 6-node triangles (type 9) and 3-node lines (type 8) are
+/// read by their corner nodes, and the mid-side nodes are dropped (the solver's P2 space puts its
+/// edge DOFs at the midpoints of the straight edges).
+#[test]
+fn second_order_elements_are_read_by_their_corners() {
+    // Unit square split along (0,0)-(1,1); mid-side nodes 5-9; the axis r = 0 is a 3-node line.
+    let nodes = "9\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0.5 0 0\n6 1 0.5 0\n7 0.5 0.5 0\n8 0.5 1 0\n9 0 0.5 0\n";
+    let v2 = format!(
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n{nodes}$EndNodes\n$Elements\n3\n\
+         1 8 2 10 1 4 1 9\n2 9 2 7 1 1 2 3 5 6 7\n3 9 2 7 1 1 3 4 7 8 9\n$EndElements\n"
+    );
+    let v4_nodes: String = (1..=9)
+        .map(|k| {
+            let line = nodes.lines().nth(k).unwrap();
+            let xyz: Vec<&str> = line.split_whitespace().skip(1).collect();
+            format!("0 {k} 0 1\n{k}\n{}\n", xyz.join(" "))
+        })
+        .collect();
+    let v4 = format!(
+        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 1 1 0\n\
+         1 0 0 0 0 1 0 1 10 0\n1 0 0 0 1 1 0 1 7 0\n$EndEntities\n\
+         $Nodes\n9 9 1 9\n{v4_nodes}$EndNodes\n$Elements\n2 3 1 3\n\
+         1 1 8 1\n1 4 1 9\n2 1 9 2\n2 1 2 3 5 6 7\n3 1 3 4 7 8 9\n$EndElements\n"
+    );
+    for (name, text) in [("order2_v22.msh", v2), ("order2_v41.msh", v4)] {
+        let m = parse_msh(&text, name, 1.0).unwrap_or_else(|e| panic!("{name}: {e}")).mesh;
+        assert_eq!(m.nodes.len(), 4, "{name}: mid-side nodes are dropped");
+        assert_eq!(m.triangles.len(), 2, "{name}");
+        assert!((m.region_area(7) - 1.0).abs() < 1e-15, "{name}");
+        assert_eq!(m.edges, vec![[3, 0]], "{name}: the line joins its end nodes");
+        assert_eq!(m.edge_tags, vec![10], "{name}");
+        assert_eq!(m.boundary_nodes(10), m.axis_nodes(), "{name}");
+    }
+}

@@ -1,24 +1,31 @@
 //! Release-mode timing of the saturating benchmark (issue 3 performance target), with the time split.
 //!
 //! ```text
-//! cargo run --release -p mrbrake-magnetics --example saturating_benchmark -- 100000 [current_A] [repeats]
+//! cargo run --release -p mrbrake-magnetics --example saturating_benchmark -- 100000 [current_A] [repeats] [order]
 //! /usr/bin/time -v target/release/examples/saturating_benchmark 100000   # peak memory
+//! cargo run --release -p mrbrake-magnetics --example saturating_benchmark -- 25000 10 5 2
 //! ```
-//! Prints nodes, Newton iterations, the median wall time over the repeats, and the split into
-//! setup (pattern + symbolic factorisation), assembly, numeric factorisation, triangular solves and
-//! post-processing (region statistics, coil flux linkage, energy, probes).
+//! The first argument is the number of mesh nodes; `order` is 1 (linear triangles, the default)
+//! or 2 (quadratic triangles: about four unknowns per node, so 25 000 nodes give about as many
+//! unknowns as the 100 000-node P1 run).
+//! Prints nodes, unknowns, Newton iterations, the median wall time over the repeats, and the split
+//! into setup (pattern + symbolic factorisation), assembly, numeric factorisation, triangular
+//! solves and post-processing (region statistics, coil flux linkage, energy, probes).
 
 use std::time::Instant;
 
 use mrbrake_magnetics::benchmark::{COIL, STEEL, pot_core_problem};
 use mrbrake_magnetics::material::MagneticMaterial;
-use mrbrake_magnetics::{Solver, SolverOptions};
+use mrbrake_magnetics::{ElementOrder, Solver, SolverOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let target: usize = args.get(1).map(|s| s.parse()).transpose()?.unwrap_or(100_000);
     let current: f64 = args.get(2).map(|s| s.parse()).transpose()?.unwrap_or(10.0);
     let repeats: usize = args.get(3).map(|s| s.parse()).transpose()?.unwrap_or(5);
+    let degree: i64 = args.get(4).map(|s| s.parse()).transpose()?.unwrap_or(1);
+    let order = ElementOrder::from_degree(degree)
+        .ok_or_else(|| format!("order must be 1 or 2, got {degree}"))?;
     let steel = mrbrake_materials::library::get("steel-1010")?;
     let mut rows = Vec::new();
     for _ in 0..repeats.max(1) {
@@ -26,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             pot_core_problem(target, MagneticMaterial::from_library(&steel.magnetic), current)?;
         let nodes = problem.mesh.nodes.len();
         let start = Instant::now();
-        let mut solver = Solver::new(problem, SolverOptions::default())?;
+        let mut solver = Solver::new(problem, SolverOptions { order, ..SolverOptions::default() })?;
         let setup = start.elapsed().as_secs_f64();
         let solution = solver.solve(None)?;
         let post_start = Instant::now();
@@ -71,7 +78,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             solution.report.iterations,
         ));
         println!(
-            "nodes {nodes} unknowns {} factor nnz {} | iterations {} ({} factorisations) | total {total:.3} s = setup {setup:.3} (symbolic {:.3}) + assemble {:.3} + factor {:.3} + solve {:.3} + post {post:.3} | max |B| steel {:.3} T, gap B {:.3} T, λ {:.4e} Wb, W {energy:.4e} J",
+            "{order} nodes {nodes} unknowns {} factor nnz {} | iterations {} ({} factorisations) | total {total:.3} s = setup {setup:.3} (symbolic {:.3}) + assemble {:.3} + factor {:.3} + solve {:.3} + post {post:.3} | max |B| steel {:.3} T, gap B {:.3} T, λ {:.4e} Wb, W {energy:.4e} J",
             solver.unknowns(),
             solver.factor_nnz(),
             solution.report.iterations,
@@ -88,7 +95,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     rows.sort_by(|a, b| a.0.total_cmp(&b.0));
     let m = rows[rows.len() / 2];
     println!(
-        "median of {}: total {:.3} s (setup {:.3}, assemble {:.3}, factor {:.3}, solve {:.3}, post {:.3}), {} Newton iterations",
+        "{order} median of {}: total {:.3} s (setup {:.3}, assemble {:.3}, factor {:.3}, solve {:.3}, post {:.3}), {} Newton iterations",
         rows.len(),
         m.0,
         m.1,

@@ -20,16 +20,26 @@
 //! few points, a bucket grid after [`LOCATOR_AFTER_QUERIES`] queries).
 //! [`Solver::b_at_raw`] gives the unrecovered element value; on the axis (`r → 0`, where `A = 0`) it
 //! uses the limit `B_z = 2 ∂A/∂r`.
+//!
+//! Quadratic (P2) elements: B of the P2 potential is linear in each element (plus the `A/r` term)
+//! and second-order accurate point by point, so [`Solver::b_at`] evaluates it directly in the
+//! triangle holding the point (the same value as [`Solver::b_at_raw`], with `B_r = 0` imposed on
+//! the axis); there is no recovery. Integrals (region statistics, flux linkage, energy, errors)
+//! use the P2 potential at the quadrature points in both cases, and [`Solver::flux_function`] and
+//! the vertex part of [`Solution::a_phi`] give the values at the mesh nodes.
 
 use serde::Serialize;
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use mrbrake_fem::element::P1Triangle;
+use mrbrake_fem::dofs::ElementOrder;
+use mrbrake_fem::element::{ElementTriP1, P1Triangle, TriangleBasis};
 use mrbrake_fem::locate::{PointLocator, locate_by_scan};
+use mrbrake_fem::mesh::Mesh;
+use mrbrake_fem::quadrature::TrianglePoint;
 
 use crate::MagneticsError;
-use crate::assembly::{flux_density, point_values, triangle};
+use crate::assembly::{by_order, flux_density, local_values, point_values, triangle};
 use crate::solver::{NewtonReport, Solver};
 
 const TWO_PI: f64 = 2.0 * std::f64::consts::PI;
@@ -42,18 +52,63 @@ pub const LOCATOR_AFTER_QUERIES: usize = 4;
 #[derive(Debug, Clone)]
 pub struct Solution {
     a_phi: Vec<f64>,
+    n_vertices: usize,
     /// Newton iterations, history and timings.
     pub report: NewtonReport,
 }
 
 impl Solution {
-    pub(crate) fn new(a_phi: Vec<f64>, report: NewtonReport) -> Self {
-        Self { a_phi, report }
+    pub(crate) fn new(a_phi: Vec<f64>, n_vertices: usize, report: NewtonReport) -> Self {
+        Self { a_phi, n_vertices, report }
     }
 
-    /// Nodal values of `A_phi` (Wb/m), one per mesh node (usable as a warm start).
+    /// Values of `A_phi` (Wb/m) at every degree of freedom (usable as a warm start of the same
+    /// solver): one per mesh node for P1; for P2 the mesh nodes, then the edge midpoints
+    /// ([`Solver::dof_coordinates`]).
     pub fn a_phi(&self) -> &[f64] {
         &self.a_phi
+    }
+
+    /// Values of `A_phi` (Wb/m) at the mesh nodes (for P1 the whole of [`Self::a_phi`]), e.g. for
+    /// point fields on the mesh.
+    pub fn vertex_a_phi(&self) -> &[f64] {
+        &self.a_phi[..self.n_vertices]
+    }
+}
+
+/// The potential and flux density of a solution at one quadrature point of one triangle.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FieldSample {
+    /// `[r, z]` (m).
+    pub point: [f64; 2],
+    /// Quadrature weight × triangle area × r (m³ per radian).
+    pub weight: f64,
+    /// `A_phi` (Wb/m).
+    pub a: f64,
+    /// `[B_r, B_z]` (T).
+    pub b: [f64; 2],
+}
+
+/// Calls `f` with the field of the DOF values `a` at every point of `rule` in triangle `t`.
+#[inline]
+fn samples_in<E: TriangleBasis<N>, const N: usize>(
+    mesh: &Mesh,
+    element_dofs: &[usize],
+    t: usize,
+    rule: &[TrianglePoint],
+    a: &[f64],
+    f: &mut impl FnMut(FieldSample),
+) {
+    let tri = triangle(mesh, t);
+    let a_local = local_values::<N>(element_dofs, t, a);
+    for q in rule {
+        let v = point_values::<E, N>(&tri, q);
+        let b = flux_density(&v, a_local);
+        let mut a_q = 0.0;
+        for k in 0..N {
+            a_q += v.basis[k] * a_local[k];
+        }
+        f(FieldSample { point: v.point, weight: v.weight, a: a_q, b });
     }
 }
 
@@ -104,20 +159,14 @@ pub struct CoilLinkage {
     pub inductance_h: f64,
 }
 
-/// `(N/S) ∫ 2π r A dS` over region index `ri`.
+/// `(N/S) ∫ 2π r A dS` over region index `ri` (`a`: the value of every DOF).
 pub(crate) fn coil_flux(solver: &Solver, a: &[f64], ri: usize, turns: f64) -> f64 {
-    let mesh = &solver.problem.mesh;
     let mut integral = 0.0;
-    for (t, nodes) in mesh.triangles.iter().enumerate() {
+    for t in 0..solver.problem.mesh.triangles.len() {
         if solver.region_index[t] as usize != ri {
             continue;
         }
-        let tri = triangle(mesh, t);
-        for q in &solver.rule {
-            let v = point_values(&tri, q);
-            let a_q: f64 = (0..3).map(|k| v.basis[k] * a[nodes[k]]).sum();
-            integral += v.weight * a_q;
-        }
+        solver.for_each_sample(t, &solver.rule, a, |s| integral += s.weight * s.a);
     }
     TWO_PI * integral * turns / solver.region_area[ri]
 }
@@ -166,6 +215,19 @@ pub(crate) struct QueryCache {
 }
 
 impl Solver {
+    /// Calls `f` with the field of the DOF values `a` at every point of `rule` in triangle `t`.
+    #[inline]
+    pub(crate) fn for_each_sample(
+        &self,
+        t: usize,
+        rule: &[TrianglePoint],
+        a: &[f64],
+        mut f: impl FnMut(FieldSample),
+    ) {
+        let (mesh, element_dofs) = (&self.problem.mesh, self.dofs.element_dofs());
+        by_order!(self.options.order, samples_in(mesh, element_dofs, t, rule, a, &mut f));
+    }
+
     /// The triangle containing `p` and its barycentric coordinates, or an input error naming `p`.
     fn locate(&self, p: [f64; 2]) -> Result<(usize, [f64; 3]), MagneticsError> {
         let mesh = &self.problem.mesh;
@@ -185,8 +247,17 @@ impl Solver {
         })
     }
 
-    /// Recovered B at `[r, z]` (m) (see the module docs); an error if the point is outside the mesh.
+    /// B at `[r, z]` (m): recovered for P1, evaluated directly for P2 (see the module docs); an
+    /// error if the point is outside the mesh.
     pub fn b_at(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
+        if self.options.order == ElementOrder::P2 {
+            let mut field = self.b_at_raw(solution, p)?;
+            if p[0] <= 1e-9 * self.problem.mesh.size_scale() {
+                field.b_r_t = 0.0;
+                field.b_abs_t = field.b_z_t.abs();
+            }
+            return Ok(field);
+        }
         let (t, bary) = self.locate(p)?;
         let scale = self.problem.mesh.size_scale();
         let mut b = [0.0; 2];
@@ -225,13 +296,16 @@ impl Solver {
         b
     }
 
-    /// Unrecovered B of the P1 potential in the triangle containing `[r, z]`.
+    /// Unrecovered B of the potential in the triangle containing `[r, z]` (the lowest-numbered
+    /// one when the point is on an edge).
     pub fn b_at_raw(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
         let mesh = &self.problem.mesh;
         let (t, bary) = self.locate(p)?;
-        let tri = triangle(mesh, t);
-        let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
-        let b = b_in_triangle(&tri, a, bary, p[0], mesh.size_scale());
+        let (element_dofs, scale) = (self.dofs.element_dofs(), mesh.size_scale());
+        let b = by_order!(
+            self.options.order,
+            b_in_element(mesh, element_dofs, &solution.a_phi, t, bary, p[0], scale)
+        );
         Ok(PointField { r: p[0], z: p[1], b_r_t: b[0], b_z_t: b[1], b_abs_t: b[0].hypot(b[1]) })
     }
 
@@ -265,19 +339,14 @@ impl Solver {
         tag: u32,
     ) -> Result<RegionStats, MagneticsError> {
         let ri = self.region_position(tag)?;
-        let mesh = &self.problem.mesh;
         let mut samples: Vec<(f64, f64)> = Vec::new();
-        for (t, nodes) in mesh.triangles.iter().enumerate() {
+        for t in 0..self.problem.mesh.triangles.len() {
             if self.region_index[t] as usize != ri {
                 continue;
             }
-            let tri = triangle(mesh, t);
-            let a = nodes.map(|v| solution.a_phi[v]);
-            for q in &self.rule {
-                let v = point_values(&tri, q);
-                let b = flux_density(&v, a);
-                samples.push((b[0].hypot(b[1]), TWO_PI * v.weight));
-            }
+            self.for_each_sample(t, &self.rule, &solution.a_phi, |s| {
+                samples.push((s.b[0].hypot(s.b[1]), TWO_PI * s.weight));
+            });
         }
         let volume: f64 = samples.iter().map(|s| s.1).sum();
         let mean = samples.iter().map(|s| s.0 * s.1).sum::<f64>() / volume;
@@ -332,28 +401,25 @@ impl Solver {
             .into_par_iter()
             .map(|t| {
                 let material = &self.materials[self.region_index[t] as usize];
-                let tri = triangle(mesh, t);
-                let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
                 let mut w_sum = 0.0;
                 let mut co_sum = 0.0;
-                for q in &self.rule {
-                    let v = point_values(&tri, q);
-                    let b = flux_density(&v, a);
-                    let b2 = b[0] * b[0] + b[1] * b[1];
+                self.for_each_sample(t, &self.rule, &solution.a_phi, |s| {
+                    let b2 = s.b[0] * s.b[0] + s.b[1] * s.b[1];
                     let w = material.energy_density(b2.sqrt());
                     let hb = material.nu_and_dnu_db2(b2).0 * b2;
-                    w_sum += TWO_PI * v.weight * w;
-                    co_sum += TWO_PI * v.weight * (hb - w);
-                }
+                    w_sum += TWO_PI * s.weight * w;
+                    co_sum += TWO_PI * s.weight * (hb - w);
+                });
                 (w_sum, co_sum)
             })
             .reduce(|| (0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1))
     }
 
-    /// The flux function `ψ = r A_phi` (Wb/rad) at every node: the flux through the disc of radius r at
-    /// height z is `2π ψ`, so flux lines are its level lines (field maps, VTU output).
+    /// The flux function `ψ = r A_phi` (Wb/rad) at every mesh node (the vertex DOFs, also for P2):
+    /// the flux through the disc of radius r at height z is `2π ψ`, so flux lines are its level
+    /// lines (field maps, VTU output).
     pub fn flux_function(&self, solution: &Solution) -> Vec<f64> {
-        self.problem.mesh.nodes.iter().zip(&solution.a_phi).map(|(p, a)| p[0] * a).collect()
+        self.problem.mesh.nodes.iter().zip(solution.vertex_a_phi()).map(|(p, a)| p[0] * a).collect()
     }
 
     /// B at the centroid of every triangle: `[B_r, B_z]` pairs (T), for maps and VTU output.
@@ -361,9 +427,17 @@ impl Solver {
         use rayon::prelude::*;
         let mesh = &self.problem.mesh;
         let scale = mesh.size_scale();
+        let element_dofs = self.dofs.element_dofs();
+        let third = [1.0 / 3.0; 3];
         (0..mesh.triangles.len())
             .into_par_iter()
-            .map(|t| centroid_b(mesh, solution, t, scale))
+            .map(|t| {
+                let r = triangle(mesh, t).point(third)[0];
+                by_order!(
+                    self.options.order,
+                    b_in_element(mesh, element_dofs, &solution.a_phi, t, third, r, scale)
+                )
+            })
             .collect()
     }
 
@@ -378,17 +452,39 @@ impl Solver {
         let mesh = &self.problem.mesh;
         let rule = mrbrake_fem::quadrature::triangle_rule(5);
         let mut sum = 0.0;
-        for (t, nodes) in mesh.triangles.iter().enumerate() {
+        for t in 0..mesh.triangles.len() {
             if !tags.is_empty() && !tags.contains(&mesh.triangle_tags[t]) {
                 continue;
             }
-            let tri = triangle(mesh, t);
-            for q in &rule {
-                let p = tri.point(q.bary);
-                let a_h: f64 = (0..3).map(|k| q.bary[k] * solution.a_phi[nodes[k]]).sum();
-                let e = a_h - reference(p);
-                sum += TWO_PI * q.weight * tri.area * p[0] * e * e;
+            self.for_each_sample(t, &rule, &solution.a_phi, |s| {
+                let e = s.a - reference(s.point);
+                sum += TWO_PI * s.weight * e * e;
+            });
+        }
+        sum.sqrt()
+    }
+
+    /// Weighted L2 error of B, `(∫ |B_h − B|² 2π r dS)^{1/2}` (T·m^{3/2}), against a reference
+    /// `[B_r, B_z]`, with the degree-5 triangle rule, over the regions in `tags` (all when empty).
+    /// `reference = |_| [0.0, 0.0]` gives the norm of `B_h` itself.
+    pub fn b_l2_error(
+        &self,
+        solution: &Solution,
+        reference: impl Fn([f64; 2]) -> [f64; 2],
+        tags: &[u32],
+    ) -> f64 {
+        let mesh = &self.problem.mesh;
+        let rule = mrbrake_fem::quadrature::triangle_rule(5);
+        let mut sum = 0.0;
+        for t in 0..mesh.triangles.len() {
+            if !tags.is_empty() && !tags.contains(&mesh.triangle_tags[t]) {
+                continue;
             }
+            self.for_each_sample(t, &rule, &solution.a_phi, |s| {
+                let b = reference(s.point);
+                let e2 = (s.b[0] - b[0]).powi(2) + (s.b[1] - b[1]).powi(2);
+                sum += TWO_PI * s.weight * e2;
+            });
         }
         sum.sqrt()
     }
@@ -403,27 +499,44 @@ impl Solver {
 }
 
 /// B of the P1 potential at the centroid of triangle `t` (`scale`: the mesh size scale).
-fn centroid_b(
-    mesh: &mrbrake_fem::mesh::Mesh,
-    solution: &Solution,
-    t: usize,
-    scale: f64,
-) -> [f64; 2] {
+fn centroid_b(mesh: &Mesh, solution: &Solution, t: usize, scale: f64) -> [f64; 2] {
     let tri = triangle(mesh, t);
     let a = mesh.triangles[t].map(|v| solution.a_phi[v]);
     let centroid = tri.point([1.0 / 3.0; 3]);
-    b_in_triangle(&tri, a, [1.0 / 3.0; 3], centroid[0], scale)
+    b_in_triangle::<ElementTriP1, 3>(&tri, a, [1.0 / 3.0; 3], centroid[0], scale)
 }
 
-/// B in a triangle at barycentric `bary` (radius `r`); the axis limit `B_z = 2 ∂A/∂r` below
-/// `r = 1e-9 ×` the mesh scale.
-fn b_in_triangle(tri: &P1Triangle, a: [f64; 3], bary: [f64; 3], r: f64, scale: f64) -> [f64; 2] {
+/// B of the DOF values `a` in triangle `t` at barycentric `bary` (radius `r`).
+fn b_in_element<E: TriangleBasis<N>, const N: usize>(
+    mesh: &Mesh,
+    element_dofs: &[usize],
+    a: &[f64],
+    t: usize,
+    bary: [f64; 3],
+    r: f64,
+    scale: f64,
+) -> [f64; 2] {
+    let a_local = local_values::<N>(element_dofs, t, a);
+    b_in_triangle::<E, N>(&triangle(mesh, t), a_local, bary, r, scale)
+}
+
+/// B in a triangle at barycentric `bary` (radius `r`), `B = (−∂A/∂z, ∂A/∂r + A/r)`; the axis limit
+/// `B_z = 2 ∂A/∂r` below `r = 1e-9 ×` the mesh scale (where `A = 0`).
+fn b_in_triangle<E: TriangleBasis<N>, const N: usize>(
+    tri: &P1Triangle,
+    a: [f64; N],
+    bary: [f64; 3],
+    r: f64,
+    scale: f64,
+) -> [f64; 2] {
+    let values = E::values(bary);
+    let gradients = E::gradients(bary, &tri.grad);
     let mut grad = [0.0; 2];
     let mut value = 0.0;
-    for i in 0..3 {
-        grad[0] += a[i] * tri.grad[i][0];
-        grad[1] += a[i] * tri.grad[i][1];
-        value += a[i] * bary[i];
+    for i in 0..N {
+        grad[0] += a[i] * gradients[i][0];
+        grad[1] += a[i] * gradients[i][1];
+        value += a[i] * values[i];
     }
     let b_z = if r <= 1e-9 * scale { 2.0 * grad[0] } else { grad[0] + value / r };
     [-grad[1], b_z]

@@ -3,10 +3,12 @@
 //! ```toml
 //! mesh = "potcore.msh"          # Gmsh MSH 2.2 or 4.1 ASCII, path relative to this file; x = r, y = z
 //! length_unit = "mm"            # "m" (default), "cm", "mm" or "um": unit of the mesh, probes, lines
+//! order = 2                     # element order: 1 (linear triangles, the default) or 2 (quadratic,
+//!                               # 6-node triangles on the same mesh; `fem solve --order` overrides)
 //! [solver]                      # optional
 //! max_iterations = 50
 //! tolerance = 1e-9              # relative residual of the stopping rule
-//! quadrature_degree = 2
+//! quadrature_degree = 2         # triangle rule degree 1 to 5 (P2 elements use at least 4)
 //! [[region]]
 //! physical = 1
 //! material = { bh_csv = "bh.csv" }   # or "steel-1010" (library name) or { mu_r = 1000.0 }
@@ -38,6 +40,7 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
+use crate::ElementOrder;
 use crate::MagneticsError;
 use crate::field::{CoilLinkage, PointField, RegionStats, Solution};
 use crate::material::MagneticMaterial;
@@ -50,6 +53,8 @@ struct RawFile {
     mesh: String,
     #[serde(default)]
     length_unit: Option<String>,
+    #[serde(default)]
+    order: Option<toml::Value>,
     #[serde(default)]
     solver: Option<RawSolver>,
     #[serde(default)]
@@ -157,6 +162,17 @@ fn unit_scale(unit: &str, file: &str) -> Result<f64, MagneticsError> {
     })
 }
 
+/// The element order of the `order` key (absent: P1).
+fn order_of(value: Option<&toml::Value>, file: &str) -> Result<ElementOrder, MagneticsError> {
+    let Some(value) = value else { return Ok(ElementOrder::P1) };
+    value.as_integer().and_then(ElementOrder::from_degree).ok_or_else(|| {
+        MagneticsError::Input(format!(
+            "{file}: order = {value} is not allowed; allowed: 1 (linear triangles) or 2 \
+             (quadratic, 6-node triangles)"
+        ))
+    })
+}
+
 /// Reads a problem file and everything it refers to (mesh, B-H files).
 pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     let file = path.display().to_string();
@@ -166,6 +182,7 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
         toml::from_str(&text).map_err(|e| MagneticsError::Input(format!("{file}: {e}")))?;
     let dir = path.parent().unwrap_or(Path::new("."));
     let scale = unit_scale(raw.length_unit.as_deref().unwrap_or("m"), &file)?;
+    let order = order_of(raw.order.as_ref(), &file)?;
     let mesh_path = dir.join(&raw.mesh);
     let start = Instant::now();
     let gmsh = mrbrake_fem::gmsh::read_msh(&mesh_path, scale).map_err(|e| match e {
@@ -218,7 +235,7 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
             boundaries.push(Boundary { tag: b.physical, condition });
         }
     }
-    let mut options = SolverOptions::default();
+    let mut options = SolverOptions { order, ..SolverOptions::default() };
     if let Some(s) = &raw.solver {
         if let Some(m) = s.max_iterations {
             if m == 0 {
@@ -476,6 +493,8 @@ pub struct SolveReport {
     pub nodes: usize,
     /// Mesh triangles.
     pub elements: usize,
+    /// Element order: 1 (linear) or 2 (quadratic triangles).
+    pub order: usize,
     /// Free unknowns.
     pub unknowns: usize,
     /// Timings (s).
@@ -496,8 +515,20 @@ fn probe_report(name: &str, f: &PointField) -> ProbeReport {
 /// Reads, solves and post-processes a problem file; returns the report and the solver and solution
 /// (for VTU output and field maps).
 pub fn solve_file(path: &Path) -> Result<(SolveReport, Solver, Solution), MagneticsError> {
+    solve_file_with_order(path, None)
+}
+
+/// [`solve_file`] with the element order of the file's `order` key replaced by `order` when given
+/// (`mrbrake fem solve --order`).
+pub fn solve_file_with_order(
+    path: &Path,
+    order: Option<ElementOrder>,
+) -> Result<(SolveReport, Solver, Solution), MagneticsError> {
     let start = Instant::now();
-    let file = load(path)?;
+    let mut file = load(path)?;
+    if let Some(order) = order {
+        file.options.order = order;
+    }
     let read = start.elapsed().as_secs_f64();
     let mut solver = Solver::new(file.problem, file.options)?;
     let solution = solver.solve(None)?;
@@ -559,6 +590,7 @@ pub fn solve_file(path: &Path) -> Result<(SolveReport, Solver, Solution), Magnet
         residual_history: solution.report.history.iter().map(|s| s.relative_residual).collect(),
         nodes: solver.mesh().nodes.len(),
         elements: solver.mesh().triangles.len(),
+        order: solver.order().degree(),
         unknowns: solver.unknowns(),
         timings_s: Timings {
             read,

@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use mrbrake_magnetics::MagneticsError;
-use mrbrake_magnetics::problem_file::solve_file;
+use mrbrake_magnetics::problem_file::{solve_file, solve_file_with_order};
+use mrbrake_magnetics::{ElementOrder, MagneticsError};
 
 fn repo_root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -146,6 +146,64 @@ fn bad_problem_files_are_input_errors_naming_the_field() {
 
     let e = input_error(&format!("{head}{ok_regions}typo = 3\n"), &[]);
     assert!(e.contains("typo"), "{e}");
+
+    for bad in ["3", "0", "\"2\"", "1.5"] {
+        let e = input_error(&format!("{head}order = {bad}\n{ok_regions}"), &[]);
+        assert!(
+            e.contains("p.toml")
+                && e.contains(&format!("order = {bad}"))
+                && e.contains("allowed: 1"),
+            "{e}"
+        );
+    }
+}
+
+/// The shipped example with quadratic elements, from the `order` key and from the override: the
+/// same mesh with about four times the unknowns, and the same field to within the discretisation
+/// error.
+#[test]
+fn example_potcore_solves_with_p2() {
+    let example = repo_root().join("examples/fem/potcore.toml");
+    let (p1, _, _) = solve_file(&example).unwrap();
+    let (p2, solver, solution) = solve_file_with_order(&example, Some(ElementOrder::P2)).unwrap();
+    assert_eq!((p1.order, p2.order), (1, 2));
+    assert!(p2.converged && p2.nodes == p1.nodes && p2.elements == p1.elements);
+    // Unknowns: nodes + edges ≈ 4 × nodes on a triangulation (edges ≈ 3 × nodes).
+    assert!(
+        p2.unknowns > 3 * p1.unknowns && p2.unknowns < 5 * p1.unknowns,
+        "{} vs {}",
+        p2.unknowns,
+        p1.unknowns
+    );
+    assert_eq!(solution.a_phi().len(), solver.dof_count());
+    assert_eq!(solution.vertex_a_phi().len(), p2.nodes);
+    for (a, b) in p1.probes.iter().zip(&p2.probes) {
+        assert_eq!(a.name, b.name);
+        assert!(
+            (a.b_abs_t - b.b_abs_t).abs() < 0.05 * a.b_abs_t.max(0.05),
+            "{}: {} vs {}",
+            a.name,
+            a.b_abs_t,
+            b.b_abs_t
+        );
+    }
+    assert!((p1.energy_j - p2.energy_j).abs() < 0.05 * p2.energy_j);
+    let json = serde_json::to_value(&p2).unwrap();
+    assert_eq!(json["order"], 2);
+
+    // The same through the file's `order` key; the override wins over it.
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(&example).unwrap().replacen(
+        "mesh = \"potcore.msh\"",
+        &format!("order = 2\nmesh = {:?}", repo_root().join("examples/fem/potcore.msh")),
+        1,
+    );
+    assert!(text.contains("order = 2"), "the example names its mesh `potcore.msh`");
+    let path = write(dir.path(), "p2.toml", &text);
+    let (from_key, _, _) = solve_file(&path).unwrap();
+    assert_eq!((from_key.order, from_key.unknowns), (2, p2.unknowns));
+    let (overridden, _, _) = solve_file_with_order(&path, Some(ElementOrder::P1)).unwrap();
+    assert_eq!((overridden.order, overridden.unknowns), (1, p1.unknowns));
 }
 
 #[test]

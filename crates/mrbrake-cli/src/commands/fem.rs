@@ -1,11 +1,13 @@
-//! `mrbrake fem solve PROBLEM.toml [--json] [--vtu out.vtu] [--plot out.svg]`: axisymmetric
-//! non-linear magnetostatics driven by a problem file (see `mrbrake_magnetics::problem_file`).
+//! `mrbrake fem solve PROBLEM.toml [--order 1|2] [--json] [--vtu out.vtu] [--plot out.svg]`:
+//! axisymmetric non-linear magnetostatics driven by a problem file (see
+//! `mrbrake_magnetics::problem_file`).
 
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
 use mrbrake_fem::vtu::{Field, to_vtu};
-use mrbrake_magnetics::problem_file::solve_file;
+use mrbrake_magnetics::ElementOrder;
+use mrbrake_magnetics::problem_file::solve_file_with_order;
 use mrbrake_report::field_map::{FieldMap, save_field_map};
 
 use crate::output::print_json;
@@ -22,11 +24,16 @@ pub enum FemCommand {
 pub struct SolveArgs {
     /// Problem file (TOML): `mesh = "file.msh"`, `[[region]]`, `[[boundary]]`, `[[probe]]`, `[[line]]`.
     problem: PathBuf,
+    /// Element order: 1 (linear triangles) or 2 (quadratic, 6-node triangles on the same mesh);
+    /// overrides the problem file's `order` key (default 1).
+    #[arg(long, value_name = "1|2", value_parser = clap::value_parser!(u8).range(1..=2))]
+    order: Option<u8>,
     /// Print a JSON object (probes, regions, coils, energy_J, newton_iterations, converged, nodes,
-    /// elements, timings_s) instead of text.
+    /// elements, order, unknowns, timings_s) instead of text.
     #[arg(long)]
     json: bool,
-    /// Write the field (A_phi, r·A_phi, B per triangle, |B|, region) as a ParaView .vtu file.
+    /// Write the field (A_phi and r·A_phi at the mesh nodes, B at the triangle centroids, |B|,
+    /// region) as a ParaView .vtu file.
     #[arg(long, value_name = "FILE.vtu")]
     vtu: Option<PathBuf>,
     /// Draw the |B| map with flux lines (SVG, or PNG for a .png name).
@@ -45,7 +52,10 @@ pub fn run(command: FemCommand) -> anyhow::Result<()> {
 }
 
 fn solve(args: SolveArgs) -> anyhow::Result<()> {
-    let (report, solver, solution) = solve_file(&args.problem)?;
+    let order = args
+        .order
+        .map(|degree| ElementOrder::from_degree(degree.into()).expect("clap accepts only 1 and 2"));
+    let (report, solver, solution) = solve_file_with_order(&args.problem, order)?;
     let mesh = solver.mesh();
     let need_fields = args.vtu.is_some() || args.plot.is_some();
     let (element_b, b_abs, flux_function) = if need_fields {
@@ -60,7 +70,7 @@ fn solve(args: SolveArgs) -> anyhow::Result<()> {
         let text = to_vtu(
             mesh,
             &[
-                Field { name: "A_phi_Wb_per_m", components: 1, values: solution.a_phi() },
+                Field { name: "A_phi_Wb_per_m", components: 1, values: solution.vertex_a_phi() },
                 Field { name: "flux_function_r_A_phi", components: 1, values: &flux_function },
             ],
             &[
@@ -87,11 +97,12 @@ fn solve(args: SolveArgs) -> anyhow::Result<()> {
         return print_json(&report);
     }
     crate::outln!(
-        "{}: {} nodes, {} triangles, {} unknowns; Newton {} iteration(s), converged: {}",
+        "{}: {} nodes, {} triangles, {} unknowns (P{}); Newton {} iteration(s), converged: {}",
         args.problem.display(),
         report.nodes,
         report.elements,
         report.unknowns,
+        report.order,
         report.newton_iterations,
         report.converged
     );
