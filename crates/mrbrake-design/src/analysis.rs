@@ -366,7 +366,13 @@ pub fn analyze_with_field(
         let active_yield: f64 = gaps.iter().map(|g| g.torque_nm).sum();
         cross_coupling = Some(if active_yield > 0.0 { idle_yield / active_yield } else { 0.0 });
         set_coils(&mut solver, &geometry, &unit1_coils, &unit2_coils, 0.0, max_current, turns)?;
-        let s2 = solver.solve(Some(solution_max.a_phi())).map_err(numerical)?;
+        // Unit 2 is unit 1 mirrored, so direction 1's field mirrored is direction 2's up to the
+        // mesh (the mesher need not be symmetric): a start a few Newton steps from the answer.
+        let start = match geometry.mirror_z {
+            Some(z) => mirrored_potential(&solver, &solution_max, z),
+            None => solution_max.a_phi().to_vec(),
+        };
+        let s2 = solver.solve(Some(&start)).map_err(numerical)?;
         let g2 = gap_results(&solver, &s2, &dir2_gaps, &fluid, options.speed_rad_s)?;
         direction2 = Some(
             g2.iter().map(|g| g.torque_nm + g.viscous_torque_nm).sum::<f64>()
@@ -517,6 +523,16 @@ fn set_coils(
         solver.set_source(coil.tag, Some(source)).map_err(numerical)?;
     }
     Ok(())
+}
+
+/// `solution`'s potential mirrored about the plane `z = z_mirror`, at every degree of freedom of
+/// `solver` (a DOF whose image falls outside the mesh starts at 0).
+fn mirrored_potential(solver: &Solver, solution: &Solution, z_mirror: f64) -> Vec<f64> {
+    solver
+        .dof_coordinates()
+        .iter()
+        .map(|p| solver.a_phi_at(solution, [p[0], 2.0 * z_mirror - p[1]]).unwrap_or(0.0))
+        .collect()
 }
 
 /// Local Bingham torque, mean |B| and |B| profile of each gap.
@@ -768,4 +784,42 @@ fn mechanics(
         torque_density_nm_per_m3: torque_nm / volume,
         torque_density_nm_per_kg: torque_nm / mass,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Direction 2 warm-started from direction 1's field mirrored (the bidirectional brake's unit
+    /// 2 is unit 1 mirrored) converges to the same field as a cold start, in fewer iterations.
+    #[test]
+    fn the_mirrored_warm_start_reaches_the_cold_start_answer_sooner() {
+        let spec = crate::spec::default_spec();
+        let geometry = geometry::build(&spec).unwrap();
+        let z = geometry.mirror_z.expect("the thesis brake is bidirectional");
+        let mesh = Arc::new(mesh_build::mesh(&geometry, MeshLevel::Coarse).unwrap());
+        let problem = problem_of(&geometry, mesh).unwrap();
+        let mut solver = Solver::new(problem, SolverOptions::default()).unwrap();
+        let unit = |u: usize| -> Vec<u32> {
+            geometry.coils.iter().filter(|c| c.unit == u).map(|c| c.tag).collect()
+        };
+        let (unit1, unit2) = (unit(0), unit(1));
+        let (i, turns) = (spec.coil.max_current.a(), spec.turns());
+        set_coils(&mut solver, &geometry, &unit1, &unit2, i, 0.0, turns).unwrap();
+        let direction1 = solver.solve(None).unwrap();
+        set_coils(&mut solver, &geometry, &unit1, &unit2, 0.0, i, turns).unwrap();
+        let cold = solver.solve(None).unwrap();
+        let warm = solver.solve(Some(&mirrored_potential(&solver, &direction1, z))).unwrap();
+        assert!(warm.report.converged && cold.report.converged);
+        assert!(
+            warm.report.iterations < cold.report.iterations,
+            "mirrored start {} iterations, cold start {}",
+            warm.report.iterations,
+            cold.report.iterations
+        );
+        let scale = cold.a_phi().iter().fold(0.0_f64, |m, a| m.max(a.abs()));
+        let diff =
+            cold.a_phi().iter().zip(warm.a_phi()).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(diff <= 1e-6 * scale, "max |ΔA| {diff:e} of max |A| {scale:e}");
+    }
 }

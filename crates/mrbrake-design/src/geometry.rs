@@ -237,6 +237,10 @@ pub struct BrakeGeometry {
     pub domain: Rect,
     /// Number of units (2 for the bidirectional brake).
     pub units: usize,
+    /// The bidirectional brake's mirror plane `z` (m): unit 2 and its coil are unit 1 mirrored
+    /// about it, and so are the domain and the field of one energised unit (used to warm-start
+    /// one direction's solve from the other's). `None` for a single unit.
+    pub mirror_z: Option<f64>,
 }
 
 /// Edge tag of the axis.
@@ -442,6 +446,7 @@ fn assemble(spec: &BrakeSpec) -> BrakeGeometry {
     };
     let direction0 = if units == 2 { Direction::Clockwise } else { Direction::Both };
     // Re-label directions of unit 0 for the bidirectional brake, then mirror it for unit 1.
+    let mut mirror_z = None;
     if units == 2 {
         for r in b.regions.iter_mut().filter(|r| r.rotates.is_some()) {
             r.rotates = Some(direction0);
@@ -451,6 +456,7 @@ fn assemble(spec: &BrakeSpec) -> BrakeGeometry {
         }
         let spacer = spec.spacer.as_ref().map_or(0.0, |s| s.thickness.m());
         let z_mirror = unit_length + 0.5 * spacer;
+        mirror_z = Some(z_mirror);
         let r_out = spec.housing.outer_radius.m();
         let spacer_material =
             spec.materials.spacer.clone().unwrap_or_else(|| spec.materials.non_magnetic.clone());
@@ -536,6 +542,7 @@ fn assemble(spec: &BrakeSpec) -> BrakeGeometry {
         device,
         domain,
         units,
+        mirror_z,
     }
 }
 

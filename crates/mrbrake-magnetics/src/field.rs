@@ -211,10 +211,18 @@ impl NodeCorners {
 pub(crate) struct QueryCache {
     locator: std::sync::OnceLock<PointLocator>,
     node_corners: std::sync::OnceLock<NodeCorners>,
+    /// The mesh's size scale (bounding-box diagonal), for the on-axis test of point queries: a
+    /// pass over every node, so computed once rather than per query.
+    size_scale: std::sync::OnceLock<f64>,
     queries: AtomicUsize,
 }
 
 impl Solver {
+    /// The mesh's size scale (m), computed on first use.
+    fn size_scale(&self) -> f64 {
+        *self.queries.size_scale.get_or_init(|| self.problem.mesh.size_scale())
+    }
+
     /// Calls `f` with the field of the DOF values `a` at every point of `rule` in triangle `t`.
     #[inline]
     pub(crate) fn for_each_sample(
@@ -252,14 +260,14 @@ impl Solver {
     pub fn b_at(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
         if self.options.order == ElementOrder::P2 {
             let mut field = self.b_at_raw(solution, p)?;
-            if p[0] <= 1e-9 * self.problem.mesh.size_scale() {
+            if p[0] <= 1e-9 * self.size_scale() {
                 field.b_r_t = 0.0;
                 field.b_abs_t = field.b_z_t.abs();
             }
             return Ok(field);
         }
         let (t, bary) = self.locate(p)?;
-        let scale = self.problem.mesh.size_scale();
+        let scale = self.size_scale();
         let mut b = [0.0; 2];
         for k in 0..3 {
             let corner = self.recovered_corner_b(solution, t, k, scale);
@@ -301,12 +309,21 @@ impl Solver {
     pub fn b_at_raw(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
         let mesh = &self.problem.mesh;
         let (t, bary) = self.locate(p)?;
-        let (element_dofs, scale) = (self.dofs.element_dofs(), mesh.size_scale());
+        let (element_dofs, scale) = (self.dofs.element_dofs(), self.size_scale());
         let b = by_order!(
             self.options.order,
             b_in_element(mesh, element_dofs, &solution.a_phi, t, bary, p[0], scale)
         );
         Ok(PointField { r: p[0], z: p[1], b_r_t: b[0], b_z_t: b[1], b_abs_t: b[0].hypot(b[1]) })
+    }
+
+    /// `A_phi` (Wb/m) of `solution` at `[r, z]` (m), interpolated with the element basis (e.g. to
+    /// carry a solution over to a warm start of a related problem); an error if the point is
+    /// outside the mesh.
+    pub fn a_phi_at(&self, solution: &Solution, p: [f64; 2]) -> Result<f64, MagneticsError> {
+        let (t, bary) = self.locate(p)?;
+        let element_dofs = self.dofs.element_dofs();
+        Ok(by_order!(self.options.order, a_in_element(element_dofs, &solution.a_phi, t, bary)))
     }
 
     /// B at `samples` equally spaced points along each segment of the polyline `points`
@@ -518,6 +535,17 @@ fn b_in_element<E: TriangleBasis<N>, const N: usize>(
 ) -> [f64; 2] {
     let a_local = local_values::<N>(element_dofs, t, a);
     b_in_triangle::<E, N>(&triangle(mesh, t), a_local, bary, r, scale)
+}
+
+/// The potential in triangle `t` at barycentric `bary`: `Σ A_i φ_i`.
+fn a_in_element<E: TriangleBasis<N>, const N: usize>(
+    element_dofs: &[usize],
+    a: &[f64],
+    t: usize,
+    bary: [f64; 3],
+) -> f64 {
+    let a_local = local_values::<N>(element_dofs, t, a);
+    E::values(bary).iter().zip(a_local).map(|(phi, a)| phi * a).sum()
 }
 
 /// B in a triangle at barycentric `bary` (radius `r`), `B = (−∂A/∂z, ∂A/∂r + A/r)`; the axis limit

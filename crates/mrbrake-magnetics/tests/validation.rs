@@ -1108,3 +1108,29 @@ fn p2_pays_in_the_gap_and_on_the_axis_at_equal_unknowns() {
         }
     }
 }
+
+/// `a_phi_at` interpolates with the element basis: a uniform axial field `A = B0 r / 2` (linear in
+/// r, so both element orders represent it exactly) is read back exactly at points between the
+/// nodes, and a point outside the mesh is an error.
+#[test]
+fn potential_interpolation_reproduces_a_uniform_field() {
+    let b0 = 0.7;
+    let exact = move |p: [f64; 2]| 0.5 * b0 * p[0];
+    let r = graded_lines(0.0, 0.02, 7, 1.3);
+    let z = graded_lines(-0.01, 0.01, 5, 1.0);
+    let mesh = rectangle_mesh(&r, &z, |_, _| 1, SIDES).unwrap();
+    for order in [ElementOrder::P1, ElementOrder::P2] {
+        let problem = Problem {
+            mesh: Arc::new(mesh.clone()),
+            regions: vec![air(1)],
+            boundaries: [OUTER, BOTTOM, TOP].iter().map(|&t| prescribed(t, exact)).collect(),
+        };
+        let mut solver = Solver::new(problem, options(order)).unwrap();
+        let solution = solver.solve(None).unwrap();
+        for p in [[0.0013, 0.0071], [0.0111, -0.0037], [0.0197, 0.0003], [0.0, 0.002]] {
+            let a = solver.a_phi_at(&solution, p).unwrap();
+            assert!((a - exact(p)).abs() <= 1e-12 * b0 * 0.02, "{order:?} at {p:?}: {a}");
+        }
+        assert!(solver.a_phi_at(&solution, [0.03, 0.0]).is_err());
+    }
+}
