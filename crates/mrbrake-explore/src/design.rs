@@ -29,7 +29,7 @@ use crate::variable::{Variable, apply_override, set_field};
 
 /// Bumped whenever the analysis would give a different answer for the same inputs (a new torque
 /// model, a mesher change): stored results of older revisions then no longer match any key.
-pub const MODEL_REVISION: u32 = 2;
+pub const MODEL_REVISION: u32 = 3;
 
 /// The solver version written with every record.
 pub fn solver_version() -> String {

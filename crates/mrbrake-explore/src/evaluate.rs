@@ -9,7 +9,7 @@
 //! numerical error (e.g. Newton not converging, with its history). Nothing is approximated by a
 //! surrogate: every number comes from the field solution and the thesis's formulas.
 
-use mrbrake_design::analysis::{Analysis, AnalysisOptions, analyze};
+use mrbrake_design::analysis::{Analysis, AnalysisOptions, ElementOrder, analyze};
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::BrakeSpec;
 use mrbrake_store::Status;
@@ -30,6 +30,8 @@ pub struct EvaluationSettings {
     /// steady temperature rise; 10 W/(m²·K) is still air (free convection of gases, 2–25 W/(m²·K):
     /// Incropera & DeWitt, *Fundamentals of Heat and Mass Transfer*, Table 1.1).
     pub convection_w_m2k: f64,
+    /// Finite-element order of every field solution (P1 or P2).
+    pub order: ElementOrder,
 }
 
 impl Default for EvaluationSettings {
@@ -41,6 +43,7 @@ impl Default for EvaluationSettings {
             seal_friction_nm: analysis.seal_friction_nm,
             temperature_c: analysis.temperature_c,
             convection_w_m2k: 10.0,
+            order: analysis.order,
         }
     }
 }
@@ -54,6 +57,7 @@ impl EvaluationSettings {
             "seal_friction_nm": self.seal_friction_nm,
             "temperature_c": self.temperature_c,
             "convection_w_m2k": self.convection_w_m2k,
+            "order": self.order.degree(),
             "points": 2,
         })
     }
@@ -65,6 +69,7 @@ impl EvaluationSettings {
             speed_rad_s: self.speed_rad_s,
             seal_friction_nm: self.seal_friction_nm,
             temperature_c: self.temperature_c,
+            order: self.order,
         }
     }
 }

@@ -4,6 +4,7 @@
 //! ```toml
 //! spec = "../specs/thesis-bidirectional.toml"   # relative to this file
 //! mesh = "default"                             # coarse | default | fine
+//! order = 1                                    # element order: 1 (linear) or 2 (quadratic)
 //! [set]                                        # fixed changes to the base spec
 //! "coil.turns" = "fill"                        # the turns fill the window, (4.2), (4.3)
 //! [[variable]]
@@ -30,6 +31,7 @@
 
 use std::path::{Path, PathBuf};
 
+use mrbrake_design::analysis::ElementOrder;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_units::{Dimension, parse};
 use serde::Deserialize;
@@ -54,6 +56,8 @@ struct RawProblem {
     mesh: Option<String>,
     #[serde(default)]
     speed: Option<String>,
+    #[serde(default)]
+    order: Option<i64>,
     #[serde(default)]
     set: toml::Table,
     #[serde(default)]
@@ -248,6 +252,10 @@ impl OptimizationProblem {
         let mut settings = EvaluationSettings::default();
         if let Some(mesh) = &raw.mesh {
             settings.mesh = MeshLevel::parse(mesh).map_err(|e| bad(format!("mesh: {e}")))?;
+        }
+        if let Some(degree) = raw.order {
+            settings.order = ElementOrder::from_degree(degree)
+                .ok_or_else(|| bad(format!("order: {degree} is not allowed; use 1 or 2")))?;
         }
         if let Some(speed) = &raw.speed {
             settings.speed_rad_s =

@@ -390,6 +390,32 @@ impl Solver {
         })
     }
 
+    /// `∫ f(p, B) dr dz` over the cross-section of region `tag`: `f` receives each quadrature point
+    /// `p = [r, z]` (m) and the exact `B = [B_r, B_z]` (T) of the solution there (no recovery), and
+    /// the sum is weighted by area, not by `r` (multiply by `2π r` inside `f` for a volume
+    /// integral). For quantities that are non-linear in B, such as a fluid's yield stress, this is
+    /// the robust alternative to sampling B at points, which lands on element edges where the
+    /// tangential B of a conforming solution jumps.
+    pub fn integrate_over_region(
+        &self,
+        solution: &Solution,
+        tag: u32,
+        mut f: impl FnMut([f64; 2], [f64; 2]) -> f64,
+    ) -> Result<f64, MagneticsError> {
+        let ri = self.region_position(tag)?;
+        let mut sum = 0.0;
+        for t in 0..self.problem.mesh.triangles.len() {
+            if self.region_index[t] as usize != ri {
+                continue;
+            }
+            // Quadrature points are interior, so r > 0 and weight / r is the area weight.
+            self.for_each_sample(t, &self.rule, &solution.a_phi, |s| {
+                sum += s.weight / s.point[0] * f(s.point, s.b);
+            });
+        }
+        Ok(sum)
+    }
+
     /// Flux linkage and secant inductance of every coil (regions with a turns × current source).
     pub fn coils(&self, solution: &Solution) -> Vec<CoilLinkage> {
         let mut out = Vec::new();

@@ -1109,7 +1109,8 @@ fn p2_pays_in_the_gap_and_on_the_axis_at_equal_unknowns() {
     }
 }
 
-/// `a_phi_at` interpolates with the element basis: a uniform axial field `A = B0 r / 2` (linear in
+/// `a_phi_at` interpolates with the element basis, `integrate_over_region` integrates the exact
+/// field over a region's cross-section: a uniform axial field `A = B0 r / 2` (linear in
 /// r, so both element orders represent it exactly) is read back exactly at points between the
 /// nodes, and a point outside the mesh is an error.
 #[test]
@@ -1132,5 +1133,11 @@ fn potential_interpolation_reproduces_a_uniform_field() {
             assert!((a - exact(p)).abs() <= 1e-12 * b0 * 0.02, "{order:?} at {p:?}: {a}");
         }
         assert!(solver.a_phi_at(&solution, [0.03, 0.0]).is_err());
+        // Region integrals are area integrals of the exact field: the area, and B_z = B0 over it.
+        let area = solver.integrate_over_region(&solution, 1, |_, _| 1.0).unwrap();
+        let flux = solver.integrate_over_region(&solution, 1, |_, b| b[1]).unwrap();
+        assert!((area - 4e-4).abs() < 1e-15, "{order:?}: area {area}");
+        assert!((flux - b0 * 4e-4).abs() < 1e-12 * b0 * 4e-4, "{order:?}: ∫B_z {flux}");
+        assert!(solver.integrate_over_region(&solution, 99, |_, _| 1.0).is_err());
     }
 }

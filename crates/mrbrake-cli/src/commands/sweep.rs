@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
+use mrbrake_design::analysis::ElementOrder;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::DEFAULT_SPEC_TOML;
 use mrbrake_explore::plan::{self, Sampling, Shard, VarySpec};
@@ -52,6 +53,9 @@ pub struct SweepArgs {
     /// Mesh density of every analysis: coarse, default or fine.
     #[arg(long, default_value = "default")]
     mesh: String,
+    /// Element order of every analysis: 1 (linear) or 2 (quadratic triangles).
+    #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+    order: u8,
     /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
     #[arg(long, default_value = "1rad/s")]
     speed: String,
@@ -94,10 +98,11 @@ fn split_pair(text: &str, flag: &str) -> anyhow::Result<(String, String)> {
 }
 
 /// The evaluation settings from the common flags.
-pub fn settings_from(mesh: &str, speed: &str) -> anyhow::Result<EvaluationSettings> {
+pub fn settings_from(mesh: &str, speed: &str, order: u8) -> anyhow::Result<EvaluationSettings> {
     Ok(EvaluationSettings {
         mesh: MeshLevel::parse(mesh)?,
         speed_rad_s: parse(speed, Dimension::AngularVelocity).context("--speed")?,
+        order: ElementOrder::from_degree(order.into()).expect("clap accepts only 1 and 2"),
         ..EvaluationSettings::default()
     })
 }
@@ -117,7 +122,7 @@ pub fn run_sweep(a: SweepArgs) -> anyhow::Result<()> {
     let pairs: Vec<(String, String)> =
         a.vary.iter().map(|v| VarySpec::split(v)).collect::<Result<_, _>>()?;
     let names: Vec<String> = pairs.iter().map(|(n, _)| n.clone()).collect();
-    let settings = settings_from(&a.mesh, &a.speed)?;
+    let settings = settings_from(&a.mesh, &a.speed, a.order)?;
     let space = DesignSpace::new(&spec_text, &origin, &overrides, &names, settings)?;
     let specs: Vec<VarySpec> = space
         .variables()
