@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{close, json, mrbrake, number};
+use common::{close, expect_input_error, json, mrbrake, number};
 
 use std::path::{Path, PathBuf};
 
@@ -152,6 +152,20 @@ fn negative_gap_exits_2_naming_the_field() {
     assert_eq!(out.status.code(), Some(2), "stderr: {err}");
     assert!(err.contains("drum.gap"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn quadratic_elements_agree_with_linear_ones_and_report_their_unknowns() {
+    let p1 = default_analysis();
+    let p2 = json(&["analyze", "--mesh", "coarse", "--points", "3", "--order", "2", "--json"]);
+    assert_eq!(p1["mesh"]["order"].as_u64(), Some(1));
+    assert_eq!(p2["mesh"]["order"].as_u64(), Some(2));
+    assert_eq!(p2["mesh"]["nodes"], p1["mesh"]["nodes"], "the same mesh");
+    let (u1, u2) = (number(&p1["mesh"], "unknowns"), number(&p2["mesh"], "unknowns"));
+    assert!(u2 > 3.5 * u1 && u2 < 4.5 * u1, "P2 has about four times the unknowns: {u1} / {u2}");
+    let torque = |v: &serde_json::Value| number(&v["torque"], "at_max_current_Nm");
+    assert!(close(torque(&p2), torque(&p1), 2e-3), "{} vs {}", torque(&p2), torque(&p1));
+    expect_input_error(&["analyze", "--order", "3"], &["--order", "3"]);
 }
 
 #[test]

@@ -497,6 +497,12 @@ generations = 2
         assert!(text.to_string().contains("algorithm.population"), "{text}");
         let ps = GOOD.replace("kind = \"nsga2\"", "kind = \"pattern-search\"");
         assert!(OptimizationProblem::from_toml_str(&ps, Path::new("p.toml")).is_err());
+        let cubic = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\norder = 3");
+        let text = OptimizationProblem::from_toml_str(&cubic, Path::new("p.toml")).unwrap_err();
+        assert!(text.to_string().contains("order: 3 is not allowed; use 1 or 2"), "{text}");
+        let quadratic = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\norder = 2");
+        let p = OptimizationProblem::from_toml_str(&quadratic, Path::new("p.toml")).unwrap();
+        assert_eq!(p.settings.order, ElementOrder::P2);
     }
 
     #[test]

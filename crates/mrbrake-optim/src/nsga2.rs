@@ -17,7 +17,8 @@
 //!    reference implementation (NSGA-II v1.1, KanGAL), so children never leave the bounds.
 //! 3. Integer variables are varied over their range widened by half a unit on each side, then
 //!    repaired (rounded and clamped, [`crate::space::Bounds::repair`]), so every integer value has an
-//!    equal share of the real line.
+//!    equal share of the real line; a mutated integer variable moves by at least one unit (creep
+//!    mutation), so a variable with few levels keeps all of them within reach.
 //! 4. The offspring (as many as the population) are evaluated in **one** `evaluate_batch` call; parents
 //!    and offspring are merged and the best `population` survive by front, the last front cut by
 //!    descending crowding distance ((μ+λ) elitism, Deb et al. 2002, Sec. III-C).
@@ -425,8 +426,26 @@ fn polynomial_mutation(
             let val = 2.0 * (1.0 - u) + 2.0 * (u - 0.5) * xy.powf(eta + 1.0);
             1.0 - val.powf(exponent)
         };
-        *value = (y + delta_q * width).clamp(yl, yu);
+        let mutated = (y + delta_q * width).clamp(yl, yu);
+        *value = if b.is_integer() { integer_step(b, y, mutated, delta_q) } else { mutated };
     }
+}
+
+/// A mutated integer variable always moves: when the polynomial perturbation rounds back to the
+/// value it started from (with `η_m = 20` it mostly does: a few levels span little of the operator
+/// range), it creeps one unit in the perturbation's direction instead, or the other way at a bound
+/// (creep mutation for integer genes, Eiben & Smith, *Introduction to Evolutionary Computing*, 2nd
+/// ed. 2015, §4.3.1). Without this, a variable with few levels (the number of drums, 1..3) is fixed
+/// once the population agrees on it, and the search never returns to the other levels.
+fn integer_step(b: &Bounds, start: f64, mutated: f64, direction: f64) -> f64 {
+    let before = b.repair(start);
+    let after = b.repair(mutated);
+    if (after - before).abs() >= 0.5 {
+        return after;
+    }
+    let step = if direction >= 0.0 { 1.0 } else { -1.0 };
+    let forward = b.repair(before + step);
+    if (forward - before).abs() >= 0.5 { forward } else { b.repair(before - step) }
 }
 
 /// The feasible rank-0 individuals, each distinct design once, sorted by objectives.
@@ -472,6 +491,29 @@ mod tests {
                 assert!((0.5..=5.5).contains(&c[1]));
             }
         }
+    }
+
+    #[test]
+    fn a_mutated_integer_always_changes_and_reaches_every_level() {
+        // Three levels (the number of drums): with η_m = 20 the polynomial perturbation alone
+        // rounds back to the start most of the time; the creep step moves it every time.
+        let bounds = vec![Bounds::integer(1.0, 3.0)];
+        let mut rng = Rng::new(3);
+        let mut reached = [0usize; 3];
+        for start in [1.0, 2.0, 3.0] {
+            for _ in 0..300 {
+                let mut x = vec![start];
+                polynomial_mutation(&mut x, &bounds, 20.0, 1.0, &mut rng);
+                let level = bounds[0].repair(x[0]);
+                assert!((level - start).abs() >= 1.0 - 1e-12, "{start} -> {}", x[0]);
+                reached[level as usize - 1] += 1;
+            }
+        }
+        assert!(reached.iter().all(|&k| k > 100), "{reached:?}");
+        // Not mutated (probability 0): unchanged.
+        let mut x = vec![2.0];
+        polynomial_mutation(&mut x, &bounds, 20.0, 0.0, &mut rng);
+        assert!((x[0] - 2.0).abs() < 1e-15);
     }
 
     #[test]
