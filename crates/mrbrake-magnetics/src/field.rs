@@ -402,18 +402,11 @@ impl Solver {
         tag: u32,
         mut f: impl FnMut([f64; 2], [f64; 2]) -> f64,
     ) -> Result<f64, MagneticsError> {
-        let ri = self.region_position(tag)?;
-        let mut sum = 0.0;
-        for t in 0..self.problem.mesh.triangles.len() {
-            if self.region_index[t] as usize != ri {
-                continue;
-            }
-            // Quadrature points are interior, so r > 0 and weight / r is the area weight.
-            self.for_each_sample(t, &self.rule, &solution.a_phi, |s| {
-                sum += s.weight / s.point[0] * f(s.point, s.b);
-            });
-        }
-        Ok(sum)
+        self.region_position(tag)?;
+        // Quadrature points are interior, so r > 0 and weight / r is the area weight.
+        Ok(self.sum_over_samples(solution, &self.rule, &[tag], |s| {
+            s.weight / s.point[0] * f(s.point, s.b)
+        }))
     }
 
     /// Flux linkage and secant inductance of every coil (regions with a turns × current source).
@@ -492,18 +485,11 @@ impl Solver {
         reference: impl Fn([f64; 2]) -> f64,
         tags: &[u32],
     ) -> f64 {
-        let mesh = &self.problem.mesh;
         let rule = mrbrake_fem::quadrature::triangle_rule(5);
-        let mut sum = 0.0;
-        for t in 0..mesh.triangles.len() {
-            if !tags.is_empty() && !tags.contains(&mesh.triangle_tags[t]) {
-                continue;
-            }
-            self.for_each_sample(t, &rule, &solution.a_phi, |s| {
-                let e = s.a - reference(s.point);
-                sum += TWO_PI * s.weight * e * e;
-            });
-        }
+        let sum = self.sum_over_samples(solution, &rule, tags, |s| {
+            let e = s.a - reference(s.point);
+            TWO_PI * s.weight * e * e
+        });
         sum.sqrt()
     }
 
@@ -516,20 +502,32 @@ impl Solver {
         reference: impl Fn([f64; 2]) -> [f64; 2],
         tags: &[u32],
     ) -> f64 {
-        let mesh = &self.problem.mesh;
         let rule = mrbrake_fem::quadrature::triangle_rule(5);
+        let sum = self.sum_over_samples(solution, &rule, tags, |s| {
+            let b = reference(s.point);
+            TWO_PI * s.weight * ((s.b[0] - b[0]).powi(2) + (s.b[1] - b[1]).powi(2))
+        });
+        sum.sqrt()
+    }
+
+    /// `Σ f(sample)` over the quadrature points of `rule` in the triangles of the regions in `tags`
+    /// (all triangles when empty).
+    fn sum_over_samples(
+        &self,
+        solution: &Solution,
+        rule: &[TrianglePoint],
+        tags: &[u32],
+        mut f: impl FnMut(&FieldSample) -> f64,
+    ) -> f64 {
+        let mesh = &self.problem.mesh;
         let mut sum = 0.0;
         for t in 0..mesh.triangles.len() {
             if !tags.is_empty() && !tags.contains(&mesh.triangle_tags[t]) {
                 continue;
             }
-            self.for_each_sample(t, &rule, &solution.a_phi, |s| {
-                let b = reference(s.point);
-                let e2 = (s.b[0] - b[0]).powi(2) + (s.b[1] - b[1]).powi(2);
-                sum += TWO_PI * s.weight * e2;
-            });
+            self.for_each_sample(t, rule, &solution.a_phi, |s| sum += f(&s));
         }
-        sum.sqrt()
+        sum
     }
 
     fn region_position(&self, tag: u32) -> Result<usize, MagneticsError> {
