@@ -59,6 +59,22 @@ macro_rules! by_order {
 }
 pub(crate) use by_order;
 
+/// The full symmetric `N × N` matrix of its upper triangle packed row by row (pairs `(i, j)`,
+/// `i <= j`, in the order of the element Jacobians).
+#[inline(always)]
+pub(crate) fn unpack_symmetric<const N: usize>(packed: &[f64]) -> [[f64; N]; N] {
+    let mut full = [[0.0; N]; N];
+    let mut p = 0;
+    for i in 0..N {
+        for j in i..N {
+            full[i][j] = packed[p];
+            full[j][i] = packed[p];
+            p += 1;
+        }
+    }
+    full
+}
+
 /// Number of upper-triangle pairs `(i, j)`, `i <= j`, of an element with `k` DOFs.
 pub(crate) const fn pairs(k: usize) -> usize {
     k * (k + 1) / 2
@@ -135,15 +151,7 @@ fn linear_element<const N: usize>(
 ) {
     // Slices of the known lengths: the indexing below needs no further bounds checks.
     let (g, f, residual) = (&g[..pairs(N)], &f[..N], &mut residual[..N]);
-    let mut full = [[0.0; N]; N];
-    let mut p = 0;
-    for i in 0..N {
-        for j in i..N {
-            full[i][j] = g[p];
-            full[j][i] = g[p];
-            p += 1;
-        }
-    }
+    let full = unpack_symmetric::<N>(g);
     for i in 0..N {
         let mut ga = 0.0;
         for j in 0..N {
@@ -370,15 +378,7 @@ mod tests {
         let mut res = [0.0; N];
         let mut jac = vec![0.0; pairs(N)];
         element_kernel::<E, N>(&tri, &rule, &iron, 1e6, a, &mut res, Some(&mut jac));
-        let mut full = [[0.0; N]; N];
-        let mut p = 0;
-        for i in 0..N {
-            for j in i..N {
-                full[i][j] = jac[p];
-                full[j][i] = jac[p];
-                p += 1;
-            }
-        }
+        let full = unpack_symmetric::<N>(&jac);
         // The field is at the knee of the curve, where the `2 dν/dB² B⊗B` term matters.
         let b = flux_density(&point_values::<E, N>(&tri, &rule[0]), a);
         let b2 = b[0] * b[0] + b[1] * b[1];
