@@ -1,5 +1,7 @@
 //! Maps an error chain to the process exit code: 2 for bad input, 1 for numerical or internal failure.
 
+use mrbrake_error::Kind as _;
+
 /// An error the command itself found in its input (exit code 2).
 #[derive(Debug, thiserror::Error)]
 #[error("{0}")]

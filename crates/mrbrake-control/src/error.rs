@@ -32,10 +32,10 @@ pub enum ControlError {
     },
 }
 
-impl ControlError {
-    /// True for every variant: all of them come from bad configuration input (CLI exit code 2).
-    pub fn is_input_error(&self) -> bool {
-        true
+impl mrbrake_error::Kind for ControlError {
+    /// Every variant comes from bad configuration input.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        mrbrake_error::ErrorKind::Input
     }
 }
 

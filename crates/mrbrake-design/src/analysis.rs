@@ -29,6 +29,7 @@
 //! maximum current with its own coil, and the torque that leaks into the idle unit's gaps (through the
 //! shaft and spacer) is reported as cross-coupling.
 
+use mrbrake_error::Kind as _;
 use std::sync::Arc;
 use std::time::Instant;
 

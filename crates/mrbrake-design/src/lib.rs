@@ -21,9 +21,12 @@ pub enum DesignError {
     Numerical(String),
 }
 
-impl DesignError {
-    /// True when the error comes from bad input (the CLI exits with code 2).
-    pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Input(_))
+impl mrbrake_error::Kind for DesignError {
+    /// Input for invalid fields, numerical for failures of the mesher or the solver.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        match self {
+            Self::Input(_) => mrbrake_error::ErrorKind::Input,
+            Self::Numerical(_) => mrbrake_error::ErrorKind::Numerical,
+        }
     }
 }

@@ -5,6 +5,7 @@
 //! the chosen [`MeshLevel`] (coarse 3, default 4, fine 6); the size grows away from the gaps at
 //! `growth` (m/m) up to the global maximum (a fraction of the device radius).
 
+use mrbrake_error::Kind as _;
 use mrbrake_fem::mesh::Mesh;
 use mrbrake_fem::mesher::{MeshOptions, Pslg, SizeField, quality, triangulate};
 

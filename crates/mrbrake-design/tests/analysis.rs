@@ -2,6 +2,7 @@
 //! configuration, the per-direction behaviour of the bidirectional brake, agreement of the local
 //! Bingham torque with the thesis's mean-B method, and (release only) mesh convergence.
 
+use mrbrake_error::Kind as _;
 use std::path::PathBuf;
 
 use mrbrake_design::analysis::{AnalysisOptions, analyze};

@@ -12,6 +12,7 @@
 use mrbrake_design::analysis::{Analysis, AnalysisOptions, ElementOrder, analyze};
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::BrakeSpec;
+use mrbrake_error::Kind as _;
 use mrbrake_store::Status;
 use serde_json::{Value, json};
 

@@ -52,16 +52,17 @@ pub enum ExploreError {
     Internal(String),
 }
 
-impl ExploreError {
-    /// True when the error comes from bad input (the CLI exits with code 2).
-    pub fn is_input_error(&self) -> bool {
+impl mrbrake_error::Kind for ExploreError {
+    /// Input for bad variables, values and problem files; wrapped errors keep their own kind.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        use mrbrake_error::ErrorKind;
         match self {
-            Self::Input(_) => true,
-            Self::Design(e) => e.is_input_error(),
-            Self::Material(e) => e.is_input_error(),
-            Self::Store(e) => e.is_input_error(),
-            Self::Optim(e) => e.is_input_error(),
-            Self::Internal(_) => false,
+            Self::Input(_) => ErrorKind::Input,
+            Self::Design(e) => e.kind(),
+            Self::Material(e) => e.kind(),
+            Self::Store(e) => e.kind(),
+            Self::Optim(e) => e.kind(),
+            Self::Internal(_) => ErrorKind::Internal,
         }
     }
 }

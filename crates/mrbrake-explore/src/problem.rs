@@ -444,6 +444,7 @@ fn metric_value(q: &RawQuantity, unit: &str) -> Result<f64, ExploreError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     const GOOD: &str = r#"
 spec = "../specs/thesis-bidirectional.toml"

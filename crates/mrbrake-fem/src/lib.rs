@@ -57,10 +57,15 @@ pub enum FemError {
     Numerical(String),
 }
 
-impl FemError {
-    /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
-    /// internal failures (exit code 1).
-    pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Input(_) | Self::Parse { .. } | Self::Io { .. })
+impl mrbrake_error::Kind for FemError {
+    /// Bad files and fields are input errors; a mesh file that cannot be read takes the kind of its
+    /// I/O error (a missing file is input); factorisation failures are numerical.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        use mrbrake_error::{ErrorKind, Kind};
+        match self {
+            Self::Input(_) | Self::Parse { .. } => ErrorKind::Input,
+            Self::Io { source, .. } => Kind::kind(source),
+            Self::Numerical(_) => ErrorKind::Numerical,
+        }
     }
 }

@@ -1,6 +1,7 @@
 //! Gmsh reader: the same geometry saved as MSH 2.2 and 4.1 (fixtures made by `gmsh` from
 //! `fixtures/two_regions.geo`) reads to the same mesh; malformed files give errors with line numbers.
 
+use mrbrake_error::Kind as _;
 use std::path::PathBuf;
 
 use mrbrake_fem::FemError;

@@ -101,15 +101,16 @@ fn format_history(history: &[NewtonStep], _scale: f64) -> String {
         .join(", ")
 }
 
-impl MagneticsError {
-    /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
-    /// internal failures (exit code 1).
-    pub fn is_input_error(&self) -> bool {
+impl mrbrake_error::Kind for MagneticsError {
+    /// Input for bad problems; the wrapped mesh and material errors keep their own kind; Newton
+    /// failures are numerical.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        use mrbrake_error::ErrorKind;
         match self {
-            Self::Input(_) => true,
-            Self::Fem(e) => e.is_input_error(),
-            Self::Material(e) => e.is_input_error(),
-            Self::NotConverged { .. } | Self::Numerical(_) => false,
+            Self::Input(_) => ErrorKind::Input,
+            Self::Fem(e) => e.kind(),
+            Self::Material(e) => e.kind(),
+            Self::NotConverged { .. } | Self::Numerical(_) => ErrorKind::Numerical,
         }
     }
 }

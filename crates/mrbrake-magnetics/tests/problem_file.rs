@@ -1,6 +1,7 @@
 //! Problem files: the shipped example solves; bad input gives input errors naming the file and field;
 //! Newton failure is a numerical error carrying the residual history.
 
+use mrbrake_error::Kind as _;
 use std::path::{Path, PathBuf};
 
 use mrbrake_magnetics::problem_file::{solve_file, solve_file_with_order};

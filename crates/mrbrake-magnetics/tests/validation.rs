@@ -4,6 +4,7 @@
 //!
 //! Every case prints its measured errors (`cargo test -p mrbrake-magnetics --test validation -- --nocapture`).
 
+use mrbrake_error::Kind as _;
 use std::sync::Arc;
 
 use mrbrake_fem::mesh::Mesh;

@@ -3,7 +3,7 @@
 /// Everything that can go wrong when reading, validating or looking up material data.
 ///
 /// Every variant except [`MaterialError::BuiltinData`] is caused by the caller's input (a file, a name,
-/// a number) and [`MaterialError::is_input_error`] says so; the `mrbrake` CLI exits with code 2 for those.
+/// a number) and its [`mrbrake_error::Kind`] says so; the `mrbrake` CLI exits with code 2 for those.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum MaterialError {
@@ -62,10 +62,13 @@ pub enum MaterialError {
     },
 }
 
-impl MaterialError {
-    /// True when the error comes from bad input (the CLI exits with code 2), false for a defect in the
-    /// built-in data (exit code 1).
-    pub fn is_input_error(&self) -> bool {
-        !matches!(self, Self::BuiltinData { .. })
+impl mrbrake_error::Kind for MaterialError {
+    /// Every variant but [`MaterialError::BuiltinData`] comes from the caller's input;
+    /// broken built-in data is an internal error (a bug).
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        match self {
+            Self::BuiltinData { .. } => mrbrake_error::ErrorKind::Internal,
+            _ => mrbrake_error::ErrorKind::Input,
+        }
     }
 }

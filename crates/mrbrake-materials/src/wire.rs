@@ -209,6 +209,7 @@ fn parse_awg_table(text: &str, file: &str) -> Result<Vec<AwgRow>, MaterialError>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     #[test]
     fn awg_24_matches_the_table_and_the_thesis() {

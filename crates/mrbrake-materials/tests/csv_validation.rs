@@ -1,5 +1,6 @@
 //! User B-H files: every validation rule gives an error naming the file, the line and the rule.
 
+use mrbrake_error::Kind as _;
 use std::io::Write;
 
 use mrbrake_materials::{BhCurve, MaterialError, Provenance, Trust};

@@ -1,6 +1,7 @@
 //! The built-in library: names, lookups, provenance, densities, and the steel curves against the
 //! spread table of data/SOURCES.md.
 
+use mrbrake_error::Kind as _;
 use mrbrake_materials::{Magnetic, MaterialError, MaterialKind, Trust, library};
 
 #[test]

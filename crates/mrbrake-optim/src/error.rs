@@ -91,11 +91,15 @@ pub enum OptimError {
     },
 }
 
-impl OptimError {
-    /// True when the error comes from bad input (bounds, options, designs: the CLI exits with code 2);
-    /// false when the evaluator broke its contract (an internal error, exit code 1).
-    pub fn is_input_error(&self) -> bool {
-        !matches!(self, Self::WrongEvaluationCount { .. } | Self::InvalidEvaluation { .. })
+impl mrbrake_error::Kind for OptimError {
+    /// Input for bad bounds, options and designs; internal when the evaluator broke its contract.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        match self {
+            Self::WrongEvaluationCount { .. } | Self::InvalidEvaluation { .. } => {
+                mrbrake_error::ErrorKind::Internal
+            }
+            _ => mrbrake_error::ErrorKind::Input,
+        }
     }
 }
 
@@ -109,13 +113,12 @@ pub enum RunError<E> {
     Problem(E),
 }
 
-impl<E> RunError<E> {
-    /// True for input errors of the optimiser (see [`OptimError::is_input_error`]); an evaluator's
-    /// error is not classified here (the caller knows its type), so this returns false for it.
-    pub fn is_input_error(&self) -> bool {
+impl<E: mrbrake_error::Kind> mrbrake_error::Kind for RunError<E> {
+    /// The optimiser's own kind, or the evaluator's error's kind, unchanged.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
         match self {
-            Self::Optim(error) => error.is_input_error(),
-            Self::Problem(_) => false,
+            Self::Optim(error) => error.kind(),
+            Self::Problem(error) => error.kind(),
         }
     }
 }

@@ -475,6 +475,7 @@ fn final_front(population: &[Individual]) -> Vec<Individual> {
 mod tests {
     use super::*;
     use crate::FnProblem;
+    use mrbrake_error::Kind as _;
 
     #[test]
     fn sbx_and_mutation_keep_children_in_bounds() {

@@ -344,6 +344,7 @@ fn validate(
 mod tests {
     use super::*;
     use crate::FnProblem;
+    use mrbrake_error::Kind as _;
 
     #[test]
     fn poll_set_is_clamped_and_deduplicated() {

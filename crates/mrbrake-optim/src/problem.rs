@@ -122,6 +122,7 @@ pub(crate) fn evaluate_checked<P: Problem>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     #[test]
     fn check_batch_rejects_contract_breaches() {

@@ -164,6 +164,7 @@ pub fn validate_design(bounds: &[Bounds], x: &[f64], which: &str) -> Result<(), 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     #[test]
     fn validate_rejects_reversed_non_finite_and_empty_integer_bounds() {

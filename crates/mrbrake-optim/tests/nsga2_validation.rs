@@ -3,6 +3,7 @@
 //! 8(2) (ZDT1) and the constrained CONSTR problem of Deb et al. (2002), Table V, plus integrality,
 //! reproducibility and resume-through-a-cache checks.
 
+use mrbrake_error::Kind as _;
 use mrbrake_optim::nsga2::{self, Nsga2Options, Nsga2Result};
 use mrbrake_optim::pareto::{Evaluation, hypervolume_2d, normalised_violation};
 use mrbrake_optim::space::Bounds;

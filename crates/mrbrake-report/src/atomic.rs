@@ -45,6 +45,7 @@ pub fn temp_path_for(path: &Path) -> Result<PathBuf, ReportError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     #[test]
     fn writes_and_replaces() {

@@ -34,10 +34,15 @@ pub enum ReportError {
     Backend(String),
 }
 
-impl ReportError {
-    /// True when the error comes from bad input (the CLI exits with code 2): an unwritable output
-    /// path or unplottable data.
-    pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Io { .. } | Self::Data(_))
+impl mrbrake_error::Kind for ReportError {
+    /// An output path that cannot be written takes the kind of its I/O error (a missing directory
+    /// or a denied permission is input); unplottable data is input; a backend failure is internal.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        use mrbrake_error::{ErrorKind, Kind};
+        match self {
+            Self::Io { source, .. } => Kind::kind(source),
+            Self::Data(_) => ErrorKind::Input,
+            Self::Backend(_) => ErrorKind::Internal,
+        }
     }
 }

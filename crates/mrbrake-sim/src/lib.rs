@@ -18,10 +18,12 @@ pub enum SimError {
     Sysid(#[from] mrbrake_sysid::SysidError),
 }
 
-impl SimError {
-    /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
-    /// internal failures (exit code 1).
-    pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Input(_)) || matches!(self, Self::Sysid(e) if e.is_input_error())
+impl mrbrake_error::Kind for SimError {
+    /// Input for bad configurations; identification errors keep their own kind.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        match self {
+            Self::Input(_) => mrbrake_error::ErrorKind::Input,
+            Self::Sysid(e) => e.kind(),
+        }
     }
 }

@@ -283,6 +283,7 @@ pub fn expm(m: &[f64], size: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     #[test]
     fn second_order_step_matches_closed_form() {

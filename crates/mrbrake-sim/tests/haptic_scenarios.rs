@@ -2,6 +2,7 @@
 //! plant step is converged (the measures barely change when the plant step is refined 4×).
 //! See: issue #6.
 
+use mrbrake_error::Kind as _;
 use mrbrake_sim::haptic::*;
 
 #[test]

@@ -143,10 +143,12 @@ pub enum StoreError {
     Csv(#[from] csv::Error),
 }
 
-impl StoreError {
-    /// True when the user can fix the problem by pointing at another file or passing another flag
-    /// (the CLI maps these to exit code 2); false for I/O failures and caller bugs (exit code 1).
-    pub fn is_input_error(&self) -> bool {
+impl mrbrake_error::Kind for StoreError {
+    /// Input when the user can fix the problem by pointing at another file or passing another flag;
+    /// file-system failures take the kind of their I/O error (a missing path is input, a full disk
+    /// is I/O); SQLite and CSV failures are I/O; caller bugs are internal.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        use mrbrake_error::{ErrorKind, Kind};
         match self {
             StoreError::Exists { .. }
             | StoreError::NotFound { .. }
@@ -155,17 +157,10 @@ impl StoreError {
             | StoreError::Foreign { .. }
             | StoreError::Version { .. }
             | StoreError::Conflict { .. }
-            | StoreError::Decode { .. } => true,
-            StoreError::Io { source, .. } => matches!(
-                source.kind(),
-                std::io::ErrorKind::NotFound
-                    | std::io::ErrorKind::PermissionDenied
-                    | std::io::ErrorKind::NotADirectory
-            ),
-            StoreError::Sqlite { .. }
-            | StoreError::ReadOnly { .. }
-            | StoreError::InvalidRecord { .. }
-            | StoreError::Csv(_) => false,
+            | StoreError::Decode { .. } => ErrorKind::Input,
+            StoreError::Io { source, .. } => Kind::kind(source),
+            StoreError::Sqlite { .. } | StoreError::Csv(_) => ErrorKind::Io,
+            StoreError::ReadOnly { .. } | StoreError::InvalidRecord { .. } => ErrorKind::Internal,
         }
     }
 }

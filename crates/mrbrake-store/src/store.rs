@@ -597,6 +597,7 @@ impl Drop for StagingFile {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     fn record(index: u32, status: Status) -> Record {
         let ok = status == Status::Ok;

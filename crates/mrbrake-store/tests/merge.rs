@@ -1,5 +1,6 @@
 //! Merging shard stores: union without duplicates, conflicts reported and never applied.
 
+use mrbrake_error::Kind as _;
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 

@@ -2,6 +2,7 @@
 //! byte-for-byte unchanged (issue 7: "A corrupt or foreign database file is a clear error, never
 //! silently overwritten").
 
+use mrbrake_error::Kind as _;
 use std::path::{Path, PathBuf};
 
 use mrbrake_store::{Record, Status, Store, StoreError};

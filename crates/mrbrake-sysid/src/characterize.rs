@@ -292,6 +292,7 @@ pub fn characterize(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     /// The thesis protocol with a static loop (no dynamics, no noise): rising T = 0.15 + 1.8 I,
     /// falling T = 0.15 + 1.8 I + 0.3 I (2 − I).

@@ -40,13 +40,20 @@ pub enum SysidError {
     },
 }
 
-impl SysidError {
-    /// True when the error comes from bad input (the CLI exits with code 2), false for numerical or
-    /// internal failures (exit code 1).
-    pub fn is_input_error(&self) -> bool {
-        matches!(self, Self::Input(_) | Self::File { .. } | Self::Io { .. })
+impl mrbrake_error::Kind for SysidError {
+    /// Input for bad arguments and files (an unreadable file takes the kind of its I/O error),
+    /// numerical for failed fits.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        use mrbrake_error::{ErrorKind, Kind};
+        match self {
+            Self::Input(_) | Self::File { .. } => ErrorKind::Input,
+            Self::Io { source, .. } => Kind::kind(source),
+            Self::Numerical { .. } => ErrorKind::Numerical,
+        }
     }
+}
 
+impl SysidError {
     pub(crate) fn numerical(message: impl Into<String>, history: Vec<f64>) -> Self {
         Self::Numerical { message: message.into(), history }
     }

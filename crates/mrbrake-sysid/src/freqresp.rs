@@ -278,6 +278,7 @@ pub fn frd_csv(points: &[FrequencyPoint]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     #[test]
     fn sine_fit_recovers_gain_and_phase_of_a_delayed_sine() {

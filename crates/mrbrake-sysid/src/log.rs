@@ -182,6 +182,7 @@ pub(crate) fn file_error(file: &Path) -> impl Fn(Option<u64>, String) -> SysidEr
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     fn read(text: &str, min: usize) -> Result<Log, SysidError> {
         read_log_from(

@@ -432,6 +432,7 @@ pub fn logspace(lo: f64, hi: f64, count: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     fn frd_of(g: &TransferFunction, omega: &[f64]) -> Frd {
         Frd {

@@ -175,6 +175,13 @@ impl fmt::Display for UnitError {
 
 impl std::error::Error for UnitError {}
 
+impl mrbrake_error::Kind for UnitError {
+    /// Every unit error is bad input.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        mrbrake_error::ErrorKind::Input
+    }
+}
+
 /// Parses `text` as a quantity of dimension `dim` and returns its value in SI units.
 ///
 /// A bare number is taken as SI (`0.0225` is 0.0225 m for a length). Whitespace between the number and

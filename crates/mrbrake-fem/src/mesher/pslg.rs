@@ -295,6 +295,7 @@ fn segments_intersect(p: [f64; 2], q: [f64; 2], u: [f64; 2], v: [f64; 2]) -> boo
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_error::Kind as _;
 
     #[test]
     fn neighbouring_rectangles_share_split_edges() {

@@ -2,6 +2,7 @@
 
 use super::quality::{area_by_tag, min_angle_deg, triangle_points};
 use super::*;
+use mrbrake_error::Kind as _;
 
 /// An L-shaped steel part, a thin gap and a coil in an air box: the shapes a brake model has.
 fn sample() -> (Pslg, Vec<(u32, f64)>) {
