@@ -13,13 +13,13 @@
 //!    the demand whenever the handle penetrates, and it resists both directions: the sticky wall.
 //! 3. **Hysteresis compensation.** The demand's change since the last tick selects the rising or the
 //!    falling branch (thesis §5.3.2, Fig. 5.7), whose inverse gives the current (safeguarded Newton,
-//!    warm-started from the previous tick's current, at most
-//!    [`crate::MAX_INVERSE_ITERATIONS`] iterations).
+//!    warm-started from the previous tick's current, at most [`crate::MAX_INVERSE_ITERATIONS`]
+//!    iterations): [`InverseModel::compensate`], one per brake.
 //! 4. **Safety.** Non-finite or out-of-range input gives both currents 0 and a [`Fault`]; every
 //!    current is finally clamped to `[0, I_max]`.
 
 use crate::error::{ControlError, check_range};
-use crate::inverse::{Branch, CURRENT_LIMIT_A, InverseModel};
+use crate::inverse::{Branch, CURRENT_LIMIT_A, CompensationState, InverseModel};
 use crate::wall::{VirtualWall, WallSide};
 
 /// The mechanical arrangement the controller drives.
@@ -68,12 +68,11 @@ pub struct DirectionalController {
     branch_deadband_nm: f64,
 }
 
-/// Mutable controller state carried between ticks.
+/// Mutable controller state carried between ticks: each brake's hysteresis compensation (reference
+/// demand, branch, and the previous current that warm-starts the next inversion) and the fault count.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ControllerState {
-    previous_demand_nm: [f64; 2],
-    previous_current_a: [f64; 2],
-    branch: [Branch; 2],
+    compensation: [CompensationState; 2],
     fault_count: u32,
 }
 
@@ -81,6 +80,11 @@ impl ControllerState {
     /// Number of ticks that ended in a fault since the state was created.
     pub fn fault_count(&self) -> u32 {
         self.fault_count
+    }
+
+    /// The hysteresis compensation of brake 1 and brake 2.
+    pub fn compensation(&self) -> &[CompensationState; 2] {
+        &self.compensation
     }
 }
 
@@ -232,9 +236,7 @@ impl DirectionalController {
     pub fn step(&self, state: &mut ControllerState, input: &ControlInput) -> ControlOutput {
         let angle_rad = input.encoder_counts as f64 * self.radians_per_count;
         if let Some(fault) = self.check(input, angle_rad) {
-            state.previous_demand_nm = [0.0; 2];
-            state.previous_current_a = [0.0; 2];
-            state.branch = [Branch::Rising; 2];
+            state.compensation = [CompensationState::default(); 2];
             state.fault_count = state.fault_count.saturating_add(1);
             return ControlOutput {
                 current_a: [0.0; 2],
@@ -242,7 +244,27 @@ impl DirectionalController {
                 breakdown: Breakdown { angle_rad, ..Breakdown::default() },
             };
         }
+        let mut breakdown = self.demands(input, angle_rad);
+        let mut current_a = [0.0; 2];
+        for k in 0..2 {
+            current_a[k] = self.brakes[k].compensate(
+                &mut state.compensation[k],
+                breakdown.demand_nm[k],
+                self.current_max_a,
+                self.branch_deadband_nm,
+            );
+            breakdown.branch[k] = state.compensation[k].branch();
+        }
+        if self.layout == BrakeLayout::Conventional {
+            current_a[1] = 0.0;
+        }
+        ControlOutput { current_a, fault: None, breakdown }
+    }
 
+    /// Steps 1 and 2 of the module docs: the wall and field demands and the brake that carries each
+    /// (the breakdown without its branches).
+    #[inline]
+    fn demands(&self, input: &ControlInput, angle_rad: f64) -> Breakdown {
         let wall = &input.wall;
         let velocity = input.velocity_rad_s;
         let s = wall.side.sign();
@@ -270,48 +292,14 @@ impl DirectionalController {
                 demand_nm[along_motion] += field_torque_nm;
             }
         }
-
-        let mut current_a = [0.0; 2];
-        for k in 0..2 {
-            let change = demand_nm[k] - state.previous_demand_nm[k];
-            if change > self.branch_deadband_nm {
-                state.branch[k] = Branch::Rising;
-            } else if change < -self.branch_deadband_nm {
-                state.branch[k] = Branch::Falling;
-            }
-            if demand_nm[k] > 0.0 {
-                current_a[k] =
-                    self.brakes[k].current_for(state.branch[k], demand_nm[k], self.current_max_a);
-            }
-            // Belt and braces: the output range is an invariant whatever the model returned.
-            current_a[k] = if current_a[k].is_finite() {
-                current_a[k].clamp(0.0, self.current_max_a)
-            } else {
-                0.0
-            };
-            // Move the reference only by changes larger than the deadband, so a slow drift still
-            // accumulates into a branch switch.
-            if change.abs() > self.branch_deadband_nm || demand_nm[k] <= 0.0 {
-                state.previous_demand_nm[k] = demand_nm[k];
-            }
-        }
-        if self.layout == BrakeLayout::Conventional {
-            current_a[1] = 0.0;
-        }
-        state.previous_current_a = current_a;
-
-        ControlOutput {
-            current_a,
-            fault: None,
-            breakdown: Breakdown {
-                angle_rad,
-                penetration_rad,
-                spring_torque_nm,
-                damping_torque_nm,
-                field_torque_nm,
-                demand_nm,
-                branch: state.branch,
-            },
+        Breakdown {
+            angle_rad,
+            penetration_rad,
+            spring_torque_nm,
+            damping_torque_nm,
+            field_torque_nm,
+            demand_nm,
+            branch: [Branch::Rising; 2],
         }
     }
 }

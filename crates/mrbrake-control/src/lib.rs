@@ -9,7 +9,9 @@
 //!
 //! The crate uses neither `std` nor `alloc` (only `core` and `libm`), has no `unsafe`, and its step
 //! never panics, so it can run in a 1 kHz interrupt on a microcontroller. The `std` feature only adds
-//! `std::error::Error` for [`ControlError`].
+//! `std::error::Error` for [`ControlError`]; the `serde` feature (no_std, no allocation) reads and
+//! writes an [`InverseModel`] as the inverse-model file whose schema [`InverseModelFile`] documents
+//! (the file `mrbrake characterize --save-model` writes).
 //!
 //! ```
 //! use mrbrake_control::*;
@@ -40,7 +42,7 @@ pub use controller::{
     Fault, InputLimits,
 };
 pub use error::ControlError;
-pub use inverse::{Branch, CURRENT_LIMIT_A, InverseModel};
+pub use inverse::{Branch, CURRENT_LIMIT_A, CompensationState, InverseModel, InverseModelFile};
 pub use polynomial::{BranchPolynomial, MAX_DEGREE, MAX_INVERSE_ITERATIONS};
 pub use velocity::{VelocityEstimator, VelocityState};
 pub use wall::{VirtualWall, WallSide};

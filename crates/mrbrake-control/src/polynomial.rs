@@ -152,6 +152,85 @@ impl BranchPolynomial {
     }
 }
 
+/// `{"coefficients": [c0, c1, ...]}` (ascending powers, trailing zeros dropped), the branch objects of
+/// the inverse-model file ([`crate::InverseModelFile`]); reading checks the count (1 to
+/// `MAX_DEGREE + 1`) and that every coefficient is finite, without allocating.
+#[cfg(feature = "serde")]
+mod serde_impl {
+    use core::fmt;
+
+    use serde::de::{self, Deserialize, Deserializer, SeqAccess, Visitor};
+    use serde::ser::{Serialize, SerializeStruct, Serializer};
+
+    use super::{BranchPolynomial, MAX_DEGREE};
+
+    impl Serialize for BranchPolynomial {
+        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+            let mut branch = serializer.serialize_struct("BranchPolynomial", 1)?;
+            branch.serialize_field("coefficients", &self.coefficients[..self.len])?;
+            branch.end()
+        }
+    }
+
+    /// The coefficient list, read into a fixed-size array.
+    struct Coefficients(BranchPolynomial);
+
+    impl<'de> Deserialize<'de> for Coefficients {
+        fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+            deserializer.deserialize_seq(CoefficientsVisitor)
+        }
+    }
+
+    struct CoefficientsVisitor;
+
+    impl<'de> Visitor<'de> for CoefficientsVisitor {
+        type Value = Coefficients;
+
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            write!(
+                f,
+                "a list of 1 to {} finite numbers (ascending powers of current)",
+                MAX_DEGREE + 1
+            )
+        }
+
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Coefficients, A::Error> {
+            let mut stored = [0.0; MAX_DEGREE + 1];
+            let mut len = 0;
+            while let Some(c) = seq.next_element::<f64>()? {
+                if len == stored.len() {
+                    // Count the rest so the message says how many there were.
+                    let mut total = len + 1;
+                    while seq.next_element::<de::IgnoredAny>()?.is_some() {
+                        total += 1;
+                    }
+                    return Err(de::Error::invalid_length(total, &self));
+                }
+                if !c.is_finite() {
+                    return Err(de::Error::invalid_value(de::Unexpected::Float(c), &self));
+                }
+                stored[len] = c;
+                len += 1;
+            }
+            BranchPolynomial::from_ascending(&stored[..len])
+                .map(Coefficients)
+                .ok_or_else(|| de::Error::invalid_length(len, &self))
+        }
+    }
+
+    /// The branch object; other fields (fit statistics) are ignored.
+    #[derive(serde::Deserialize)]
+    struct BranchObject {
+        coefficients: Coefficients,
+    }
+
+    impl<'de> Deserialize<'de> for BranchPolynomial {
+        fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+            BranchObject::deserialize(deserializer).map(|branch| branch.coefficients.0)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

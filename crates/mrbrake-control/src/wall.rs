@@ -44,6 +44,22 @@ pub struct VirtualWall {
 }
 
 impl VirtualWall {
+    /// A spring–damper wall at `position_rad` occupying `side`, without a damping field.
+    pub const fn new(
+        position_rad: f64,
+        side: WallSide,
+        stiffness_nm_per_rad: f64,
+        damping_nms_per_rad: f64,
+    ) -> Self {
+        Self {
+            position_rad,
+            side,
+            stiffness_nm_per_rad,
+            damping_nms_per_rad,
+            field_damping_nms_per_rad: 0.0,
+        }
+    }
+
     /// Penetration `p = s·(θ − θ_wall)`, rad (positive inside the wall).
     #[inline]
     pub fn penetration_rad(&self, angle_rad: f64) -> f64 {

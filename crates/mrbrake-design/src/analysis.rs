@@ -36,7 +36,6 @@ use std::time::Instant;
 use mrbrake_fem::mesh::Mesh;
 /// The element order of [`AnalysisOptions::order`] (re-exported from `mrbrake_magnetics`).
 pub use mrbrake_magnetics::ElementOrder;
-use mrbrake_magnetics::material::MagneticMaterial;
 use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 use mrbrake_magnetics::{Solution, Solver, SolverOptions};
 use mrbrake_materials::{CopperWire, MrFluid, library};
@@ -508,11 +507,7 @@ pub fn problem_of(geometry: &BrakeGeometry, mesh: Arc<Mesh>) -> Result<Problem, 
     for region in &geometry.regions {
         let material = library::get(&region.material)
             .map_err(|e| DesignError::Input(format!("material of part '{}': {e}", region.name)))?;
-        regions.push(Region {
-            tag: region.tag,
-            material: MagneticMaterial::from_library(&material.magnetic),
-            source: None,
-        });
+        regions.push(Region { tag: region.tag, material: material.magnetic.clone(), source: None });
     }
     let boundaries = vec![
         Boundary { tag: geometry.axis_tag, condition: BoundaryCondition::Dirichlet },

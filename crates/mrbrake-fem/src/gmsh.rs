@@ -53,77 +53,71 @@ pub fn read_msh(path: &Path, length_scale: f64) -> Result<GmshMesh, FemError> {
 /// Parses the text of a Gmsh MSH 2.2 or 4.1 ASCII file; `file` names it in errors.
 pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, FemError> {
     let mut reader = Reader { lines: text.lines().enumerate(), file, last_line: 0 };
-    let mut version = None;
-    let mut names = Vec::new();
-    let mut entities: Option<Entities> = None;
-    let mut nodes: Option<Nodes> = None;
-    let mut raw_triangles: Vec<([usize; 3], u32, usize)> = Vec::new();
-    let mut raw_edges: Vec<([usize; 2], u32)> = Vec::new();
-    let mut saw_elements = false;
+    let mut sections = Sections::default();
     while let Some((line_no, line)) = reader.next_raw() {
         let line = line.trim();
-        if line.is_empty() {
-            continue;
+        if !line.is_empty() {
+            sections.read_section(&mut reader, line_no, line)?;
         }
+    }
+    let (nodes, elements) = sections.require_complete(file, reader.last_line.max(1))?;
+    let mesh = compact_mesh(&nodes, elements, file, length_scale)?;
+    Ok(GmshMesh { mesh, physical_names: sections.names })
+}
+
+/// Triangles and lines as read, before node renumbering.
+#[derive(Default)]
+struct RawElements {
+    /// Corner node tags, physical tag and the line the triangle was read on.
+    triangles: Vec<([usize; 3], u32, usize)>,
+    /// End node tags and physical tag of each line in a physical curve.
+    edges: Vec<([usize; 2], u32)>,
+}
+
+/// What the sections of a file have given so far.
+#[derive(Default)]
+struct Sections {
+    /// 2 or 4, from `$MeshFormat`.
+    version: Option<u32>,
+    /// `(dimension, tag, name)` from `$PhysicalNames`.
+    names: Vec<(u32, u32, String)>,
+    /// MSH 4.1 entities (physical tags of the geometric entities).
+    entities: Option<Entities>,
+    nodes: Option<Nodes>,
+    /// `None` until an `$Elements` section has been read.
+    elements: Option<RawElements>,
+}
+
+impl Sections {
+    /// Reads the section whose header `line` (at `line_no`) was just read, up to its end marker.
+    fn read_section(
+        &mut self,
+        reader: &mut Reader<'_>,
+        line_no: usize,
+        line: &str,
+    ) -> Result<(), FemError> {
         match line {
-            "$MeshFormat" => {
-                let (ln, l) = reader.next_line("the format line `version file-type data-size`")?;
-                let mut it = l.split_whitespace();
-                let v = it.next().unwrap_or("");
-                let file_type = it.next().unwrap_or("");
-                let parsed = match v {
-                    "2.2" | "2.1" | "2" | "2.0" => 2,
-                    "4.1" => 4,
-                    other => {
-                        return Err(reader.err(
-                            ln,
-                            format!("unsupported MSH version `{other}`: expected 2.2 or 4.1"),
-                        ));
-                    }
-                };
-                if file_type != "0" {
-                    return Err(reader.err(
-                        ln,
-                        "binary MSH files are not supported: save as ASCII (file-type 0)".into(),
-                    ));
-                }
-                version = Some(parsed);
-                reader.expect_end("$EndMeshFormat")?;
-            }
-            "$PhysicalNames" => {
-                let count = reader.count("the number of physical names")?;
-                for _ in 0..count {
-                    let (ln, l) = reader.next_line("a physical name `dim tag \"name\"`")?;
-                    let mut it = l.splitn(3, char::is_whitespace);
-                    let dim = parse_num::<u32>(&reader, ln, it.next(), "dimension")?;
-                    let tag = parse_num::<u32>(&reader, ln, it.next(), "physical tag")?;
-                    let name = it.next().unwrap_or("").trim().trim_matches('"').to_string();
-                    names.push((dim, tag, name));
-                }
-                reader.expect_end("$EndPhysicalNames")?;
-            }
+            "$MeshFormat" => self.version = Some(read_mesh_format(reader)?),
+            "$PhysicalNames" => read_physical_names(reader, &mut self.names)?,
             "$Entities" => {
-                require_version(&reader, line_no, version, 4, "$Entities")?;
-                entities = Some(read_entities(&mut reader)?);
+                require_version(reader, line_no, self.version, 4, "$Entities")?;
+                self.entities = Some(read_entities(reader)?);
             }
             "$Nodes" => {
-                let v = require_any_version(&reader, line_no, version)?;
-                nodes = Some(if v == 2 {
-                    read_nodes_v2(&mut reader)?
-                } else {
-                    read_nodes_v4(&mut reader)?
-                });
+                let v = require_any_version(reader, line_no, self.version)?;
+                self.nodes =
+                    Some(if v == 2 { read_nodes_v2(reader)? } else { read_nodes_v4(reader)? });
             }
             "$Elements" => {
-                let v = require_any_version(&reader, line_no, version)?;
-                saw_elements = true;
+                let v = require_any_version(reader, line_no, self.version)?;
+                let elements = self.elements.get_or_insert_with(RawElements::default);
                 if v == 2 {
-                    read_elements_v2(&mut reader, &mut raw_triangles, &mut raw_edges)?;
+                    read_elements_v2(reader, elements)?;
                 } else {
-                    let entities = entities.as_ref().ok_or_else(|| {
+                    let entities = self.entities.as_ref().ok_or_else(|| {
                         reader.err(line_no, "$Elements before $Entities: MSH 4.1 needs $Entities for physical groups".into())
                     })?;
-                    read_elements_v4(&mut reader, entities, &mut raw_triangles, &mut raw_edges)?;
+                    read_elements_v4(reader, entities, elements)?;
                 }
             }
             other if other.starts_with("$End") => {
@@ -131,16 +125,7 @@ pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, 
                     reader.err(line_no, format!("unexpected `{other}` outside its section"))
                 );
             }
-            other if other.starts_with('$') => {
-                // Unknown section ($NodeData, $Periodic, ...): skip to its end marker.
-                let end = format!("$End{}", &other[1..]);
-                loop {
-                    let (_, l) = reader.next_line(&format!("`{end}`"))?;
-                    if l.trim() == end {
-                        break;
-                    }
-                }
-            }
+            other if other.starts_with('$') => skip_section(reader, other)?,
             other => {
                 return Err(reader.err(
                     line_no,
@@ -148,38 +133,98 @@ pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, 
                 ));
             }
         }
+        Ok(())
     }
-    let last = reader.last_line.max(1);
-    if version.is_none() {
-        return Err(FemError::Parse {
+
+    /// The nodes and elements, or an error naming the first missing section (at the file's
+    /// `last` line) or the absence of triangles.
+    fn require_complete(
+        &mut self,
+        file: &str,
+        last: usize,
+    ) -> Result<(Nodes, RawElements), FemError> {
+        let missing = |line: usize, message: &str| FemError::Parse {
             file: file.into(),
-            line: 1,
-            message: "missing $MeshFormat section".into(),
-        });
+            line,
+            message: message.into(),
+        };
+        if self.version.is_none() {
+            return Err(missing(1, "missing $MeshFormat section"));
+        }
+        let nodes = self.nodes.take().ok_or_else(|| missing(last, "missing $Nodes section"))?;
+        let elements =
+            self.elements.take().ok_or_else(|| missing(last, "missing $Elements section"))?;
+        if elements.triangles.is_empty() {
+            return Err(missing(last, "the mesh has no triangles (2-D elements of type 2 or 9)"));
+        }
+        Ok((nodes, elements))
     }
-    let nodes = nodes.ok_or_else(|| FemError::Parse {
-        file: file.into(),
-        line: last,
-        message: "missing $Nodes section".into(),
-    })?;
-    if !saw_elements {
-        return Err(FemError::Parse {
-            file: file.into(),
-            line: last,
-            message: "missing $Elements section".into(),
-        });
+}
+
+/// Reads `$MeshFormat` (after its header) and returns the major version, 2 or 4.
+fn read_mesh_format(reader: &mut Reader<'_>) -> Result<u32, FemError> {
+    let (ln, l) = reader.next_line("the format line `version file-type data-size`")?;
+    let mut it = l.split_whitespace();
+    let v = it.next().unwrap_or("");
+    let file_type = it.next().unwrap_or("");
+    let version = match v {
+        "2.2" | "2.1" | "2" | "2.0" => 2,
+        "4.1" => 4,
+        other => {
+            return Err(
+                reader.err(ln, format!("unsupported MSH version `{other}`: expected 2.2 or 4.1"))
+            );
+        }
+    };
+    if file_type != "0" {
+        return Err(reader
+            .err(ln, "binary MSH files are not supported: save as ASCII (file-type 0)".into()));
     }
-    if raw_triangles.is_empty() {
-        return Err(FemError::Parse {
-            file: file.into(),
-            line: last,
-            message: "the mesh has no triangles (2-D elements of type 2 or 9)".into(),
-        });
+    reader.expect_end("$EndMeshFormat")?;
+    Ok(version)
+}
+
+/// Reads `$PhysicalNames` (after its header), appending `(dimension, tag, name)` to `names`.
+fn read_physical_names(
+    reader: &mut Reader<'_>,
+    names: &mut Vec<(u32, u32, String)>,
+) -> Result<(), FemError> {
+    let count = reader.count("the number of physical names")?;
+    for _ in 0..count {
+        let (ln, l) = reader.next_line("a physical name `dim tag \"name\"`")?;
+        let mut it = l.splitn(3, char::is_whitespace);
+        let dim = parse_num::<u32>(reader, ln, it.next(), "dimension")?;
+        let tag = parse_num::<u32>(reader, ln, it.next(), "physical tag")?;
+        let name = it.next().unwrap_or("").trim().trim_matches('"').to_string();
+        names.push((dim, tag, name));
     }
+    reader.expect_end("$EndPhysicalNames")
+}
+
+/// Skips an unknown section (`$NodeData`, `$Periodic`, ...) whose header is `header`, up to its
+/// end marker.
+fn skip_section(reader: &mut Reader<'_>, header: &str) -> Result<(), FemError> {
+    let end = format!("$End{}", &header[1..]);
+    loop {
+        let (_, l) = reader.next_line(&format!("`{end}`"))?;
+        if l.trim() == end {
+            return Ok(());
+        }
+    }
+}
+
+/// The mesh of the triangles' nodes only, renumbered in file order and scaled to metres, with
+/// the lines whose both ends are on it; oriented counter-clockwise and validated.
+fn compact_mesh(
+    nodes: &Nodes,
+    elements: RawElements,
+    file: &str,
+    length_scale: f64,
+) -> Result<Mesh, FemError> {
     // Map Gmsh node tags to compact indices of the nodes used by triangles, in file order.
     let mut used = vec![false; nodes.coords.len()];
-    let mut tri_idx = Vec::with_capacity(raw_triangles.len());
-    for (tri, tag, ln) in &raw_triangles {
+    let mut tri_idx = Vec::with_capacity(elements.triangles.len());
+    for (tri, tag, ln) in &elements.triangles {
         let mut idx = [0; 3];
         for k in 0..3 {
             idx[k] = *nodes.index.get(&tri[k]).ok_or_else(|| FemError::Parse {
@@ -203,7 +248,7 @@ pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, 
         mesh.triangles.push([new_id[idx[0]], new_id[idx[1]], new_id[idx[2]]]);
         mesh.triangle_tags.push(tag);
     }
-    for (edge, tag) in raw_edges {
+    for (edge, tag) in elements.edges {
         let a = nodes.index.get(&edge[0]).map(|&i| new_id[i]);
         let b = nodes.index.get(&edge[1]).map(|&i| new_id[i]);
         // Lines whose nodes are not on any triangle (e.g. construction curves) are dropped.
@@ -216,8 +261,12 @@ pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, 
         }
     }
     mesh.orient_counter_clockwise();
-    mesh.validate().map_err(|e| FemError::Input(format!("{file}: {e}")))?;
-    Ok(GmshMesh { mesh, physical_names: names })
+    // Name the file in the mesh's own message; other kinds of error pass unchanged.
+    mesh.validate().map_err(|e| match e {
+        FemError::Input(message) => FemError::Input(format!("{file}: {message}")),
+        other => other,
+    })?;
+    Ok(mesh)
 }
 
 struct Reader<'a> {
@@ -383,11 +432,7 @@ fn nodes_of_type(element_type: u32) -> Option<usize> {
     })
 }
 
-fn read_elements_v2(
-    reader: &mut Reader<'_>,
-    triangles: &mut Vec<([usize; 3], u32, usize)>,
-    edges: &mut Vec<([usize; 2], u32)>,
-) -> Result<(), FemError> {
+fn read_elements_v2(reader: &mut Reader<'_>, elements: &mut RawElements) -> Result<(), FemError> {
     let count = reader.count("the number of elements")?;
     for _ in 0..count {
         let (ln, l) = reader.next_line("an element line `tag type ntags tags... nodes...`")?;
@@ -416,9 +461,9 @@ fn read_elements_v2(
                 if physical == 0 {
                     return Err(reader.err(ln, format!("triangle {} has no physical group: define a Physical Surface for every surface", v[0])));
                 }
-                triangles.push(([nodes[0], nodes[1], nodes[2]], physical, ln));
+                elements.triangles.push(([nodes[0], nodes[1], nodes[2]], physical, ln));
             }
-            1 | 8 if physical != 0 => edges.push(([nodes[0], nodes[1]], physical)),
+            1 | 8 if physical != 0 => elements.edges.push(([nodes[0], nodes[1]], physical)),
             _ => {}
         }
     }
@@ -509,8 +554,7 @@ fn read_nodes_v4(reader: &mut Reader<'_>) -> Result<Nodes, FemError> {
 fn read_elements_v4(
     reader: &mut Reader<'_>,
     entities: &Entities,
-    triangles: &mut Vec<([usize; 3], u32, usize)>,
-    edges: &mut Vec<([usize; 2], u32)>,
+    elements: &mut RawElements,
 ) -> Result<(), FemError> {
     let (ln, l) = reader.next_line("`numEntityBlocks numElements minElementTag maxElementTag`")?;
     let head: Vec<usize> = numbers(reader, ln, l, "a count")?;
@@ -549,11 +593,11 @@ fn read_elements_v4(
                     let physical = physical.ok_or_else(|| {
                         reader.err(block_line, format!("triangles of surface {entity} have no physical group: define a Physical Surface for it"))
                     })?;
-                    triangles.push(([v[1], v[2], v[3]], physical, ln));
+                    elements.triangles.push(([v[1], v[2], v[3]], physical, ln));
                 }
                 1 | 8 => {
                     if let Some(p) = physical {
-                        edges.push(([v[1], v[2]], p));
+                        elements.edges.push(([v[1], v[2]], p));
                     }
                 }
                 _ => {}

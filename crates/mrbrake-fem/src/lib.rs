@@ -1,7 +1,22 @@
-//! Axisymmetric finite-element core: mesh, elements, quadrature, assembly, sparse solve.
-//! Knows no magnetics: physics lives in the forms the caller assembles.
+//! Axisymmetric finite-element core: mesh, elements, quadrature, basis, assembly of user forms,
+//! constraints, sparse solves and Newton. Knows no physics: magnetostatics, magnetodynamics and
+//! heat are forms and post-processing on top of it (scikit-fem's mesh / element / basis /
+//! assemble, fenris's operators and Newton).
 //!
-//! Brief overview:
+//! The workflow of a physics:
+//! 1. a [`mesh::Mesh`] and an element order make a [`basis::Basis`] (with a quadrature rule and the
+//!    axisymmetric `r` weight): basis values and gradients at every quadrature point;
+//! 2. [`constraints::Constraints`] say which DOFs are free (the axis, Dirichlet boundaries);
+//! 3. an [`assemble::Assembly`] builds the free-DOF sparsity pattern and assembles the caller's
+//!    forms: per-element bilinear/linear forms ([`assemble::element_matrices`],
+//!    [`assemble::element_vectors`]) and non-linear residual/Jacobian kernels
+//!    ([`assemble::ElementForm`]), plus boundary integrals ([`boundary::edge_matrices`]);
+//! 4. [`newton::NewtonSolver`] solves any [`newton::NonlinearSystem`] (an assembly with a form is
+//!    one: [`newton::AssembledSystem`]) with a safeguarded line search and a preconditioned-CG
+//!    tail; linear systems converge in one step. Complex (time-harmonic) systems go to
+//!    [`lu::SparseLu`].
+//!
+//! Brief overview of the modules:
 //! - [`mesh::Mesh`] holds the (r, z) nodes, the triangles with their physical (region) tags and the
 //!   tagged boundary edges; [`structured`] generates simple graded meshes of blocks and half-discs;
 //!   [`gmsh`] reads Gmsh MSH 2.2 / 4.1 ASCII files; [`vtu`] writes ParaView files.
@@ -13,14 +28,22 @@
 //!   [`cholesky::SparseCholesky`] the faer sparse Cholesky with the symbolic analysis done once;
 //!   [`ordering`] gives it a nested-dissection elimination order for 2D meshes.
 //! - [`locate::PointLocator`] finds the triangle containing a point (uniform bucket grid).
+//! - [`basis`], [`constraints`], [`assemble`] (with the [`by_order!`] dispatch macro),
+//!   [`boundary`], [`newton`], [`lu`]: the generic finite-element workflow above.
 
+pub mod assemble;
+pub mod basis;
+pub mod boundary;
 pub mod cholesky;
+pub mod constraints;
 pub mod dofs;
 pub mod element;
 pub mod gmsh;
 pub mod locate;
+pub mod lu;
 pub mod mesh;
 pub mod mesher;
+pub mod newton;
 pub mod ordering;
 pub mod pattern;
 pub mod quadrature;

@@ -83,7 +83,6 @@ impl PointLocator {
     pub fn locate(&self, mesh: &Mesh, p: [f64; 2]) -> Option<(usize, [f64; 3])> {
         let i = ((p[0] - self.origin[0]) / self.cell[0]).floor();
         let j = ((p[1] - self.origin[1]) / self.cell[1]).floor();
-        let tol = OUTSIDE_TOLERANCE;
         let inside_box = |x: f64, n: usize| x >= -1.0 && x <= n as f64;
         if !p[0].is_finite()
             || !p[1].is_finite()
@@ -95,20 +94,7 @@ impl PointLocator {
         let i = (i.max(0.0) as usize).min(self.dims[0] - 1);
         let j = (j.max(0.0) as usize).min(self.dims[1] - 1);
         let c = j * self.dims[0] + i;
-        let mut best: Option<(usize, [f64; 3], f64)> = None;
-        for &t in &self.triangles[self.start[c]..self.start[c + 1]] {
-            let [a, b, d] = mesh.triangles[t];
-            let tri = P1Triangle::new([mesh.nodes[a], mesh.nodes[b], mesh.nodes[d]]);
-            let l = tri.barycentric(p);
-            let worst = l[0].min(l[1]).min(l[2]);
-            if worst >= 0.0 {
-                return Some((t, l));
-            }
-            if best.as_ref().is_none_or(|b| worst > b.2) {
-                best = Some((t, l, worst));
-            }
-        }
-        best.filter(|b| b.2 > -tol).map(|(t, l, _)| (t, l))
+        first_containing(mesh, p, self.triangles[self.start[c]..self.start[c + 1]].iter().copied())
     }
 }
 
@@ -122,19 +108,32 @@ pub fn locate_by_scan(mesh: &Mesh, p: [f64; 2]) -> Option<(usize, [f64; 3])> {
     if !p[0].is_finite() || !p[1].is_finite() {
         return None;
     }
-    let mut best: Option<(usize, [f64; 3], f64)> = None;
-    for (t, &[a, b, d]) in mesh.triangles.iter().enumerate() {
+    // Cheap bounding-box rejection before the barycentric coordinates.
+    let near = |t: &usize| {
+        let [a, b, d] = mesh.triangles[*t];
         let (na, nb, nd) = (mesh.nodes[a], mesh.nodes[b], mesh.nodes[d]);
-        // Cheap bounding-box rejection before the barycentric coordinates.
         let outside_box = |k: usize| {
             let (lo, hi) = (na[k].min(nb[k]).min(nd[k]), na[k].max(nb[k]).max(nd[k]));
             let slack = OUTSIDE_TOLERANCE * (hi - lo);
             p[k] < lo - slack || p[k] > hi + slack
         };
-        if outside_box(0) || outside_box(1) {
-            continue;
-        }
-        let l = P1Triangle::new([na, nb, nd]).barycentric(p);
+        !(outside_box(0) || outside_box(1))
+    };
+    first_containing(mesh, p, (0..mesh.triangles.len()).filter(near))
+}
+
+/// Among `candidates` (triangle indices, tested in the order given), the first triangle that
+/// contains `p` (every barycentric coordinate >= 0) with the barycentric coordinates of `p`; if
+/// none does, the one `p` is least outside of, provided it is within [`OUTSIDE_TOLERANCE`].
+fn first_containing(
+    mesh: &Mesh,
+    p: [f64; 2],
+    candidates: impl Iterator<Item = usize>,
+) -> Option<(usize, [f64; 3])> {
+    let mut best: Option<(usize, [f64; 3], f64)> = None;
+    for t in candidates {
+        let [a, b, d] = mesh.triangles[t];
+        let l = P1Triangle::new([mesh.nodes[a], mesh.nodes[b], mesh.nodes[d]]).barycentric(p);
         let worst = l[0].min(l[1]).min(l[2]);
         if worst >= 0.0 {
             return Some((t, l));

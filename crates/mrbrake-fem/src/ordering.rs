@@ -103,15 +103,41 @@ impl Dissection<'_> {
         self.part[v].store(label, Ordering::Relaxed);
     }
 
-    /// Appends the elimination order of `vertices` to `order`.
+    /// Appends the elimination order of `vertices` to `order`: both halves (recursively), then
+    /// the separator.
     fn dissect(&self, mut vertices: Vec<usize>, order: &mut Vec<usize>) {
         if vertices.len() <= LEAF_SIZE {
             order.extend_from_slice(&vertices);
             return;
         }
+        let split = self.split_at_median(&mut vertices);
+        let Separated { left, right, separator } = self.separate(vertices, split);
+        if left.len() + right.len() > PARALLEL_MIN {
+            let (mut left_order, mut right_order) =
+                rayon::join(|| self.dissect_into_new(left), || self.dissect_into_new(right));
+            order.append(&mut left_order);
+            order.append(&mut right_order);
+        } else {
+            self.dissect(left, order);
+            self.dissect(right, order);
+        }
+        order.extend_from_slice(&separator);
+    }
+
+    /// The elimination order of `vertices` in a vector of its own (for a parallel half).
+    fn dissect_into_new(&self, vertices: Vec<usize>) -> Vec<usize> {
+        let mut order = Vec::with_capacity(vertices.len());
+        self.dissect(vertices, &mut order);
+        order
+    }
+
+    /// Reorders `vertices` so that those strictly below the median coordinate along the longer
+    /// side of their bounding box come first, and returns how many they are (half the list when
+    /// every vertex has the cut coordinate).
+    fn split_at_median(&self, vertices: &mut [usize]) -> usize {
         let xy = self.coordinates;
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for &v in &vertices {
+        for &v in vertices.iter() {
             for k in 0..2 {
                 lo[k] = lo[k].min(xy[v][k]);
                 hi[k] = hi[k].max(xy[v][k]);
@@ -129,10 +155,13 @@ impl Dissection<'_> {
                 split += 1;
             }
         }
-        if split == 0 {
-            // All remaining vertices share the cut coordinate: split the list in two.
-            split = half;
-        }
+        // All remaining vertices share the cut coordinate: split the list in two.
+        if split == 0 { half } else { split }
+    }
+
+    /// Labels `vertices[..split]` and `vertices[split..]` as two fresh halves and takes the
+    /// smaller of their one-sided boundaries as the separator, which it labels as numbered.
+    fn separate(&self, vertices: Vec<usize>, split: usize) -> Separated {
         let left_id = self.next_part.fetch_add(2, Ordering::Relaxed);
         let right_id = left_id + 1;
         for &v in &vertices[..split] {
@@ -153,43 +182,30 @@ impl Dissection<'_> {
         let left_boundary = on_boundary[..split].iter().filter(|b| **b).count();
         let right_boundary = on_boundary[split..].iter().filter(|b| **b).count();
         let separator_side = if left_boundary <= right_boundary { left_id } else { right_id };
-        let (mut left, mut right, mut separator) = (Vec::new(), Vec::new(), Vec::new());
+        let mut halves = Separated { left: Vec::new(), right: Vec::new(), separator: Vec::new() };
         for (&v, &boundary) in vertices.iter().zip(&on_boundary) {
             let label = self.label(v);
             if label == separator_side && boundary {
-                separator.push(v);
+                halves.separator.push(v);
             } else if label == left_id {
-                left.push(v);
+                halves.left.push(v);
             } else {
-                right.push(v);
+                halves.right.push(v);
             }
         }
         // Separator vertices are numbered: later cuts must not see them as a neighbouring half.
-        for &v in &separator {
+        for &v in &halves.separator {
             self.set_label(v, 0);
         }
-        drop(vertices);
-        if left.len() + right.len() > PARALLEL_MIN {
-            let (mut left_order, mut right_order) = rayon::join(
-                || {
-                    let mut o = Vec::with_capacity(left.len());
-                    self.dissect(left, &mut o);
-                    o
-                },
-                || {
-                    let mut o = Vec::with_capacity(right.len());
-                    self.dissect(right, &mut o);
-                    o
-                },
-            );
-            order.append(&mut left_order);
-            order.append(&mut right_order);
-        } else {
-            self.dissect(left, order);
-            self.dissect(right, order);
-        }
-        order.extend_from_slice(&separator);
+        halves
     }
+}
+
+/// One cut of a vertex subset: the two halves and the separator between them.
+struct Separated {
+    left: Vec<usize>,
+    right: Vec<usize>,
+    separator: Vec<usize>,
 }
 
 #[cfg(test)]

@@ -97,6 +97,15 @@ impl SymmetricPattern {
         Self { n, col_ptr, row_idx, scatter, dofs_per_element: k }
     }
 
+    /// Position in the value array of the entry `(a, b)` (either order), or `None` when the pattern
+    /// has no such entry.
+    pub fn position(&self, a: usize, b: usize) -> Option<usize> {
+        let (row, col) = if a <= b { (a, b) } else { (b, a) };
+        let range = *self.col_ptr.get(col)?..*self.col_ptr.get(col + 1)?;
+        let start = range.start;
+        self.row_idx[range].binary_search(&row).ok().map(|k| start + k)
+    }
+
     /// Number of stored (upper-triangle) entries.
     pub fn nnz(&self) -> usize {
         self.row_idx.len()

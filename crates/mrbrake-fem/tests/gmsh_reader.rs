@@ -130,3 +130,41 @@ fn second_order_elements_are_read_by_their_corners() {
         assert_eq!(m.boundary_nodes(10), m.axis_nodes(), "{name}");
     }
 }
+
+/// The section structure: each missing section is named (at line 1 for the format, else at the
+/// last line), unknown sections are skipped, and stray or misplaced markers are refused.
+#[test]
+fn missing_and_misplaced_sections_are_named() {
+    let format = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+    let nodes = "$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n";
+    let line = "$Elements\n1\n1 1 2 10 3 1 2\n$EndElements\n";
+    let triangle = "$Elements\n1\n1 2 2 7 5 1 2 3\n$EndElements\n";
+    let cases = [
+        (format!("{nodes}{triangle}"), 1, "before $MeshFormat"),
+        (String::new(), 1, "missing $MeshFormat section"),
+        (format!("{format}{triangle}"), 7, "missing $Nodes section"),
+        (format!("{format}{nodes}"), 9, "missing $Elements section"),
+        (format!("{format}{nodes}{line}"), 13, "no triangles"),
+        (format!("{format}$EndNodes\n"), 4, "unexpected `$EndNodes` outside its section"),
+        (
+            format!("{format}hello\n"),
+            4,
+            "expected a section header such as `$Nodes`, found `hello`",
+        ),
+        (format!("{format}$NodeData\n1\n"), 5, "expected `$EndNodeData`"),
+        (format!("{format}$Entities\n0 0 0 0\n$EndEntities\n"), 4, "not valid in MSH version 2"),
+    ];
+    for (text, want_line, want_message) in cases {
+        let (line, message) = parse_error(&text);
+        assert_eq!(line, want_line, "{message}");
+        assert!(message.contains(want_message), "{message} should contain {want_message}");
+    }
+    // An unknown section with its end marker is skipped; physical names are kept.
+    let names = "$PhysicalNames\n1\n2 7 \"iron core\"\n$EndPhysicalNames\n";
+    let skipped = "$NodeData\n1\n\"B\"\n$EndNodeData\n";
+    let text = format!("{format}{names}{skipped}{nodes}{triangle}");
+    let read = parse_msh(&text, "ok.msh", 1e-3).unwrap();
+    assert_eq!(read.physical_tag(2, "iron core"), Some(7));
+    assert_eq!(read.mesh.triangles.len(), 1);
+    assert!((read.mesh.nodes[1][0] - 1e-3).abs() < 1e-18, "coordinates are scaled");
+}

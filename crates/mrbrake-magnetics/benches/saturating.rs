@@ -7,7 +7,6 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use mrbrake_magnetics::benchmark::{STEEL, pot_core_problem};
-use mrbrake_magnetics::material::MagneticMaterial;
 use mrbrake_magnetics::{ElementOrder, Solver, SolverOptions};
 
 fn saturating(c: &mut Criterion) {
@@ -22,8 +21,7 @@ fn saturating(c: &mut Criterion) {
     ];
     for (order, nodes) in cases {
         let problem =
-            pot_core_problem(nodes, MagneticMaterial::from_library(&steel.magnetic), 10.0)
-                .expect("valid benchmark problem");
+            pot_core_problem(nodes, steel.magnetic.clone(), 10.0).expect("valid benchmark problem");
         let options = SolverOptions { order, ..SolverOptions::default() };
         // P1 keeps its historical ids (the node count); P2 is named by its unknowns.
         let id = match order {

@@ -15,7 +15,6 @@
 use std::time::Instant;
 
 use mrbrake_magnetics::benchmark::{COIL, STEEL, pot_core_problem};
-use mrbrake_magnetics::material::MagneticMaterial;
 use mrbrake_magnetics::{ElementOrder, Solver, SolverOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -29,8 +28,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let steel = mrbrake_materials::library::get("steel-1010")?;
     let mut rows = Vec::new();
     for _ in 0..repeats.max(1) {
-        let problem =
-            pot_core_problem(target, MagneticMaterial::from_library(&steel.magnetic), current)?;
+        let problem = pot_core_problem(target, steel.magnetic.clone(), current)?;
         let nodes = problem.mesh.nodes.len();
         let start = Instant::now();
         let mut solver = Solver::new(problem, SolverOptions { order, ..SolverOptions::default() })?;

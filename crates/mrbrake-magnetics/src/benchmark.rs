@@ -8,7 +8,7 @@ use std::sync::Arc;
 use mrbrake_fem::structured::{SideTags, graded_lines, join_lines, rectangle_mesh};
 
 use crate::MagneticsError;
-use crate::material::MagneticMaterial;
+use crate::material::Magnetic;
 use crate::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 
 /// Region tags of the benchmark.
@@ -22,7 +22,7 @@ pub const AIR: u32 = 3;
 /// the given steel (e.g. the library's `steel-1010`).
 pub fn pot_core_problem(
     target_nodes: usize,
-    steel: MagneticMaterial,
+    steel: Magnetic,
     current_a: f64,
 ) -> Result<Problem, MagneticsError> {
     // Geometry (m): pot r 0..30 mm, z −20..15 mm with window r 10..25 mm, z −15..15 mm; plate z 16..21 mm;
@@ -70,10 +70,10 @@ pub fn pot_core_problem(
             Region { tag: STEEL, material: steel, source: None },
             Region {
                 tag: COIL,
-                material: MagneticMaterial::air(),
+                material: Magnetic::air(),
                 source: Some(Source::Coil { turns: 500.0, current_a }),
             },
-            Region { tag: AIR, material: MagneticMaterial::air(), source: None },
+            Region { tag: AIR, material: Magnetic::air(), source: None },
         ],
         boundaries: vec![Boundary { tag: 21, condition: BoundaryCondition::Dirichlet }],
     })

@@ -32,6 +32,8 @@ use serde::Serialize;
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use mrbrake_fem::basis::Basis;
+use mrbrake_fem::by_order;
 use mrbrake_fem::dofs::ElementOrder;
 use mrbrake_fem::element::{ElementTriP1, P1Triangle, TriangleBasis};
 use mrbrake_fem::locate::{PointLocator, locate_by_scan};
@@ -39,7 +41,7 @@ use mrbrake_fem::mesh::Mesh;
 use mrbrake_fem::quadrature::TrianglePoint;
 
 use crate::MagneticsError;
-use crate::assembly::{by_order, flux_density, local_values, point_values, triangle};
+use crate::form::{curls, flux_density};
 use crate::solver::{NewtonReport, Solver};
 
 const TWO_PI: f64 = 2.0 * std::f64::consts::PI;
@@ -76,6 +78,50 @@ impl Solution {
     }
 }
 
+/// The field of a solution as plain data, for maps, files and front ends (no solver needed to keep
+/// it): the mesh, `A_phi` and the flux function at the nodes, B at the triangle centroids.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FieldSnapshot {
+    /// Node coordinates `[r, z]` (m).
+    pub nodes: Vec<[f64; 2]>,
+    /// Triangles (node indices, counter-clockwise).
+    pub triangles: Vec<[usize; 3]>,
+    /// Physical (region) tag of every triangle.
+    pub region_tags: Vec<u32>,
+    /// `A_phi` (Wb/m) at the nodes.
+    pub a_phi_wb_per_m: Vec<f64>,
+    /// Flux function `ψ = r A_phi` (Wb/rad) at the nodes: flux lines are its level lines.
+    pub flux_function_wb: Vec<f64>,
+    /// `[B_r, B_z]` (T) at the centroid of every triangle.
+    pub element_b_t: Vec<[f64; 2]>,
+    /// `|B|` (T) at the centroid of every triangle.
+    pub element_b_abs_t: Vec<f64>,
+}
+
+impl FieldSnapshot {
+    /// The field as a ParaView `.vtu` file: `A_phi` and `r·A_phi` at the nodes, B and |B| per
+    /// triangle.
+    pub fn to_vtu(&self, mesh: &Mesh) -> String {
+        use mrbrake_fem::vtu::{Field, to_vtu};
+        let b3: Vec<f64> = self.element_b_t.iter().flat_map(|b| [b[0], b[1], 0.0]).collect();
+        to_vtu(
+            mesh,
+            &[
+                Field { name: "A_phi_Wb_per_m", components: 1, values: &self.a_phi_wb_per_m },
+                Field {
+                    name: "flux_function_r_A_phi",
+                    components: 1,
+                    values: &self.flux_function_wb,
+                },
+            ],
+            &[
+                Field { name: "B_T", components: 3, values: &b3 },
+                Field { name: "B_abs_T", components: 1, values: &self.element_b_abs_t },
+            ],
+        )
+    }
+}
+
 /// The potential and flux density of a solution at one quadrature point of one triangle.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct FieldSample {
@@ -92,21 +138,21 @@ pub(crate) struct FieldSample {
 /// Calls `f` with the field of the DOF values `a` at every point of `rule` in triangle `t`.
 #[inline]
 fn samples_in<E: TriangleBasis<N>, const N: usize>(
-    mesh: &Mesh,
-    element_dofs: &[usize],
+    basis: &Basis,
     t: usize,
     rule: &[TrianglePoint],
     a: &[f64],
     f: &mut impl FnMut(FieldSample),
 ) {
-    let tri = triangle(mesh, t);
-    let a_local = local_values::<N>(element_dofs, t, a);
+    let element = basis.element::<E, N>(t);
+    let geometry = element.geometry();
+    let a_local = element.dofs().map(|d| a[d]);
     for q in rule {
-        let v = point_values::<E, N>(&tri, q);
-        let b = flux_density(&v, a_local);
+        let v = basis.point::<E, N>(&geometry, q);
+        let b = flux_density(&curls(&v), a_local);
         let mut a_q = 0.0;
         for k in 0..N {
-            a_q += v.basis[k] * a_local[k];
+            a_q += v.phi[k] * a_local[k];
         }
         f(FieldSample { point: v.point, weight: v.weight, a: a_q, b });
     }
@@ -162,11 +208,12 @@ pub struct CoilLinkage {
 /// `(N/S) ∫ 2π r A dS` over region index `ri` (`a`: the value of every DOF).
 pub(crate) fn coil_flux(solver: &Solver, a: &[f64], ri: usize, turns: f64) -> f64 {
     let mut integral = 0.0;
+    let rule = solver.basis().rule();
     for t in 0..solver.problem.mesh.triangles.len() {
-        if solver.region_index[t] as usize != ri {
+        if solver.region_of(t) != ri {
             continue;
         }
-        solver.for_each_sample(t, &solver.rule, a, |s| integral += s.weight * s.a);
+        solver.for_each_sample(t, rule, a, |s| integral += s.weight * s.a);
     }
     TWO_PI * integral * turns / solver.region_area[ri]
 }
@@ -232,8 +279,7 @@ impl Solver {
         a: &[f64],
         mut f: impl FnMut(FieldSample),
     ) {
-        let (mesh, element_dofs) = (&self.problem.mesh, self.dofs.element_dofs());
-        by_order!(self.options.order, samples_in(mesh, element_dofs, t, rule, a, &mut f));
+        by_order!(self.options.order, samples_in(self.basis(), t, rule, a, &mut f));
     }
 
     /// The triangle containing `p` and its barycentric coordinates, or an input error naming `p`.
@@ -309,7 +355,7 @@ impl Solver {
     pub fn b_at_raw(&self, solution: &Solution, p: [f64; 2]) -> Result<PointField, MagneticsError> {
         let mesh = &self.problem.mesh;
         let (t, bary) = self.locate(p)?;
-        let (element_dofs, scale) = (self.dofs.element_dofs(), self.size_scale());
+        let (element_dofs, scale) = (self.basis().dofs().element_dofs(), self.size_scale());
         let b = by_order!(
             self.options.order,
             b_in_element(mesh, element_dofs, &solution.a_phi, t, bary, p[0], scale)
@@ -322,7 +368,7 @@ impl Solver {
     /// outside the mesh.
     pub fn a_phi_at(&self, solution: &Solution, p: [f64; 2]) -> Result<f64, MagneticsError> {
         let (t, bary) = self.locate(p)?;
-        let element_dofs = self.dofs.element_dofs();
+        let element_dofs = self.basis().dofs().element_dofs();
         Ok(by_order!(self.options.order, a_in_element(element_dofs, &solution.a_phi, t, bary)))
     }
 
@@ -358,10 +404,10 @@ impl Solver {
         let ri = self.region_position(tag)?;
         let mut samples: Vec<(f64, f64)> = Vec::new();
         for t in 0..self.problem.mesh.triangles.len() {
-            if self.region_index[t] as usize != ri {
+            if self.region_of(t) != ri {
                 continue;
             }
-            self.for_each_sample(t, &self.rule, &solution.a_phi, |s| {
+            self.for_each_sample(t, self.basis().rule(), &solution.a_phi, |s| {
                 samples.push((s.b[0].hypot(s.b[1]), TWO_PI * s.weight));
             });
         }
@@ -404,7 +450,7 @@ impl Solver {
     ) -> Result<f64, MagneticsError> {
         self.region_position(tag)?;
         // Quadrature points are interior, so r > 0 and weight / r is the area weight.
-        Ok(self.sum_over_samples(solution, &self.rule, &[tag], |s| {
+        Ok(self.sum_over_samples(solution, self.basis().rule(), &[tag], |s| {
             s.weight / s.point[0] * f(s.point, s.b)
         }))
     }
@@ -431,15 +477,15 @@ impl Solver {
     pub fn energy(&self, solution: &Solution) -> (f64, f64) {
         use rayon::prelude::*;
         let mesh = &self.problem.mesh;
-        // Element sums in parallel (independent per triangle); the reduction order only affects
-        // round-off.
-        (0..mesh.triangles.len())
+        // Element sums in parallel, then added in element order: the result does not depend on
+        // how the work was split between threads.
+        let per_element: Vec<(f64, f64)> = (0..mesh.triangles.len())
             .into_par_iter()
             .map(|t| {
-                let material = &self.materials[self.region_index[t] as usize];
+                let material = self.form.material(t);
                 let mut w_sum = 0.0;
                 let mut co_sum = 0.0;
-                self.for_each_sample(t, &self.rule, &solution.a_phi, |s| {
+                self.for_each_sample(t, self.basis().rule(), &solution.a_phi, |s| {
                     let b2 = s.b[0] * s.b[0] + s.b[1] * s.b[1];
                     let w = material.energy_density(b2.sqrt());
                     let hb = material.nu_and_dnu_db2(b2).0 * b2;
@@ -448,7 +494,8 @@ impl Solver {
                 });
                 (w_sum, co_sum)
             })
-            .reduce(|| (0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1))
+            .collect();
+        per_element.iter().fold((0.0, 0.0), |sum, e| (sum.0 + e.0, sum.1 + e.1))
     }
 
     /// The flux function `ψ = r A_phi` (Wb/rad) at every mesh node (the vertex DOFs, also for P2):
@@ -458,12 +505,27 @@ impl Solver {
         self.problem.mesh.nodes.iter().zip(solution.vertex_a_phi()).map(|(p, a)| p[0] * a).collect()
     }
 
+    /// The field of `solution` as plain data ([`FieldSnapshot`]).
+    pub fn field_snapshot(&self, solution: &Solution) -> FieldSnapshot {
+        let mesh = &self.problem.mesh;
+        let element_b = self.element_b(solution);
+        FieldSnapshot {
+            nodes: mesh.nodes.clone(),
+            triangles: mesh.triangles.clone(),
+            region_tags: mesh.triangle_tags.clone(),
+            a_phi_wb_per_m: solution.vertex_a_phi().to_vec(),
+            flux_function_wb: self.flux_function(solution),
+            element_b_abs_t: element_b.iter().map(|b| b[0].hypot(b[1])).collect(),
+            element_b_t: element_b,
+        }
+    }
+
     /// B at the centroid of every triangle: `[B_r, B_z]` pairs (T), for maps and VTU output.
     pub fn element_b(&self, solution: &Solution) -> Vec<[f64; 2]> {
         use rayon::prelude::*;
         let mesh = &self.problem.mesh;
         let scale = mesh.size_scale();
-        let element_dofs = self.dofs.element_dofs();
+        let element_dofs = self.basis().dofs().element_dofs();
         let third = [1.0 / 3.0; 3];
         (0..mesh.triangles.len())
             .into_par_iter()
@@ -537,6 +599,20 @@ impl Solver {
             .position(|r| r.tag == tag)
             .ok_or_else(|| MagneticsError::Input(format!("no region with physical = {tag}")))
     }
+}
+
+/// The straight-sided geometry of mesh triangle `t`.
+#[inline(always)]
+fn triangle(mesh: &Mesh, t: usize) -> P1Triangle {
+    let [a, b, c] = mesh.triangles[t];
+    P1Triangle::new([mesh.nodes[a], mesh.nodes[b], mesh.nodes[c]])
+}
+
+/// The values of `a` at the `N` DOFs of triangle `t` (`element_dofs`: `N` global DOFs per triangle).
+#[inline(always)]
+fn local_values<const N: usize>(element_dofs: &[usize], t: usize, a: &[f64]) -> [f64; N] {
+    let dofs = &element_dofs[N * t..N * (t + 1)];
+    std::array::from_fn(|i| a[dofs[i]])
 }
 
 /// B of the P1 potential at the centroid of triangle `t` (`scale`: the mesh size scale).

@@ -3,18 +3,19 @@
 //! Brief overview:
 //! - [`problem::Problem`]: a mesh (`mrbrake_fem::mesh::Mesh`), a [`problem::Region`] (material and
 //!   source) per physical surface, boundary conditions per physical curve.
-//! - [`solver::Solver`]: built once per problem (DOF numbering, sparsity pattern, symbolic Cholesky),
-//!   then [`solver::Solver::solve`] runs Newton–Raphson with line search; sources can be changed
-//!   ([`solver::Solver::set_source`]) and the previous solution passed as a warm start, as a current
-//!   sweep does. The weak form and the open boundary are in [`assembly`]. The element order is
+//! - [`solver::Solver`]: built once per problem on the FEM core (basis, constraints, assembly,
+//!   symbolic Cholesky), then [`solver::Solver::solve`] runs the core's Newton–Raphson with line
+//!   search; sources can be changed ([`solver::Solver::set_source`]) and the previous solution
+//!   passed as a warm start, as a current sweep does. The weak form is [`form`] (an
+//!   `mrbrake_fem::assemble::ElementForm`), the open boundary a constant boundary coupling. The element order is
 //!   [`solver::SolverOptions::order`]: linear triangles ([`ElementOrder::P1`], the default) or
 //!   quadratic 6-node triangles ([`ElementOrder::P2`]) on the same mesh, with about four times the
 //!   unknowns and one order more accuracy where the field is smooth (A in L2 at O(h³), B at O(h²);
 //!   the validation tests measure both).
 //! - [`field::Solution`] with post-processing on the solver: B at points and along lines, region
 //!   statistics, flux linkage, inductance, energy and co-energy.
-//! - [`material`]: the [`material::Reluctivity`] law `ν(B²)` (implemented by the material library's
-//!   B-H curves) and an analytic test curve.
+//! - [`material`]: the material library's magnetic law ([`material::Magnetic`], with the
+//!   [`material::Reluctivity`] `ν(B²)` of its B-H curves) and an analytic test curve.
 //! - [`problem_file`]: the TOML problem files of `mrbrake fem solve`.
 //! - [`exact`]: closed-form reference fields (current loop with elliptic integrals, solenoids, thick
 //!   coil on the axis, permeable sphere) used by the validation tests.
@@ -22,7 +23,7 @@
 //! ```
 //! use std::sync::Arc;
 //! use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
-//! use mrbrake_magnetics::material::MagneticMaterial;
+//! use mrbrake_magnetics::material::Magnetic;
 //! use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 //! use mrbrake_magnetics::solver::{Solver, SolverOptions};
 //!
@@ -34,8 +35,8 @@
 //! let problem = Problem {
 //!     mesh: Arc::new(mesh),
 //!     regions: vec![
-//!         Region { tag: 1, material: MagneticMaterial::air(), source: None },
-//!         Region { tag: 2, material: MagneticMaterial::air(), source: Some(Source::Coil { turns: 100.0, current_a: 1.0 }) },
+//!         Region { tag: 1, material: Magnetic::air(), source: None },
+//!         Region { tag: 2, material: Magnetic::air(), source: Some(Source::Coil { turns: 100.0, current_a: 1.0 }) },
 //!     ],
 //!     boundaries: vec![
 //!         Boundary { tag: 11, condition: BoundaryCondition::Dirichlet },
@@ -48,11 +49,12 @@
 //! assert!(centre.b_z_t > 0.0);
 //! ```
 
-pub mod assembly;
 pub mod benchmark;
 pub mod exact;
 pub mod field;
+pub mod form;
 pub mod material;
+pub mod open_boundary;
 pub mod problem;
 pub mod problem_file;
 pub mod solver;
@@ -75,30 +77,11 @@ pub enum MagneticsError {
     #[error(transparent)]
     Material(#[from] mrbrake_materials::MaterialError),
     /// Newton–Raphson failed; the residual history says how far it got.
-    #[error("Newton-Raphson failed: {reason}; residual history (relative): {}", format_history(history, *residual_scale))]
-    NotConverged {
-        /// Why it stopped.
-        reason: String,
-        /// One entry per iteration.
-        history: Vec<NewtonStep>,
-        /// Residual scale of the stopping rule.
-        residual_scale: f64,
-    },
+    #[error(transparent)]
+    NotConverged(#[from] mrbrake_fem::newton::NewtonError),
     /// Another numerical failure.
     #[error("{0}")]
     Numerical(String),
-}
-
-fn format_history(history: &[NewtonStep], _scale: f64) -> String {
-    if history.is_empty() {
-        return "(none)".into();
-    }
-    history
-        .iter()
-        .enumerate()
-        .map(|(k, s)| format!("#{} {:.3e} (step {:.3})", k + 1, s.relative_residual, s.step_length))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 impl mrbrake_error::Kind for MagneticsError {

@@ -1,110 +1,10 @@
-//! Magnetic materials as the solver sees them: the reluctivity `ν(B²) = H/B` and its derivative.
-//!
-//! The Newton solver needs `ν` and `dν/dB²` at every quadrature point (the Jacobian coefficient is
-//! `ν I + 2 dν/dB² B⊗B`), so non-linear materials implement the small [`Reluctivity`] trait. The
-//! material library's `mrbrake_materials::BhCurve` implements it (see the impl below); the analytic
-//! [`MarroccoCurve`] is used by the validation tests because its inverse `B(H)` is an independent
-//! bisection, not the same interpolation the solver uses.
+//! Magnetic materials as the solver sees them: the material library's [`Magnetic`] law (linear, or
+//! a non-linear [`Reluctivity`] `ν(B²) = H/B` with its derivative, which the Newton solver needs at
+//! every quadrature point: the Jacobian coefficient is `ν I + 2 dν/dB² B⊗B`), re-exported here, and
+//! the analytic [`MarroccoCurve`] the validation tests use because its inverse `B(H)` is an
+//! independent bisection, not the same interpolation the solver uses.
 
-use std::fmt::Debug;
-use std::sync::Arc;
-
-/// Vacuum permeability μ0 (H/m), CODATA 2018 value.
-pub const MU_0: f64 = 1.256_637_062_12e-6;
-
-/// A non-linear isotropic reluctivity law `H = ν(B²) B`.
-pub trait Reluctivity: Send + Sync + Debug {
-    /// `(ν, dν/dB²)` at `b2 = B²` (ν in m/H, dν/dB² in m/(H·T²)).
-    fn nu_and_dnu_db2(&self, b2: f64) -> (f64, f64);
-
-    /// Field strength `H(B)` (A/m) for `B >= 0`; defaults to `ν(B²) B`.
-    fn h_of_b(&self, b: f64) -> f64 {
-        self.nu_and_dnu_db2(b * b).0 * b
-    }
-}
-
-impl Reluctivity for mrbrake_materials::BhCurve {
-    fn nu_and_dnu_db2(&self, b2: f64) -> (f64, f64) {
-        mrbrake_materials::BhCurve::nu_and_dnu_db2(self, b2)
-    }
-
-    fn h_of_b(&self, b: f64) -> f64 {
-        mrbrake_materials::BhCurve::h_of_b(self, b)
-    }
-}
-
-/// A magnetic material: constant relative permeability or a non-linear reluctivity.
-#[derive(Debug, Clone)]
-pub enum MagneticMaterial {
-    /// `B = μ0 μr H`.
-    Linear {
-        /// Relative permeability (> 0).
-        mu_r: f64,
-    },
-    /// Non-linear `H = ν(B²) B`.
-    NonLinear(Arc<dyn Reluctivity>),
-}
-
-impl MagneticMaterial {
-    /// Air / vacuum (μr = 1).
-    pub fn air() -> Self {
-        Self::Linear { mu_r: 1.0 }
-    }
-
-    /// `(ν, dν/dB²)` at `b2 = B²`.
-    #[inline]
-    pub fn nu_and_dnu_db2(&self, b2: f64) -> (f64, f64) {
-        match self {
-            Self::Linear { mu_r } => (1.0 / (MU_0 * mu_r), 0.0),
-            Self::NonLinear(curve) => curve.nu_and_dnu_db2(b2),
-        }
-    }
-
-    /// True when the reluctivity depends on the field.
-    pub fn is_nonlinear(&self) -> bool {
-        matches!(self, Self::NonLinear(_))
-    }
-
-    /// Stored energy density `w(B) = ∫_0^B H(b) db` (J/m³); the co-energy density is `H B − w`.
-    /// Linear: `ν B²/2`; non-linear: composite 4-point Gauss–Legendre over 8 panels of `[0, B]`.
-    pub fn energy_density(&self, b: f64) -> f64 {
-        let b = b.abs();
-        match self {
-            Self::Linear { mu_r } => 0.5 * b * b / (MU_0 * mu_r),
-            Self::NonLinear(curve) => {
-                const X: [f64; 4] = [
-                    0.069_431_844_202_974,
-                    0.330_009_478_207_572,
-                    0.669_990_521_792_428,
-                    0.930_568_155_797_026,
-                ];
-                const W: [f64; 4] = [
-                    0.173_927_422_568_727,
-                    0.326_072_577_431_273,
-                    0.326_072_577_431_273,
-                    0.173_927_422_568_727,
-                ];
-                let panels = 8;
-                let h = b / panels as f64;
-                let mut sum = 0.0;
-                for p in 0..panels {
-                    for q in 0..4 {
-                        sum += W[q] * curve.h_of_b(h * (p as f64 + X[q]));
-                    }
-                }
-                sum * h
-            }
-        }
-    }
-
-    /// Converts a material-library description.
-    pub fn from_library(magnetic: &mrbrake_materials::Magnetic) -> Self {
-        match magnetic {
-            mrbrake_materials::Magnetic::Linear { mu_r } => Self::Linear { mu_r: *mu_r },
-            mrbrake_materials::Magnetic::NonLinear(curve) => Self::NonLinear(curve.clone()),
-        }
-    }
-}
+pub use mrbrake_materials::{MU_0, Magnetic, Reluctivity};
 
 /// Marrocco's analytic reluctivity (A. Marrocco, "Analyse numérique de problèmes d'électrotechnique",
 /// Ann. Sc. Math. Québec 1 (1977) 271–296; also Hecht, Marrocco et al., IEEE Trans. Magn. 1990):
@@ -140,6 +40,10 @@ impl MarroccoCurve {
 }
 
 impl Reluctivity for MarroccoCurve {
+    fn b_of_h(&self, h: f64) -> f64 {
+        MarroccoCurve::b_of_h(self, h)
+    }
+
     fn nu_and_dnu_db2(&self, b2: f64) -> (f64, f64) {
         let nu0 = 1.0 / MU_0;
         let s = b2.max(0.0);
@@ -180,9 +84,9 @@ mod tests {
 
     #[test]
     fn energy_density_matches_closed_form_for_linear_and_fine_sum() {
-        let air = MagneticMaterial::air();
+        let air = Magnetic::air();
         assert!((air.energy_density(1.0) - 0.5 / MU_0).abs() < 1e-6);
-        let iron = MagneticMaterial::NonLinear(Arc::new(MarroccoCurve::soft_iron()));
+        let iron = Magnetic::NonLinear(std::sync::Arc::new(MarroccoCurve::soft_iron()));
         // Reference: fine midpoint sum of H(B).
         let b = 2.2;
         let n = 200_000;

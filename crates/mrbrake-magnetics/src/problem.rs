@@ -6,7 +6,7 @@
 //! - [`BoundaryCondition::Dirichlet`]: `A_phi = 0` (flux cannot cross: B tangential);
 //! - [`BoundaryCondition::Prescribed`]: `A_phi = g(r, z)` (validation against exact solutions);
 //! - [`BoundaryCondition::Open`]: first-order asymptotic condition on a circular outer boundary
-//!   (see [`crate::assembly`]), so a small air box behaves like unbounded space;
+//!   (see [`crate::open_boundary`]), so a small air box behaves like unbounded space;
 //! - edges with no condition are natural (Neumann): `n × H = 0`, B normal to the boundary
 //!   (a symmetry plane of a coil, or the mid-plane of an infinitely long solenoid).
 
@@ -14,7 +14,9 @@ use std::sync::Arc;
 
 use mrbrake_fem::mesh::Mesh;
 
-use crate::material::MagneticMaterial;
+use mrbrake_materials::Magnetic;
+
+use crate::MagneticsError;
 
 /// The current source of a region (azimuthal current, positive along +φ).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,7 +41,7 @@ pub struct Region {
     /// Physical tag of the triangles.
     pub tag: u32,
     /// Magnetic material.
-    pub material: MagneticMaterial,
+    pub material: Magnetic,
     /// Current source, if any.
     pub source: Option<Source>,
 }
@@ -95,5 +97,60 @@ impl Problem {
     /// The region with `tag`, if any.
     pub fn region(&self, tag: u32) -> Option<&Region> {
         self.regions.iter().find(|r| r.tag == tag)
+    }
+
+    /// Checks the problem (a valid mesh; one region per mesh surface and no region or boundary
+    /// without mesh entities; valid linear permeabilities) and returns the region index of every
+    /// triangle.
+    pub fn element_regions(&self) -> Result<Vec<u32>, MagneticsError> {
+        self.mesh.validate()?;
+        let mut sorted_tags: Vec<u32> = self.regions.iter().map(|r| r.tag).collect();
+        sorted_tags.sort_unstable();
+        if let Some(w) = sorted_tags.windows(2).find(|w| w[0] == w[1]) {
+            return Err(MagneticsError::Input(format!("region {} is defined twice", w[0])));
+        }
+        let mesh_tags = self.mesh.region_tags();
+        if let Some(tag) = mesh_tags.iter().find(|tag| self.region(**tag).is_none()) {
+            return Err(MagneticsError::Input(format!(
+                "mesh region (physical surface) {tag} has no material: add a region with physical = {tag}"
+            )));
+        }
+        for region in &self.regions {
+            self.check_region(region, &mesh_tags)?;
+        }
+        let edge_tags = self.mesh.boundary_tags();
+        for boundary in &self.boundaries {
+            if edge_tags.binary_search(&boundary.tag).is_err() {
+                return Err(MagneticsError::Input(format!(
+                    "boundary physical = {} is not a curve of the mesh (mesh curves: {edge_tags:?})",
+                    boundary.tag
+                )));
+            }
+        }
+        let index = |tag: &u32| self.regions.iter().position(|r| r.tag == *tag);
+        Ok(self
+            .mesh
+            .triangle_tags
+            .iter()
+            .map(|t| index(t).expect("every mesh tag has a region (checked)") as u32)
+            .collect())
+    }
+
+    fn check_region(&self, region: &Region, mesh_tags: &[u32]) -> Result<(), MagneticsError> {
+        if mesh_tags.binary_search(&region.tag).is_err() {
+            return Err(MagneticsError::Input(format!(
+                "region physical = {} is not a surface of the mesh (mesh surfaces: {mesh_tags:?})",
+                region.tag
+            )));
+        }
+        if let Magnetic::Linear { mu_r } = region.material
+            && !(mu_r.is_finite() && mu_r > 0.0)
+        {
+            return Err(MagneticsError::Input(format!(
+                "region {}: mu_r = {mu_r} must be finite and > 0",
+                region.tag
+            )));
+        }
+        Ok(())
     }
 }

@@ -13,7 +13,7 @@ use mrbrake_magnetics::exact::{
     CoilSection, long_solenoid_a_phi, long_solenoid_bz, loop_a_phi, sphere_a_phi, thick_coil_a_phi,
     thick_coil_axis_bz,
 };
-use mrbrake_magnetics::material::{MU_0, MagneticMaterial, MarroccoCurve, Reluctivity};
+use mrbrake_magnetics::material::{MU_0, Magnetic, MarroccoCurve, Reluctivity};
 use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 use mrbrake_magnetics::{ElementOrder, Solver, SolverOptions};
 
@@ -37,7 +37,7 @@ fn options(order: ElementOrder) -> SolverOptions {
 }
 
 fn air(tag: u32) -> Region {
-    Region { tag, material: MagneticMaterial::air(), source: None }
+    Region { tag, material: Magnetic::air(), source: None }
 }
 
 fn prescribed(tag: u32, g: impl Fn([f64; 2]) -> f64 + Send + Sync + 'static) -> Boundary {
@@ -82,7 +82,7 @@ fn long_solenoid_study(order: ElementOrder) -> Study {
                 air(1),
                 Region {
                     tag: 2,
-                    material: MagneticMaterial::air(),
+                    material: Magnetic::air(),
                     source: Some(Source::CurrentDensity { a_per_m2: j }),
                 },
             ],
@@ -186,7 +186,7 @@ fn thick_coil_study(order: ElementOrder, panels: usize, far_l2: bool) -> Study {
                 air(1),
                 Region {
                     tag: 2,
-                    material: MagneticMaterial::air(),
+                    material: Magnetic::air(),
                     source: Some(Source::CurrentDensity { a_per_m2: coil.j }),
                 },
                 air(3),
@@ -308,7 +308,7 @@ fn current_loop_matches_elliptic_integrals() {
             air(1),
             Region {
                 tag: 2,
-                material: MagneticMaterial::air(),
+                material: Magnetic::air(),
                 source: Some(Source::Coil { turns: 1.0, current_a: current }),
             },
         ],
@@ -398,7 +398,7 @@ fn open_boundary_errors(order: ElementOrder, probes: &[[f64; 2]]) -> Vec<f64> {
                 air(1),
                 Region {
                     tag: 2,
-                    material: MagneticMaterial::air(),
+                    material: Magnetic::air(),
                     source: Some(Source::CurrentDensity { a_per_m2: j }),
                 },
             ],
@@ -485,10 +485,10 @@ fn linear_coil_energy_and_inductances_are_consistent() {
             air(1),
             Region {
                 tag: 2,
-                material: MagneticMaterial::air(),
+                material: Magnetic::air(),
                 source: Some(Source::Coil { turns: 200.0, current_a: current }),
             },
-            Region { tag: 3, material: MagneticMaterial::Linear { mu_r: 500.0 }, source: None },
+            Region { tag: 3, material: Magnetic::Linear { mu_r: 500.0 }, source: None },
         ],
         boundaries: vec![
             Boundary { tag: OUTER, condition: BoundaryCondition::Dirichlet },
@@ -537,7 +537,7 @@ fn sphere_study(order: ElementOrder) -> Study {
             mesh: Arc::new(mesh),
             regions: vec![
                 air(1),
-                Region { tag: 2, material: MagneticMaterial::Linear { mu_r }, source: None },
+                Region { tag: 2, material: Magnetic::Linear { mu_r }, source: None },
             ],
             boundaries: vec![prescribed(OUTER, exact)],
         };
@@ -691,14 +691,10 @@ fn iron_rod_study(order: ElementOrder) -> Study {
                 air(1),
                 Region {
                     tag: 2,
-                    material: MagneticMaterial::air(),
+                    material: Magnetic::air(),
                     source: Some(Source::CurrentDensity { a_per_m2: j }),
                 },
-                Region {
-                    tag: 3,
-                    material: MagneticMaterial::NonLinear(Arc::new(curve)),
-                    source: None,
-                },
+                Region { tag: 3, material: Magnetic::NonLinear(Arc::new(curve)), source: None },
             ],
             boundaries: vec![prescribed(OUTER, move |p| a_exact(p[0]))],
         };
@@ -770,8 +766,8 @@ fn p2_reproduces_a_quadratic_potential_exactly() {
     let problem = Problem {
         mesh: Arc::new(mesh),
         regions: vec![
-            Region { tag: 1, material: MagneticMaterial::air(), source },
-            Region { tag: 2, material: MagneticMaterial::air(), source },
+            Region { tag: 1, material: Magnetic::air(), source },
+            Region { tag: 2, material: Magnetic::air(), source },
         ],
         boundaries: vec![
             prescribed(OUTER, exact),
@@ -836,10 +832,10 @@ fn warm_start_sweep(order: ElementOrder) {
             air(1),
             Region {
                 tag: 2,
-                material: MagneticMaterial::air(),
+                material: Magnetic::air(),
                 source: Some(Source::Coil { turns: 500.0, current_a: 0.0 }),
             },
-            Region { tag: 3, material: MagneticMaterial::NonLinear(Arc::new(curve)), source: None },
+            Region { tag: 3, material: Magnetic::NonLinear(Arc::new(curve)), source: None },
         ],
         boundaries: vec![Boundary { tag: OUTER, condition: BoundaryCondition::Dirichlet }],
     };
@@ -921,14 +917,10 @@ fn library_steel_rod_follows_its_bh_curve() {
                     air(1),
                     Region {
                         tag: 2,
-                        material: MagneticMaterial::air(),
+                        material: Magnetic::air(),
                         source: Some(Source::CurrentDensity { a_per_m2: j }),
                     },
-                    Region {
-                        tag: 3,
-                        material: MagneticMaterial::from_library(&steel.magnetic),
-                        source: None,
-                    },
+                    Region { tag: 3, material: steel.magnetic.clone(), source: None },
                 ],
                 // Outside the coil H = 0, so the natural condition (n × H = 0) on the outer radius is exact.
                 boundaries: vec![],
@@ -1001,14 +993,10 @@ fn pot_core_with_gap(
     let problem = Problem {
         mesh: Arc::new(rectangle_mesh(&r, &z, tag, sides).unwrap()),
         regions: vec![
-            Region {
-                tag: STEEL,
-                material: MagneticMaterial::from_library(&steel.magnetic),
-                source: None,
-            },
+            Region { tag: STEEL, material: steel.magnetic.clone(), source: None },
             Region {
                 tag: COIL,
-                material: MagneticMaterial::air(),
+                material: Magnetic::air(),
                 source: Some(Source::Coil { turns: 500.0, current_a }),
             },
             air(AIR),

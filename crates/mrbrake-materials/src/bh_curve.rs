@@ -82,8 +82,8 @@ impl BhCurve {
     /// Reads and validates a user CSV file (header `H_A_per_m,B_T`); its provenance is the path.
     pub fn from_csv_file(path: &Path) -> Result<Self, MaterialError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| MaterialError::Io { file: file.clone(), message: e.to_string() })?;
+        let text =
+            std::fs::read_to_string(path).map_err(|source| MaterialError::io(&file, source))?;
         Self::from_csv_str(&text, &file, Provenance::user_file(&file))
     }
 
@@ -279,23 +279,16 @@ pub(crate) fn validate_increasing_from_origin(
     for pair in rows.windows(2) {
         let (prev_line, px, py) = pair[0];
         let (line, x, y) = pair[1];
-        if x <= px {
-            return fail(
-                line,
-                format!(
-                    "rule `strictly increasing {x_name}`: {x_name} = {x} {x_unit} must exceed the previous \
-                     {x_name} = {px} {x_unit} (line {prev_line})"
-                ),
-            );
-        }
-        if y <= py {
-            return fail(
-                line,
-                format!(
-                    "rule `strictly increasing {y_name}`: {y_name} = {y} {y_unit} must exceed the previous \
-                     {y_name} = {py} {y_unit} (line {prev_line})"
-                ),
-            );
+        for (name, unit, value, previous) in [(x_name, x_unit, x, px), (y_name, y_unit, y, py)] {
+            if value <= previous {
+                return fail(
+                    line,
+                    format!(
+                        "rule `strictly increasing {name}`: {name} = {value} {unit} must exceed the \
+                         previous {name} = {previous} {unit} (line {prev_line})"
+                    ),
+                );
+            }
         }
     }
     if rows.len() < min_points {

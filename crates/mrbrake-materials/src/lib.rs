@@ -39,12 +39,23 @@ mod yield_stress;
 
 pub use bh_curve::{BH_HEADER, BhCurve, MIN_BH_POINTS};
 pub use error::MaterialError;
-pub use material::{Magnetic, Material, MaterialKind};
+pub use material::{Magnetic, Material, MaterialKind, Reluctivity};
 pub use mr_fluid::{MrFluid, ReferenceCheck, ReferencePoint, Viscosity};
 pub use provenance::{Provenance, Sourced, Trust};
 pub use wire::CopperWire;
 pub use yield_stress::{FieldVariable, MIN_YIELD_POINTS, YieldStressCurve};
 
-/// Vacuum permeability μ0 \[H/m\], CODATA 2018 recommended value (no longer exactly 4π·10⁻⁷ since the
-/// 2019 SI redefinition; the difference is 5.5·10⁻¹⁰ relative).
+/// Vacuum magnetic permeability μ0 = 1.256 637 062 12(19)·10⁻⁶ N/A² (= H/m), the CODATA 2018
+/// recommended value: E. Tiesinga, P. J. Mohr, D. B. Newell, B. N. Taylor, "CODATA recommended
+/// values of the fundamental physical constants: 2018", Rev. Mod. Phys. 93 (2021) 025010; NIST
+/// reference <https://physics.nist.gov/cgi-bin/cuu/Value?mu0>.
+///
+/// Since the 2019 redefinition of the SI, μ0 is measured, no longer exactly 4π·10⁻⁷ N/A²; the
+/// difference is 5.4·10⁻¹⁰ relative. This is mrbrake's one μ0: every crate uses this constant.
+///
+/// ```
+/// let four_pi_e7 = 4.0 * std::f64::consts::PI * 1e-7;
+/// let relative = (mrbrake_materials::MU_0 - four_pi_e7) / four_pi_e7;
+/// assert!(relative > 5.4e-10 && relative < 5.5e-10);
+/// ```
 pub const MU_0: f64 = 1.256_637_062_12e-6;

@@ -28,58 +28,251 @@ pub const DEFAULT_FLUID: &str = "mrf-122eg";
 /// upper limit for the MRF-122EG" (Karabulut 2017, section 3.2, discussion of Figure 3.3).
 pub const MRF122EG_TAU_Y_CEILING_PA: f64 = 35_000.0;
 
-/// Every built-in material: name, kind, one-line description.
-const CATALOGUE: &[(&str, MaterialKind, &str)] = &[
-    ("steel-1008", MaterialKind::Steel, "AISI 1008 low-carbon steel (ANSYS Maxwell library curve)"),
-    (
+/// An embedded data file: its path in the crate and its content.
+struct DataFile {
+    path: &'static str,
+    text: &'static str,
+}
+
+macro_rules! data_file {
+    ($name:literal) => {
+        DataFile { path: concat!("data/", $name), text: include_str!(concat!("../data/", $name)) }
+    };
+}
+
+/// One built-in material: its name, a one-line description and how it is built from `data/`.
+struct Entry {
+    name: &'static str,
+    description: &'static str,
+    recipe: Recipe,
+}
+
+/// How a built-in material is made from the vendored data (one variant per [`MaterialKind`]).
+enum Recipe {
+    Steel(SteelRecipe),
+    Linear(LinearRecipe),
+    Fluid(FluidRecipe),
+}
+
+impl Recipe {
+    fn kind(&self) -> MaterialKind {
+        match self {
+            Recipe::Steel(_) => MaterialKind::Steel,
+            Recipe::Linear(_) => MaterialKind::Linear,
+            Recipe::Fluid(_) => MaterialKind::MrFluid,
+        }
+    }
+}
+
+impl Entry {
+    const fn steel(
+        name: &'static str,
+        description: &'static str,
+        curve: DataFile,
+        source: CurveSource,
+        properties_row: Option<&'static str>,
+    ) -> Self {
+        Entry {
+            name,
+            description,
+            recipe: Recipe::Steel(SteelRecipe { curve, source, properties_row }),
+        }
+    }
+
+    const fn linear(
+        name: &'static str,
+        description: &'static str,
+        femm_block: &'static str,
+        density_kg_m3: f64,
+        density_source: &'static str,
+    ) -> Self {
+        let recipe = LinearRecipe { femm_block, density_kg_m3, density_source };
+        Entry { name, description, recipe: Recipe::Linear(recipe) }
+    }
+
+    const fn fluid(
+        name: &'static str,
+        description: &'static str,
+        product: &'static str,
+        bh: DataFile,
+        yield_stress: FluidYieldStress,
+    ) -> Self {
+        Entry {
+            name,
+            description,
+            recipe: Recipe::Fluid(FluidRecipe { product, bh, yield_stress }),
+        }
+    }
+}
+
+/// Every built-in material, in library order: the one list of names, kinds and data sources.
+const CATALOGUE: &[Entry] = &[
+    Entry::steel(
+        "steel-1008",
+        "AISI 1008 low-carbon steel (ANSYS Maxwell library curve)",
+        data_file!("steel_1008_ansys_BH.csv"),
+        CurveSource::Listed {
+            source: "ANSYS Maxwell/RMxprt system library curve `steel_1008` (RMxprt VBScript export; an independent \
+             .aedt copy holds the same first 19 points)",
+            method: "copied (20 points; the last one is a mu0-slope extrapolation in the source); monotone C1 \
+             interpolation of H(B), mu0 slope beyond 1.19 MA/m",
+            trust: Trust::MediumHigh,
+        },
+        Some("Ansys steel_1008"),
+    ),
+    Entry::steel(
         "steel-1008-modelica",
-        MaterialKind::Steel,
         "AISI 1008 steel, Modelica MSL fit formula (use below 2 T)",
+        data_file!("steel_1008_modelica_fit_BH.csv"),
+        CurveSource::Listed {
+            source: "Modelica Standard Library, Magnetic.FluxTubes.Material.SoftMagnetic.Steel.AISI_1008 \
+             (mu_rApprox fit: mu_i=200, B_myMax=1.17 T, c_a=8100, c_b=2.59, n=10; data by T. Roschke)",
+            method: "fit formula evaluated for B = 0..2 T in 0.05 T steps; agrees with the ANSYS curve within 1.2 % \
+             at 1/5/20 kA/m; beyond 2 T the curve is continued with slope mu0, which the fit does not \
+             support (it is still at ~7.5 mu0 there)",
+            trust: Trust::Medium,
+        },
+        None,
     ),
-    ("steel-1006", MaterialKind::Steel, "AISI 1006 steel (FEMM 4.2 library)"),
-    ("steel-1010", MaterialKind::Steel, "AISI 1010 steel (FEMM 4.2 library)"),
-    (
+    Entry::steel(
+        "steel-1006",
+        "AISI 1006 steel (FEMM 4.2 library)",
+        data_file!("steel_1006_femm_BH.csv"),
+        CurveSource::Femm { block: "1006 Steel", note: "" },
+        Some("FEMM 1006 Steel"),
+    ),
+    Entry::steel(
+        "steel-1010",
+        "AISI 1010 steel (FEMM 4.2 library)",
+        data_file!("steel_1010_femm_BH.csv"),
+        CurveSource::Femm { block: "1010 Steel", note: "" },
+        Some("FEMM 1010 Steel"),
+    ),
+    Entry::steel(
         "steel-1010-motorproto",
-        MaterialKind::Steel,
         "AISI 1010 steel (MotorProto curve, softer than FEMM's)",
+        data_file!("steel_1010_motorproto_BH.csv"),
+        CurveSource::Listed {
+            source: "MPEL/MotorProto, Materials/Steel1010.m, commit abfb602d92ed4634501463ae457b8b1ac402df6d",
+            method: "copied (the last point is a mu0-slope extrapolation in the source); noticeably softer than \
+             FEMM's 1010 below 2 kA/m (B(1 kA/m) = 1.04 T vs 1.42 T): treat the spread as material \
+             uncertainty",
+            trust: Trust::MediumLow,
+        },
+        Some("MotorProto Steel1010"),
     ),
-    ("steel-1018", MaterialKind::Steel, "AISI 1018 steel (FEMM 4.2 library, 13 coarse points)"),
-    (
+    Entry::steel(
+        "steel-1018",
+        "AISI 1018 steel (FEMM 4.2 library, 13 coarse points)",
+        data_file!("steel_1018_femm_BH.csv"),
+        CurveSource::Femm {
+            block: "1018 Steel",
+            note: "; only 13 points at round Oersted values (probably digitised from a handbook curve), coarse \
+                 below 800 A/m",
+        },
+        Some("FEMM 1018 Steel"),
+    ),
+    Entry::steel(
         "steel-1020",
-        MaterialKind::Steel,
         "AISI 1020 steel (FEMM 4.2 library; the thesis's flux-path steel)",
+        data_file!("steel_1020_femm_BH.csv"),
+        CurveSource::Femm { block: "1020 Steel", note: "" },
+        Some("FEMM 1020 Steel"),
     ),
-    ("air", MaterialKind::Linear, "air (mu_r = 1)"),
-    ("aluminium", MaterialKind::Linear, "aluminium 6061-T6 (mu_r = 1)"),
-    ("aluminium-1100", MaterialKind::Linear, "aluminium 1100 (mu_r = 1)"),
-    (
+    Entry::linear(
+        "air",
+        "air (mu_r = 1)",
+        "Air",
+        1.204,
+        "dry air at 20 °C and 101.325 kPa (ideal gas, M = 28.96 g/mol)",
+    ),
+    Entry::linear(
+        "aluminium",
+        "aluminium 6061-T6 (mu_r = 1)",
+        "Aluminum, 6061-T6",
+        2700.0,
+        "ASM Handbook Vol. 2 (2.70 g/cm3 for 6061)",
+    ),
+    Entry::linear(
+        "aluminium-1100",
+        "aluminium 1100 (mu_r = 1)",
+        "Aluminum, 1100",
+        2710.0,
+        "ASM Handbook Vol. 2 (2.71 g/cm3 for 1100)",
+    ),
+    Entry::linear(
         "stainless-304",
-        MaterialKind::Linear,
         "AISI 304 austenitic stainless steel, annealed (mu_r = 1)",
+        "304 Stainless Steel",
+        8000.0,
+        "ASM Handbook Vol. 1 / AISI data (8.00 g/cm3 for 304)",
     ),
-    (
+    Entry::linear(
         "stainless-316",
-        MaterialKind::Linear,
         "AISI 316 austenitic stainless steel, annealed (mu_r = 1)",
+        "316 Stainless Steel",
+        8000.0,
+        "ASM Handbook Vol. 1 / AISI data (8.00 g/cm3 for 316)",
     ),
-    ("copper", MaterialKind::Linear, "copper, 100 % IACS (mu_r = 1)"),
-    (
+    Entry::linear(
+        "copper",
+        "copper, 100 % IACS (mu_r = 1)",
+        "Copper",
+        8960.0,
+        "CRC Handbook of Chemistry and Physics (8.96 g/cm3 for Cu at 20 °C)",
+    ),
+    Entry::fluid(
         "mrf-122eg",
-        MaterialKind::MrFluid,
         "LORD MRF-122EG (default; tau_y(B) from the thesis's points)",
+        "MRF-122EG",
+        data_file!("mrf122eg_BH_carlson_fit.csv"),
+        FluidYieldStress::ThesisPoints,
     ),
-    (
+    Entry::fluid(
         "mrf-122eg-carlson",
-        MaterialKind::MrFluid,
         "LORD MRF-122EG modelled by Carlson's generic fit (phi = 0.22)",
+        "MRF-122EG",
+        data_file!("mrf122eg_BH_carlson_fit.csv"),
+        // The thesis points are the comparison for the generic fit (it misses them by up to 23 %).
+        FluidYieldStress::Carlson {
+            tau_h: data_file!("mrf122eg_tauH_carlson_fit.csv"),
+            references: References::ThesisPoints,
+        },
     ),
-    ("mrf-132dg", MaterialKind::MrFluid, "LORD MRF-132DG (Carlson's generic fit, phi = 0.32)"),
-    ("mrf-140cg", MaterialKind::MrFluid, "LORD MRF-140CG (Carlson's generic fit, phi = 0.40)"),
+    Entry::fluid(
+        "mrf-132dg",
+        "LORD MRF-132DG (Carlson's generic fit, phi = 0.32)",
+        "MRF-132DG",
+        data_file!("mrf132dg_BH_carlson_fit.csv"),
+        FluidYieldStress::Carlson {
+            tau_h: data_file!("mrf132dg_tauH_carlson_fit.csv"),
+            references: References::SpotValues,
+        },
+    ),
+    Entry::fluid(
+        "mrf-140cg",
+        "LORD MRF-140CG (Carlson's generic fit, phi = 0.40)",
+        "MRF-140CG",
+        data_file!("mrf140cg_BH_carlson_fit.csv"),
+        FluidYieldStress::Carlson {
+            tau_h: data_file!("mrf140cg_tauH_carlson_fit.csv"),
+            references: References::SpotValues,
+        },
+    ),
 ];
 
 /// Every built-in material name with its kind, in library order.
 pub fn names() -> Vec<(&'static str, MaterialKind)> {
-    CATALOGUE.iter().map(|&(name, kind, _)| (name, kind)).collect()
+    CATALOGUE.iter().map(|entry| (entry.name, entry.recipe.kind())).collect()
+}
+
+/// The names of the built-in materials whose kind passes `keep`, in library order (for errors).
+fn names_where(keep: impl Fn(MaterialKind) -> bool) -> Vec<String> {
+    CATALOGUE
+        .iter()
+        .filter(|entry| keep(entry.recipe.kind()))
+        .map(|entry| entry.name.to_string())
+        .collect()
 }
 
 /// The material called `name` (case-insensitive, surrounding spaces ignored).
@@ -87,15 +280,13 @@ pub fn get(name: &str) -> Result<&'static Material, MaterialError> {
     let wanted = name.trim().to_ascii_lowercase();
     library()?.iter().find(|m| m.name == wanted).ok_or_else(|| MaterialError::UnknownMaterial {
         name: name.to_string(),
-        known: CATALOGUE.iter().map(|c| c.0.to_string()).collect(),
+        known: names_where(|_| true),
     })
 }
 
 /// The MR fluid called `name` (case-insensitive); an error lists the fluids if `name` is not one.
 pub fn fluid(name: &str) -> Result<&'static MrFluid, MaterialError> {
-    let fluids = || {
-        CATALOGUE.iter().filter(|c| c.1 == MaterialKind::MrFluid).map(|c| c.0.to_string()).collect()
-    };
+    let fluids = || names_where(|kind| kind == MaterialKind::MrFluid);
     match get(name) {
         Ok(material) => material.fluid.as_deref().ok_or_else(|| MaterialError::UnknownMaterial {
             name: name.to_string(),
@@ -116,15 +307,11 @@ pub fn default_fluid() -> Result<&'static MrFluid, MaterialError> {
 /// The B-H curve of a non-linear material (steel or fluid); an error for a linear material.
 pub fn bh_curve(name: &str) -> Result<Arc<BhCurve>, MaterialError> {
     let material = get(name)?;
-    match &material.magnetic {
-        Magnetic::NonLinear(curve) => Ok(Arc::clone(curve)),
-        Magnetic::Linear { .. } => Err(MaterialError::UnknownMaterial {
+    match material.magnetic.bh_curve() {
+        Some(curve) => Ok(Arc::new(curve.clone())),
+        None => Err(MaterialError::UnknownMaterial {
             name: name.to_string(),
-            known: CATALOGUE
-                .iter()
-                .filter(|c| c.1 != MaterialKind::Linear)
-                .map(|c| c.0.to_string())
-                .collect(),
+            known: names_where(|kind| kind != MaterialKind::Linear),
         }),
     }
 }
@@ -134,38 +321,22 @@ pub fn all() -> Result<&'static [Material], MaterialError> {
     library()
 }
 
+/// The library, built on first use; an error here is a bug in the embedded data.
 fn library() -> Result<&'static [Material], MaterialError> {
     static LIBRARY: OnceLock<Result<Vec<Material>, MaterialError>> = OnceLock::new();
-    LIBRARY
-        .get_or_init(|| build().map_err(|e| MaterialError::BuiltinData { message: e.to_string() }))
-        .as_deref()
-        .map_err(Clone::clone)
-}
-
-/// An embedded data file: its path in the crate and its content.
-struct DataFile {
-    path: &'static str,
-    text: &'static str,
-}
-
-macro_rules! data_file {
-    ($name:literal) => {
-        DataFile { path: concat!("data/", $name), text: include_str!(concat!("../data/", $name)) }
-    };
+    LIBRARY.get_or_init(|| build().map_err(MaterialError::builtin)).as_deref().map_err(Clone::clone)
 }
 
 fn build() -> Result<Vec<Material>, MaterialError> {
     let steel_props = SteelProperties::parse()?;
-    let mut materials = Vec::with_capacity(CATALOGUE.len());
-    for &(name, kind, description) in CATALOGUE {
-        let material = match kind {
-            MaterialKind::Steel => build_steel(name, description, &steel_props)?,
-            MaterialKind::Linear => build_linear(name, description)?,
-            MaterialKind::MrFluid => build_fluid(name, description)?,
-        };
-        materials.push(material);
-    }
-    Ok(materials)
+    CATALOGUE
+        .iter()
+        .map(|entry| match &entry.recipe {
+            Recipe::Steel(recipe) => build_steel(entry, recipe, &steel_props),
+            Recipe::Linear(recipe) => build_linear(entry, recipe),
+            Recipe::Fluid(recipe) => build_fluid(entry, recipe),
+        })
+        .collect()
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -187,8 +358,8 @@ fn handbook_steel_density() -> Sourced<f64> {
     )
 }
 
-/// One row of `data/steel_properties.csv`.
-#[derive(Debug, Clone, Copy)]
+/// One row of `data/steel_properties.csv` (all `None`: a curve whose source gives no properties).
+#[derive(Debug, Clone, Copy, Default)]
 struct SteelRow {
     sigma_s_per_m: Option<f64>,
     mu_r_linear: Option<f64>,
@@ -222,88 +393,51 @@ impl SteelProperties {
     /// The row named `material`.
     fn get(&self, material: &str) -> Result<SteelRow, MaterialError> {
         self.rows.iter().find(|r| r.0 == material).map(|r| r.1).ok_or_else(|| {
-            MaterialError::BuiltinData {
-                message: format!("data/steel_properties.csv has no row `{material}`"),
+            MaterialError::MissingRow {
+                file: "data/steel_properties.csv".to_string(),
+                row: material.to_string(),
             }
         })
     }
 }
 
+/// A steel of the catalogue: its B-H file, where the curve comes from, and its row in
+/// `data/steel_properties.csv` (`None`: the source gives no properties).
+struct SteelRecipe {
+    curve: DataFile,
+    source: CurveSource,
+    properties_row: Option<&'static str>,
+}
+
+/// Where a steel's B-H curve comes from.
+enum CurveSource {
+    /// A curve with its own source, method and trust.
+    Listed { source: &'static str, method: &'static str, trust: Trust },
+    /// A block of FEMM's material library; `note` is appended to the method.
+    Femm { block: &'static str, note: &'static str },
+}
+
+impl CurveSource {
+    fn provenance(&self) -> Provenance {
+        match *self {
+            CurveSource::Listed { source, method, trust } => Provenance::new(source, method, trust),
+            CurveSource::Femm { block, note } => femm_steel(block, note),
+        }
+    }
+}
+
 fn build_steel(
-    name: &str,
-    description: &str,
+    entry: &Entry,
+    recipe: &SteelRecipe,
     props: &SteelProperties,
 ) -> Result<Material, MaterialError> {
-    let (file, provenance, props_row) = match name {
-        "steel-1008" => (
-            data_file!("steel_1008_ansys_BH.csv"),
-            Provenance::new(
-                "ANSYS Maxwell/RMxprt system library curve `steel_1008` (RMxprt VBScript export; an independent \
-                 .aedt copy holds the same first 19 points)",
-                "copied (20 points; the last one is a mu0-slope extrapolation in the source); monotone C1 \
-                 interpolation of H(B), mu0 slope beyond 1.19 MA/m",
-                Trust::MediumHigh,
-            ),
-            Some("Ansys steel_1008"),
-        ),
-        "steel-1008-modelica" => (
-            data_file!("steel_1008_modelica_fit_BH.csv"),
-            Provenance::new(
-                "Modelica Standard Library, Magnetic.FluxTubes.Material.SoftMagnetic.Steel.AISI_1008 \
-                 (mu_rApprox fit: mu_i=200, B_myMax=1.17 T, c_a=8100, c_b=2.59, n=10; data by T. Roschke)",
-                "fit formula evaluated for B = 0..2 T in 0.05 T steps; agrees with the ANSYS curve within 1.2 % \
-                 at 1/5/20 kA/m; beyond 2 T the curve is continued with slope mu0, which the fit does not \
-                 support (it is still at ~7.5 mu0 there)",
-                Trust::Medium,
-            ),
-            None,
-        ),
-        "steel-1006" => (
-            data_file!("steel_1006_femm_BH.csv"),
-            femm_steel("1006 Steel", ""),
-            Some("FEMM 1006 Steel"),
-        ),
-        "steel-1010" => (
-            data_file!("steel_1010_femm_BH.csv"),
-            femm_steel("1010 Steel", ""),
-            Some("FEMM 1010 Steel"),
-        ),
-        "steel-1018" => (
-            data_file!("steel_1018_femm_BH.csv"),
-            femm_steel(
-                "1018 Steel",
-                "; only 13 points at round Oersted values (probably digitised from a handbook curve), coarse \
-                 below 800 A/m",
-            ),
-            Some("FEMM 1018 Steel"),
-        ),
-        "steel-1020" => (
-            data_file!("steel_1020_femm_BH.csv"),
-            femm_steel("1020 Steel", ""),
-            Some("FEMM 1020 Steel"),
-        ),
-        "steel-1010-motorproto" => (
-            data_file!("steel_1010_motorproto_BH.csv"),
-            Provenance::new(
-                "MPEL/MotorProto, Materials/Steel1010.m, commit abfb602d92ed4634501463ae457b8b1ac402df6d",
-                "copied (the last point is a mu0-slope extrapolation in the source); noticeably softer than \
-                 FEMM's 1010 below 2 kA/m (B(1 kA/m) = 1.04 T vs 1.42 T): treat the spread as material \
-                 uncertainty",
-                Trust::MediumLow,
-            ),
-            Some("MotorProto Steel1010"),
-        ),
-        other => {
-            return Err(MaterialError::BuiltinData {
-                message: format!("no steel data for `{other}`"),
-            });
-        }
-    };
-    let curve = BhCurve::from_csv_str(file.text, file.path, provenance.clone())?;
-    let SteelRow { sigma_s_per_m: sigma, mu_r_linear, density_kg_m3: density } = match props_row {
-        Some(row) => props.get(row)?,
-        None => SteelRow { sigma_s_per_m: None, mu_r_linear: None, density_kg_m3: None },
-    };
+    let provenance = recipe.source.provenance();
+    let curve = BhCurve::from_csv_str(recipe.curve.text, recipe.curve.path, provenance.clone())?;
+    let SteelRow { sigma_s_per_m: sigma, mu_r_linear, density_kg_m3: density } =
+        match recipe.properties_row {
+            Some(row) => props.get(row)?,
+            None => SteelRow::default(),
+        };
     let props_provenance = |what: &str| {
         Provenance::new(
             format!("data/steel_properties.csv, taken from the same source as the curve ({what})"),
@@ -312,9 +446,9 @@ fn build_steel(
         )
     };
     Ok(Material {
-        name: name.to_string(),
+        name: entry.name.to_string(),
         kind: MaterialKind::Steel,
-        description: description.to_string(),
+        description: entry.description.to_string(),
         magnetic: Magnetic::NonLinear(Arc::new(curve)),
         provenance: provenance.clone(),
         density_kg_m3: Some(match density {
@@ -341,33 +475,24 @@ fn femm_steel(block: &str, note: &str) -> Provenance {
 // ---------------------------------------------------------------------------------------------------
 // Linear materials
 
-fn build_linear(name: &str, description: &str) -> Result<Material, MaterialError> {
-    let (femm_block, density, density_source) = match name {
-        "air" => ("Air", 1.204, "dry air at 20 °C and 101.325 kPa (ideal gas, M = 28.96 g/mol)"),
-        "aluminium" => ("Aluminum, 6061-T6", 2700.0, "ASM Handbook Vol. 2 (2.70 g/cm3 for 6061)"),
-        "aluminium-1100" => ("Aluminum, 1100", 2710.0, "ASM Handbook Vol. 2 (2.71 g/cm3 for 1100)"),
-        "stainless-304" => {
-            ("304 Stainless Steel", 8000.0, "ASM Handbook Vol. 1 / AISI data (8.00 g/cm3 for 304)")
-        }
-        "stainless-316" => {
-            ("316 Stainless Steel", 8000.0, "ASM Handbook Vol. 1 / AISI data (8.00 g/cm3 for 316)")
-        }
-        "copper" => {
-            ("Copper", 8960.0, "CRC Handbook of Chemistry and Physics (8.96 g/cm3 for Cu at 20 °C)")
-        }
-        other => {
-            return Err(MaterialError::BuiltinData {
-                message: format!("no linear data for `{other}`"),
-            });
-        }
-    };
+/// A linear material of the catalogue: its FEMM block and its handbook density with the source.
+struct LinearRecipe {
+    femm_block: &'static str,
+    density_kg_m3: f64,
+    density_source: &'static str,
+}
+
+fn build_linear(entry: &Entry, recipe: &LinearRecipe) -> Result<Material, MaterialError> {
+    let &LinearRecipe { femm_block, density_kg_m3: density, density_source } = recipe;
+    let name = entry.name;
     let file = data_file!("linear_materials_femm.csv");
     let header = ["material", "mu_r", "sigma_S_per_m"];
     let row = read_rows(file.text, file.path, &header)?
         .into_iter()
         .find(|r| r.text(0) == femm_block)
-        .ok_or_else(|| MaterialError::BuiltinData {
-            message: format!("{} has no row `{femm_block}`", file.path),
+        .ok_or_else(|| MaterialError::MissingRow {
+            file: file.path.to_string(),
+            row: femm_block.to_string(),
         })?;
     let mu_r = row.number(1, header[1], file.path)?;
     let sigma = row.number(2, header[2], file.path)?;
@@ -382,7 +507,7 @@ fn build_linear(name: &str, description: &str) -> Result<Material, MaterialError
     Ok(Material {
         name: name.to_string(),
         kind: MaterialKind::Linear,
-        description: description.to_string(),
+        description: entry.description.to_string(),
         magnetic: Magnetic::Linear { mu_r },
         provenance: provenance.clone(),
         density_kg_m3: Some(Sourced::new(
@@ -442,8 +567,9 @@ fn fluid_properties(product: &str) -> Result<FluidProperties, MaterialError> {
     let row = read_rows(file.text, file.path, &header)?
         .into_iter()
         .find(|r| r.text(0) == product)
-        .ok_or_else(|| MaterialError::BuiltinData {
-            message: format!("{} has no row `{product}`", file.path),
+        .ok_or_else(|| MaterialError::MissingRow {
+            file: file.path.to_string(),
+            row: product.to_string(),
         })?;
     Ok(FluidProperties {
         phi: row.number(1, header[1], file.path)?,
@@ -475,33 +601,34 @@ fn spot_values(product: &str) -> Result<Vec<ReferencePoint>, MaterialError> {
         .collect()
 }
 
-fn build_fluid(name: &str, description: &str) -> Result<Material, MaterialError> {
-    let (product, bh_file, carlson_tau_h_file) = match name {
-        "mrf-122eg" => ("MRF-122EG", data_file!("mrf122eg_BH_carlson_fit.csv"), None),
-        "mrf-122eg-carlson" => (
-            "MRF-122EG",
-            data_file!("mrf122eg_BH_carlson_fit.csv"),
-            Some(data_file!("mrf122eg_tauH_carlson_fit.csv")),
-        ),
-        "mrf-132dg" => (
-            "MRF-132DG",
-            data_file!("mrf132dg_BH_carlson_fit.csv"),
-            Some(data_file!("mrf132dg_tauH_carlson_fit.csv")),
-        ),
-        "mrf-140cg" => (
-            "MRF-140CG",
-            data_file!("mrf140cg_BH_carlson_fit.csv"),
-            Some(data_file!("mrf140cg_tauH_carlson_fit.csv")),
-        ),
-        other => {
-            return Err(MaterialError::BuiltinData {
-                message: format!("no fluid data for `{other}`"),
-            });
-        }
-    };
-    let props = fluid_properties(product)?;
+/// An MR fluid of the catalogue: the product (its row in `data/mrf_properties.csv`), its B-H file
+/// and where its yield stress comes from.
+struct FluidRecipe {
+    product: &'static str,
+    bh: DataFile,
+    yield_stress: FluidYieldStress,
+}
+
+/// Where a fluid's yield stress comes from.
+enum FluidYieldStress {
+    /// The thesis's `τ_y(B)` points for MRF-122EG (also the fluid's reference points).
+    ThesisPoints,
+    /// Carlson's generic `τ_y(H)` fit, tabulated in `tau_h`, compared against `references`.
+    Carlson { tau_h: DataFile, references: References },
+}
+
+/// The points a Carlson-fit fluid is compared against.
+enum References {
+    /// The thesis's MRF-122EG points.
+    ThesisPoints,
+    /// The low-trust spot values of `data/mrf132dg_mrf140cg_spot_values_lowtrust.csv`.
+    SpotValues,
+}
+
+fn build_fluid(entry: &Entry, recipe: &FluidRecipe) -> Result<Material, MaterialError> {
+    let props = fluid_properties(recipe.product)?;
     let bh_provenance = Provenance::new(
-        format!("{CARLSON_SOURCE}; file {}", bh_file.path),
+        format!("{CARLSON_SOURCE}; file {}", recipe.bh.path),
         format!(
             "fit formula evaluated (phi = {}) on H = 0..1 MA/m; a generic family fit, not the product datasheet \
              (no digitised LORD B-H curve was found)",
@@ -509,45 +636,77 @@ fn build_fluid(name: &str, description: &str) -> Result<Material, MaterialError>
         ),
         Trust::MediumLow,
     );
-    let bh = Arc::new(BhCurve::from_csv_str(bh_file.text, bh_file.path, bh_provenance.clone())?);
+    let bh =
+        Arc::new(BhCurve::from_csv_str(recipe.bh.text, recipe.bh.path, bh_provenance.clone())?);
+    let (yield_stress, reference_points) = fluid_yield_stress(recipe, &props)?;
+    let density = fluid_density(&props);
+    let phi = Sourced::new(props.phi, Provenance::new(KUBIK, "copied (vol%)", Trust::Medium));
+    let mut fluid = MrFluid::new(
+        entry.name,
+        Arc::clone(&bh),
+        yield_stress,
+        phi,
+        props.carrier.clone(),
+        fluid_viscosities(&props),
+        density.clone(),
+    );
+    fluid.reference_points = reference_points;
+    Ok(Material {
+        name: entry.name.to_string(),
+        kind: MaterialKind::MrFluid,
+        description: entry.description.to_string(),
+        magnetic: Magnetic::NonLinear(bh),
+        provenance: bh_provenance,
+        density_kg_m3: Some(density),
+        conductivity_s_per_m: None,
+        mu_r_linear: None,
+        fluid: Some(Arc::new(fluid)),
+    })
+}
 
-    let (yield_stress, reference_points) = match carlson_tau_h_file {
-        None => mrf122eg_thesis_yield_stress()?,
-        Some(file) => {
-            let ceiling = carlson_tau_ceiling_pa(props.phi);
-            let provenance = Provenance::new(
-                format!("{CARLSON_SOURCE}; file {}", file.path),
-                format!(
-                    "fit formula evaluated (phi = {}) on H = 0..1 MA/m, monotone C1 interpolation in H; above \
-                     1 MA/m a C1 exponential tail to the fit's asymptote 271700 phi^1.5239 = {ceiling:.0} Pa; \
-                     tau_y(B) = tau_y(H(B)) through the fluid's B-H curve",
-                    props.phi
-                ),
-                Trust::MediumLow,
-            );
-            let curve = YieldStressCurve::from_csv_str(
-                file.text,
-                file.path,
-                FieldVariable::FieldStrength,
-                ceiling,
-                provenance,
-            )?;
-            let references = if name == "mrf-122eg-carlson" {
-                // The thesis points are the comparison for the generic fit (it misses them by up to 23 %).
-                thesis_points()?
-            } else {
-                spot_values(product)?
-            };
-            (curve, references)
-        }
+/// The fluid's yield-stress curve and the reference points it is compared against.
+fn fluid_yield_stress(
+    recipe: &FluidRecipe,
+    props: &FluidProperties,
+) -> Result<(YieldStressCurve, Vec<ReferencePoint>), MaterialError> {
+    let FluidYieldStress::Carlson { tau_h: file, references } = &recipe.yield_stress else {
+        return mrf122eg_thesis_yield_stress();
     };
+    let ceiling = carlson_tau_ceiling_pa(props.phi);
+    let provenance = Provenance::new(
+        format!("{CARLSON_SOURCE}; file {}", file.path),
+        format!(
+            "fit formula evaluated (phi = {}) on H = 0..1 MA/m, monotone C1 interpolation in H; above \
+             1 MA/m a C1 exponential tail to the fit's asymptote 271700 phi^1.5239 = {ceiling:.0} Pa; \
+             tau_y(B) = tau_y(H(B)) through the fluid's B-H curve",
+            props.phi
+        ),
+        Trust::MediumLow,
+    );
+    let curve = YieldStressCurve::from_csv_str(
+        file.text,
+        file.path,
+        FieldVariable::FieldStrength,
+        ceiling,
+        provenance,
+    )?;
+    let references = match references {
+        References::ThesisPoints => thesis_points()?,
+        References::SpotValues => spot_values(recipe.product)?,
+    };
+    Ok((curve, references))
+}
 
-    let kubik = "Kubik et al., Smart Mater. Struct. 32 (2023) 035007, as tabulated in public repository files \
+/// Source of the fluids' iron fractions and 30 °C viscosities.
+const KUBIK: &str = "Kubik et al., Smart Mater. Struct. 32 (2023) 035007, as tabulated in public repository files \
                  (column base_viscosity_at_30C_cP; shear rate not stated)";
+
+/// The off-state viscosities: at 30 °C (the default), and at 40 °C where known.
+fn fluid_viscosities(props: &FluidProperties) -> Vec<Viscosity> {
     let mut viscosities = vec![Viscosity {
         pa_s: props.viscosity_30c,
         temperature_c: 30.0,
-        provenance: Provenance::new(kubik, "copied, cP converted to Pa.s", Trust::Medium),
+        provenance: Provenance::new(KUBIK, "copied, cP converted to Pa.s", Trust::Medium),
     }];
     if let Some(eta) = props.viscosity_40c {
         viscosities.push(Viscosity {
@@ -560,9 +719,14 @@ fn build_fluid(name: &str, description: &str) -> Result<Material, MaterialError>
             ),
         });
     }
+    viscosities
+}
+
+/// The density, low trust when `data/mrf_properties.csv` marks it as an estimate.
+fn fluid_density(props: &FluidProperties) -> Sourced<f64> {
     let density_trust =
         if props.density_kind.starts_with("estimate") { Trust::Low } else { Trust::Medium };
-    let density = Sourced::new(
+    Sourced::new(
         props.density,
         Provenance::new(
             "data/mrf_properties.csv",
@@ -577,29 +741,7 @@ fn build_fluid(name: &str, description: &str) -> Result<Material, MaterialError>
             ),
             density_trust,
         ),
-    );
-    let phi = Sourced::new(props.phi, Provenance::new(kubik, "copied (vol%)", Trust::Medium));
-    let mut fluid = MrFluid::new(
-        name,
-        Arc::clone(&bh),
-        yield_stress,
-        phi,
-        props.carrier,
-        viscosities,
-        density.clone(),
-    );
-    fluid.reference_points = reference_points;
-    Ok(Material {
-        name: name.to_string(),
-        kind: MaterialKind::MrFluid,
-        description: description.to_string(),
-        magnetic: Magnetic::NonLinear(bh),
-        provenance: bh_provenance,
-        density_kg_m3: Some(density),
-        conductivity_s_per_m: None,
-        mu_r_linear: None,
-        fluid: Some(Arc::new(fluid)),
-    })
+    )
 }
 
 /// The 14 `(B, τ_y)` points the thesis uses for MRF-122EG (its reading of the LORD datasheet).

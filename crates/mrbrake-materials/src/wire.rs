@@ -165,10 +165,7 @@ pub fn thesis_current_rating_a(awg: u32) -> Option<f64> {
 pub fn awg_table() -> Result<&'static [AwgRow], MaterialError> {
     static TABLE: OnceLock<Result<Vec<AwgRow>, MaterialError>> = OnceLock::new();
     TABLE
-        .get_or_init(|| {
-            parse_awg_table(AWG_CSV, AWG_FILE)
-                .map_err(|e| MaterialError::BuiltinData { message: e.to_string() })
-        })
+        .get_or_init(|| parse_awg_table(AWG_CSV, AWG_FILE).map_err(MaterialError::builtin))
         .as_deref()
         .map_err(Clone::clone)
 }

@@ -2,15 +2,15 @@
 //! exactness at the data points, C¹ continuity, monotonicity, the μ0 extrapolation, and the
 //! consistency of `ν(B²)` with `dν/dB²` (finite differences over the whole range).
 
-use mrbrake_materials::{BhCurve, MU_0, Magnetic, Provenance, Trust, library};
+use mrbrake_materials::{BhCurve, MU_0, Provenance, Trust, library};
 use proptest::prelude::*;
 
 fn library_curves() -> Vec<(&'static str, std::sync::Arc<BhCurve>)> {
     library::names()
         .into_iter()
-        .filter_map(|(name, _)| match &library::get(name).unwrap().magnetic {
-            Magnetic::NonLinear(c) => Some((name, c.clone())),
-            Magnetic::Linear { .. } => None,
+        .filter_map(|(name, _)| {
+            let curve = library::get(name).unwrap().magnetic.bh_curve()?.clone();
+            Some((name, std::sync::Arc::new(curve)))
         })
         .collect()
 }

@@ -8,6 +8,10 @@
 //! drawn without bias by Lemire's multiply-and-reject method (Lemire, "Fast random integer generation
 //! in an interval", ACM Trans. Model. Comput. Simul. 29(1), 2019).
 //!
+//! [`SplitMix64`] is also public: the one SplitMix64 stream of mrbrake, which the virtual rig's
+//! sensor noise draws from as well (a counter stream is all a noise generator needs, and the rig's
+//! logs stay the same for a given seed).
+//!
 //! ```
 //! use mrbrake_optim::rng::Rng;
 //! let mut a = Rng::new(42);
@@ -17,14 +21,30 @@
 //! assert!((0.0..1.0).contains(&u));
 //! ```
 
-/// One step of splitmix64: advances `state` by the golden-ratio increment and returns the mixed
-/// output (Steele, Lea & Flood 2014; constants from Vigna's reference `splitmix64.c`).
-fn splitmix64(state: &mut u64) -> u64 {
-    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
+/// The splitmix64 generator (Steele, Lea & Flood 2014; constants from Vigna's reference
+/// `splitmix64.c`): a 64-bit counter advanced by the golden-ratio increment, each value mixed into
+/// the output. Period 2^64; every seed is valid. Seeds [`Rng`], and serves on its own where a
+/// small, fast stream is enough (the virtual rig's sensor noise).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SplitMix64 {
+    state: u64,
+}
+
+impl SplitMix64 {
+    /// A stream determined entirely by `seed` (its first output mixes `seed + 0x9E37…7C15`).
+    pub const fn new(seed: u64) -> Self {
+        Self { state: seed }
+    }
+
+    /// The next 64 random bits.
+    #[inline]
+    pub fn next_u64(&mut self) -> u64 {
+        self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
 }
 
 /// The xoshiro256** generator (Blackman & Vigna 2018), seeded by splitmix64.
@@ -42,9 +62,8 @@ impl Rng {
     /// splitmix64 is a bijection of its counter, so the four outputs are distinct and the state can
     /// never be all zero (the one state xoshiro must avoid).
     pub fn new(seed: u64) -> Self {
-        let mut sm = seed;
-        let state =
-            [splitmix64(&mut sm), splitmix64(&mut sm), splitmix64(&mut sm), splitmix64(&mut sm)];
+        let mut sm = SplitMix64::new(seed);
+        let state = [sm.next_u64(), sm.next_u64(), sm.next_u64(), sm.next_u64()];
         Self { state }
     }
 
@@ -123,7 +142,7 @@ mod tests {
     fn splitmix64_matches_the_published_sequence() {
         // Reference outputs for seed 1234567 from the splitmix64 reference implementation
         // (as reproduced on Rosetta Code, "Pseudo-random numbers/Splitmix64").
-        let mut s = 1_234_567u64;
+        let mut s = SplitMix64::new(1_234_567);
         let expected = [
             6_457_827_717_110_365_317u64,
             3_203_168_211_198_807_973,
@@ -132,7 +151,7 @@ mod tests {
             16_408_922_859_458_223_821,
         ];
         for e in expected {
-            assert_eq!(splitmix64(&mut s), e);
+            assert_eq!(s.next_u64(), e);
         }
     }
 

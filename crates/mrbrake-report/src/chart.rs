@@ -170,6 +170,22 @@ impl Panel {
         self
     }
 
+    /// The points of `series` that can be drawn on this panel's axes: finite, and positive on a
+    /// logarithmic axis.
+    fn drawable_points(&self, series: &Series) -> Vec<(f64, f64)> {
+        series
+            .points
+            .iter()
+            .copied()
+            .filter(|(x, y)| {
+                x.is_finite()
+                    && y.is_finite()
+                    && (self.x_scale == Scale::Linear || *x > 0.0)
+                    && (self.y_scale == Scale::Linear || *y > 0.0)
+            })
+            .collect()
+    }
+
     fn data_range(&self, axis: usize, scale: Scale) -> Result<(f64, f64), ReportError> {
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
@@ -257,38 +273,18 @@ impl Figure {
 
     /// Renders the figure as an SVG document.
     pub fn to_svg(&self) -> Result<String, ReportError> {
-        let mut buf = String::new();
-        {
-            let root = SVGBackend::with_string(&mut buf, self.size).into_drawing_area();
-            self.draw(&root)?;
-            root.present().map_err(|e| ReportError::Backend(e.to_string()))?;
-        }
-        Ok(buf)
+        render_svg(self)
     }
 
     /// Writes the figure to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
     pub fn save(&self, path: &Path) -> Result<(), ReportError> {
-        let is_png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
-        if !is_png {
-            return crate::write_atomic(path, self.to_svg()?.as_bytes());
-        }
-        // The bitmap backend encodes by file name, so render to a temporary .png beside the target
-        // and rename it into place (same directory, so the rename is atomic).
-        let tmp = crate::atomic::temp_path_for(path)?.with_extension("png");
-        let io_err = |source| ReportError::Io { path: path.to_path_buf(), source };
-        let drawn = (|| {
-            let root = BitMapBackend::new(&tmp, self.size).into_drawing_area();
-            self.draw(&root)?;
-            root.present().map_err(|e| ReportError::Backend(e.to_string()))
-        })();
-        if let Err(e) = drawn {
-            let _ = std::fs::remove_file(&tmp);
-            return Err(e);
-        }
-        std::fs::rename(&tmp, path).map_err(|e| {
-            let _ = std::fs::remove_file(&tmp);
-            io_err(e)
-        })
+        save_picture(self, path)
+    }
+}
+
+impl Picture for Figure {
+    fn size(&self) -> (u32, u32) {
+        self.size
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ReportError> {
@@ -310,6 +306,50 @@ impl Figure {
         }
         Ok(())
     }
+}
+
+/// Something drawn on any plotters backend at a fixed pixel size (a [`Figure`], a field map), so
+/// that one function renders it as SVG and one saves it as SVG or PNG.
+pub(crate) trait Picture {
+    /// Width and height in pixels.
+    fn size(&self) -> (u32, u32);
+    /// Draws the whole picture on `root`.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ReportError>;
+}
+
+/// The SVG document of `picture`.
+pub(crate) fn render_svg(picture: &impl Picture) -> Result<String, ReportError> {
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, picture.size()).into_drawing_area();
+        picture.draw(&root)?;
+        root.present().map_err(|e| ReportError::Backend(e.to_string()))?;
+    }
+    Ok(buf)
+}
+
+/// Writes `picture` to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
+pub(crate) fn save_picture(picture: &impl Picture, path: &Path) -> Result<(), ReportError> {
+    let is_png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !is_png {
+        return crate::write_atomic(path, render_svg(picture)?.as_bytes());
+    }
+    // The bitmap backend encodes by file name, so render to a temporary .png beside the target
+    // and rename it into place (same directory, so the rename is atomic).
+    let tmp = crate::atomic::temp_path_for(path)?.with_extension("png");
+    let drawn = (|| {
+        let root = BitMapBackend::new(&tmp, picture.size()).into_drawing_area();
+        picture.draw(&root)?;
+        root.present().map_err(|e| ReportError::Backend(e.to_string()))
+    })();
+    if let Err(e) = drawn {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, path).map_err(|source| {
+        let _ = std::fs::remove_file(&tmp);
+        ReportError::Io { path: path.to_path_buf(), source }
+    })
 }
 
 /// Palette: distinguishable colours (Okabe–Ito, colour-blind safe) then plotters' Palette99.
@@ -344,7 +384,8 @@ fn draw_panel<DB: DrawingBackend>(
         Some(r) => r,
         None => panel.data_range(1, panel.y_scale)?,
     };
-    // The four scale combinations are four chart types in plotters; a macro keeps them one body.
+    let be = |e: DrawingAreaErrorKind<DB::ErrorType>| ReportError::Backend(e.to_string());
+    // The four scale combinations are four chart types in plotters; a macro keeps the axes one body.
     macro_rules! with_chart {
         ($xr:expr, $yr:expr) => {{
             let mut builder = ChartBuilder::on(area);
@@ -352,9 +393,7 @@ fn draw_panel<DB: DrawingBackend>(
             if !panel.caption.is_empty() {
                 builder.caption(&panel.caption, ("sans-serif", 17));
             }
-            let mut chart = builder
-                .build_cartesian_2d($xr, $yr)
-                .map_err(|e| ReportError::Backend(e.to_string()))?;
+            let mut chart = builder.build_cartesian_2d($xr, $yr).map_err(be)?;
             chart
                 .configure_mesh()
                 .x_desc(panel.x_label.as_str())
@@ -362,55 +401,8 @@ fn draw_panel<DB: DrawingBackend>(
                 .label_style(("sans-serif", 13))
                 .light_line_style(RGBColor(235, 235, 235))
                 .draw()
-                .map_err(|e| ReportError::Backend(e.to_string()))?;
-            let mut any_label = false;
-            for (i, s) in panel.series.iter().enumerate() {
-                let color = palette(s.color.unwrap_or(i));
-                let pts: Vec<(f64, f64)> = s
-                    .points
-                    .iter()
-                    .copied()
-                    .filter(|(x, y)| {
-                        x.is_finite()
-                            && y.is_finite()
-                            && (panel.x_scale == Scale::Linear || *x > 0.0)
-                            && (panel.y_scale == Scale::Linear || *y > 0.0)
-                    })
-                    .collect();
-                let style = ShapeStyle::from(&color).stroke_width(2);
-                if s.mark == Mark::LinePoints {
-                    chart
-                        .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                        .map_err(|e| ReportError::Backend(e.to_string()))?;
-                }
-                let anno = match s.mark {
-                    Mark::Line | Mark::LinePoints => chart
-                        .draw_series(LineSeries::new(pts.iter().copied(), style))
-                        .map_err(|e| ReportError::Backend(e.to_string()))?,
-                    Mark::Dashed => chart
-                        .draw_series(DashedLineSeries::new(pts.iter().copied(), 6, 4, style))
-                        .map_err(|e| ReportError::Backend(e.to_string()))?,
-                    Mark::Points => chart
-                        .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                        .map_err(|e| ReportError::Backend(e.to_string()))?,
-                };
-                if !s.label.is_empty() {
-                    any_label = true;
-                    anno.label(s.label.as_str()).legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
-                    });
-                }
-            }
-            if any_label {
-                chart
-                    .configure_series_labels()
-                    .background_style(WHITE.mix(0.85))
-                    .border_style(RGBColor(180, 180, 180))
-                    .label_font(("sans-serif", 13))
-                    .position(panel.legend.clone())
-                    .draw()
-                    .map_err(|e| ReportError::Backend(e.to_string()))?;
-            }
+                .map_err(be)?;
+            draw_series(&mut chart, panel)
         }};
     }
     match (panel.x_scale, panel.y_scale) {
@@ -418,6 +410,52 @@ fn draw_panel<DB: DrawingBackend>(
         (Scale::Log, Scale::Linear) => with_chart!((x0..x1).log_scale(), y0..y1),
         (Scale::Linear, Scale::Log) => with_chart!(x0..x1, (y0..y1).log_scale()),
         (Scale::Log, Scale::Log) => with_chart!((x0..x1).log_scale(), (y0..y1).log_scale()),
+    }
+}
+
+/// Draws the panel's series on `chart` (axes already drawn), then the legend of the labelled ones.
+fn draw_series<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)>>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    panel: &Panel,
+) -> Result<(), ReportError> {
+    let be = |e: DrawingAreaErrorKind<DB::ErrorType>| ReportError::Backend(e.to_string());
+    let mut any_label = false;
+    for (i, s) in panel.series.iter().enumerate() {
+        let color = palette(s.color.unwrap_or(i));
+        let pts = panel.drawable_points(s);
+        let style = ShapeStyle::from(&color).stroke_width(2);
+        if s.mark == Mark::LinePoints {
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(be)?;
+        }
+        let anno = match s.mark {
+            Mark::Line | Mark::LinePoints => {
+                chart.draw_series(LineSeries::new(pts.iter().copied(), style)).map_err(be)?
+            }
+            Mark::Dashed => chart
+                .draw_series(DashedLineSeries::new(pts.iter().copied(), 6, 4, style))
+                .map_err(be)?,
+            Mark::Points => chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(be)?,
+        };
+        if !s.label.is_empty() {
+            any_label = true;
+            anno.label(s.label.as_str()).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+            });
+        }
+    }
+    if any_label {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .label_font(("sans-serif", 13))
+            .position(panel.legend.clone())
+            .draw()
+            .map_err(be)?;
     }
     Ok(())
 }

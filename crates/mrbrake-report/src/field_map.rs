@@ -14,6 +14,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::ReportError;
+use crate::chart::{Picture, render_svg, save_picture};
 
 /// The data of a field map.
 #[derive(Debug, Clone, Copy)]
@@ -124,7 +125,8 @@ pub fn contour_segments(
     segments
 }
 
-/// Edges shared by triangles of different regions, and boundary edges.
+/// Edges shared by triangles of different regions (in triangle order), then the boundary edges
+/// (sorted).
 fn outline_edges(map: &FieldMap<'_>) -> Vec<[usize; 2]> {
     let mut seen: HashMap<(usize, usize), (u32, bool)> =
         HashMap::with_capacity(3 * map.triangles.len() / 2);
@@ -146,30 +148,56 @@ fn outline_edges(map: &FieldMap<'_>) -> Vec<[usize; 2]> {
             }
         }
     }
-    outline.extend(seen.iter().filter(|(_, v)| !v.1).map(|(k, _)| [k.0, k.1]));
+    // Boundary edges in node order: the hash map's order changes from run to run, and the SVG
+    // should not.
+    let mut boundary: Vec<[usize; 2]> =
+        seen.iter().filter(|(_, v)| !v.1).map(|(k, _)| [k.0, k.1]).collect();
+    boundary.sort_unstable();
+    outline.extend(boundary);
     outline
 }
 
-fn draw<DB: DrawingBackend>(
+impl Picture for FieldMap<'_> {
+    fn size(&self) -> (u32, u32) {
+        size_for(self)
+    }
+
+    /// The map on the left (|B| colours, flux lines, region outlines), its colour bar on the right.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ReportError> {
+        crate::chart::ensure_font();
+        root.fill(&WHITE).map_err(backend)?;
+        let (width, _) = root.dim_in_pixel();
+        let (plot_area, bar_area) = root.split_horizontally(width.saturating_sub(150));
+        let b_max =
+            self.b_abs_t.iter().cloned().filter(|b| b.is_finite()).fold(0.0, f64::max).max(1e-12);
+        draw_map(self, &plot_area, b_max)?;
+        draw_colour_bar(&bar_area, b_max)
+    }
+}
+
+/// A plotters drawing error as a [`ReportError`].
+fn backend<E: std::error::Error + Send + Sync>(e: DrawingAreaErrorKind<E>) -> ReportError {
+    ReportError::Backend(e.to_string())
+}
+
+/// Millimetres per metre: the map's axes are in mm.
+const MM: f64 = 1e3;
+
+/// The (r, z) map in mm: every triangle in the colour of its |B| / `b_max`, the flux lines in white
+/// and the region outlines in black.
+fn draw_map<DB: DrawingBackend>(
     map: &FieldMap<'_>,
-    root: &DrawingArea<DB, Shift>,
+    area: &DrawingArea<DB, Shift>,
+    b_max: f64,
 ) -> Result<(), ReportError> {
-    crate::chart::ensure_font();
-    let be = |e: DrawingAreaErrorKind<DB::ErrorType>| ReportError::Backend(e.to_string());
-    root.fill(&WHITE).map_err(be)?;
-    let (width, _) = root.dim_in_pixel();
-    let (plot_area, bar_area) = root.split_horizontally(width.saturating_sub(150));
     let (lo, hi) = bounds(map.nodes);
-    let mm = 1e3;
-    let b_max =
-        map.b_abs_t.iter().cloned().filter(|b| b.is_finite()).fold(0.0, f64::max).max(1e-12);
-    let mut chart = ChartBuilder::on(&plot_area)
+    let mut chart = ChartBuilder::on(area)
         .caption(map.title, ("sans-serif", 18))
         .margin(10)
         .x_label_area_size(40)
         .y_label_area_size(55)
-        .build_cartesian_2d(lo[0] * mm..hi[0] * mm, lo[1] * mm..hi[1] * mm)
-        .map_err(be)?;
+        .build_cartesian_2d(lo[0] * MM..hi[0] * MM, lo[1] * MM..hi[1] * MM)
+        .map_err(backend)?;
     chart
         .configure_mesh()
         .disable_mesh()
@@ -177,48 +205,55 @@ fn draw<DB: DrawingBackend>(
         .y_desc("z [mm]")
         .label_style(("sans-serif", 13))
         .draw()
-        .map_err(be)?;
+        .map_err(backend)?;
+    let in_mm = |v: usize| (map.nodes[v][0] * MM, map.nodes[v][1] * MM);
     chart
         .draw_series(map.triangles.iter().zip(map.b_abs_t).map(|(tri, b)| {
-            let points: Vec<(f64, f64)> =
-                tri.iter().map(|&v| (map.nodes[v][0] * mm, map.nodes[v][1] * mm)).collect();
+            let points: Vec<(f64, f64)> = tri.iter().map(|&v| in_mm(v)).collect();
             let c = colour(b / b_max);
             // Stroke with the fill colour so no hairline gaps show between triangles.
             Polygon::new(points, c.filled().stroke_width(1))
         }))
-        .map_err(be)?;
-    let (psi_lo, psi_hi) = map
-        .flux_function
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
-    if psi_hi > psi_lo && map.flux_lines > 0 {
-        for k in 1..=map.flux_lines {
-            let level = psi_lo + (psi_hi - psi_lo) * (k as f64 - 0.5) / map.flux_lines as f64;
-            let segments = contour_segments(map.nodes, map.triangles, map.flux_function, level);
-            chart
-                .draw_series(segments.iter().map(|s| {
-                    PathElement::new(
-                        vec![(s[0].0 * mm, s[0].1 * mm), (s[1].0 * mm, s[1].1 * mm)],
-                        WHITE.mix(0.9).stroke_width(1),
-                    )
-                }))
-                .map_err(be)?;
-        }
+        .map_err(backend)?;
+    for level in flux_levels(map.flux_function, map.flux_lines) {
+        let segments = contour_segments(map.nodes, map.triangles, map.flux_function, level);
+        chart
+            .draw_series(segments.iter().map(|s| {
+                PathElement::new(
+                    vec![(s[0].0 * MM, s[0].1 * MM), (s[1].0 * MM, s[1].1 * MM)],
+                    WHITE.mix(0.9).stroke_width(1),
+                )
+            }))
+            .map_err(backend)?;
     }
-    let outline = outline_edges(map);
     chart
-        .draw_series(outline.iter().map(|e| {
-            PathElement::new(
-                vec![
-                    (map.nodes[e[0]][0] * mm, map.nodes[e[0]][1] * mm),
-                    (map.nodes[e[1]][0] * mm, map.nodes[e[1]][1] * mm),
-                ],
-                BLACK.stroke_width(1),
-            )
-        }))
-        .map_err(be)?;
-    // Colour bar.
-    let mut bar = ChartBuilder::on(&bar_area)
+        .draw_series(
+            outline_edges(map)
+                .iter()
+                .map(|e| PathElement::new(vec![in_mm(e[0]), in_mm(e[1])], BLACK.stroke_width(1))),
+        )
+        .map_err(backend)?;
+    Ok(())
+}
+
+/// `count` levels of the flux function, equally spaced and centred in its range, so that the
+/// lines carry equal flux; none when the function is constant.
+fn flux_levels(psi: &[f64], count: usize) -> Vec<f64> {
+    let (psi_lo, psi_hi) =
+        psi.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+    if psi_hi > psi_lo && count > 0 {
+        (1..=count).map(|k| psi_lo + (psi_hi - psi_lo) * (k as f64 - 0.5) / count as f64).collect()
+    } else {
+        Vec::new()
+    }
+}
+
+/// The colour bar from 0 to `b_max` tesla, in 64 steps.
+fn draw_colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    b_max: f64,
+) -> Result<(), ReportError> {
+    let mut bar = ChartBuilder::on(area)
         .margin_top(40)
         .margin_bottom(50)
         .margin_right(60)
@@ -226,56 +261,33 @@ fn draw<DB: DrawingBackend>(
         .right_y_label_area_size(50)
         .caption("|B| [T]", ("sans-serif", 14))
         .build_cartesian_2d(0.0..1.0, 0.0..b_max)
-        .map_err(be)?;
+        .map_err(backend)?;
     bar.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
         .y_labels(6)
         .label_style(("sans-serif", 12))
         .draw()
-        .map_err(be)?;
+        .map_err(backend)?;
     let steps = 64;
     bar.draw_series((0..steps).map(|i| {
         let (y0, y1) = (b_max * i as f64 / steps as f64, b_max * (i + 1) as f64 / steps as f64);
         Rectangle::new([(0.0, y0), (1.0, y1)], colour((i as f64 + 0.5) / steps as f64).filled())
     }))
-    .map_err(be)?;
+    .map_err(backend)?;
     Ok(())
 }
 
 /// Renders the map as an SVG document.
 pub fn field_map_svg(map: &FieldMap<'_>) -> Result<String, ReportError> {
     check(map)?;
-    let mut buf = String::new();
-    {
-        let root = SVGBackend::with_string(&mut buf, size_for(map)).into_drawing_area();
-        draw(map, &root)?;
-        root.present().map_err(|e| ReportError::Backend(e.to_string()))?;
-    }
-    Ok(buf)
+    render_svg(map)
 }
 
 /// Writes the map to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
 pub fn save_field_map(map: &FieldMap<'_>, path: &Path) -> Result<(), ReportError> {
-    let is_png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if !is_png {
-        return crate::write_atomic(path, field_map_svg(map)?.as_bytes());
-    }
     check(map)?;
-    let tmp = crate::atomic::temp_path_for(path)?.with_extension("png");
-    let drawn = (|| {
-        let root = BitMapBackend::new(&tmp, size_for(map)).into_drawing_area();
-        draw(map, &root)?;
-        root.present().map_err(|e| ReportError::Backend(e.to_string()))
-    })();
-    if let Err(e) = drawn {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
-    std::fs::rename(&tmp, path).map_err(|source| {
-        let _ = std::fs::remove_file(&tmp);
-        ReportError::Io { path: path.to_path_buf(), source }
-    })
+    save_picture(map, path)
 }
 
 #[cfg(test)]
@@ -314,5 +326,40 @@ mod tests {
         assert!(svg.starts_with("<svg") && svg.contains("|B| [T]"));
         let bad = FieldMap { b_abs_t: &[0.5], ..map };
         assert!(field_map_svg(&bad).is_err());
+    }
+
+    /// The outline (and so the SVG) does not depend on the hash map's per-run order.
+    #[test]
+    fn the_same_map_renders_the_same_svg() {
+        let n = 6;
+        let nodes: Vec<[f64; 2]> =
+            (0..=n).flat_map(|j| (0..=n).map(move |i| [i as f64, j as f64])).collect();
+        let id = |i: usize, j: usize| j * (n + 1) + i;
+        let mut triangles = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        let tags: Vec<u32> = (0..triangles.len()).map(|t| u32::from(t % 5 == 0)).collect();
+        let b: Vec<f64> = (0..triangles.len()).map(|t| t as f64 / 10.0).collect();
+        let psi: Vec<f64> = nodes.iter().map(|p| p[0] * p[0]).collect();
+        let map = FieldMap {
+            title: "grid",
+            nodes: &nodes,
+            triangles: &triangles,
+            region_tags: &tags,
+            b_abs_t: &b,
+            flux_function: &psi,
+            flux_lines: 4,
+        };
+        let outline = outline_edges(&map);
+        let boundary = &outline[outline.len() - 4 * n..];
+        assert!(boundary.windows(2).all(|w| w[0] < w[1]), "{boundary:?}");
+        let first = field_map_svg(&map).unwrap();
+        for _ in 0..3 {
+            assert!(field_map_svg(&map).unwrap() == first);
+        }
     }
 }

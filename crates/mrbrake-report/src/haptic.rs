@@ -1,8 +1,18 @@
-//! Haptic plots: side-by-side time histories of wall interactions (e.g. conventional vs bidirectional
-//! brake: the sticky wall and its cure) and the Z-width map.
+//! Haptic reports: the sticky-wall measures of a run as text, side-by-side time histories of wall
+//! interactions (e.g. conventional vs bidirectional brake: the sticky wall and its cure) and the
+//! Z-width map with its summary.
 //!
-//! The functions take plain slices, so this crate does not depend on the simulator.
+//! The figures take plain slices ([`TimeHistory`], [`ClassifiedPair`]); [`TimeHistory::from_trace`],
+//! [`zwidth_panels`] and the text and JSON reports compose them from the simulator's results.
 
+use std::fmt::Write as _;
+use std::path::Path;
+
+use mrbrake_sim::haptic::zwidth::{Interaction, ZWidthCell, ZWidthMap};
+use mrbrake_sim::haptic::{Trace, WallMetrics};
+use serde_json::{Value, json};
+
+use crate::ReportError;
 use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
 
 /// Time histories of one run, at any uniform rate.
@@ -24,6 +34,80 @@ pub struct TimeHistory<'a> {
     pub device_torque_nm: &'a [f64],
     /// Hand torque on the shaft, Nm.
     pub hand_torque_nm: &'a [f64],
+}
+
+impl<'a> TimeHistory<'a> {
+    /// The histories of a simulator trace, under `label`.
+    pub fn from_trace(label: &'a str, trace: &'a Trace) -> Self {
+        Self {
+            label,
+            time_s: &trace.time_s,
+            angle_rad: &trace.angle_rad,
+            intended_rad: &trace.intended_rad,
+            wall_rad: &trace.wall_rad,
+            current_a: [&trace.current_a[0], &trace.current_a[1]],
+            device_torque_nm: &trace.device_torque_nm,
+            hand_torque_nm: &trace.hand_torque_nm,
+        }
+    }
+}
+
+/// The title of a wall plot: scenario, virtual stiffness `K` and damping `B`.
+pub fn wall_plot_title(
+    scenario: &str,
+    stiffness_nm_per_rad: f64,
+    damping_nms_per_rad: f64,
+) -> String {
+    format!(
+        "Virtual wall, {scenario} (K = {stiffness_nm_per_rad} N·m/rad, B = {damping_nms_per_rad} N·m·s/rad)"
+    )
+}
+
+/// The text report of a wall run; `stiffness_nm_per_rad` is the virtual stiffness the displayed one
+/// is compared with.
+pub fn wall_metrics_text(m: &WallMetrics, stiffness_nm_per_rad: f64) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "device {}, scenario {}", m.device, m.scenario);
+    let _ = writeln!(out, "  max penetration            {:.4} rad", m.max_penetration_rad);
+    match m.displayed_stiffness_nm_per_rad {
+        Some(k) => {
+            _ = writeln!(
+                out,
+                "  displayed stiffness        {k:.2} N·m/rad (virtual {stiffness_nm_per_rad})"
+            )
+        }
+        None => _ = writeln!(out, "  displayed stiffness        n/a"),
+    }
+    let _ = writeln!(
+        out,
+        "  withdraw resisting torque  peak {:.3} N·m, mean {:.3} N·m (excess over {:.3} N·m drag: peak {:.3}, mean {:.3})",
+        m.withdraw_resisting_torque_nm.peak,
+        m.withdraw_resisting_torque_nm.mean,
+        m.outward_drag_nm,
+        m.withdraw_excess_torque_nm.peak,
+        m.withdraw_excess_torque_nm.mean
+    );
+    let _ = writeln!(
+        out,
+        "  withdraw energy            {:.5} J over {:.3} s",
+        m.withdraw_energy_j, m.withdraw_duration_s
+    );
+    match m.release_time_s {
+        Some(t) => _ = writeln!(out, "  release time               {t:.3} s"),
+        None => _ = writeln!(out, "  release time               not released / no withdrawal"),
+    }
+    let _ = writeln!(
+        out,
+        "  device energy              {:.5} J (running peak {:.2e} J)",
+        m.device_energy_j, m.device_energy_peak_j
+    );
+    let _ = writeln!(out, "  passive                    {} (stable {})", m.passive, m.stable);
+    let _ = writeln!(
+        out,
+        "  peak coil current          {:.3} A, faults {}",
+        m.current_peak_a, m.fault_ticks
+    );
+    out
 }
 
 /// Largest number of points drawn per series (the SVG stays small; 1 kHz data is decimated).
@@ -138,9 +222,103 @@ pub fn zwidth_figure(title: &str, sample_period_s: f64, panels: &[ZWidthPanel<'_
     figure
 }
 
+/// The three panels of a Z-width map: the motor with the boundary of (2.2) at its physical damping
+/// `b`, the motor + MR damper with the boundary of (2.4) at `b + b_c`, and the bidirectional brake.
+pub fn zwidth_panels(map: &ZWidthMap) -> [ZWidthPanel<'static>; 3] {
+    let b = map.config.physical_damping_nms_per_rad;
+    let bc = map.config.controllable_damping_nms_per_rad;
+    let pairs = |pick: fn(&ZWidthCell) -> Interaction| -> Vec<ClassifiedPair<'static>> {
+        map.cells
+            .iter()
+            .map(|c| ClassifiedPair {
+                stiffness_nm_per_rad: c.stiffness_nm_per_rad,
+                damping_nms_per_rad: c.damping_nms_per_rad,
+                class: pick(c).name(),
+            })
+            .collect()
+    };
+    [
+        ZWidthPanel {
+            label: format!("motor, b = {b} N·m·s/rad (2.2)"),
+            pairs: pairs(|c| c.motor),
+            boundary_damping_nms_per_rad: Some(b),
+        },
+        ZWidthPanel {
+            label: format!("motor + MR damper, b + b_c = {} (2.4)", b + bc),
+            pairs: pairs(|c| c.hybrid),
+            boundary_damping_nms_per_rad: Some(b + bc),
+        },
+        ZWidthPanel {
+            label: "bidirectional MR brake".into(),
+            pairs: pairs(|c| c.brake),
+            boundary_damping_nms_per_rad: None,
+        },
+    ]
+}
+
+/// Writes the Z-width map's three panels to `path` (SVG, or PNG by extension).
+pub fn save_zwidth_plot(path: &Path, map: &ZWidthMap) -> Result<(), ReportError> {
+    let period = map.config.sample_period_s;
+    zwidth_figure(&format!("Z-width, T = {} ms", period * 1e3), period, &zwidth_panels(map))
+        .save(path)
+}
+
+/// The Z-width summary: cells per class and device, and how many agree with (2.2) and (2.4).
+pub fn zwidth_summary(map: &ZWidthMap) -> Value {
+    let count = |f: &dyn Fn(&ZWidthCell) -> bool| map.cells.iter().filter(|c| f(c)).count();
+    use Interaction as I;
+    json!({
+        "cells": map.cells.len(),
+        "motor": {"passive": count(&|c| c.motor == I::Passive), "stable": count(&|c| c.motor == I::Stable),
+                  "unstable": count(&|c| c.motor == I::Unstable),
+                  "agree_with_2_2": count(&|c| (c.motor == I::Passive) == c.motor_predicted_passive)},
+        "hybrid": {"passive": count(&|c| c.hybrid == I::Passive), "stable": count(&|c| c.hybrid == I::Stable),
+                   "unstable": count(&|c| c.hybrid == I::Unstable),
+                   "agree_with_2_4": count(&|c| (c.hybrid == I::Passive) == c.hybrid_predicted_passive)},
+        "brake": {"passive": count(&|c| c.brake == I::Passive), "stable": count(&|c| c.brake == I::Stable),
+                  "unstable": count(&|c| c.brake == I::Unstable)},
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_sim::haptic::zwidth::{ZWidthConfig, sweep};
+    use mrbrake_sim::haptic::{DeviceKind, HapticConfig, Scenario, simulate};
+
+    #[test]
+    fn wall_report_and_history_come_from_the_run() {
+        let mut config = HapticConfig::new(DeviceKind::Bidirectional, Scenario::PressWithdraw);
+        config.duration_s = 0.2;
+        let run = simulate(&config, true).unwrap();
+        let text = wall_metrics_text(&run.metrics, 30.0);
+        assert!(text.starts_with("device bidirectional, scenario press-withdraw\n"), "{text}");
+        assert!(text.contains("  passive                    true"), "{text}");
+        assert_eq!(text.lines().count(), 9);
+        let trace = run.trace.as_ref().unwrap();
+        let history = TimeHistory::from_trace("bidirectional", trace);
+        assert_eq!(history.time_s.len(), 200);
+        assert_eq!(history.current_a[1].len(), trace.current_a[1].len());
+    }
+
+    #[test]
+    fn zwidth_summary_counts_every_cell_once_per_device() {
+        let config =
+            ZWidthConfig { stiffness_points: 3, damping_points: 2, ..ZWidthConfig::default() };
+        let map = sweep(&config).unwrap();
+        let summary = zwidth_summary(&map);
+        assert_eq!(summary["cells"], 6);
+        for device in ["motor", "hybrid", "brake"] {
+            let total: u64 = ["passive", "stable", "unstable"]
+                .iter()
+                .map(|class| summary[device][class].as_u64().unwrap())
+                .sum();
+            assert_eq!(total, 6, "{device}: {summary}");
+        }
+        let panels = zwidth_panels(&map);
+        assert_eq!(panels[0].boundary_damping_nms_per_rad, Some(0.005));
+        assert!(panels[2].pairs.iter().all(|p| p.class == "passive"));
+    }
 
     #[test]
     fn figures_render_to_svg() {

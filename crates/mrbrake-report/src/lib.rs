@@ -1,8 +1,12 @@
-//! Reports for mrbrake: plots (SVG via plotters) and atomic output files.
+//! Reports for mrbrake: plots (SVG via plotters), text and JSON reports, and atomic output files.
 //!
 //! Brief overview: [`write_atomic`] writes any output file through a temporary file and a rename, so a
 //! reader never sees half a file; [`chart`] draws XY line/scatter charts (linear or log axes, one or
 //! several stacked panels) that the Bode, hysteresis, torque–current and time-history plots build on.
+//! [`identification`] composes the reports of a characterisation, a frequency response and a
+//! transfer-function estimate, [`rig`] the virtual rig's output folder, [`haptic`] the haptic
+//! simulation's; the command-line program only prints or writes what these compose, so every front
+//! end (CLI, Python, HTML) shares one presentation.
 
 pub mod atomic;
 pub mod bode;
@@ -10,7 +14,9 @@ pub mod chart;
 pub mod field_map;
 pub mod haptic;
 pub mod hysteresis;
+pub mod identification;
 pub mod pareto;
+pub mod rig;
 
 pub use atomic::write_atomic;
 
@@ -32,6 +38,17 @@ pub enum ReportError {
     /// The plotting backend failed.
     #[error("plotting failed: {0}")]
     Backend(String),
+    /// An output folder could not be created.
+    #[error("cannot create output folder '{}'", path.display())]
+    Folder {
+        /// The folder.
+        path: std::path::PathBuf,
+        /// The underlying I/O error.
+        source: std::io::Error,
+    },
+    /// A report could not be turned into JSON (a bug: every report serialises).
+    #[error("cannot compose the JSON report")]
+    Json(#[from] serde_json::Error),
 }
 
 impl mrbrake_error::Kind for ReportError {
@@ -40,9 +57,9 @@ impl mrbrake_error::Kind for ReportError {
     fn kind(&self) -> mrbrake_error::ErrorKind {
         use mrbrake_error::{ErrorKind, Kind};
         match self {
-            Self::Io { source, .. } => Kind::kind(source),
+            Self::Io { source, .. } | Self::Folder { source, .. } => Kind::kind(source),
             Self::Data(_) => ErrorKind::Input,
-            Self::Backend(_) => ErrorKind::Internal,
+            Self::Backend(_) | Self::Json(_) => ErrorKind::Internal,
         }
     }
 }

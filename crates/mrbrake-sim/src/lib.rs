@@ -1,6 +1,12 @@
 //! Plant models, virtual test rig and haptic simulation.
 //!
-//! (Work in progress: see docs/ARCHITECTURE.md for the crate map.)
+//! Brief overview: [`lti`] discretises a continuous-time transfer function
+//! ([`mrbrake_sysid::transfer_function::TransferFunction`], the one such type) exactly for a
+//! zero-order-hold input, with the crate's one matrix exponential [`lti::expm`]; [`rig`] is the
+//! virtual test rig that writes the logs of the thesis's experiments; [`haptic`] closes the 1 kHz
+//! loop around the `no_std` controller of `mrbrake-control`. The brake model every stage shares is
+//! the controller's [`mrbrake_control::InverseModel`] (read from a file by
+//! [`mrbrake_sysid::model_file`]).
 
 pub mod haptic;
 pub mod lti;
@@ -13,17 +19,53 @@ pub enum SimError {
     /// Invalid input (file, field, value) with a message naming what was expected.
     #[error("{0}")]
     Input(String),
-    /// An identification step inside a simulation (inverse model, log parsing) failed.
+    /// A configuration file is not valid TOML, or has an unknown or mistyped field.
+    #[error("{file}")]
+    Toml {
+        /// The file (or in-memory source name).
+        file: String,
+        /// The TOML parser's error (it names the field and shows the line).
+        source: toml::de::Error,
+    },
+    /// A file could not be read.
+    #[error("cannot read {what} '{}'", path.display())]
+    Io {
+        /// What the file is, e.g. `"rig configuration"`.
+        what: &'static str,
+        /// The file.
+        path: std::path::PathBuf,
+        /// The underlying I/O error.
+        source: std::io::Error,
+    },
+    /// An identification step inside a simulation (a model file, log parsing) failed.
     #[error(transparent)]
     Sysid(#[from] mrbrake_sysid::SysidError),
+    /// A model of the plant is unusable (e.g. an improper transfer function), with which one.
+    #[error("{what}")]
+    Model {
+        /// The model, e.g. `"brake dynamics"`.
+        what: &'static str,
+        /// Why it was refused.
+        source: mrbrake_sysid::SysidError,
+    },
+    /// The controller refused its configuration or a brake model, with where.
+    #[error("{what}")]
+    Control {
+        /// What was being built, e.g. `"haptic controller"`.
+        what: &'static str,
+        /// The controller's error.
+        source: mrbrake_control::ControlError,
+    },
 }
 
 impl mrbrake_error::Kind for SimError {
-    /// Input for bad configurations; identification errors keep their own kind.
+    /// Input for bad configurations; wrapped identification and controller errors keep their kind.
     fn kind(&self) -> mrbrake_error::ErrorKind {
         match self {
-            Self::Input(_) => mrbrake_error::ErrorKind::Input,
-            Self::Sysid(e) => e.kind(),
+            Self::Input(_) | Self::Toml { .. } => mrbrake_error::ErrorKind::Input,
+            Self::Io { source, .. } => mrbrake_error::Kind::kind(source),
+            Self::Sysid(e) | Self::Model { source: e, .. } => e.kind(),
+            Self::Control { source, .. } => source.kind(),
         }
     }
 }

@@ -1,5 +1,6 @@
-//! Linear time-invariant models: a continuous-time transfer function, discretised **exactly** for a
-//! piecewise-constant (zero-order-hold) input and simulated sample by sample.
+//! Linear time-invariant models: a continuous-time transfer function
+//! ([`TransferFunction`], owned by `mrbrake-sysid`), discretised **exactly** for a piecewise-constant
+//! (zero-order-hold) input and simulated sample by sample.
 //!
 //! For ẋ = A x + B u, y = C x + D u and an input held constant over each step Δt, the exact update is
 //! (Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, §4.3.3)
@@ -15,85 +16,22 @@
 //! (Moler & Van Loan 2003, method 3).
 //!
 //! ```
-//! use mrbrake_sim::lti::{ContinuousTf, DiscreteStateSpace};
+//! use mrbrake_sim::lti::DiscreteStateSpace;
+//! use mrbrake_sysid::transfer_function::TransferFunction;
 //! // First-order lag 1/(0.01 s + 1) stepped at 1 kHz: y(t) = 1 − e^{−t/0.01}.
-//! let g = ContinuousTf::new(vec![1.0], vec![0.01, 1.0]).unwrap();
+//! let g = TransferFunction::new(vec![1.0], vec![0.01, 1.0]).unwrap();
 //! let mut sys = DiscreteStateSpace::zoh(&g, 1e-3).unwrap();
 //! let y: Vec<f64> = (0..=10).map(|_| sys.step(1.0)).collect();
 //! assert!((y[10] - (1.0 - (-1.0f64).exp())).abs() < 1e-12);
 //! ```
 //! (`step` returns the output at the start of the step, then advances the state: `y[k] = C x[k] + D u[k]`.)
 
+use mrbrake_sysid::transfer_function::TransferFunction;
+
 use crate::SimError;
 
-/// G(s) = N(s)/D(s), coefficients in descending powers of s (MATLAB `tf` order), proper.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct ContinuousTf {
-    /// Numerator, highest power first.
-    pub numerator: Vec<f64>,
-    /// Denominator, highest power first.
-    pub denominator: Vec<f64>,
-}
-
-impl ContinuousTf {
-    /// A proper transfer function (leading zeros are dropped; deg N ≤ deg D; finite coefficients).
-    pub fn new(numerator: Vec<f64>, denominator: Vec<f64>) -> Result<Self, SimError> {
-        let trim = |v: Vec<f64>| -> Vec<f64> {
-            let first = v.iter().position(|c| c.abs() > 0.0).unwrap_or(v.len().saturating_sub(1));
-            v[first.min(v.len())..].to_vec()
-        };
-        if numerator.iter().chain(&denominator).any(|c| !c.is_finite()) {
-            return Err(SimError::Input(
-                "transfer function: coefficients must be finite numbers".into(),
-            ));
-        }
-        let numerator = trim(numerator);
-        let denominator = trim(denominator);
-        if denominator.is_empty() || denominator.iter().all(|c| c.abs() <= 0.0) {
-            return Err(SimError::Input(
-                "transfer function: the denominator must not be zero".into(),
-            ));
-        }
-        if numerator.is_empty() {
-            return Err(SimError::Input(
-                "transfer function: the numerator must not be empty".into(),
-            ));
-        }
-        if numerator.len() > denominator.len() {
-            return Err(SimError::Input(format!(
-                "transfer function: numerator degree {} exceeds denominator degree {} (improper)",
-                numerator.len() - 1,
-                denominator.len() - 1
-            )));
-        }
-        Ok(Self { numerator, denominator })
-    }
-
-    /// Order (degree of the denominator).
-    pub fn order(&self) -> usize {
-        self.denominator.len() - 1
-    }
-
-    /// G(0) = N(0)/D(0).
-    pub fn dc_gain(&self) -> f64 {
-        self.numerator[self.numerator.len() - 1] / self.denominator[self.denominator.len() - 1]
-    }
-
-    /// |G(jω)| and arg G(jω) in radians.
-    pub fn response(&self, omega_rad_s: f64) -> (f64, f64) {
-        let eval = |c: &[f64]| {
-            c.iter().fold((0.0, 0.0), |(re, im), v| {
-                (re * 0.0 - im * omega_rad_s + v, re * omega_rad_s + im * 0.0)
-            })
-        };
-        let (nr, ni) = eval(&self.numerator);
-        let (dr, di) = eval(&self.denominator);
-        let mag = nr.hypot(ni) / dr.hypot(di);
-        (mag, ni.atan2(nr) - di.atan2(dr))
-    }
-}
-
-/// The exactly discretised (zero-order-hold) state-space model of a [`ContinuousTf`], with its state.
+/// The exactly discretised (zero-order-hold) state-space model of a [`TransferFunction`], with its
+/// state.
 ///
 /// `step` allocates nothing, so the model can run inside a real-time or haptic loop.
 #[derive(Debug, Clone)]
@@ -113,7 +51,7 @@ pub struct DiscreteStateSpace {
 
 impl DiscreteStateSpace {
     /// Discretises `tf` exactly for a zero-order-hold input with step `dt_s`.
-    pub fn zoh(tf: &ContinuousTf, dt_s: f64) -> Result<Self, SimError> {
+    pub fn zoh(tf: &TransferFunction, dt_s: f64) -> Result<Self, SimError> {
         if !(dt_s > 0.0 && dt_s.is_finite()) {
             return Err(SimError::Input(format!("time step {dt_s} s must be positive")));
         }
@@ -237,8 +175,12 @@ impl DiscreteStateSpace {
     }
 }
 
-/// Matrix exponential of a small row-major `size × size` matrix (scaling and squaring of a Taylor
-/// series; the scaled matrix has 1-norm ≤ 1/2, so 20 terms reach machine precision).
+/// Matrix exponential of a small row-major `size × size` matrix: scaling and squaring of a Taylor
+/// series (Moler & Van Loan 2003, method 3). The matrix is scaled by 2^−s until its 1-norm is ≤ 1/2,
+/// so 20 terms reach machine precision (the series stops once a term's largest entry is below
+/// 1e-18, at most 30 terms), then squared s times. The one matrix exponential of mrbrake: the
+/// transfer-function discretisation here and the haptic brakes' torque lag
+/// ([`crate::haptic::TorqueLag::discretise`]) both use it.
 pub fn expm(m: &[f64], size: usize) -> Vec<f64> {
     let norm = (0..size)
         .map(|j| (0..size).map(|i| m[i * size + j].abs()).sum::<f64>())
@@ -292,7 +234,7 @@ mod tests {
         let disc = (a1 * a1 - 4.0 * a2).sqrt();
         let p1 = (a1 - disc) / (2.0 * a2);
         let p2 = (a1 + disc) / (2.0 * a2);
-        let g = ContinuousTf::new(vec![1.0], vec![a2, a1, 1.0]).unwrap();
+        let g = TransferFunction::new(vec![1.0], vec![a2, a1, 1.0]).unwrap();
         let mut sys = DiscreteStateSpace::zoh(&g, 1e-3).unwrap();
         for k in 0..200 {
             let y = sys.step(1.0);
@@ -305,7 +247,7 @@ mod tests {
     #[test]
     fn feedthrough_and_steady_state() {
         // (s + 2)/(s + 1): step response 2 − e^{−t}; steady state for u = 3 is 6.
-        let g = ContinuousTf::new(vec![1.0, 2.0], vec![1.0, 1.0]).unwrap();
+        let g = TransferFunction::new(vec![1.0, 2.0], vec![1.0, 1.0]).unwrap();
         let mut sys = DiscreteStateSpace::zoh(&g, 0.01).unwrap();
         for k in 0..300 {
             let y = sys.step(1.0);
@@ -320,7 +262,7 @@ mod tests {
 
     #[test]
     fn integrator_ramps() {
-        let g = ContinuousTf::new(vec![2.0], vec![1.0, 0.0]).unwrap();
+        let g = TransferFunction::new(vec![2.0], vec![1.0, 0.0]).unwrap();
         let mut sys = DiscreteStateSpace::zoh(&g, 0.1).unwrap();
         for k in 0..50 {
             let y = sys.step(1.0);
@@ -331,7 +273,7 @@ mod tests {
     #[test]
     fn dc_motor_model_is_stable_and_reaches_its_gain() {
         // (5.1): 10.35/(2e-5 s² + 0.000368 s + 1), lightly damped at 224 rad/s.
-        let g = ContinuousTf::new(vec![10.35], vec![2e-5, 0.000368, 1.0]).unwrap();
+        let g = TransferFunction::new(vec![10.35], vec![2e-5, 0.000368, 1.0]).unwrap();
         let mut sys = DiscreteStateSpace::zoh(&g, 1e-3).unwrap();
         let mut y = 0.0;
         for _ in 0..5000 {
@@ -341,9 +283,19 @@ mod tests {
     }
 
     #[test]
-    fn improper_is_rejected() {
-        assert!(
-            ContinuousTf::new(vec![1.0, 0.0, 0.0], vec![1.0, 1.0]).unwrap_err().is_input_error()
-        );
+    fn bad_time_step_is_an_input_error() {
+        let g = TransferFunction::new(vec![1.0], vec![1.0, 1.0]).unwrap();
+        assert!(DiscreteStateSpace::zoh(&g, 0.0).unwrap_err().is_input_error());
+    }
+
+    #[test]
+    fn exponential_of_a_rotation_generator_is_the_rotation() {
+        // exp([[0, θ], [−θ, 0]]) = [[cos θ, sin θ], [−sin θ, cos θ]], with θ large enough to square.
+        let theta: f64 = 3.0;
+        let e = expm(&[0.0, theta, -theta, 0.0], 2);
+        let expected = [theta.cos(), theta.sin(), -theta.sin(), theta.cos()];
+        for (a, b) in e.iter().zip(expected) {
+            assert!((a - b).abs() < 1e-14, "{e:?}");
+        }
     }
 }

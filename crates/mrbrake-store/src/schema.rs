@@ -108,13 +108,20 @@ pub(crate) fn sqlite_error(path: &Path, error: rusqlite::Error) -> StoreError {
 /// empty, starts with SQLite's magic string, has a valid page size (header bytes 16-17) and is a
 /// whole number of pages long.
 pub(crate) fn check_file(path: &Path) -> Result<(), StoreError> {
-    let io_error = |source| StoreError::Io { path: path.to_owned(), source };
+    let length = non_empty_file_length(path)?;
+    let header = read_header(path, length)?;
+    check_page_layout(path, &header, length)?;
+    check_identity(path, &header)
+}
+
+/// The length of the regular, non-empty file at `path`.
+fn non_empty_file_length(path: &Path) -> Result<u64, StoreError> {
     let metadata = match std::fs::metadata(path) {
         Ok(metadata) => metadata,
         Err(error) if error.kind() == std::io::ErrorKind::NotFound => {
             return Err(StoreError::NotFound { path: path.to_owned() });
         }
-        Err(error) => return Err(io_error(error)),
+        Err(source) => return Err(StoreError::Io { path: path.to_owned(), source }),
     };
     if !metadata.is_file() {
         return Err(StoreError::NotAFile { path: path.to_owned() });
@@ -127,31 +134,37 @@ pub(crate) fn check_file(path: &Path) -> Result<(), StoreError> {
                 .to_owned(),
         });
     }
+    Ok(metadata.len())
+}
+
+/// The SQLite header of the file at `path` (`length` bytes long): it must start with SQLite's
+/// magic string and be complete.
+fn read_header(path: &Path, length: u64) -> Result<[u8; SQLITE_HEADER_BYTES], StoreError> {
     let mut header = Vec::with_capacity(SQLITE_HEADER_BYTES);
     File::open(path)
         .and_then(|file| file.take(SQLITE_HEADER_BYTES as u64).read_to_end(&mut header))
-        .map_err(io_error)?;
-    let length = metadata.len();
+        .map_err(|source| StoreError::Io { path: path.to_owned(), source })?;
     let corrupt = |detail: String| StoreError::Corrupt { path: path.to_owned(), detail };
     if !header.starts_with(SQLITE_MAGIC) {
         return Err(corrupt(format!(
             "not a SQLite database: the file ({length} bytes) does not start with \"SQLite format 3\""
         )));
     }
-    let header: [u8; SQLITE_HEADER_BYTES] = header.try_into().map_err(|_| {
+    header.try_into().map_err(|_| {
         corrupt(format!(
             "the file ({length} bytes) is shorter than a SQLite header ({SQLITE_HEADER_BYTES} bytes)"
         ))
-    })?;
-    let header_field = |offset: usize| {
-        i32::from_be_bytes([
-            header[offset],
-            header[offset + 1],
-            header[offset + 2],
-            header[offset + 3],
-        ])
-    };
+    })
+}
 
+/// The header's fixed fields are those of a valid database and the file is a whole number of
+/// its pages long.
+fn check_page_layout(
+    path: &Path,
+    header: &[u8; SQLITE_HEADER_BYTES],
+    length: u64,
+) -> Result<(), StoreError> {
+    let corrupt = |detail: String| StoreError::Corrupt { path: path.to_owned(), detail };
     // SQLite itself reads missing pages as zeros; a whole number of pages is the cheapest sign
     // of truncation (a truncation on a page boundary is left to `PRAGMA quick_check`).
     let page_size = match [header[16], header[17]] {
@@ -177,10 +190,22 @@ pub(crate) fn check_file(path: &Path) -> Result<(), StoreError> {
              it was probably truncated"
         )));
     }
+    Ok(())
+}
 
-    // Identity from the header bytes, so another application's database is refused
-    // before SQLite opens it (a read-only SQLite connection to a WAL-mode database leaves -wal
-    // and -shm files beside it). The PRAGMA checks in `check_store` confirm these values.
+/// Identity from the header bytes, so another application's database is refused before SQLite
+/// opens it (a read-only SQLite connection to a WAL-mode database leaves -wal and -shm files
+/// beside it), and so is a store from a newer mrbrake. The PRAGMA checks in [`check_store`]
+/// confirm these values.
+fn check_identity(path: &Path, header: &[u8; SQLITE_HEADER_BYTES]) -> Result<(), StoreError> {
+    let header_field = |offset: usize| {
+        i32::from_be_bytes([
+            header[offset],
+            header[offset + 1],
+            header[offset + 2],
+            header[offset + 3],
+        ])
+    };
     let application_id = header_field(HEADER_APPLICATION_ID_OFFSET);
     if application_id != APPLICATION_ID {
         let rollback_journal = header[18] == 1 && header[19] == 1;
@@ -189,7 +214,6 @@ pub(crate) fn check_file(path: &Path) -> Result<(), StoreError> {
             detail: foreign_detail(path, application_id, rollback_journal),
         });
     }
-
     let version = i64::from(header_field(HEADER_USER_VERSION_OFFSET));
     if version > SCHEMA_VERSION {
         return Err(StoreError::Version {

@@ -130,19 +130,8 @@ impl Store {
     /// evaluation is never overwritten. Fails with [`StoreError::InvalidRecord`] if the record
     /// breaks the record contract (see [`Record::validate`]).
     pub fn insert(&mut self, record: &Record) -> Result<bool, StoreError> {
-        self.refuse_if_read_only()?;
-        record.validate()?;
-        let created_unix_s = SystemTime::now()
-            .duration_since(UNIX_EPOCH)
-            .map_or(0.0, |elapsed| elapsed.as_secs_f64());
-        let transaction = self
-            .connection
-            .transaction_with_behavior(TransactionBehavior::Immediate)
-            .map_err(|error| schema::sqlite_error(&self.path, error))?;
-        let inserted = insert_new(&transaction, record, Some(created_unix_s))
-            .and_then(|inserted| transaction.commit().map(|()| inserted))
-            .map_err(|error| schema::sqlite_error(&self.path, error))?;
-        Ok(inserted)
+        let inserted = self.insert_all(std::slice::from_ref(record))?;
+        Ok(inserted[0])
     }
 
     /// Stores several records in one durable transaction: one disk flush for all of them instead

@@ -6,11 +6,11 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
-use mrbrake_sysid::complex::Complex;
 use mrbrake_sysid::frd::Frd;
 use mrbrake_sysid::log::read_log;
 use mrbrake_sysid::tfest::{TfestOptions, Weighting, logspace, tfest};
 use mrbrake_sysid::transfer_function::TransferFunction;
+use num_complex::Complex64;
 
 fn tfest_41_points(c: &mut Criterion) {
     let g = TransferFunction::new(vec![1.0], vec![1.791e-5, 0.01702, 1.0]).unwrap();
@@ -21,7 +21,8 @@ fn tfest_41_points(c: &mut Criterion) {
         .enumerate()
         .map(|(k, w)| {
             let r = g.response(*w);
-            r + Complex::new((k as f64 * 1.7).sin(), (k as f64 * 2.3).cos()).scale(0.01 * r.abs())
+            r + Complex64::new((k as f64 * 1.7).sin(), (k as f64 * 2.3).cos())
+                .scale(0.01 * r.norm())
         })
         .collect();
     let frd = Frd { omega_rad_s: omega, response, weight: None };

@@ -16,8 +16,9 @@
 //!    current in A. The fit percentage is 100·(1 − ‖T − T̂‖/‖T − mean T‖) over the **raw** samples of
 //!    the branch (all repetitions), like the thesis's fit to the raw torque signal.
 
+use mrbrake_control::{ControlError, InverseModel};
+
 use crate::SysidError;
-use crate::inverse::{BranchPolynomial, HysteresisModel};
 use crate::polynomial::{Polynomial, fit};
 
 /// Settings of the characterisation.
@@ -48,7 +49,8 @@ pub struct BranchFit {
     pub samples: usize,
 }
 
-/// Result of a characterisation (serialised as the `characterize` JSON and the inverse-model file).
+/// Result of a characterisation (serialised as the `characterize` JSON and the inverse-model file,
+/// whose reader is [`crate::model_file`]).
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct Characterization {
     /// Branch while the current increases.
@@ -85,14 +87,16 @@ pub struct Characterization {
 }
 
 impl Characterization {
-    /// The two fitted branches as a [`HysteresisModel`] (for the inverse).
-    pub fn model(&self) -> HysteresisModel {
-        HysteresisModel {
-            rising: BranchPolynomial { coefficients: self.rising.coefficients.clone() },
-            falling: BranchPolynomial { coefficients: self.falling.coefficients.clone() },
-            current_min_a: self.current_min_a,
-            current_max_a: self.current_max_a,
-        }
+    /// The two fitted branches as the controller's [`InverseModel`]. Fails when a branch does not
+    /// fit the controller's fixed-size tables (order above [`mrbrake_control::MAX_DEGREE`]) or
+    /// decreases somewhere on the current range, so that its inverse is not unique.
+    pub fn model(&self) -> Result<InverseModel, ControlError> {
+        InverseModel::new(
+            &self.rising.coefficients,
+            &self.falling.coefficients,
+            self.current_min_a,
+            self.current_max_a,
+        )
     }
 }
 
@@ -178,6 +182,36 @@ pub fn characterize(
     torque_nm: &[f64],
     options: CharacterizeOptions,
 ) -> Result<Characterization, SysidError> {
+    check_options(current_a, torque_nm, options)?;
+    let (reps, lo, hi) = segment(current_a)?;
+    let samples = Samples { current_a, torque_nm, reps: &reps, lo, hi };
+    let (rising, rising_mean) = samples.fit_branch(|r| r.rising, options)?;
+    let (falling, falling_mean) = samples.fit_branch(|r| r.falling, options)?;
+    let p_up = Polynomial::new(rising.coefficients.clone());
+    let p_down = Polynomial::new(falling.coefficients.clone());
+    let off_state_torque_nm = samples.off_state_torque_nm().unwrap_or_else(|| p_up.eval(lo));
+    let extremes = loop_extremes(&p_up, &p_down, lo, hi);
+    Ok(Characterization {
+        rising,
+        falling,
+        current_min_a: lo,
+        current_max_a: hi,
+        off_state_torque_nm,
+        max_torque_nm: extremes.max_torque_nm,
+        max_hysteresis_nm: extremes.max_hysteresis_nm,
+        max_hysteresis_current_a: extremes.max_hysteresis_current_a,
+        repetitions: reps.len(),
+        rising_mean,
+        falling_mean,
+    })
+}
+
+/// Checks that the signals match and the order and bin count are usable.
+fn check_options(
+    current_a: &[f64],
+    torque_nm: &[f64],
+    options: CharacterizeOptions,
+) -> Result<(), SysidError> {
     if current_a.len() != torque_nm.len() {
         return Err(SysidError::Input(
             "characterize: current and torque have different lengths".into(),
@@ -197,24 +231,27 @@ pub fn characterize(
             2 * (options.order + 1)
         )));
     }
-    let (reps, lo, hi) = segment(current_a)?;
-    let bin_of =
-        |i: f64| (((i - lo) / (hi - lo) * options.bins as f64) as usize).min(options.bins - 1);
-    let branch = |pick: fn(&Repetition) -> (usize, usize)| -> Result<(BranchFit, Vec<(f64, f64)>), SysidError> {
-        let mut sum_i = vec![0.0; options.bins];
-        let mut sum_t = vec![0.0; options.bins];
-        let mut count = vec![0usize; options.bins];
-        for r in &reps {
-            let (a, b) = pick(r);
-            for k in a..b {
-                let bin = bin_of(current_a[k]);
-                sum_i[bin] += current_a[k];
-                sum_t[bin] += torque_nm[k];
-                count[bin] += 1;
-            }
-        }
-        let mean: Vec<(f64, f64)> =
-            (0..options.bins).filter(|b| count[*b] > 0).map(|b| (sum_i[b] / count[b] as f64, sum_t[b] / count[b] as f64)).collect();
+    Ok(())
+}
+
+/// The log's samples with its repetitions and current range.
+struct Samples<'a> {
+    current_a: &'a [f64],
+    torque_nm: &'a [f64],
+    reps: &'a [Repetition],
+    lo: f64,
+    hi: f64,
+}
+
+impl Samples<'_> {
+    /// Steps 2 and 3 of the module docs for the branch that `pick` selects from each repetition:
+    /// the fit and the repetition-averaged (current, torque) points.
+    fn fit_branch(
+        &self,
+        pick: fn(&Repetition) -> (usize, usize),
+        options: CharacterizeOptions,
+    ) -> Result<(BranchFit, Vec<(f64, f64)>), SysidError> {
+        let mean = self.bin_average(pick, options.bins);
         if mean.len() < options.order + 1 {
             return Err(SysidError::Input(format!(
                 "characterize: only {} current levels were visited; order {} needs at least {}",
@@ -227,42 +264,73 @@ pub fn characterize(
         let p = fit(&xs, &ys, options.order)?;
         let fitted_mean: Vec<f64> = xs.iter().map(|x| p.eval(*x)).collect();
         let (mut raw_t, mut raw_hat) = (Vec::new(), Vec::new());
-        for r in &reps {
+        for r in self.reps {
             let (a, b) = pick(r);
             for k in a..b {
-                raw_t.push(torque_nm[k]);
-                raw_hat.push(p.eval(current_a[k]));
+                raw_t.push(self.torque_nm[k]);
+                raw_hat.push(p.eval(self.current_a[k]));
             }
         }
-        Ok((
-            BranchFit {
-                fit_percent: fit_percent(&raw_t, &raw_hat),
-                fit_percent_mean: fit_percent(&ys, &fitted_mean),
-                samples: raw_t.len(),
-                coefficients: p.coefficients,
-            },
-            mean,
-        ))
-    };
-    let (rising, rising_mean) = branch(|r| r.rising)?;
-    let (falling, falling_mean) = branch(|r| r.falling)?;
-
-    // Off-state torque: samples resting at the bottom between (and after) repetitions.
-    let bottom = lo + 0.01 * (hi - lo);
-    let mut off = (0.0, 0usize);
-    for (w, r) in reps.iter().enumerate() {
-        let from = r.falling.1;
-        let to = reps.get(w + 1).map_or(current_a.len(), |next| next.rising.0);
-        for k in from..to {
-            if current_a[k] <= bottom {
-                off.0 += torque_nm[k];
-                off.1 += 1;
-            }
-        }
+        let branch = BranchFit {
+            fit_percent: fit_percent(&raw_t, &raw_hat),
+            fit_percent_mean: fit_percent(&ys, &fitted_mean),
+            samples: raw_t.len(),
+            coefficients: p.coefficients,
+        };
+        Ok((branch, mean))
     }
-    let p_up = Polynomial::new(rising.coefficients.clone());
-    let p_down = Polynomial::new(falling.coefficients.clone());
-    let off_state_torque_nm = if off.1 > 0 { off.0 / off.1 as f64 } else { p_up.eval(lo) };
+
+    /// The branch's samples of all repetitions averaged per current bin: (mean current, mean torque)
+    /// of each non-empty bin, in current order.
+    fn bin_average(&self, pick: fn(&Repetition) -> (usize, usize), bins: usize) -> Vec<(f64, f64)> {
+        let (lo, hi) = (self.lo, self.hi);
+        let bin_of = |i: f64| (((i - lo) / (hi - lo) * bins as f64) as usize).min(bins - 1);
+        let mut sum_i = vec![0.0; bins];
+        let mut sum_t = vec![0.0; bins];
+        let mut count = vec![0usize; bins];
+        for r in self.reps {
+            let (a, b) = pick(r);
+            for k in a..b {
+                let bin = bin_of(self.current_a[k]);
+                sum_i[bin] += self.current_a[k];
+                sum_t[bin] += self.torque_nm[k];
+                count[bin] += 1;
+            }
+        }
+        (0..bins)
+            .filter(|b| count[*b] > 0)
+            .map(|b| (sum_i[b] / count[b] as f64, sum_t[b] / count[b] as f64))
+            .collect()
+    }
+
+    /// Mean torque of the samples resting at the bottom (within 1 % of the range of the minimum)
+    /// between and after the repetitions; `None` when there are none.
+    fn off_state_torque_nm(&self) -> Option<f64> {
+        let bottom = self.lo + 0.01 * (self.hi - self.lo);
+        let mut off = (0.0, 0usize);
+        for (w, r) in self.reps.iter().enumerate() {
+            let from = r.falling.1;
+            let to = self.reps.get(w + 1).map_or(self.current_a.len(), |next| next.rising.0);
+            for k in from..to {
+                if self.current_a[k] <= bottom {
+                    off.0 += self.torque_nm[k];
+                    off.1 += 1;
+                }
+            }
+        }
+        (off.1 > 0).then(|| off.0 / off.1 as f64)
+    }
+}
+
+/// Largest torque and widest hysteresis of the fitted branches over the current range.
+struct LoopExtremes {
+    max_torque_nm: f64,
+    max_hysteresis_nm: f64,
+    max_hysteresis_current_a: f64,
+}
+
+/// [`LoopExtremes`] of the fitted branches, sampled at 1001 currents over `[lo, hi]`.
+fn loop_extremes(p_up: &Polynomial, p_down: &Polynomial, lo: f64, hi: f64) -> LoopExtremes {
     let (mut max_h, mut max_h_i) = (0.0_f64, lo);
     let mut max_torque_nm = f64::NEG_INFINITY;
     for k in 0..=1000 {
@@ -274,19 +342,7 @@ pub fn characterize(
             max_h_i = i;
         }
     }
-    Ok(Characterization {
-        rising,
-        falling,
-        current_min_a: lo,
-        current_max_a: hi,
-        off_state_torque_nm,
-        max_torque_nm,
-        max_hysteresis_nm: max_h,
-        max_hysteresis_current_a: max_h_i,
-        repetitions: reps.len(),
-        rising_mean,
-        falling_mean,
-    })
+    LoopExtremes { max_torque_nm, max_hysteresis_nm: max_h, max_hysteresis_current_a: max_h_i }
 }
 
 #[cfg(test)]

@@ -6,8 +6,9 @@
 
 use std::path::Path;
 
+use num_complex::Complex64;
+
 use crate::SysidError;
-use crate::complex::Complex;
 use crate::log::read_columns_from;
 
 /// Frequency-response data.
@@ -15,8 +16,8 @@ use crate::log::read_columns_from;
 pub struct Frd {
     /// Test frequencies in rad/s, strictly increasing.
     pub omega_rad_s: Vec<f64>,
-    /// Complex response G(jω) at each frequency.
-    pub response: Vec<Complex>,
+    /// Complex64 response G(jω) at each frequency.
+    pub response: Vec<Complex64>,
     /// Optional per-point weights for the estimator.
     pub weight: Option<Vec<f64>>,
 }
@@ -24,7 +25,7 @@ pub struct Frd {
 impl Frd {
     /// Magnitude in dB, 20·log10|G| (thesis (5.4)).
     pub fn magnitude_db(&self) -> Vec<f64> {
-        self.response.iter().map(|g| 20.0 * g.abs().log10()).collect()
+        self.response.iter().map(|g| 20.0 * g.norm().log10()).collect()
     }
 
     /// Phase in degrees, unwrapped along frequency (starting in (−180°, 180°]).
@@ -65,7 +66,7 @@ pub fn read_frd_from(
     let mut rdr = crate::log::csv_reader(text.as_bytes(), false);
     let header: Vec<String> = rdr
         .headers()
-        .map_err(|e| file_err(Some(1), format!("cannot read the header row: {e}")))?
+        .map_err(|e| crate::log::csv_error(source, Some(1), "cannot read the header row", e))?
         .iter()
         .map(str::to_string)
         .collect();
@@ -104,14 +105,14 @@ pub fn read_frd_from(
             return Err(file_err(Some(k as u64 + 2), "omega_rad_s must strictly increase".into()));
         }
     }
-    let response: Vec<Complex> = if polar {
+    let response: Vec<Complex64> = if polar {
         cols[1]
             .iter()
             .zip(&cols[2])
-            .map(|(db, deg)| Complex::from_polar(10f64.powf(db / 20.0), deg.to_radians()))
+            .map(|(db, deg)| Complex64::from_polar(10f64.powf(db / 20.0), deg.to_radians()))
             .collect()
     } else {
-        cols[1].iter().zip(&cols[2]).map(|(re, im)| Complex::new(*re, *im)).collect()
+        cols[1].iter().zip(&cols[2]).map(|(re, im)| Complex64::new(*re, *im)).collect()
     };
     let weight = match weight_col {
         Some(w) => {
@@ -140,11 +141,11 @@ mod tests {
     fn polar_and_cartesian_forms_agree() {
         let polar = "omega_rad_s,magnitude_dB,phase_deg\n1,0,-90\n10,-20,-180\n";
         let a = read_frd_from(Path::new("a.csv"), polar, None).unwrap();
-        assert!((a.response[0] - Complex::new(0.0, -1.0)).abs() < 1e-15);
-        assert!((a.response[1] - Complex::new(-0.1, 0.0)).abs() < 1e-15);
+        assert!((a.response[0] - Complex64::new(0.0, -1.0)).norm() < 1e-15);
+        assert!((a.response[1] - Complex64::new(-0.1, 0.0)).norm() < 1e-15);
         let cart = "omega_rad_s,re,im,w\n1,0,-1,1\n10,-0.1,0,2\n";
         let b = read_frd_from(Path::new("b.csv"), cart, Some("w")).unwrap();
-        assert!((b.response[1] - a.response[1]).abs() < 1e-15);
+        assert!((b.response[1] - a.response[1]).norm() < 1e-15);
         assert_eq!(b.weight.unwrap(), vec![1.0, 2.0]);
     }
 

@@ -10,9 +10,11 @@
 
 use std::path::{Path, PathBuf};
 
+use num_complex::Complex64;
+
 use crate::SysidError;
 use crate::characterize::fit_percent;
-use crate::complex::Complex;
+use crate::complex::div;
 use crate::frd::{Frd, unwrap_deg};
 use crate::linalg::{Matrix, least_squares};
 use crate::log::read_log;
@@ -48,8 +50,8 @@ impl Default for FreqRespOptions {
 /// A fitted sinusoid c + Re{X e^{jωt}}.
 #[derive(Debug, Clone, Copy)]
 pub struct SineFit {
-    /// Complex amplitude (phasor) X.
-    pub phasor: Complex,
+    /// Complex64 amplitude (phasor) X.
+    pub phasor: Complex64,
     /// Constant offset c.
     pub offset: f64,
     /// Fit percentage of the sine model to the samples.
@@ -70,7 +72,7 @@ pub fn sine_fit(time_s: &[f64], y: &[f64], omega_rad_s: f64) -> Result<SineFit, 
         .map(|t| x[0] + x[1] * (omega_rad_s * t).cos() + x[2] * (omega_rad_s * t).sin())
         .collect();
     Ok(SineFit {
-        phasor: Complex::new(x[1], -x[2]),
+        phasor: Complex64::new(x[1], -x[2]),
         offset: x[0],
         fit_percent: fit_percent(y, &y_hat),
     })
@@ -144,13 +146,13 @@ pub fn analyse_test(
     }
     let fu = sine_fit(t, u, omega_rad_s)?;
     let fy = sine_fit(t, y, omega_rad_s)?;
-    if fu.phasor.abs().is_nan() || fu.phasor.abs() <= 0.0 {
+    if fu.phasor.norm().is_nan() || fu.phasor.norm() <= 0.0 {
         return Err(file_err(format!("the input has no component at {omega_rad_s} rad/s")));
     }
-    let g = fy.phasor / fu.phasor;
+    let g = div(fy.phasor, fu.phasor);
     Ok(FrequencyPoint {
         omega_rad_s,
-        magnitude_db: 20.0 * g.abs().log10(),
+        magnitude_db: 20.0 * g.norm().log10(),
         phase_deg: g.arg().to_degrees(),
         re: g.re,
         im: g.im,
@@ -180,7 +182,7 @@ pub fn read_manifest(path: &Path) -> Result<Vec<ManifestEntry>, SysidError> {
     let mut rdr = crate::log::csv_reader(text.as_bytes(), false);
     let header = rdr
         .headers()
-        .map_err(|e| file_err(Some(1), format!("cannot read the header row: {e}")))?
+        .map_err(|e| crate::log::csv_error(path, Some(1), "cannot read the header row", e))?
         .clone();
     let (Some(fi), Some(pi)) = (
         header.iter().position(|h| h == "frequency_rad_s"),
@@ -193,8 +195,7 @@ pub fn read_manifest(path: &Path) -> Result<Vec<ManifestEntry>, SysidError> {
     };
     let mut entries = Vec::new();
     for rec in rdr.records() {
-        let rec = rec
-            .map_err(|e| file_err(e.position().map(|p| p.line()), format!("malformed CSV: {e}")))?;
+        let rec = rec.map_err(|e| crate::log::csv_error(path, None, "malformed CSV", e))?;
         let line = rec.position().map(|p| p.line());
         let w: f64 = rec
             .get(fi)
@@ -249,7 +250,7 @@ pub fn finish(mut points: Vec<FrequencyPoint>) -> Vec<FrequencyPoint> {
 pub fn to_frd(points: &[FrequencyPoint]) -> Frd {
     Frd {
         omega_rad_s: points.iter().map(|p| p.omega_rad_s).collect(),
-        response: points.iter().map(|p| Complex::new(p.re, p.im)).collect(),
+        response: points.iter().map(|p| Complex64::new(p.re, p.im)).collect(),
         weight: None,
     }
 }

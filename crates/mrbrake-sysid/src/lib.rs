@@ -4,8 +4,9 @@
 //! - [`log`] reads CSV logs (columns by name, any sample rate) with errors naming file and line.
 //! - [`characterize`] finds the repeated current ramps of the characterisation protocol (§5.3.1),
 //!   averages them and fits polynomial rising/falling branches → [`characterize::Characterization`].
-//! - [`inverse`] turns the branches into a monotone, clamped [`inverse::InverseModel`] for control, with
-//!   the branch chosen by the sign of the demand's derivative ([`inverse::InverseTracker`]).
+//! - [`model_file`] reads the inverse-model file those branches are saved as, into the one model type
+//!   every later stage runs: the controller's [`mrbrake_control::InverseModel`]
+//!   ([`characterize::Characterization::model`] converts a fit directly).
 //! - [`tracking`] computes the torque-tracking RMSE (5.2).
 //! - [`freqresp`] turns sinusoidal tests (a manifest of logs) into frequency-response points by sine
 //!   fits (5.3), (5.4); [`frd`] reads and writes such data.
@@ -24,13 +25,13 @@
 //! ```
 
 pub mod characterize;
-pub mod complex;
+mod complex;
 mod error;
 pub mod frd;
 pub mod freqresp;
-pub mod inverse;
 pub mod linalg;
 pub mod log;
+pub mod model_file;
 pub mod polynomial;
 pub mod tfest;
 pub mod tracking;

@@ -71,9 +71,27 @@ pub fn least_squares(a: &Matrix, b: &[f64]) -> Result<Vec<f64>, SysidError> {
     }
     let mut q = a.clone();
     let mut rhs = b.to_vec();
-    // Column scaling: x = S y with S = diag(1/‖a_j‖).
-    let mut scale = vec![1.0; n];
-    for j in 0..n {
+    let scale = equilibrate_columns(&mut q)?;
+    let diag = householder_triangularise(&mut q, &mut rhs);
+    let max_diag = diag.iter().fold(0.0_f64, |acc, d| acc.max(d.abs()));
+    if let Some(k) = diag.iter().position(|d| d.abs() <= 1e-13 * max_diag) {
+        return Err(SysidError::numerical(
+            format!(
+                "least squares: the design matrix is rank deficient (column {k} depends on the others)"
+            ),
+            diag.iter().map(|d| d.abs()).collect(),
+        ));
+    }
+    let y = back_substitute(&q, &diag, &rhs);
+    Ok(y.iter().zip(&scale).map(|(yi, si)| yi * si).collect())
+}
+
+/// Scales every column of `q` to unit norm in place and returns the factors: x = S y with
+/// S = diag(1/‖a_j‖). A zero column is a numerical error.
+fn equilibrate_columns(q: &mut Matrix) -> Result<Vec<f64>, SysidError> {
+    let m = q.rows;
+    let mut scale = vec![1.0; q.cols];
+    for j in 0..q.cols {
         let norm = q.col(j).iter().map(|v| v * v).sum::<f64>().sqrt();
         if norm <= 0.0 {
             return Err(SysidError::numerical(
@@ -86,6 +104,13 @@ pub fn least_squares(a: &Matrix, b: &[f64]) -> Result<Vec<f64>, SysidError> {
             *v *= scale[j];
         }
     }
+    Ok(scale)
+}
+
+/// Householder QR in place: applies the reflections to the columns of `q` and to `rhs` (which becomes
+/// Qᵀ b), leaves R's strictly upper part in `q` and returns R's diagonal.
+fn householder_triangularise(q: &mut Matrix, rhs: &mut [f64]) -> Vec<f64> {
+    let (m, n) = (q.rows, q.cols);
     let mut diag = vec![0.0; n];
     for k in 0..n {
         let norm = q.data[k * m + k..(k + 1) * m].iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -101,29 +126,27 @@ pub fn least_squares(a: &Matrix, b: &[f64]) -> Result<Vec<f64>, SysidError> {
         let (head, tail) = q.data.split_at_mut((k + 1) * m);
         let v = &head[k * m + k..(k + 1) * m];
         for j in 0..n - k - 1 {
-            let col = &mut tail[j * m + k..(j + 1) * m];
-            let dot: f64 = v.iter().zip(col.iter()).map(|(a, b)| a * b).sum();
-            let f = 2.0 * dot / vtv;
-            for (c, vi) in col.iter_mut().zip(v) {
-                *c -= f * vi;
-            }
+            reflect(v, vtv, &mut tail[j * m + k..(j + 1) * m]);
         }
-        let dot: f64 = v.iter().zip(&rhs[k..]).map(|(a, b)| a * b).sum();
-        let f = 2.0 * dot / vtv;
-        for (c, vi) in rhs[k..].iter_mut().zip(v) {
-            *c -= f * vi;
-        }
+        reflect(v, vtv, &mut rhs[k..]);
     }
-    let max_diag = diag.iter().fold(0.0_f64, |acc, d| acc.max(d.abs()));
-    if let Some(k) = diag.iter().position(|d| d.abs() <= 1e-13 * max_diag) {
-        return Err(SysidError::numerical(
-            format!(
-                "least squares: the design matrix is rank deficient (column {k} depends on the others)"
-            ),
-            diag.iter().map(|d| d.abs()).collect(),
-        ));
+    diag
+}
+
+/// Applies the reflection `I − 2 v vᵀ / (vᵀ v)` to `x`.
+#[inline]
+fn reflect(v: &[f64], vtv: f64, x: &mut [f64]) {
+    let dot: f64 = v.iter().zip(x.iter()).map(|(a, b)| a * b).sum();
+    let f = 2.0 * dot / vtv;
+    for (c, vi) in x.iter_mut().zip(v) {
+        *c -= f * vi;
     }
-    // Back substitution R y = Qᵀ b, R strictly upper part stored in q above the diagonal.
+}
+
+/// Solves R y = Qᵀ b by back substitution, R's strictly upper part stored in `q` above the
+/// diagonal and its diagonal in `diag`.
+fn back_substitute(q: &Matrix, diag: &[f64], rhs: &[f64]) -> Vec<f64> {
+    let n = q.cols;
     let mut y = vec![0.0; n];
     for k in (0..n).rev() {
         let mut s = rhs[k];
@@ -132,7 +155,7 @@ pub fn least_squares(a: &Matrix, b: &[f64]) -> Result<Vec<f64>, SysidError> {
         }
         y[k] = s / diag[k];
     }
-    Ok(y.iter().zip(&scale).map(|(yi, si)| yi * si).collect())
+    y
 }
 
 #[cfg(test)]

@@ -97,7 +97,7 @@ pub fn read_columns_from(
     let mut rdr = csv_reader(reader, true);
     let header = rdr
         .headers()
-        .map_err(|e| file_err(Some(1), format!("cannot read the header row: {e}")))?
+        .map_err(|e| csv_error(source, Some(1), "cannot read the header row", e))?
         .clone();
     let mut index = Vec::with_capacity(names.len());
     for name in names {
@@ -121,10 +121,7 @@ pub fn read_columns_from(
         match rdr.read_record(&mut record) {
             Ok(false) => break,
             Ok(true) => {}
-            Err(e) => {
-                let line = e.position().map(|p| p.line());
-                return Err(file_err(line, format!("malformed CSV: {e}")));
-            }
+            Err(e) => return Err(csv_error(source, None, "malformed CSV", e)),
         }
         let line = record.position().map(|p| p.line());
         for (k, &i) in index.iter().enumerate() {
@@ -177,6 +174,18 @@ pub(crate) fn csv_reader<R: Read>(reader: R, flexible: bool) -> csv::Reader<R> {
 /// A constructor of [`SysidError::File`] errors for `file` (line, message).
 pub(crate) fn file_error(file: &Path) -> impl Fn(Option<u64>, String) -> SysidError + '_ {
     move |line, message| SysidError::File { file: file.to_path_buf(), line, message }
+}
+
+/// A [`SysidError::Csv`] for `file`: the CSV reader's `error` while doing `what`, at `line`, or at
+/// the error's own line when `line` is `None`.
+pub(crate) fn csv_error(
+    file: &Path,
+    line: Option<u64>,
+    what: &'static str,
+    error: csv::Error,
+) -> SysidError {
+    let line = line.or_else(|| error.position().map(|p| p.line()));
+    SysidError::Csv { file: file.to_path_buf(), line, what, source: error }
 }
 
 #[cfg(test)]

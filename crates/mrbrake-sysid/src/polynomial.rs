@@ -4,8 +4,10 @@
 //! grows like a few times 2ⁿ instead of (x_max)ⁿ·…), solve by Householder QR, and only at the end expand
 //! the result back to ascending powers of the physical variable, which is the form the JSON files carry.
 
+use num_complex::Complex64;
+
 use crate::SysidError;
-use crate::complex::Complex;
+use crate::complex::{div, recip};
 use crate::linalg::{Matrix, least_squares};
 
 /// A real polynomial `c₀ + c₁ x + … + cₙ xⁿ` (coefficients in ascending powers).
@@ -27,11 +29,11 @@ impl Polynomial {
     }
 
     /// Value at a complex argument.
-    pub fn eval_complex(&self, z: Complex) -> Complex {
+    pub fn eval_complex(&self, z: Complex64) -> Complex64 {
         self.coefficients
             .iter()
             .rev()
-            .fold(Complex::default(), |acc, c| acc * z + Complex::new(*c, 0.0))
+            .fold(Complex64::default(), |acc, c| acc * z + Complex64::new(*c, 0.0))
     }
 
     /// The derivative polynomial.
@@ -99,11 +101,11 @@ pub fn fit(x: &[f64], y: &[f64], order: usize) -> Result<Polynomial, SysidError>
     Ok(Polynomial::new(c).compose_affine(alpha, beta))
 }
 
-/// Complex roots of the polynomial with coefficients in **descending** powers (`c[0] sⁿ + … + c[n]`).
+/// Complex64 roots of the polynomial with coefficients in **descending** powers (`c[0] sⁿ + … + c[n]`).
 ///
 /// Degree 1 and 2 use closed forms (the quadratic in its cancellation-free form); higher degrees use the
 /// Aberth–Ehrlich simultaneous iteration (Aberth 1973, Math. Comp. 27:339) followed by a Newton polish.
-pub fn roots_descending(c: &[f64]) -> Result<Vec<Complex>, SysidError> {
+pub fn roots_descending(c: &[f64]) -> Result<Vec<Complex64>, SysidError> {
     let first = c.iter().position(|v| v.abs() > 0.0).unwrap_or(c.len());
     let c = &c[first..];
     if c.len() <= 1 {
@@ -111,7 +113,7 @@ pub fn roots_descending(c: &[f64]) -> Result<Vec<Complex>, SysidError> {
     }
     let n = c.len() - 1;
     if n == 1 {
-        return Ok(vec![Complex::new(-c[1] / c[0], 0.0)]);
+        return Ok(vec![Complex64::new(-c[1] / c[0], 0.0)]);
     }
     if n == 2 {
         let (a, b, cc) = (c[0], c[1], c[2]);
@@ -122,19 +124,19 @@ pub fn roots_descending(c: &[f64]) -> Result<Vec<Complex>, SysidError> {
             let r1 = q / a;
             let r2 = if q.abs() > 0.0 { cc / q } else { 0.0 };
             let (lo, hi) = if r1.abs() <= r2.abs() { (r1, r2) } else { (r2, r1) };
-            return Ok(vec![Complex::new(lo, 0.0), Complex::new(hi, 0.0)]);
+            return Ok(vec![Complex64::new(lo, 0.0), Complex64::new(hi, 0.0)]);
         }
         let re = -b / (2.0 * a);
         let im = (-disc).sqrt() / (2.0 * a.abs());
-        return Ok(vec![Complex::new(re, im), Complex::new(re, -im)]);
+        return Ok(vec![Complex64::new(re, im), Complex64::new(re, -im)]);
     }
     let ascending = Polynomial::new(c.iter().rev().copied().collect());
     let deriv = ascending.derivative();
     // Initial guesses on a circle of the geometric-mean root radius, at irregular angles.
     let radius = (c[n].abs() / c[0].abs()).powf(1.0 / n as f64).max(1e-12);
-    let mut z: Vec<Complex> = (0..n)
+    let mut z: Vec<Complex64> = (0..n)
         .map(|k| {
-            Complex::from_polar(
+            Complex64::from_polar(
                 radius,
                 2.0 * std::f64::consts::PI * (k as f64 + 0.25) / n as f64 + 0.4,
             )
@@ -144,17 +146,17 @@ pub fn roots_descending(c: &[f64]) -> Result<Vec<Complex>, SysidError> {
     for _ in 0..500 {
         let mut max_step = 0.0_f64;
         for i in 0..n {
-            let ratio = ascending.eval_complex(z[i]) / deriv.eval_complex(z[i]);
-            let mut sum = Complex::default();
+            let ratio = div(ascending.eval_complex(z[i]), deriv.eval_complex(z[i]));
+            let mut sum = Complex64::default();
             for j in 0..n {
                 if j != i {
-                    sum = sum + Complex::new(1.0, 0.0) / (z[i] - z[j]);
+                    sum += recip(z[i] - z[j]);
                 }
             }
-            let step = ratio / (Complex::new(1.0, 0.0) - ratio * sum);
+            let step = div(ratio, Complex64::new(1.0, 0.0) - ratio * sum);
             if step.is_finite() {
-                z[i] = z[i] - step;
-                max_step = max_step.max(step.abs() / z[i].abs().max(1e-300));
+                z[i] -= step;
+                max_step = max_step.max(step.norm() / z[i].norm().max(1e-300));
             }
         }
         history.push(max_step);
@@ -169,15 +171,15 @@ pub fn roots_descending(c: &[f64]) -> Result<Vec<Complex>, SysidError> {
         ));
     }
     for r in &mut z {
-        let step = ascending.eval_complex(*r) / deriv.eval_complex(*r);
+        let step = div(ascending.eval_complex(*r), deriv.eval_complex(*r));
         if step.is_finite() {
-            *r = *r - step;
+            *r -= step;
         }
-        if r.im.abs() <= 1e-12 * r.abs() {
+        if r.im.abs() <= 1e-12 * r.norm() {
             r.im = 0.0;
         }
     }
-    z.sort_by(|a, b| a.abs().total_cmp(&b.abs()));
+    z.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
     Ok(z)
 }
 
@@ -208,13 +210,13 @@ mod tests {
         // (s+1)(s+10)(s²+2s+5) = s⁴ + 13 s³ + 37 s² + 75 s + 50
         let r = roots_descending(&[1.0, 13.0, 37.0, 75.0, 50.0]).unwrap();
         let expect = [
-            Complex::new(-1.0, 0.0),
-            Complex::new(-1.0, 2.0),
-            Complex::new(-1.0, -2.0),
-            Complex::new(-10.0, 0.0),
+            Complex64::new(-1.0, 0.0),
+            Complex64::new(-1.0, 2.0),
+            Complex64::new(-1.0, -2.0),
+            Complex64::new(-10.0, 0.0),
         ];
         for e in expect {
-            assert!(r.iter().any(|z| (*z - e).abs() < 1e-10), "{e:?} not in {r:?}");
+            assert!(r.iter().any(|z| (*z - e).norm() < 1e-10), "{e:?} not in {r:?}");
         }
     }
 }

@@ -17,8 +17,10 @@
 //! Frequencies are scaled by ω_s = √(ω_min ω_max) during the fit (s = ω_s p), which keeps the powers of
 //! jω within a few decades of 1; D(0) = 1 is unaffected by that scaling.
 
+use num_complex::Complex64;
+
 use crate::SysidError;
-use crate::complex::Complex;
+use crate::complex::{div, recip};
 use crate::frd::Frd;
 use crate::linalg::{Matrix, least_squares};
 use crate::transfer_function::TransferFunction;
@@ -114,8 +116,8 @@ pub struct TfestSummary {
 
 impl TfestResult {
     /// Model response including the delay, e^{−jωτ} N(jω)/D(jω).
-    pub fn response(&self, omega_rad_s: f64) -> Complex {
-        self.model.response(omega_rad_s) * Complex::from_polar(1.0, -omega_rad_s * self.delay_s)
+    pub fn response(&self, omega_rad_s: f64) -> Complex64 {
+        self.model.response(omega_rad_s) * Complex64::from_polar(1.0, -omega_rad_s * self.delay_s)
     }
 
     /// Poles, zeros, gains and fit as a serialisable summary.
@@ -145,9 +147,9 @@ struct Problem {
     m: usize,
     n: usize,
     /// Powers (jω_k/ω_s)^i for i = 0..=max(m, n).
-    powers: Vec<Vec<Complex>>,
+    powers: Vec<Vec<Complex64>>,
     /// Data with the delay removed.
-    data: Vec<Complex>,
+    data: Vec<Complex64>,
     weight: Vec<f64>,
 }
 
@@ -157,15 +159,15 @@ impl Problem {
     }
 
     /// N(p_k), D(p_k) for parameters θ = [b_0..b_m, a_1..a_n].
-    fn nd(&self, theta: &[f64], k: usize) -> (Complex, Complex) {
+    fn nd(&self, theta: &[f64], k: usize) -> (Complex64, Complex64) {
         let pw = &self.powers[k];
-        let mut num = Complex::default();
+        let mut num = Complex64::default();
         for i in 0..=self.m {
-            num = num + pw[i].scale(theta[i]);
+            num += pw[i].scale(theta[i]);
         }
-        let mut den = Complex::new(1.0, 0.0);
+        let mut den = Complex64::new(1.0, 0.0);
         for i in 1..=self.n {
-            den = den + pw[i].scale(theta[self.m + i]);
+            den += pw[i].scale(theta[self.m + i]);
         }
         (num, den)
     }
@@ -174,7 +176,7 @@ impl Problem {
         (0..self.data.len())
             .map(|k| {
                 let (num, den) = self.nd(theta, k);
-                (num / den - self.data[k]).norm_sqr() * self.weight[k] * self.weight[k]
+                (div(num, den) - self.data[k]).norm_sqr() * self.weight[k] * self.weight[k]
             })
             .sum()
     }
@@ -186,7 +188,7 @@ impl Problem {
         let mut b = vec![0.0; rows];
         for k in 0..self.data.len() {
             let c = match previous {
-                Some(theta) => self.weight[k] / self.nd(theta, k).1.abs(),
+                Some(theta) => self.weight[k] / self.nd(theta, k).1.norm(),
                 None => self.weight[k],
             };
             let pw = &self.powers[k];
@@ -214,11 +216,11 @@ impl Problem {
         for k in 0..self.data.len() {
             let (num, den) = self.nd(theta, k);
             let w = self.weight[k];
-            let e = (num / den - self.data[k]).scale(w);
+            let e = (div(num, den) - self.data[k]).scale(w);
             r[2 * k] = e.re;
             r[2 * k + 1] = e.im;
             let pw = &self.powers[k];
-            let inv_d = Complex::new(1.0, 0.0) / den;
+            let inv_d = recip(den);
             for i in 0..=self.m {
                 let d = (pw[i] * inv_d).scale(w);
                 j.set(2 * k, i, d.re);
@@ -237,6 +239,39 @@ impl Problem {
 
 /// Estimates a continuous-time transfer function from frequency-response data (see module docs).
 pub fn tfest(frd: &Frd, options: &TfestOptions) -> Result<TfestResult, SysidError> {
+    check_request(frd, options)?;
+    let (problem, omega_scale) = Problem::new(frd, options);
+    // 1. Levy, then Sanathanan–Koerner.
+    let (theta, sk_history) = problem.linear_initialisation(options.max_sk_iterations)?;
+    // 2. Levenberg–Marquardt.
+    let (theta, lm_history) =
+        problem.levenberg_marquardt(theta, options.max_lm_iterations, &sk_history)?;
+
+    // Unscale: coefficient of sⁱ = coefficient of pⁱ / ω_sⁱ; descending order.
+    let (m, n) = (problem.m, problem.n);
+    let numerator: Vec<f64> =
+        (0..=m).rev().map(|i| theta[i] / omega_scale.powi(i as i32)).collect();
+    let mut denominator: Vec<f64> =
+        (1..=n).rev().map(|i| theta[m + i] / omega_scale.powi(i as i32)).collect();
+    denominator.push(1.0);
+    let model = TransferFunction::new(numerator, denominator)?;
+    let mut result = TfestResult {
+        model,
+        delay_s: options.delay_s,
+        fit_percent: 0.0,
+        mse: 0.0,
+        sk_history,
+        lm_history,
+    };
+    let fitted: Vec<Complex64> = frd.omega_rad_s.iter().map(|w| result.response(*w)).collect();
+    result.fit_percent = complex_fit_percent(&frd.response, &fitted);
+    result.mse = frd.response.iter().zip(&fitted).map(|(g, h)| (*g - *h).norm_sqr()).sum::<f64>()
+        / frd.omega_rad_s.len() as f64;
+    Ok(result)
+}
+
+/// Checks the model orders, the number of points, the delay and the data.
+fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
     let (m, n) = (options.zeros, options.poles);
     if n == 0 || m > n {
         return Err(SysidError::Input(format!(
@@ -264,71 +299,126 @@ pub fn tfest(frd: &Frd, options: &TfestOptions) -> Result<TfestResult, SysidErro
             "tfest: frequencies must be positive and responses finite".into(),
         ));
     }
-    let w_min = frd.omega_rad_s.iter().copied().fold(f64::INFINITY, f64::min);
-    let w_max = frd.omega_rad_s.iter().copied().fold(0.0, f64::max);
-    let omega_scale = (w_min * w_max).sqrt();
-    let degree = m.max(n);
-    let powers: Vec<Vec<Complex>> = frd
-        .omega_rad_s
-        .iter()
-        .map(|w| {
-            let p = Complex::new(0.0, w / omega_scale);
-            let mut v = vec![Complex::new(1.0, 0.0)];
-            for i in 1..=degree {
-                let last = v[i - 1];
-                v.push(last * p);
-            }
-            v
-        })
-        .collect();
-    let data: Vec<Complex> = frd
-        .omega_rad_s
-        .iter()
-        .zip(&frd.response)
-        .map(|(w, g)| *g * Complex::from_polar(1.0, w * options.delay_s))
-        .collect();
-    let weight: Vec<f64> = (0..count)
-        .map(|k| {
-            let base = match options.weighting {
-                Weighting::Uniform => 1.0,
-                Weighting::InverseMagnitude => 1.0 / frd.response[k].abs().max(f64::MIN_POSITIVE),
-            };
-            base * frd.weight.as_ref().map_or(1.0, |w| w[k])
-        })
-        .collect();
-    let problem = Problem { m, n, powers, data, weight };
+    Ok(())
+}
 
-    // 1. Levy, then Sanathanan–Koerner.
-    let mut theta = problem.linear_step(None)?;
-    let mut sk_history = vec![problem.cost(&theta)];
-    for _ in 0..options.max_sk_iterations {
-        let next = problem.linear_step(Some(&theta))?;
-        let change = next
+impl Problem {
+    /// The problem of a checked request, and the frequency scale ω_s = √(ω_min ω_max).
+    fn new(frd: &Frd, options: &TfestOptions) -> (Self, f64) {
+        let (m, n) = (options.zeros, options.poles);
+        let w_min = frd.omega_rad_s.iter().copied().fold(f64::INFINITY, f64::min);
+        let w_max = frd.omega_rad_s.iter().copied().fold(0.0, f64::max);
+        let omega_scale = (w_min * w_max).sqrt();
+        let degree = m.max(n);
+        let powers: Vec<Vec<Complex64>> = frd
+            .omega_rad_s
             .iter()
-            .zip(&theta)
-            .map(|(a, b)| (a - b).abs() / a.abs().max(1e-12))
-            .fold(0.0, f64::max);
-        theta = next;
-        sk_history.push(problem.cost(&theta));
-        if change < 1e-10 {
-            break;
-        }
-    }
-    if !sk_history.last().is_some_and(|c| c.is_finite()) {
-        return Err(SysidError::numerical(
-            "tfest: the Sanathanan–Koerner iterations diverged",
-            sk_history,
-        ));
+            .map(|w| {
+                let p = Complex64::new(0.0, w / omega_scale);
+                let mut v = vec![Complex64::new(1.0, 0.0)];
+                for i in 1..=degree {
+                    let last = v[i - 1];
+                    v.push(last * p);
+                }
+                v
+            })
+            .collect();
+        let data: Vec<Complex64> = frd
+            .omega_rad_s
+            .iter()
+            .zip(&frd.response)
+            .map(|(w, g)| *g * Complex64::from_polar(1.0, w * options.delay_s))
+            .collect();
+        let weight: Vec<f64> = (0..frd.omega_rad_s.len())
+            .map(|k| {
+                let base = match options.weighting {
+                    Weighting::Uniform => 1.0,
+                    Weighting::InverseMagnitude => {
+                        1.0 / frd.response[k].norm().max(f64::MIN_POSITIVE)
+                    }
+                };
+                base * frd.weight.as_ref().map_or(1.0, |w| w[k])
+            })
+            .collect();
+        (Self { m, n, powers, data, weight }, omega_scale)
     }
 
-    // 2. Levenberg–Marquardt.
-    let mut cost = problem.cost(&theta);
-    let mut lm_history = Vec::new();
-    let mut lambda = 1e-3;
-    let mut converged = false;
-    for _ in 0..options.max_lm_iterations {
-        let (r, j) = problem.residual_jacobian(&theta);
-        let p = problem.unknowns();
+    /// Step 1 of the module docs: Levy's solution refined by up to `max_iterations`
+    /// Sanathanan–Koerner steps; returns θ and the cost after each step.
+    fn linear_initialisation(
+        &self,
+        max_iterations: usize,
+    ) -> Result<(Vec<f64>, Vec<f64>), SysidError> {
+        let mut theta = self.linear_step(None)?;
+        let mut history = vec![self.cost(&theta)];
+        for _ in 0..max_iterations {
+            let next = self.linear_step(Some(&theta))?;
+            let change = next
+                .iter()
+                .zip(&theta)
+                .map(|(a, b)| (a - b).abs() / a.abs().max(1e-12))
+                .fold(0.0, f64::max);
+            theta = next;
+            history.push(self.cost(&theta));
+            if change < 1e-10 {
+                break;
+            }
+        }
+        if !history.last().is_some_and(|c| c.is_finite()) {
+            return Err(SysidError::numerical(
+                "tfest: the Sanathanan–Koerner iterations diverged",
+                history,
+            ));
+        }
+        Ok((theta, history))
+    }
+
+    /// Step 2 of the module docs: Levenberg–Marquardt from `theta` for at most `max_iterations`
+    /// iterations; returns θ and the cost after each accepted step. A failure to converge is a
+    /// numerical error whose history is `sk_history` followed by the accepted costs.
+    fn levenberg_marquardt(
+        &self,
+        mut theta: Vec<f64>,
+        max_iterations: usize,
+        sk_history: &[f64],
+    ) -> Result<(Vec<f64>, Vec<f64>), SysidError> {
+        let mut cost = self.cost(&theta);
+        let mut history = Vec::new();
+        let mut lambda = 1e-3;
+        for _ in 0..max_iterations {
+            match self.lm_iteration(&theta, cost, &mut lambda)? {
+                LmStep::Accepted { theta: next, cost: next_cost, converged } => {
+                    theta = next;
+                    cost = next_cost;
+                    history.push(cost);
+                    if converged || cost <= 0.0 {
+                        return Ok((theta, history));
+                    }
+                }
+                // No step decreases the cost even with a tiny step: θ is a (local) minimum to
+                // working precision.
+                LmStep::Stalled => return Ok((theta, history)),
+            }
+        }
+        let mut all = sk_history.to_vec();
+        all.extend(&history);
+        Err(SysidError::numerical(
+            format!("tfest: Levenberg–Marquardt did not converge in {max_iterations} iterations"),
+            all,
+        ))
+    }
+
+    /// One Levenberg–Marquardt iteration at θ with cost `cost`: raises the damping λ until a step
+    /// lowers the cost (then lowers λ for the next iteration), each step the QR solution of the
+    /// augmented system [J; √λ·diag(JᵀJ)^{1/2}] δ = [−r; 0].
+    fn lm_iteration(
+        &self,
+        theta: &[f64],
+        cost: f64,
+        lambda: &mut f64,
+    ) -> Result<LmStep, SysidError> {
+        let (r, j) = self.residual_jacobian(theta);
+        let p = self.unknowns();
         let rows = r.len();
         let mut aug = Matrix::zeros(rows + p, p);
         let mut rhs = vec![0.0; rows + p];
@@ -342,80 +432,46 @@ pub fn tfest(frd: &Frd, options: &TfestOptions) -> Result<TfestResult, SysidErro
         for row in 0..rows {
             rhs[row] = -r[row];
         }
-        let mut accepted = false;
-        while lambda < 1e16 {
+        while *lambda < 1e16 {
             for c in 0..p {
-                aug.set(rows + c, c, (lambda * diag[c].max(1e-300)).sqrt());
+                aug.set(rows + c, c, (*lambda * diag[c].max(1e-300)).sqrt());
             }
             let step = least_squares(&aug, &rhs)?;
             let trial: Vec<f64> = theta.iter().zip(&step).map(|(t, s)| t + s).collect();
-            let trial_cost = problem.cost(&trial);
+            let trial_cost = self.cost(&trial);
             if trial_cost.is_finite() && trial_cost < cost {
                 let rel_step = step
                     .iter()
-                    .zip(&theta)
+                    .zip(theta)
                     .map(|(s, t)| s.abs() / t.abs().max(1e-12))
                     .fold(0.0, f64::max);
                 let rel_gain = (cost - trial_cost) / cost.max(f64::MIN_POSITIVE);
-                theta = trial;
-                cost = trial_cost;
-                lm_history.push(cost);
-                lambda = (lambda / 3.0).max(1e-12);
-                accepted = true;
-                if rel_step < 1e-10 || rel_gain < 1e-14 {
-                    converged = true;
-                }
-                break;
+                *lambda = (*lambda / 3.0).max(1e-12);
+                return Ok(LmStep::Accepted {
+                    theta: trial,
+                    cost: trial_cost,
+                    converged: rel_step < 1e-10 || rel_gain < 1e-14,
+                });
             }
-            lambda *= 4.0;
+            *lambda *= 4.0;
         }
-        if !accepted {
-            // No step decreases the cost even with a tiny step: θ is a (local) minimum to working precision.
-            converged = true;
-        }
-        if converged || cost <= 0.0 {
-            converged = true;
-            break;
-        }
+        Ok(LmStep::Stalled)
     }
-    if !converged {
-        let mut history = sk_history.clone();
-        history.extend(&lm_history);
-        return Err(SysidError::numerical(
-            format!(
-                "tfest: Levenberg–Marquardt did not converge in {} iterations",
-                options.max_lm_iterations
-            ),
-            history,
-        ));
-    }
+}
 
-    // Unscale: coefficient of sⁱ = coefficient of pⁱ / ω_sⁱ; descending order.
-    let numerator: Vec<f64> =
-        (0..=m).rev().map(|i| theta[i] / omega_scale.powi(i as i32)).collect();
-    let mut denominator: Vec<f64> =
-        (1..=n).rev().map(|i| theta[m + i] / omega_scale.powi(i as i32)).collect();
-    denominator.push(1.0);
-    let model = TransferFunction::new(numerator, denominator)?;
-    let mut result = TfestResult {
-        model,
-        delay_s: options.delay_s,
-        fit_percent: 0.0,
-        mse: 0.0,
-        sk_history,
-        lm_history,
-    };
-    let fitted: Vec<Complex> = frd.omega_rad_s.iter().map(|w| result.response(*w)).collect();
-    result.fit_percent = complex_fit_percent(&frd.response, &fitted);
-    result.mse = frd.response.iter().zip(&fitted).map(|(g, h)| (*g - *h).norm_sqr()).sum::<f64>()
-        / count as f64;
-    Ok(result)
+/// The outcome of one Levenberg–Marquardt iteration.
+enum LmStep {
+    /// A step lowered the cost; `converged` when it was negligible (relative step < 1e-10 or
+    /// relative gain < 1e-14).
+    Accepted { theta: Vec<f64>, cost: f64, converged: bool },
+    /// No damping up to λ = 1e16 lowers the cost.
+    Stalled,
 }
 
 /// MATLAB's fit on complex data: 100·(1 − ‖g − ĝ‖/‖g − mean g‖).
-pub fn complex_fit_percent(g: &[Complex], g_hat: &[Complex]) -> f64 {
+pub fn complex_fit_percent(g: &[Complex64], g_hat: &[Complex64]) -> f64 {
     let n = g.len().max(1) as f64;
-    let mean = g.iter().fold(Complex::default(), |a, b| a + *b).scale(1.0 / n);
+    let mean = g.iter().fold(Complex64::default(), |a, b| a + *b).scale(1.0 / n);
     let err: f64 = g.iter().zip(g_hat).map(|(a, b)| (*a - *b).norm_sqr()).sum::<f64>().sqrt();
     let spread: f64 = g.iter().map(|a| (*a - mean).norm_sqr()).sum::<f64>().sqrt();
     100.0 * (1.0 - err / spread)
@@ -474,7 +530,7 @@ mod tests {
             omega_rad_s: omega.clone(),
             response: omega
                 .iter()
-                .map(|w| truth.response(*w) * Complex::from_polar(1.0, -w * tau))
+                .map(|w| truth.response(*w) * Complex64::from_polar(1.0, -w * tau))
                 .collect(),
             weight: None,
         };
@@ -492,7 +548,7 @@ mod tests {
         let omega = logspace(0.1, 1000.0, 41);
         let mut frd = frd_of(&truth, &omega);
         for (k, g) in frd.response.iter_mut().enumerate() {
-            *g = *g + Complex::new((k as f64).sin(), (k as f64 * 1.3).cos()).scale(0.05 * g.abs());
+            *g += Complex64::new((k as f64).sin(), (k as f64 * 1.3).cos()).scale(0.05 * g.norm());
         }
         let mut o = TfestOptions::new(2, 0);
         o.max_sk_iterations = 0;
@@ -509,7 +565,7 @@ mod tests {
     fn improper_request_is_an_input_error() {
         let frd = Frd {
             omega_rad_s: vec![1.0, 2.0],
-            response: vec![Complex::new(1.0, 0.0); 2],
+            response: vec![Complex64::new(1.0, 0.0); 2],
             weight: None,
         };
         assert!(tfest(&frd, &TfestOptions::new(1, 2)).unwrap_err().is_input_error());

@@ -1,13 +1,17 @@
 //! Continuous-time transfer functions G(s) = N(s)/D(s): frequency response, poles, DC gain, bandwidth.
 //!
 //! Coefficients are stored in **descending** powers of s (the convention of MATLAB's `tf` and of the
-//! thesis's (5.1), (5.5), (5.6)); the estimator normalises the denominator's constant term to 1.
+//! thesis's (5.1), (5.5), (5.6)); the estimator normalises the denominator's constant term to 1. The
+//! one continuous-time model type of mrbrake: [`crate::tfest`] estimates it, and `mrbrake-sim`
+//! discretises it exactly (zero-order hold) for the virtual rig's brake and motor.
+
+use num_complex::Complex64;
 
 use crate::SysidError;
-use crate::complex::Complex;
+use crate::complex::div;
 use crate::polynomial::roots_descending;
 
-/// G(s) = N(s)/D(s), coefficients in descending powers of s.
+/// G(s) = N(s)/D(s), coefficients in descending powers of s, proper (deg N ≤ deg D), no leading zeros.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TransferFunction {
     /// Numerator coefficients, highest power first.
@@ -16,43 +20,75 @@ pub struct TransferFunction {
     pub denominator: Vec<f64>,
 }
 
+/// `coefficients` without its leading zeros, keeping the last one of an all-zero list.
+fn without_leading_zeros(coefficients: Vec<f64>) -> Vec<f64> {
+    let first = coefficients
+        .iter()
+        .position(|c| c.abs() > 0.0)
+        .unwrap_or(coefficients.len().saturating_sub(1));
+    coefficients[first..].to_vec()
+}
+
 /// Evaluates a polynomial given in descending powers at `z` (Horner).
-fn eval_descending(c: &[f64], z: Complex) -> Complex {
-    c.iter().fold(Complex::default(), |acc, v| acc * z + Complex::new(*v, 0.0))
+fn eval_descending(c: &[f64], z: Complex64) -> Complex64 {
+    c.iter().fold(Complex64::default(), |acc, v| acc * z + Complex64::new(*v, 0.0))
 }
 
 impl TransferFunction {
-    /// A transfer function; fails on empty or non-finite coefficients or a zero denominator.
+    /// A proper transfer function. Leading zero coefficients are dropped (an all-zero numerator keeps
+    /// one zero); fails on non-finite coefficients, an empty numerator, a zero denominator or a
+    /// numerator of higher degree than the denominator (improper).
     pub fn new(numerator: Vec<f64>, denominator: Vec<f64>) -> Result<Self, SysidError> {
-        if numerator.is_empty() || numerator.iter().chain(&denominator).any(|c| !c.is_finite()) {
+        if numerator.iter().chain(&denominator).any(|c| !c.is_finite()) {
             return Err(SysidError::Input(
-                "transfer function: coefficients must be finite and the numerator non-empty".into(),
+                "transfer function: coefficients must be finite numbers".into(),
             ));
         }
+        let numerator = without_leading_zeros(numerator);
+        let denominator = without_leading_zeros(denominator);
         if denominator.iter().all(|c| c.abs() <= 0.0) {
-            return Err(SysidError::Input("transfer function: the denominator is zero".into()));
+            return Err(SysidError::Input(
+                "transfer function: the denominator must not be zero".into(),
+            ));
+        }
+        if numerator.is_empty() {
+            return Err(SysidError::Input(
+                "transfer function: the numerator must not be empty".into(),
+            ));
+        }
+        if numerator.len() > denominator.len() {
+            return Err(SysidError::Input(format!(
+                "transfer function: numerator degree {} exceeds denominator degree {} (improper)",
+                numerator.len() - 1,
+                denominator.len() - 1
+            )));
         }
         Ok(Self { numerator, denominator })
     }
 
+    /// Order: the degree of the denominator.
+    pub fn order(&self) -> usize {
+        self.denominator.len() - 1
+    }
+
     /// G(jω).
-    pub fn response(&self, omega_rad_s: f64) -> Complex {
-        let s = Complex::new(0.0, omega_rad_s);
-        eval_descending(&self.numerator, s) / eval_descending(&self.denominator, s)
+    pub fn response(&self, omega_rad_s: f64) -> Complex64 {
+        let s = Complex64::new(0.0, omega_rad_s);
+        div(eval_descending(&self.numerator, s), eval_descending(&self.denominator, s))
     }
 
     /// G(s) at a complex s.
-    pub fn eval(&self, s: Complex) -> Complex {
-        eval_descending(&self.numerator, s) / eval_descending(&self.denominator, s)
+    pub fn eval(&self, s: Complex64) -> Complex64 {
+        div(eval_descending(&self.numerator, s), eval_descending(&self.denominator, s))
     }
 
     /// Poles (roots of D), sorted by increasing modulus.
-    pub fn poles(&self) -> Result<Vec<Complex>, SysidError> {
+    pub fn poles(&self) -> Result<Vec<Complex64>, SysidError> {
         roots_descending(&self.denominator)
     }
 
     /// Zeros (roots of N), sorted by increasing modulus.
-    pub fn zeros(&self) -> Result<Vec<Complex>, SysidError> {
+    pub fn zeros(&self) -> Result<Vec<Complex64>, SysidError> {
         roots_descending(&self.numerator)
     }
 
@@ -71,7 +107,7 @@ impl TransferFunction {
             .poles()?
             .iter()
             .filter(|p| p.im >= 0.0)
-            .map(|p| p.abs())
+            .map(|p| p.norm())
             .filter(|w| *w > 0.0)
             .collect())
     }
@@ -91,12 +127,12 @@ impl TransferFunction {
         let mut w_prev = lo;
         let mut w = lo;
         while w < hi {
-            if self.response(w).abs() < target {
+            if self.response(w).norm() < target {
                 // Bisection in log ω between w_prev and w.
                 let (mut a, mut b) = (w_prev.ln(), w.ln());
                 for _ in 0..100 {
                     let m = 0.5 * (a + b);
-                    if self.response(m.exp()).abs() < target {
+                    if self.response(m.exp()).norm() < target {
                         b = m;
                     } else {
                         a = m;
@@ -127,6 +163,19 @@ mod tests {
     }
 
     #[test]
+    fn leading_zeros_are_dropped_and_improper_models_refused() {
+        let g = TransferFunction::new(vec![0.0, 0.0, 2.0], vec![0.0, 0.01, 1.0]).unwrap();
+        assert_eq!((g.numerator.len(), g.denominator.len(), g.order()), (1, 2, 1));
+        let zero = TransferFunction::new(vec![0.0, 0.0], vec![1.0, 1.0]).unwrap();
+        assert_eq!(zero.numerator.len(), 1);
+        let err = TransferFunction::new(vec![1.0, 0.0, 0.0], vec![1.0, 1.0]).unwrap_err();
+        assert!(err.to_string().contains("improper"), "{err}");
+        assert!(TransferFunction::new(vec![1.0], vec![0.0, 0.0]).is_err());
+        assert!(TransferFunction::new(vec![], vec![1.0]).is_err());
+        assert!(TransferFunction::new(vec![f64::NAN], vec![1.0]).is_err());
+    }
+
+    #[test]
     fn first_order_bandwidth_is_the_pole() {
         let g = TransferFunction::new(vec![2.0], vec![0.01, 1.0]).unwrap();
         let bw = g.bandwidth_rad_s().unwrap();
@@ -137,7 +186,7 @@ mod tests {
     fn response_matches_closed_form() {
         let g = TransferFunction::new(vec![1.0], vec![1.0, 1.0]).unwrap();
         let r = g.response(1.0);
-        assert!((r.abs() - 1.0 / 2f64.sqrt()).abs() < 1e-15);
+        assert!((r.norm() - 1.0 / 2f64.sqrt()).abs() < 1e-15);
         assert!((r.arg() + std::f64::consts::FRAC_PI_4).abs() < 1e-15);
     }
 }

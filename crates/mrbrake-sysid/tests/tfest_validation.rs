@@ -3,22 +3,18 @@
 //! known second- and third-order models with 1 % noise on 41 log-spaced points (0.1–1000 rad/s) give
 //! poles within 1 % of the true ones.
 
-use mrbrake_sysid::complex::Complex;
+use mrbrake_optim::rng::SplitMix64;
 use mrbrake_sysid::frd::Frd;
 use mrbrake_sysid::tfest::{TfestOptions, Weighting, logspace, tfest};
 use mrbrake_sysid::transfer_function::TransferFunction;
+use num_complex::Complex64;
 
 /// SplitMix64 (Steele, Lea & Flood 2014) + Box–Muller: a reproducible standard normal stream.
-struct Normal(u64);
+struct Normal(SplitMix64);
 
 impl Normal {
     fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        ((z >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+        ((self.0.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
     }
     fn sample(&mut self) -> f64 {
         let (u1, u2) = (self.uniform(), self.uniform());
@@ -29,12 +25,12 @@ impl Normal {
 /// 41 points of `g` with 1 % relative complex noise (each of re and im perturbed by 1 % of |G|).
 fn noisy_frd(g: &TransferFunction, seed: u64) -> Frd {
     let omega = logspace(0.1, 1000.0, 41);
-    let mut rng = Normal(seed);
+    let mut rng = Normal(SplitMix64::new(seed));
     let response = omega
         .iter()
         .map(|w| {
             let r = g.response(*w);
-            r + Complex::new(rng.sample(), rng.sample()).scale(0.01 * r.abs())
+            r + Complex64::new(rng.sample(), rng.sample()).scale(0.01 * r.norm())
         })
         .collect();
     Frd { omega_rad_s: omega, response, weight: None }
@@ -55,7 +51,7 @@ fn pole_statistics(
         let fit = tfest(&noisy_frd(truth, seed), options).unwrap();
         let est = fit.model.poles().unwrap();
         for (k, p) in true_poles.iter().enumerate() {
-            let e = est.iter().map(|q| (*q - *p).abs() / p.abs()).fold(f64::INFINITY, f64::min);
+            let e = est.iter().map(|q| (*q - *p).norm() / p.norm()).fold(f64::INFINITY, f64::min);
             sum_sq[k] += e * e;
             worst[k] = worst[k].max(e);
         }

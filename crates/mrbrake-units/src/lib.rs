@@ -1,8 +1,10 @@
 //! Physical quantities written with unit suffixes, parsed to SI.
 //!
 //! Brief overview: [`Dimension`] names what a quantity measures; [`parse`] turns text such as
-//! `22.5mm`, `0.46 T`, `24.315kPa`, `300rpm` or a bare SI number (`0.0225`) into an `f64` in SI units,
-//! and [`UnitError`] says precisely what was wrong and which units are allowed.
+//! `22.5mm`, `0.46 T`, `24.315kPa`, `300rpm` or a bare SI number (`0.0225`) into an `f64` in SI units;
+//! [`unit_scale`] gives the SI factor of a unit named on its own (a problem file's
+//! `length_unit = "mm"`), from the same table; and [`UnitError`] says precisely what was wrong and
+//! which units are allowed.
 //!
 //! Everything inside mrbrake is SI; units exist only at the edges (command line, spec files).
 //!
@@ -12,6 +14,8 @@
 //! assert!((r1 - 0.0225).abs() < 1e-15);
 //! let w = parse("60 rpm", Dimension::AngularVelocity).unwrap();
 //! assert!((w - 2.0 * std::f64::consts::PI).abs() < 1e-12);
+//! let metres_per_unit = mrbrake_units::unit_scale("mm", Dimension::Length).unwrap();
+//! assert!((metres_per_unit - 1e-3).abs() < 1e-18);
 //! ```
 
 use std::fmt;
@@ -45,6 +49,31 @@ pub enum Dimension {
 }
 
 impl Dimension {
+    /// Every dimension, in declaration order.
+    pub const ALL: [Dimension; 11] = [
+        Dimension::Length,
+        Dimension::FluxDensity,
+        Dimension::FieldStrength,
+        Dimension::Stress,
+        Dimension::Current,
+        Dimension::AngularVelocity,
+        Dimension::Viscosity,
+        Dimension::Torque,
+        Dimension::TemperatureCelsius,
+        Dimension::Time,
+        Dimension::Dimensionless,
+    ];
+
+    /// The dimension whose SI unit is spelled `unit` (any of its factor-1 spellings: `"N·m"` and
+    /// `"Nm"` are a torque), or `None` (a derived or unknown unit such as `"A/mm²"`). For values
+    /// whose SI unit is known as text, e.g. a study metric's, to read `"80mm"` with [`parse`].
+    pub fn from_si_unit(unit: &str) -> Option<Dimension> {
+        let unit = unit.trim();
+        Self::ALL.into_iter().find(|dim| {
+            dim.units().iter().any(|&(name, factor)| name == unit && (factor - 1.0).abs() < 1e-15)
+        })
+    }
+
     /// The accepted suffixes and their factor to SI.
     pub fn units(self) -> &'static [(&'static str, f64)] {
         use std::f64::consts::PI;
@@ -108,13 +137,24 @@ impl Dimension {
         }
     }
 
+    /// The accepted suffixes, comma-separated, with the bare-number rule of [`parse`].
     fn allowed_list(self) -> String {
-        let names: Vec<&str> = self.units().iter().map(|(u, _)| *u).collect();
+        let names = self.unit_names();
         if names.is_empty() {
             "no unit".to_string()
         } else {
-            format!("{} (or a bare number in {})", names.join(", "), self.si_unit())
+            format!("{names} (or a bare number in {})", self.si_unit())
         }
+    }
+
+    /// The accepted suffixes, comma-separated (empty for [`Dimension::Dimensionless`]).
+    fn unit_names(self) -> String {
+        self.units().iter().map(|(u, _)| *u).collect::<Vec<_>>().join(", ")
+    }
+
+    /// The SI factor of the unit called `unit`, if it is one of this dimension's.
+    fn factor_of(self, unit: &str) -> Option<f64> {
+        self.units().iter().find(|(u, _)| *u == unit).map(|(_, factor)| *factor)
     }
 }
 
@@ -139,6 +179,13 @@ pub enum UnitError {
         /// The text given.
         text: String,
         /// The suffix found.
+        unit: String,
+        /// What was expected.
+        expected: Dimension,
+    },
+    /// A unit named on its own (see [`unit_scale`]) is not a unit of the expected dimension.
+    UnknownUnit {
+        /// The name given.
         unit: String,
         /// What was expected.
         expected: Dimension,
@@ -168,6 +215,12 @@ impl fmt::Display for UnitError {
                 "'{text}': '{unit}' is not a unit of {}; allowed units: {}",
                 expected.describe(),
                 expected.allowed_list()
+            ),
+            UnitError::UnknownUnit { unit, expected } => write!(
+                f,
+                "'{unit}' is not a unit of {}; allowed units: {}",
+                expected.describe(),
+                expected.unit_names()
             ),
         }
     }
@@ -202,9 +255,24 @@ pub fn parse(text: &str, dim: Dimension) -> Result<f64, UnitError> {
     if unit.is_empty() {
         return Ok(value);
     }
-    dim.units().iter().find(|(u, _)| *u == unit).map(|(_, factor)| value * factor).ok_or_else(
-        || UnitError::WrongUnit { text: t.to_string(), unit: unit.to_string(), expected: dim },
-    )
+    dim.factor_of(unit).map(|factor| value * factor).ok_or_else(|| UnitError::WrongUnit {
+        text: t.to_string(),
+        unit: unit.to_string(),
+        expected: dim,
+    })
+}
+
+/// The SI factor of the unit called `unit` (surrounding spaces ignored, case-sensitive): the
+/// number of SI units in one `unit`, e.g. `unit_scale("mm", Dimension::Length)` is 1e-3 (metres
+/// per millimetre). The units and factors are those [`parse`] accepts as suffixes, so a file's
+/// `length_unit = "um"` and a value `"500um"` mean the same thing.
+///
+/// For a key that names a unit on its own, such as a problem file's `length_unit`; an unknown
+/// name gives [`UnitError::UnknownUnit`], whose message lists the allowed units.
+pub fn unit_scale(unit: &str, dim: Dimension) -> Result<f64, UnitError> {
+    let name = unit.trim();
+    dim.factor_of(name)
+        .ok_or_else(|| UnitError::UnknownUnit { unit: name.to_string(), expected: dim })
 }
 
 /// Length of the leading numeric part (sign, digits, point, exponent) of `t`.
@@ -233,7 +301,7 @@ fn number_prefix_len(t: &str) -> usize {
     i
 }
 
-/// Formats an SI value with the most readable unit of `dim` (for echoing inputs back to the user).
+/// Formats an SI value with the SI unit of `dim` (`0.0225 m`), for echoing inputs back to the user.
 pub fn format_si(value: f64, dim: Dimension) -> String {
     format!("{value} {}", dim.si_unit())
 }
@@ -273,6 +341,52 @@ mod tests {
         assert!(msg.contains("kg") && msg.contains("mm") && msg.contains("a length"), "{msg}");
         assert!(parse("0.46", Dimension::Dimensionless).is_ok());
         assert!(matches!(parse("3mm", Dimension::Current), Err(UnitError::WrongUnit { .. })));
+    }
+
+    #[test]
+    fn unit_scale_reads_the_suffix_table() {
+        // Every suffix `parse` accepts has the same factor on its own, for every dimension.
+        for dim in [Dimension::Length, Dimension::FluxDensity, Dimension::AngularVelocity] {
+            for &(unit, factor) in dim.units() {
+                assert!(close(unit_scale(unit, dim).unwrap(), factor), "{unit}");
+                assert!(close(parse(&format!("2{unit}"), dim).unwrap(), 2.0 * factor), "{unit}");
+            }
+        }
+        assert!(close(unit_scale(" mm ", Dimension::Length).unwrap(), 1e-3));
+        assert!(close(unit_scale("µm", Dimension::Length).unwrap(), 1e-6));
+    }
+
+    #[test]
+    fn si_unit_names_give_their_dimension() {
+        for dim in Dimension::ALL {
+            if dim != Dimension::Dimensionless {
+                assert_eq!(Dimension::from_si_unit(dim.si_unit()), Some(dim), "{dim:?}");
+            }
+        }
+        assert_eq!(Dimension::from_si_unit("N·m"), Some(Dimension::Torque));
+        assert_eq!(Dimension::from_si_unit(" T "), Some(Dimension::FluxDensity));
+        // A scaled unit is not an SI unit, and a derived unit has no dimension here.
+        assert_eq!(Dimension::from_si_unit("mm"), None);
+        assert_eq!(Dimension::from_si_unit("A/mm²"), None);
+        assert_eq!(Dimension::from_si_unit(""), None);
+    }
+
+    #[test]
+    fn unit_scale_names_the_allowed_units() {
+        let e = unit_scale("inch", Dimension::Length).unwrap_err();
+        assert_eq!(
+            e,
+            UnitError::UnknownUnit { unit: "inch".to_string(), expected: Dimension::Length }
+        );
+        assert_eq!(
+            e.to_string(),
+            "'inch' is not a unit of a length; allowed units: m, cm, mm, um, µm"
+        );
+        assert!(mrbrake_error::Kind::is_input_error(&e));
+        // Case-sensitive, as in the SI: `MM` is not a length unit, and a number is not a unit.
+        assert!(unit_scale("MM", Dimension::Length).is_err());
+        assert!(unit_scale("1e-3", Dimension::Length).is_err());
+        assert!(unit_scale("", Dimension::Length).is_err());
     }
 
     #[test]

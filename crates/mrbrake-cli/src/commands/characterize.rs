@@ -4,11 +4,9 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake_report::hysteresis::{HysteresisPlot, save_hysteresis};
+use mrbrake_report::identification::CharacterizationReport;
 use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
 use mrbrake_sysid::log::read_log;
-use mrbrake_sysid::polynomial::Polynomial;
-use serde_json::json;
 
 use crate::exit::InputError;
 use crate::output::print_json;
@@ -58,68 +56,23 @@ pub fn run(args: CharacterizeArgs) -> anyhow::Result<()> {
     let (current, torque) = (&log.channels[0], &log.channels[1]);
     let c =
         characterize(current, torque, CharacterizeOptions { order: args.order, bins: args.bins })?;
-    // The characterisation's own fields at the top level (as in the model file), plus the log's.
-    let mut report = serde_json::to_value(&c)?;
-    if let Some(map) = report.as_object_mut() {
-        map.insert("log".into(), json!(args.log));
-        map.insert("samples".into(), json!(log.len()));
-        map.insert("sample_rate_Hz".into(), json!(log.mean_sample_rate_hz()));
-    }
+    let report = CharacterizationReport {
+        characterization: &c,
+        log: &args.log,
+        samples: log.len(),
+        sample_rate_hz: log.mean_sample_rate_hz(),
+    };
     if let Some(path) = &args.save_model {
+        // The characterisation's JSON is the inverse-model file (mrbrake_sysid::model_file).
         let text = serde_json::to_string_pretty(&c)?;
         mrbrake_report::write_atomic(path, text.as_bytes())?;
     }
     if let Some(path) = &args.plot {
-        let grid = |coefficients: &[f64]| {
-            let p = Polynomial::new(coefficients.to_vec());
-            (0..=200)
-                .map(|k| {
-                    let i =
-                        c.current_min_a + (c.current_max_a - c.current_min_a) * k as f64 / 200.0;
-                    (i, p.eval(i))
-                })
-                .collect::<Vec<_>>()
-        };
-        let data = HysteresisPlot {
-            raw: current.iter().copied().zip(torque.iter().copied()).collect(),
-            rising_mean: c.rising_mean.clone(),
-            falling_mean: c.falling_mean.clone(),
-            rising_fit: grid(&c.rising.coefficients),
-            falling_fit: grid(&c.falling.coefficients),
-        };
-        save_hysteresis(
-            path,
-            &format!("Torque–current loop ({} repetitions)", c.repetitions),
-            &data,
-        )?;
+        report.save_plot(path, current, torque)?;
     }
     if args.json {
-        return print_json(&report);
+        return print_json(&report.json()?);
     }
-    crate::outln!(
-        "log: {} ({} samples, {:.1} Hz)",
-        args.log.display(),
-        log.len(),
-        log.mean_sample_rate_hz()
-    );
-    crate::outln!("repetitions: {}", c.repetitions);
-    crate::outln!("current range: {:.4} .. {:.4} A", c.current_min_a, c.current_max_a);
-    for (name, b) in [("rising", &c.rising), ("falling", &c.falling)] {
-        let coeffs: Vec<String> = b.coefficients.iter().map(|v| format!("{v:.6e}")).collect();
-        crate::outln!("{name:8} T(I) = [{}] (ascending powers of I in A, N·m)", coeffs.join(", "));
-        crate::outln!(
-            "{:8} fit {:.2} % (raw samples), {:.2} % (averaged)",
-            "",
-            b.fit_percent,
-            b.fit_percent_mean
-        );
-    }
-    crate::outln!("off-state torque: {:.4} N·m", c.off_state_torque_nm);
-    crate::outln!("max torque: {:.4} N·m", c.max_torque_nm);
-    crate::outln!(
-        "max hysteresis: {:.4} N·m at {:.3} A",
-        c.max_hysteresis_nm,
-        c.max_hysteresis_current_a
-    );
+    crate::out!("{}", report.text());
     Ok(())
 }

@@ -5,7 +5,6 @@
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use mrbrake_fem::vtu::{Field, to_vtu};
 use mrbrake_magnetics::ElementOrder;
 use mrbrake_magnetics::problem_file::solve_file_with_order;
 use mrbrake_report::field_map::{FieldMap, save_field_map};
@@ -56,102 +55,28 @@ fn solve(args: SolveArgs) -> anyhow::Result<()> {
         .order
         .map(|degree| ElementOrder::from_degree(degree.into()).expect("clap accepts only 1 and 2"));
     let (report, solver, solution) = solve_file_with_order(&args.problem, order)?;
-    let mesh = solver.mesh();
-    let need_fields = args.vtu.is_some() || args.plot.is_some();
-    let (element_b, b_abs, flux_function) = if need_fields {
-        let element_b = solver.element_b(&solution);
-        let b_abs: Vec<f64> = element_b.iter().map(|b| b[0].hypot(b[1])).collect();
-        (element_b, b_abs, solver.flux_function(&solution))
-    } else {
-        (Vec::new(), Vec::new(), Vec::new())
-    };
-    if let Some(path) = &args.vtu {
-        let b3: Vec<f64> = element_b.iter().flat_map(|b| [b[0], b[1], 0.0]).collect();
-        let text = to_vtu(
-            mesh,
-            &[
-                Field { name: "A_phi_Wb_per_m", components: 1, values: solution.vertex_a_phi() },
-                Field { name: "flux_function_r_A_phi", components: 1, values: &flux_function },
-            ],
-            &[
-                Field { name: "B_T", components: 3, values: &b3 },
-                Field { name: "B_abs_T", components: 1, values: &b_abs },
-            ],
-        );
-        mrbrake_report::write_atomic(path, text.as_bytes())?;
-    }
-    if let Some(path) = &args.plot {
-        let title = format!("|B| and flux lines: {}", args.problem.display());
-        let map = FieldMap {
-            title: &title,
-            nodes: &mesh.nodes,
-            triangles: &mesh.triangles,
-            region_tags: &mesh.triangle_tags,
-            b_abs_t: &b_abs,
-            flux_function: &flux_function,
-            flux_lines: args.flux_lines,
-        };
-        save_field_map(&map, path)?;
+    if args.vtu.is_some() || args.plot.is_some() {
+        let field = solver.field_snapshot(&solution);
+        if let Some(path) = &args.vtu {
+            mrbrake_report::write_atomic(path, field.to_vtu(solver.mesh()).as_bytes())?;
+        }
+        if let Some(path) = &args.plot {
+            let title = format!("|B| and flux lines: {}", args.problem.display());
+            let map = FieldMap {
+                title: &title,
+                nodes: &field.nodes,
+                triangles: &field.triangles,
+                region_tags: &field.region_tags,
+                b_abs_t: &field.element_b_abs_t,
+                flux_function: &field.flux_function_wb,
+                flux_lines: args.flux_lines,
+            };
+            save_field_map(&map, path)?;
+        }
     }
     if args.json {
         return print_json(&report);
     }
-    crate::outln!(
-        "{}: {} nodes, {} triangles, {} unknowns (P{}); Newton {} iteration(s), converged: {}",
-        args.problem.display(),
-        report.nodes,
-        report.elements,
-        report.unknowns,
-        report.order,
-        report.newton_iterations,
-        report.converged
-    );
-    for p in &report.probes {
-        crate::outln!(
-            "  probe {:<16} r = {:>9.4} mm  z = {:>9.4} mm  B_r = {:>9.5} T  B_z = {:>9.5} T  |B| = {:.5} T",
-            p.name,
-            p.r * 1e3,
-            p.z * 1e3,
-            p.b_r_t,
-            p.b_z_t,
-            p.b_abs_t
-        );
-    }
-    for r in &report.regions {
-        crate::outln!(
-            "  region {:>4}: area {:.4e} m²  mean |B| {:.4} T  max |B| {:.4} T",
-            r.physical,
-            r.area_m2,
-            r.mean_b_t,
-            r.max_b_t
-        );
-    }
-    for c in &report.coils {
-        crate::outln!(
-            "  coil {:>4}: flux linkage {:.5e} Wb  L = {:.5e} H  dλ/dI = {:.5e} H",
-            c.physical,
-            c.flux_linkage_wb,
-            c.inductance_h,
-            c.incremental_inductance_h
-        );
-    }
-    for l in &report.lines {
-        crate::outln!(
-            "  line {}: {} samples, max |B| {:.4} T",
-            l.name,
-            l.points.len(),
-            l.points.iter().map(|p| p.b_abs_t).fold(0.0, f64::max)
-        );
-    }
-    crate::outln!("  energy {:.5e} J, co-energy {:.5e} J", report.energy_j, report.coenergy_j);
-    let t = report.timings_s;
-    crate::outln!(
-        "  time: read {:.3} s, assemble {:.3} s, solve {:.3} s, post {:.3} s, total {:.3} s",
-        t.read,
-        t.assemble,
-        t.solve,
-        t.post,
-        t.total
-    );
+    crate::out!("{}", report.text(&args.problem.display().to_string()));
     Ok(())
 }

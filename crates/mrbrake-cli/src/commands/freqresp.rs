@@ -4,10 +4,11 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake_report::bode::{BodeCurve, save_bode};
+use mrbrake_report::identification::{
+    frequency_response_json, frequency_response_text, save_frequency_response_plot,
+};
 use mrbrake_sysid::freqresp::{FreqRespOptions, frd_csv, frequency_response};
 use mrbrake_units::{Dimension, parse};
-use serde_json::json;
 
 use crate::exit::InputError;
 use crate::output::print_json;
@@ -61,36 +62,11 @@ pub fn run(args: FreqRespArgs) -> anyhow::Result<()> {
     let out = args.out.clone().unwrap_or_else(|| args.manifest.with_file_name("frd.csv"));
     mrbrake_report::write_atomic(&out, frd_csv(&points).as_bytes())?;
     if let Some(path) = &args.plot {
-        let curve = BodeCurve {
-            label: "measured".into(),
-            points: points.iter().map(|p| (p.omega_rad_s, p.magnitude_db, p.phase_deg)).collect(),
-            markers: true,
-        };
-        save_bode(path, "Frequency response", &[curve])?;
+        save_frequency_response_plot(path, &points)?;
     }
     if args.json {
-        return print_json(&json!({ "frd_file": out, "points": points }));
+        return print_json(&frequency_response_json(&points, &out)?);
     }
-    crate::outln!("frequency response of {} tests → {}", points.len(), out.display());
-    crate::outln!(
-        "{:>12} {:>10} {:>10} {:>9} {:>10} {:>8}",
-        "omega rad/s",
-        "gain dB",
-        "phase deg",
-        "quality%",
-        "RMSE N·m",
-        "RMSE %"
-    );
-    for p in &points {
-        crate::outln!(
-            "{:>12.4} {:>10.3} {:>10.2} {:>9.2} {:>10.4} {:>8.2}",
-            p.omega_rad_s,
-            p.magnitude_db,
-            p.phase_deg,
-            p.quality_percent,
-            p.tracking.rmse_nm,
-            p.tracking.rmse_percent_of_range
-        );
-    }
+    crate::out!("{}", frequency_response_text(&points, &out));
     Ok(())
 }

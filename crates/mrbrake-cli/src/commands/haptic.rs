@@ -6,13 +6,13 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::{Args, Subcommand, ValueEnum};
 use mrbrake_report::haptic::{
-    ClassifiedPair, TimeHistory, ZWidthPanel, wall_comparison_figure, zwidth_figure,
+    TimeHistory, save_zwidth_plot, wall_comparison_figure, wall_metrics_text, wall_plot_title,
+    zwidth_summary,
 };
-use mrbrake_sim::haptic::characterization::load_inverse_model;
 use mrbrake_sim::haptic::zwidth::{ZWidthConfig, sweep};
 use mrbrake_sim::haptic::{DeviceKind, HapticConfig, HapticRun, Scenario, simulate};
+use mrbrake_sysid::model_file::read_inverse_model;
 use mrbrake_units::{Dimension, parse};
-use serde_json::json;
 
 use crate::exit::InputError;
 use crate::output::print_json;
@@ -153,7 +153,7 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> anyhow::Result<HapticConf
         config.duration_s = parse(text, Dimension::Time).context("--duration")?;
     }
     if let Some(path) = &args.model {
-        let model = load_inverse_model(path)?;
+        let model = read_inverse_model(path)?;
         config.brakes[0].branches = model;
         config.brakes[1].branches = model;
         config.controller_models = [model, model];
@@ -164,32 +164,16 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> anyhow::Result<HapticConf
 fn history<'a>(label: &'a str, run: &'a HapticRun) -> anyhow::Result<TimeHistory<'a>> {
     let trace =
         run.trace.as_ref().ok_or_else(|| anyhow::anyhow!("internal: run recorded no trace"))?;
-    Ok(TimeHistory {
-        label,
-        time_s: &trace.time_s,
-        angle_rad: &trace.angle_rad,
-        intended_rad: &trace.intended_rad,
-        wall_rad: &trace.wall_rad,
-        current_a: [&trace.current_a[0], &trace.current_a[1]],
-        device_torque_nm: &trace.device_torque_nm,
-        hand_torque_nm: &trace.hand_torque_nm,
-    })
+    Ok(TimeHistory::from_trace(label, trace))
 }
 
 fn wall(args: WallArgs) -> anyhow::Result<()> {
-    if !(args.stiffness.is_finite() && args.stiffness >= 0.0) {
-        return Err(InputError(format!(
-            "--stiffness-nm-per-rad = {} must be a number ≥ 0",
-            args.stiffness
-        ))
-        .into());
-    }
-    if !(args.damping.is_finite() && args.damping >= 0.0) {
-        return Err(InputError(format!(
-            "--damping-nms-per-rad = {} must be a number ≥ 0",
-            args.damping
-        ))
-        .into());
+    for (flag, value) in
+        [("--stiffness-nm-per-rad", args.stiffness), ("--damping-nms-per-rad", args.damping)]
+    {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(InputError(format!("{flag} = {value} must be a number ≥ 0")).into());
+        }
     }
     let device: DeviceKind = args.device.into();
     let record = args.plot.is_some() || args.csv.is_some();
@@ -200,71 +184,28 @@ fn wall(args: WallArgs) -> anyhow::Result<()> {
         mrbrake_report::write_atomic(path, trace.to_csv().as_bytes())?;
     }
     if let Some(path) = &args.plot {
-        let title = format!(
-            "Virtual wall, {} (K = {} N·m/rad, B = {} N·m·s/rad)",
-            run.metrics.scenario, args.stiffness, args.damping
-        );
-        if args.compare {
-            let kinds = [DeviceKind::Conventional, DeviceKind::Bidirectional, DeviceKind::Motor];
-            let runs: Vec<HapticRun> = kinds
-                .iter()
-                .map(|&kind| {
-                    simulate(&wall_config(&args, kind)?, true).map_err(anyhow::Error::from)
-                })
-                .collect::<anyhow::Result<_>>()?;
-            let histories: Vec<TimeHistory> = kinds
-                .iter()
-                .zip(&runs)
-                .map(|(k, r)| history(k.name(), r))
-                .collect::<anyhow::Result<_>>()?;
-            wall_comparison_figure(&title, &histories).save(path)?;
+        let title = wall_plot_title(run.metrics.scenario, args.stiffness, args.damping);
+        let compared: Vec<(DeviceKind, HapticRun)> = if args.compare {
+            [DeviceKind::Conventional, DeviceKind::Bidirectional, DeviceKind::Motor]
+                .into_iter()
+                .map(|kind| Ok((kind, simulate(&wall_config(&args, kind)?, true)?)))
+                .collect::<anyhow::Result<_>>()?
         } else {
-            wall_comparison_figure(&title, &[history(device.name(), &run)?]).save(path)?;
-        }
+            Vec::new()
+        };
+        let runs: Vec<(DeviceKind, &HapticRun)> = if args.compare {
+            compared.iter().map(|(kind, r)| (*kind, r)).collect()
+        } else {
+            vec![(device, &run)]
+        };
+        let histories: Vec<TimeHistory> =
+            runs.iter().map(|(k, r)| history(k.name(), r)).collect::<anyhow::Result<_>>()?;
+        wall_comparison_figure(&title, &histories).save(path)?;
     }
-    let m = &run.metrics;
     if args.json {
-        return print_json(m);
+        return print_json(&run.metrics);
     }
-    crate::outln!("device {}, scenario {}", m.device, m.scenario);
-    crate::outln!("  max penetration            {:.4} rad", m.max_penetration_rad);
-    match m.displayed_stiffness_nm_per_rad {
-        Some(k) => {
-            crate::outln!(
-                "  displayed stiffness        {k:.2} N·m/rad (virtual {})",
-                args.stiffness
-            )
-        }
-        None => crate::outln!("  displayed stiffness        n/a"),
-    }
-    crate::outln!(
-        "  withdraw resisting torque  peak {:.3} N·m, mean {:.3} N·m (excess over {:.3} N·m drag: peak {:.3}, mean {:.3})",
-        m.withdraw_resisting_torque_nm.peak,
-        m.withdraw_resisting_torque_nm.mean,
-        m.outward_drag_nm,
-        m.withdraw_excess_torque_nm.peak,
-        m.withdraw_excess_torque_nm.mean
-    );
-    crate::outln!(
-        "  withdraw energy            {:.5} J over {:.3} s",
-        m.withdraw_energy_j,
-        m.withdraw_duration_s
-    );
-    match m.release_time_s {
-        Some(t) => crate::outln!("  release time               {t:.3} s"),
-        None => crate::outln!("  release time               not released / no withdrawal"),
-    }
-    crate::outln!(
-        "  device energy              {:.5} J (running peak {:.2e} J)",
-        m.device_energy_j,
-        m.device_energy_peak_j
-    );
-    crate::outln!("  passive                    {} (stable {})", m.passive, m.stable);
-    crate::outln!(
-        "  peak coil current          {:.3} A, faults {}",
-        m.current_peak_a,
-        m.fault_ticks
-    );
+    crate::out!("{}", wall_metrics_text(&run.metrics, args.stiffness));
     Ok(())
 }
 
@@ -287,53 +228,10 @@ fn zwidth(args: ZwidthArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.csv {
         mrbrake_report::write_atomic(path, map.to_csv().as_bytes())?;
     }
-    let b = config.physical_damping_nms_per_rad;
-    let bc = config.controllable_damping_nms_per_rad;
     if let Some(path) = &args.plot {
-        let pairs = |pick: fn(&mrbrake_sim::haptic::zwidth::ZWidthCell) -> &'static str| -> Vec<ClassifiedPair> {
-            map.cells
-                .iter()
-                .map(|c| ClassifiedPair {
-                    stiffness_nm_per_rad: c.stiffness_nm_per_rad,
-                    damping_nms_per_rad: c.damping_nms_per_rad,
-                    class: pick(c),
-                })
-                .collect()
-        };
-        let panels = [
-            ZWidthPanel {
-                label: format!("motor, b = {b} N·m·s/rad (2.2)"),
-                pairs: pairs(|c| c.motor.name()),
-                boundary_damping_nms_per_rad: Some(b),
-            },
-            ZWidthPanel {
-                label: format!("motor + MR damper, b + b_c = {} (2.4)", b + bc),
-                pairs: pairs(|c| c.hybrid.name()),
-                boundary_damping_nms_per_rad: Some(b + bc),
-            },
-            ZWidthPanel {
-                label: "bidirectional MR brake".into(),
-                pairs: pairs(|c| c.brake.name()),
-                boundary_damping_nms_per_rad: None,
-            },
-        ];
-        zwidth_figure(&format!("Z-width, T = {} ms", period * 1e3), period, &panels).save(path)?;
+        save_zwidth_plot(path, &map)?;
     }
-    let count = |f: &dyn Fn(&mrbrake_sim::haptic::zwidth::ZWidthCell) -> bool| {
-        map.cells.iter().filter(|c| f(c)).count()
-    };
-    use mrbrake_sim::haptic::zwidth::Interaction as I;
-    let summary = json!({
-        "cells": map.cells.len(),
-        "motor": {"passive": count(&|c| c.motor == I::Passive), "stable": count(&|c| c.motor == I::Stable),
-                  "unstable": count(&|c| c.motor == I::Unstable),
-                  "agree_with_2_2": count(&|c| (c.motor == I::Passive) == c.motor_predicted_passive)},
-        "hybrid": {"passive": count(&|c| c.hybrid == I::Passive), "stable": count(&|c| c.hybrid == I::Stable),
-                   "unstable": count(&|c| c.hybrid == I::Unstable),
-                   "agree_with_2_4": count(&|c| (c.hybrid == I::Passive) == c.hybrid_predicted_passive)},
-        "brake": {"passive": count(&|c| c.brake == I::Passive), "stable": count(&|c| c.brake == I::Stable),
-                  "unstable": count(&|c| c.brake == I::Unstable)},
-    });
+    let summary = zwidth_summary(&map);
     if args.json {
         return print_json(&summary);
     }

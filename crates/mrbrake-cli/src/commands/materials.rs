@@ -173,11 +173,14 @@ fn show_json(m: &Material, b_values: &[f64], h_values: &[f64]) -> Value {
         "conductivity_S_per_m": m.conductivity_s_per_m,
         "mu_r_linear": m.mu_r_linear,
     });
-    match &m.magnetic {
-        Magnetic::Linear { mu_r } => v["magnetic"] = json!({ "law": "linear", "mu_r": mu_r }),
-        Magnetic::NonLinear(curve) => {
+    match (&m.magnetic, m.magnetic.bh_curve()) {
+        (Magnetic::Linear { mu_r }, _) => {
+            v["magnetic"] = json!({ "law": "linear", "mu_r": mu_r });
+        }
+        (_, Some(curve)) => {
             v["magnetic"] = json!({ "law": "non-linear", "bh_curve": curve_json(curve, h_values) });
         }
+        (Magnetic::NonLinear(_), None) => v["magnetic"] = json!({ "law": "non-linear" }),
     }
     if let Some(fluid) = &m.fluid {
         v["fluid"] = fluid_json(fluid, b_values, h_values);
@@ -201,9 +204,10 @@ fn print_text(m: &Material, b_values: &[f64], h_values: &[f64], with_points: boo
     if let Some(s) = &m.conductivity_s_per_m {
         crate::outln!("  conductivity {:.4e} S/m", s.value);
     }
-    match &m.magnetic {
-        Magnetic::Linear { mu_r } => crate::outln!("  magnetic: linear, mu_r = {mu_r}"),
-        Magnetic::NonLinear(curve) => {
+    match (&m.magnetic, m.magnetic.bh_curve()) {
+        (Magnetic::Linear { mu_r }, _) => crate::outln!("  magnetic: linear, mu_r = {mu_r}"),
+        (Magnetic::NonLinear(_), None) => crate::outln!("  magnetic: non-linear (analytic law)"),
+        (_, Some(curve)) => {
             let (h_last, b_last) = curve.last_point();
             crate::outln!(
                 "  magnetic: B-H curve, {} points up to H = {h_last} A/m, B = {b_last} T; slope mu0 beyond",
@@ -224,7 +228,7 @@ fn print_text(m: &Material, b_values: &[f64], h_values: &[f64], with_points: boo
     if let Some(fluid) = &m.fluid {
         print_fluid(fluid, b_values);
     }
-    if let (true, Magnetic::NonLinear(curve)) = (with_points, &m.magnetic) {
+    if let (true, Some(curve)) = (with_points, m.magnetic.bh_curve()) {
         crate::outln!("  B-H points:");
         crate::outln!("    {:>14} {:>10}", "H [A/m]", "B [T]");
         for (h, b) in curve.points() {

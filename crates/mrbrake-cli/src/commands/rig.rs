@@ -1,12 +1,12 @@
 //! `mrbrake rig …`: the virtual test rig writes the logs of the thesis's experiments.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use mrbrake_sim::rig::{self, RigConfig, RigFile};
-use mrbrake_sysid::inverse::HysteresisModel;
+use mrbrake_report::rig::{rig_json, rig_text, write_rig_folder};
+use mrbrake_sim::rig::{self, RigConfig};
+use mrbrake_sysid::model_file::read_inverse_model;
 
-use crate::exit::InputError;
 use crate::output::print_json;
 
 /// `mrbrake rig` subcommands.
@@ -51,33 +51,13 @@ pub struct RigFreqArgs {
 
 fn load_config(args: &RigArgs) -> anyhow::Result<RigConfig> {
     let mut config = match &args.config {
-        Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| {
-                InputError(format!("cannot read rig configuration '{}': {e}", path.display()))
-            })?;
-            RigConfig::from_toml(&path.display().to_string(), &text)?
-        }
+        Some(path) => RigConfig::read(path)?,
         None => RigConfig::default(),
     };
     if let Some(seed) = args.seed {
         config.seed = seed;
     }
     Ok(config)
-}
-
-fn write_files(dir: &Path, config: &RigConfig, files: &[RigFile]) -> anyhow::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir)
-        .map_err(|e| InputError(format!("cannot create output folder '{}': {e}", dir.display())))?;
-    let mut written = Vec::new();
-    for f in files {
-        let path = dir.join(&f.name);
-        mrbrake_report::write_atomic(&path, f.csv.as_bytes())?;
-        written.push(path);
-    }
-    let path = dir.join("rig.toml");
-    mrbrake_report::write_atomic(&path, config.to_toml().as_bytes())?;
-    written.push(path);
-    Ok(written)
 }
 
 /// Runs `mrbrake rig …`.
@@ -90,22 +70,14 @@ pub fn run(command: RigCommand) -> anyhow::Result<()> {
         RigCommand::Characterize(args) => {
             let config = load_config(&args)?;
             let file = rig::characterization_log(&config)?;
-            let written = write_files(&args.out, &config, std::slice::from_ref(&file))?;
+            let written = write_rig_folder(&args.out, &config, std::slice::from_ref(&file))?;
             report(&args, &written, "characterization log")
         }
         RigCommand::Freqresp(args) => {
             let config = load_config(&args.common)?;
-            let model = match &args.model {
-                Some(path) => {
-                    let text = std::fs::read_to_string(path).map_err(|e| {
-                        InputError(format!("cannot read model '{}': {e}", path.display()))
-                    })?;
-                    Some(HysteresisModel::from_json(&path.display().to_string(), &text)?)
-                }
-                None => None,
-            };
+            let model = args.model.as_deref().map(read_inverse_model).transpose()?;
             let files = rig::frequency_response_logs(&config, model.as_ref())?;
-            let written = write_files(&args.common.out, &config, &files)?;
+            let written = write_rig_folder(&args.common.out, &config, &files)?;
             report(&args.common, &written, "frequency-response logs")
         }
     }
@@ -113,13 +85,8 @@ pub fn run(command: RigCommand) -> anyhow::Result<()> {
 
 fn report(args: &RigArgs, written: &[PathBuf], what: &str) -> anyhow::Result<()> {
     if args.json {
-        return print_json(&serde_json::json!({ "files": written }));
+        return print_json(&rig_json(written));
     }
-    crate::outln!("{what}: {} files in {}", written.len(), args.out.display());
-    for p in written.iter().filter(|p| {
-        p.file_name().is_some_and(|n| n == "manifest.csv" || n == "characterization.csv")
-    }) {
-        crate::outln!("  {}", p.display());
-    }
+    crate::out!("{}", rig_text(what, &args.out, written));
     Ok(())
 }

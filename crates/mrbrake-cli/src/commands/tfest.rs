@@ -4,9 +4,9 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use mrbrake_report::bode::{BodeCurve, save_bode};
+use mrbrake_report::identification::{save_tfest_plot, tfest_text};
 use mrbrake_sysid::frd::read_frd;
-use mrbrake_sysid::tfest::{TfestOptions, Weighting, logspace, tfest};
+use mrbrake_sysid::tfest::{TfestOptions, Weighting, tfest};
 use mrbrake_units::{Dimension, parse};
 
 use crate::exit::InputError;
@@ -75,59 +75,11 @@ pub fn run(args: TfestArgs) -> anyhow::Result<()> {
         mrbrake_report::write_atomic(path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
     }
     if let Some(path) = &args.plot {
-        let mag = frd.magnitude_db();
-        let ph = frd.phase_deg_unwrapped();
-        let measured: Vec<(f64, f64, f64)> =
-            frd.omega_rad_s.iter().enumerate().map(|(k, w)| (*w, mag[k], ph[k])).collect();
-        let w_lo = frd.omega_rad_s[0];
-        let w_hi = frd.omega_rad_s[frd.omega_rad_s.len() - 1];
-        let omega = logspace(w_lo, w_hi, 400);
-        let raw_phase: Vec<f64> =
-            omega.iter().map(|w| fit.response(*w).arg().to_degrees()).collect();
-        let mut phase = mrbrake_sysid::frd::unwrap_deg(&raw_phase);
-        // Align the model's phase branch with the data at the lowest frequency.
-        let shift = 360.0 * ((ph[0] - phase[0]) / 360.0).round();
-        phase.iter_mut().for_each(|p| *p += shift);
-        let model: Vec<(f64, f64, f64)> = omega
-            .iter()
-            .zip(&phase)
-            .map(|(w, p)| (*w, 20.0 * fit.response(*w).abs().log10(), *p))
-            .collect();
-        save_bode(
-            path,
-            &format!(
-                "Estimated transfer function ({} poles, {} zeros, fit {:.2} %)",
-                args.poles, args.zeros, fit.fit_percent
-            ),
-            &[
-                BodeCurve { label: "measured".into(), points: measured, markers: true },
-                BodeCurve { label: "model".into(), points: model, markers: false },
-            ],
-        )?;
+        save_tfest_plot(path, &frd, &fit, args.poles, args.zeros)?;
     }
     if args.json {
         return print_json(&summary);
     }
-    crate::outln!(
-        "G(s) = N(s)/D(s), highest power first{}",
-        if delay_s > 0.0 { format!(", times e^(-{delay_s} s)") } else { String::new() }
-    );
-    crate::outln!("  numerator:   {:?}", summary.numerator);
-    crate::outln!("  denominator: {:?}", summary.denominator);
-    for p in &summary.poles {
-        crate::outln!("  pole: {:.6} {:+.6}j rad/s", p[0], p[1]);
-    }
-    crate::outln!("  corner frequencies: {:?} rad/s", summary.corner_frequencies_rad_s);
-    match summary.bandwidth_rad_s {
-        Some(b) => crate::outln!("  bandwidth (−3 dB): {b:.4} rad/s"),
-        None => crate::outln!("  bandwidth (−3 dB): undefined"),
-    }
-    crate::outln!("  DC gain: {:.6}", summary.dc_gain);
-    crate::outln!(
-        "  fit: {:.3} %, MSE {:.4e}, stable: {}",
-        summary.fit_percent,
-        summary.mse,
-        summary.stable
-    );
+    crate::out!("{}", tfest_text(&summary));
     Ok(())
 }

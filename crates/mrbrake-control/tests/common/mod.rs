@@ -31,11 +31,5 @@ pub fn controller(layout: BrakeLayout) -> DirectionalController {
 
 /// A stiff wall at 0 rad on the positive side.
 pub fn wall(k: f64, b: f64) -> VirtualWall {
-    VirtualWall {
-        position_rad: 0.0,
-        side: WallSide::Positive,
-        stiffness_nm_per_rad: k,
-        damping_nms_per_rad: b,
-        field_damping_nms_per_rad: 0.0,
-    }
+    VirtualWall::new(0.0, WallSide::Positive, k, b)
 }

@@ -22,7 +22,7 @@ use spade::{
     RefinementParameters, Triangulation,
 };
 
-use super::pslg::{NormalizedPslg, Pslg};
+use super::pslg::{NormalizedPslg, Pslg, RegionSeed};
 use super::size_field::{FineRegion, ResolvedSizeField, SizeField};
 use crate::FemError;
 use crate::mesh::Mesh;
@@ -53,12 +53,7 @@ impl Default for MeshOptions {
 /// Meshes a PSLG with a size field: see the module docs for the algorithm.
 pub fn triangulate(pslg: &Pslg, size: &SizeField, options: &MeshOptions) -> Result<Mesh, FemError> {
     size.validate()?;
-    if !(options.min_angle_deg.is_finite() && (0.0..=34.0).contains(&options.min_angle_deg)) {
-        return Err(FemError::Input(format!(
-            "mesher: min_angle_deg = {} must be in [0, 34] degrees",
-            options.min_angle_deg
-        )));
-    }
+    check_angle(options.min_angle_deg)?;
     let graph = pslg.normalized()?;
     if graph.seeds.is_empty() && options.default_tag.is_none() {
         return Err(FemError::Input(
@@ -75,11 +70,34 @@ pub fn triangulate(pslg: &Pslg, size: &SizeField, options: &MeshOptions) -> Resu
     // Stage B: subdivide each segment at the local size, then triangulate again.
     let (vertices_b, edges_b, tagged_b) = subdivide_segments(&cdt_a, &tags_a, &graph, &resolved);
     let mut cdt = load(&vertices_b, &edges_b)?;
+    let tags = refine(&mut cdt, &graph, &resolved, options)?;
+    Ok(extract(&cdt, &tags, &vertices_b, &tagged_b))
+}
 
+/// Refuses an angle limit outside the range Delaunay refinement can honour.
+fn check_angle(min_angle_deg: f64) -> Result<(), FemError> {
+    if min_angle_deg.is_finite() && (0.0..=34.0).contains(&min_angle_deg) {
+        Ok(())
+    } else {
+        Err(FemError::Input(format!(
+            "mesher: min_angle_deg = {min_angle_deg} must be in [0, 34] degrees"
+        )))
+    }
+}
+
+/// Step 4 of the algorithm: alternates quality refinement with the insertion of the centroids of
+/// the triangles larger than the size field, until a quality pass leaves none too large. Returns
+/// the region of every face of the final triangulation.
+fn refine(
+    cdt: &mut Cdt,
+    graph: &NormalizedPslg,
+    resolved: &ResolvedSizeField,
+    options: &MeshOptions,
+) -> Result<Vec<FaceRegion>, FemError> {
     let angle = AngleLimit::from_deg(options.min_angle_deg);
-    let max_area = 3f64.sqrt() / 4.0 * size.max_edge_m * size.max_edge_m;
+    let max_area = 3f64.sqrt() / 4.0 * resolved.field.max_edge_m * resolved.field.max_edge_m;
     let mut passes = 0;
-    let tags = loop {
+    loop {
         passes += 1;
         let params = RefinementParameters::<f64>::new()
             // spade's outer-face exclusion peels constraint layers even-odd (nested parts would
@@ -96,25 +114,10 @@ pub fn triangulate(pslg: &Pslg, size: &SizeField, options: &MeshOptions) -> Resu
                 cdt.num_vertices()
             )));
         }
-        let tags = flood_fill(&cdt, &graph, options.default_tag)?;
-        let mut centroids = Vec::new();
-        for face in cdt.inner_faces() {
-            let Some(tag) = tags[face.fix().index()].region() else { continue };
-            let p = face.positions();
-            let c = [(p[0].x + p[1].x + p[2].x) / 3.0, (p[0].y + p[1].y + p[2].y) / 3.0];
-            // Size test by area, like spade's own max-area rule: a triangle is too large when its
-            // area exceeds that of the equilateral triangle of edge h(centroid). (A longest-edge
-            // test would over-refine: the refiner's 28°-quality triangles are not equilateral.)
-            let area = 0.5
-                * ((p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x))
-                    .abs();
-            let h = resolved.at(c, Some(tag));
-            if area > 3f64.sqrt() / 4.0 * h * h * (1.0 + 1e-9) {
-                centroids.push(Point2::new(c[0], c[1]));
-            }
-        }
+        let tags = flood_fill(cdt, graph, options.default_tag)?;
+        let centroids = oversized_centroids(cdt, &tags, resolved);
         if centroids.is_empty() {
-            break tags;
+            return Ok(tags);
         }
         if passes >= options.max_passes
             || cdt.num_vertices() + centroids.len() > options.max_vertices
@@ -130,8 +133,32 @@ pub fn triangulate(pslg: &Pslg, size: &SizeField, options: &MeshOptions) -> Resu
             cdt.insert(c)
                 .map_err(|e| FemError::Numerical(format!("inserting a refinement point: {e:?}")))?;
         }
-    };
-    Ok(extract(&cdt, &tags, &vertices_b, &tagged_b))
+    }
+}
+
+/// The centroids of the region triangles whose area exceeds that of the equilateral triangle of
+/// edge h(centroid), in face order.
+fn oversized_centroids(
+    cdt: &Cdt,
+    tags: &[FaceRegion],
+    resolved: &ResolvedSizeField,
+) -> Vec<Point2<f64>> {
+    let mut centroids = Vec::new();
+    for face in cdt.inner_faces() {
+        let Some(tag) = tags[face.fix().index()].region() else { continue };
+        let p = face.positions();
+        let c = [(p[0].x + p[1].x + p[2].x) / 3.0, (p[0].y + p[1].y + p[2].y) / 3.0];
+        // Size test by area, like spade's own max-area rule: a triangle is too large when its
+        // area exceeds that of the equilateral triangle of edge h(centroid). (A longest-edge
+        // test would over-refine: the refiner's 28°-quality triangles are not equilateral.)
+        let area = 0.5
+            * ((p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x)).abs();
+        let h = resolved.at(c, Some(tag));
+        if area > 3f64.sqrt() / 4.0 * h * h * (1.0 + 1e-9) {
+            centroids.push(Point2::new(c[0], c[1]));
+        }
+    }
+    centroids
 }
 
 /// Region membership of a face.
@@ -205,13 +232,26 @@ fn flood(
     Ok(())
 }
 
+/// Step 2 of the algorithm: the region of every face. Faces reachable from the convex hull without
+/// crossing a segment are outside; each seed's enclosed area takes its tag; an area no seed reaches
+/// takes `default_tag`, or is an error without one.
 fn flood_fill(
     cdt: &Cdt,
     graph: &NormalizedPslg,
     default_tag: Option<u32>,
 ) -> Result<Vec<FaceRegion>, FemError> {
     let mut tags = vec![FaceRegion::Unset; cdt.num_all_faces()];
-    // Outside: inner faces adjacent to the convex hull through a non-constraint hull edge.
+    flood_outside(cdt, &mut tags)?;
+    for seed in &graph.seeds {
+        flood_seed(cdt, &mut tags, seed)?;
+    }
+    flood_unseeded(cdt, &mut tags, default_tag)?;
+    Ok(tags)
+}
+
+/// Marks as outside the inner faces adjacent to the convex hull through a non-constraint hull
+/// edge, and everything they reach.
+fn flood_outside(cdt: &Cdt, tags: &mut [FaceRegion]) -> Result<(), FemError> {
     let hull_starts: Vec<_> = cdt
         .convex_hull()
         .filter(|e| !e.as_undirected().is_constraint_edge())
@@ -219,57 +259,73 @@ fn flood_fill(
         .collect();
     for f in hull_starts {
         if tags[f.index()] == FaceRegion::Unset {
-            flood(cdt, &mut tags, f, FaceRegion::Outside)
+            flood(cdt, tags, f, FaceRegion::Outside)
                 .map_err(|_| FemError::Input("mesher: the outer boundary is not closed".into()))?;
         }
     }
-    for seed in &graph.seeds {
-        let p = Point2::new(seed.point[0], seed.point[1]);
-        let face = match cdt.locate(p) {
-            PositionInTriangulation::OnFace(f) => Some(f),
-            PositionInTriangulation::OnEdge(e)
-                if !cdt.directed_edge(e).as_undirected().is_constraint_edge() =>
-            {
-                cdt.directed_edge(e).face().as_inner().map(|f| f.fix())
-            }
-            // A seed on a Steiner point inside its region: any face around the point will do.
-            PositionInTriangulation::OnVertex(v)
-                if !cdt.vertex(v).out_edges().any(|e| e.as_undirected().is_constraint_edge()) =>
-            {
-                cdt.vertex(v).out_edges().find_map(|e| e.face().as_inner().map(|f| f.fix()))
-            }
-            _ => None,
-        };
-        let Some(face) = face else {
+    Ok(())
+}
+
+/// The face a seed point lies in: on a face, on a non-constraint edge, or on a Steiner point with
+/// no constraint edge around it. `None` on a segment or outside the triangulation.
+fn seed_face(cdt: &Cdt, point: [f64; 2]) -> Option<FixedFaceHandle<InnerTag>> {
+    match cdt.locate(Point2::new(point[0], point[1])) {
+        PositionInTriangulation::OnFace(f) => Some(f),
+        PositionInTriangulation::OnEdge(e)
+            if !cdt.directed_edge(e).as_undirected().is_constraint_edge() =>
+        {
+            cdt.directed_edge(e).face().as_inner().map(|f| f.fix())
+        }
+        // A seed on a Steiner point inside its region: any face around the point will do.
+        PositionInTriangulation::OnVertex(v)
+            if !cdt.vertex(v).out_edges().any(|e| e.as_undirected().is_constraint_edge()) =>
+        {
+            cdt.vertex(v).out_edges().find_map(|e| e.face().as_inner().map(|f| f.fix()))
+        }
+        _ => None,
+    }
+}
+
+/// Gives the seed's tag to its enclosed area (nothing to do if an earlier seed of the same tag
+/// already did).
+fn flood_seed(cdt: &Cdt, tags: &mut [FaceRegion], seed: &RegionSeed) -> Result<(), FemError> {
+    let Some(face) = seed_face(cdt, seed.point) else {
+        return Err(FemError::Input(format!(
+            "mesher: seed of region {} at ({}, {}) is not strictly inside a region (outside the outer \
+             boundary or on a segment)",
+            seed.tag, seed.point[0], seed.point[1]
+        )));
+    };
+    match tags[face.index()] {
+        FaceRegion::Unset => {}
+        FaceRegion::Tag(t) if t == seed.tag => return Ok(()),
+        FaceRegion::Tag(t) => {
             return Err(FemError::Input(format!(
-                "mesher: seed of region {} at ({}, {}) is not strictly inside a region (outside the outer \
-                 boundary or on a segment)",
+                "mesher: seeds of regions {t} and {} at ({}, {}) lie in the same enclosed area",
                 seed.tag, seed.point[0], seed.point[1]
             )));
-        };
-        match tags[face.index()] {
-            FaceRegion::Unset => {}
-            FaceRegion::Tag(t) if t == seed.tag => continue,
-            FaceRegion::Tag(t) => {
-                return Err(FemError::Input(format!(
-                    "mesher: seeds of regions {t} and {} at ({}, {}) lie in the same enclosed area",
-                    seed.tag, seed.point[0], seed.point[1]
-                )));
-            }
-            FaceRegion::Outside => {
-                return Err(FemError::Input(format!(
-                    "mesher: seed of region {} at ({}, {}) lies outside the closed outer boundary",
-                    seed.tag, seed.point[0], seed.point[1]
-                )));
-            }
         }
-        flood(cdt, &mut tags, face, FaceRegion::Tag(seed.tag)).map_err(|c| {
-            FemError::Input(format!(
-                "mesher: the region of seed {} at ({}, {}) is open: it reaches another region near ({:.6}, {:.6})",
-                seed.tag, seed.point[0], seed.point[1], c[0], c[1]
-            ))
-        })?;
+        FaceRegion::Outside => {
+            return Err(FemError::Input(format!(
+                "mesher: seed of region {} at ({}, {}) lies outside the closed outer boundary",
+                seed.tag, seed.point[0], seed.point[1]
+            )));
+        }
     }
+    flood(cdt, tags, face, FaceRegion::Tag(seed.tag)).map_err(|c| {
+        FemError::Input(format!(
+            "mesher: the region of seed {} at ({}, {}) is open: it reaches another region near ({:.6}, {:.6})",
+            seed.tag, seed.point[0], seed.point[1], c[0], c[1]
+        ))
+    })
+}
+
+/// Gives `default_tag` to every area no seed reached, or fails on the first one without it.
+fn flood_unseeded(
+    cdt: &Cdt,
+    tags: &mut [FaceRegion],
+    default_tag: Option<u32>,
+) -> Result<(), FemError> {
     let unset: Vec<_> =
         cdt.fixed_inner_faces().filter(|f| tags[f.index()] == FaceRegion::Unset).collect();
     for f in unset {
@@ -277,7 +333,7 @@ fn flood_fill(
             continue;
         }
         match default_tag {
-            Some(t) => flood(cdt, &mut tags, f, FaceRegion::Tag(t)).map_err(|c| {
+            Some(t) => flood(cdt, tags, f, FaceRegion::Tag(t)).map_err(|c| {
                 FemError::Input(format!(
                     "mesher: an unseeded area near ({:.6}, {:.6}) is open",
                     c[0], c[1]
@@ -292,7 +348,7 @@ fn flood_fill(
             }
         }
     }
-    Ok(tags)
+    Ok(())
 }
 
 /// Finds the tags on both sides of every input segment and collects the boundaries of the regions

@@ -9,13 +9,15 @@
 //! 2. **Lag**: the torque capacity `C` follows `T_s` through the identified transfer function
 //!    `C(s)/T_s(s) = k / (a s² + b s + 1)` — brake 1: `1/(1.791e-5 s² + 0.01702 s + 1)` (5.5),
 //!    brake 2: `0.9818/(2.309e-5 s² + 0.01726 s + 1)` (5.6). The ODE is advanced with its exact
-//!    zero-order-hold discretisation (matrix exponential of the augmented system), so the plant step
-//!    does not limit its accuracy.
+//!    zero-order-hold discretisation (the matrix exponential [`crate::lti::expm`] of the augmented
+//!    system), so the plant step does not limit its accuracy.
 //!
 //! The brake then acts as a set-valued Coulomb element of capacity `max(C, 0)` on the shaft (see
 //! [`super::bearing`]).
 
 use mrbrake_control::{Branch, InverseModel};
+
+use crate::lti::expm;
 
 /// A second-order lag `k / (a s² + b s + 1)` as identified in thesis (5.5)/(5.6).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,13 +41,14 @@ impl TorqueLag {
         // Continuous state space: ẋ = A x + B u, A = [[0, 1], [−1/a, −b/a]], B = [0, k/a].
         // exp([[A, B], [0, 0]]·dt) = [[Φ, Γ], [0, 1]].
         let a = self.a_s2;
+        #[rustfmt::skip]
         let m = [
-            [0.0, dt_s, 0.0],
-            [-dt_s / a, -self.b_s * dt_s / a, self.gain * dt_s / a],
-            [0.0, 0.0, 0.0],
+            0.0, dt_s, 0.0,
+            -dt_s / a, -self.b_s * dt_s / a, self.gain * dt_s / a,
+            0.0, 0.0, 0.0,
         ];
-        let e = expm3(m);
-        DiscreteLag { phi: [[e[0][0], e[0][1]], [e[1][0], e[1][1]]], gamma: [e[0][2], e[1][2]] }
+        let e = expm(&m, 3);
+        DiscreteLag { phi: [[e[0], e[1]], [e[3], e[4]]], gamma: [e[2], e[5]] }
     }
 }
 
@@ -64,37 +67,6 @@ impl DiscreteLag {
         let v = self.phi[1][0] * state[0] + self.phi[1][1] * state[1] + self.gamma[1] * input;
         *state = [y, v];
     }
-}
-
-/// Matrix exponential of a 3×3 matrix by scaling and squaring with a 16-term Taylor series.
-fn expm3(m: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    let norm = m.iter().map(|row| row.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
-    let mut squarings = 0;
-    let mut scale = 1.0;
-    while norm * scale > 0.5 {
-        scale *= 0.5;
-        squarings += 1;
-    }
-    let a: [[f64; 3]; 3] = core::array::from_fn(|i| core::array::from_fn(|j| m[i][j] * scale));
-    let mul = |x: &[[f64; 3]; 3], y: &[[f64; 3]; 3]| -> [[f64; 3]; 3] {
-        core::array::from_fn(|i| core::array::from_fn(|j| (0..3).map(|k| x[i][k] * y[k][j]).sum()))
-    };
-    let mut result: [[f64; 3]; 3] =
-        core::array::from_fn(|i| core::array::from_fn(|j| if i == j { 1.0 } else { 0.0 }));
-    let mut term = result;
-    for n in 1..=16 {
-        term = mul(&term, &a);
-        for i in 0..3 {
-            for j in 0..3 {
-                term[i][j] /= n as f64;
-                result[i][j] += term[i][j];
-            }
-        }
-    }
-    for _ in 0..squarings {
-        result = mul(&result, &result);
-    }
-    result
 }
 
 /// One MR brake: forward hysteresis branches and torque lag.

@@ -6,12 +6,11 @@
 //! [`simulate()`], which closes the loop around the `no_std` controller of `mrbrake-control` at 1 kHz
 //! with zero-order hold and integrates the plant on a finer step; it returns [`WallMetrics`] and,
 //! optionally, a [`Trace`]. [`zwidth`] sweeps stiffness and damping and classifies each pair as
-//! passive, stable or unstable. [`characterization`] converts an identification JSON into the
-//! controller's fixed-size model; [`prototype`] holds the built-in prototype-like branches.
+//! passive, stable or unstable. [`prototype`] holds the built-in prototype-like branches; an
+//! identified model is read with [`mrbrake_sysid::model_file::read_inverse_model`].
 
 pub mod bearing;
 pub mod brake;
-pub mod characterization;
 pub mod device;
 pub mod hand;
 pub mod metrics;
@@ -26,3 +25,21 @@ pub use hand::HandModel;
 pub use metrics::{PeakMean, WallMetrics};
 pub use scenario::Scenario;
 pub use simulate::{HapticConfig, HapticRun, Trace, simulate};
+
+use crate::SimError;
+
+/// `Ok` for a finite `value` in `[min, max]`, else an input error naming `context`, the field and the
+/// range (the settings checks of a run and of a sweep).
+pub(crate) fn check_range(
+    context: &str,
+    field: &str,
+    value: f64,
+    min: f64,
+    max: f64,
+) -> Result<(), SimError> {
+    if value.is_finite() && value >= min && value <= max {
+        Ok(())
+    } else {
+        Err(SimError::Input(format!("{context}: {field} = {value} is outside [{min}, {max}]")))
+    }
+}

@@ -10,7 +10,8 @@
 //! `T_rise(u) = 0.15 + S·(1.2u + 0.6u² − 1.6u³ + 0.9u⁴ − 0.1u⁵)`,
 //! `T_fall(u) = T_rise(u) + 0.1·S·4u(1 − u)`.
 //!
-//! Replace them with `mrbrake characterize` output (see [`super::characterization`]) for a real brake.
+//! Replace them with `mrbrake characterize --save-model` output (read by
+//! [`mrbrake_sysid::model_file::read_inverse_model`]) for a real brake.
 
 use mrbrake_control::InverseModel;
 

@@ -19,7 +19,8 @@ use mrbrake_control::{
 };
 
 use super::bearing::friction_step;
-use super::brake::{BrakeModel, BrakeState, TorqueLag};
+use super::brake::{BrakeModel, BrakeState, DiscreteLag, TorqueLag};
+use super::check_range;
 use super::device::{DeviceKind, DeviceParameters, encoder_counts};
 use super::hand::HandModel;
 use super::metrics::{MetricsAccumulator, Sample, WallMetrics};
@@ -85,13 +86,7 @@ impl HapticConfig {
 
     /// Checks every number; the error names the field and the allowed range.
     pub fn validate(&self) -> Result<(), SimError> {
-        let check = |field: &str, value: f64, min: f64, max: f64| {
-            if value.is_finite() && value >= min && value <= max {
-                Ok(())
-            } else {
-                Err(SimError::Input(format!("haptic: {field} = {value} is outside [{min}, {max}]")))
-            }
-        };
+        let check = |field: &str, value, min, max| check_range("haptic", field, value, min, max);
         check("duration_s", self.duration_s, 1e-3, 3600.0)?;
         check("wall_stiffness_nm_per_rad", self.wall_stiffness_nm_per_rad, 0.0, 1e5)?;
         check("wall_damping_nms_per_rad", self.wall_damping_nms_per_rad, 0.0, 100.0)?;
@@ -187,112 +182,223 @@ pub struct HapticRun {
 /// Runs one haptic interaction. `record` keeps the time histories (off for benchmarks and sweeps).
 pub fn simulate(config: &HapticConfig, record: bool) -> Result<HapticRun, SimError> {
     config.validate()?;
-    let d = &config.device_parameters;
-    let hand = &config.hand;
+    let haptic_loop = HapticLoop::new(config)?;
+    // The controller's state and the plant's are separate locals: the plant's never leaves this
+    // function (every method that touches it is inlined), so it stays in registers.
+    let mut control = ControlState::default();
+    let mut plant = haptic_loop.rest_state();
+    let mut metrics = MetricsAccumulator::new(haptic_loop.outward_drag_nm(&plant));
     let period = config.control_period_s;
-    let dt = period / f64::from(config.substeps);
-    let inertia = d.inertia_kg_m2 + hand.inertia_kg_m2();
-    let hand_k = hand.stiffness_nm_per_rad();
-    let hand_b = hand.damping_nms_per_rad();
-    let implicit_inertia = inertia + dt * (d.viscous_nms_per_rad + hand_b);
-
-    let layout = match config.device {
-        DeviceKind::Conventional => BrakeLayout::Conventional,
-        _ => BrakeLayout::Bidirectional,
-    };
-    let current_max_a = config.controller_models[0]
-        .current_max_a()
-        .min(config.controller_models[1].current_max_a());
-    let controller = DirectionalController::new(
-        layout,
-        config.controller_models,
-        current_max_a,
-        d.encoder_counts_per_rev,
-        InputLimits::default(),
-        config.branch_deadband_nm,
-    )
-    .map_err(|e| SimError::Input(format!("haptic controller: {e}")))?;
-    let estimator = VelocityEstimator::new(period, config.velocity_cutoff_hz)
-        .ok_or_else(|| SimError::Input("haptic: invalid velocity estimator settings".into()))?;
-    let lags = [config.brakes[0].lag.discretise(dt), config.brakes[1].lag.discretise(dt)];
-    // Which brakes exist on the shaft.
-    let brake_present = match config.device {
-        DeviceKind::Conventional => [true, false],
-        DeviceKind::Bidirectional => [true, true],
-        DeviceKind::Motor => [false, false],
-    };
-
-    let mut control_state = ControllerState::default();
-    let mut velocity_state = VelocityState::default();
-    let mut brakes: [BrakeState; 2] =
-        [config.brakes[0].rest_state(), config.brakes[1].rest_state()];
-    let mut angle = config.scenario.start_angle_rad();
-    let mut velocity = 0.0;
-    // Free-motion drag against outward (negative) motion: the brake coupled for negative motion at
-    // rest current, plus bearing friction.
-    let outward_drag = d.coulomb_nm
-        + match config.device {
-            DeviceKind::Conventional => brakes[0].lag[0],
-            DeviceKind::Bidirectional => brakes[1].lag[0],
-            DeviceKind::Motor => 0.0,
-        };
-    let mut metrics = MetricsAccumulator::new(outward_drag);
-    let withdraw_start = config.scenario.withdraw_start_s();
-    let side = WallSide::Positive;
     let ticks = (config.duration_s / period).round() as u64;
     let mut trace = if record { Some(Trace::default()) } else { None };
-    let rad_per_count = controller.radians_per_count();
-
     for tick in 0..ticks {
         let t0 = tick as f64 * period;
-        let counts = encoder_counts(angle, d.encoder_counts_per_rev);
-        let measured_angle = counts as f64 * rad_per_count;
-        let velocity_estimate = estimator.update(&mut velocity_state, measured_angle);
-        let (wall_position, _) = config.scenario.wall_position_and_rate(t0);
-        let wall = VirtualWall {
-            position_rad: wall_position,
-            side,
-            stiffness_nm_per_rad: config.wall_stiffness_nm_per_rad,
-            damping_nms_per_rad: config.wall_damping_nms_per_rad,
-            field_damping_nms_per_rad: 0.0,
+        let command = haptic_loop.control(t0, &mut control, &mut plant);
+        metrics.add_currents(command.current_a);
+        let sums = haptic_loop.hold(t0, &command, &mut plant, &mut metrics);
+        if let Some(trace) = trace.as_mut() {
+            haptic_loop.record(trace, t0 + period, &command, &plant, sums);
+        }
+    }
+    Ok(HapticRun {
+        metrics: metrics.finish(
+            config.device.name(),
+            config.scenario.name(),
+            control.controller.fault_count(),
+        ),
+        trace,
+    })
+}
+
+/// What one control tick commands, held for the tick.
+struct Command {
+    /// The wall rendered this tick.
+    wall: VirtualWall,
+    /// Coil currents of brake 1 and brake 2, A.
+    current_a: [f64; 2],
+    /// Motor torque (motor device), Nm.
+    motor_torque_nm: f64,
+}
+
+/// Sums of the actuator, device and hand torques over a tick's plant steps, Nm.
+#[derive(Clone, Copy, Default)]
+struct TorqueSums {
+    actuator_nm: f64,
+    device_nm: f64,
+    hand_nm: f64,
+}
+
+/// The closed loop of one run: the configuration and its derived constants (the states are
+/// [`ControlState`] and [`PlantState`]).
+struct HapticLoop<'a> {
+    config: &'a HapticConfig,
+    controller: DirectionalController,
+    estimator: VelocityEstimator,
+    lags: [DiscreteLag; 2],
+    /// Which brakes exist on the shaft.
+    brake_present: [bool; 2],
+    /// Plant step `dt = T / substeps`, s.
+    dt_s: f64,
+    /// `J = J_device + J_hand`, kg·m².
+    inertia: f64,
+    /// `J + dt (b + B_h)`, the implicit step's inertia.
+    implicit_inertia: f64,
+    hand_k: f64,
+    hand_b: f64,
+    /// The scenario's start of the withdrawal, s.
+    withdraw_start_s: Option<f64>,
+}
+
+/// The state of the controller and its velocity estimator.
+#[derive(Default)]
+struct ControlState {
+    controller: ControllerState,
+    velocity: VelocityState,
+}
+
+/// The state of the brakes and the shaft.
+#[derive(Clone, Copy)]
+struct PlantState {
+    brakes: [BrakeState; 2],
+    angle_rad: f64,
+    velocity_rad_s: f64,
+}
+
+impl<'a> HapticLoop<'a> {
+    /// The loop at rest at the scenario's start angle.
+    fn new(config: &'a HapticConfig) -> Result<Self, SimError> {
+        let d = &config.device_parameters;
+        let hand = &config.hand;
+        let period = config.control_period_s;
+        let dt_s = period / f64::from(config.substeps);
+        let inertia = d.inertia_kg_m2 + hand.inertia_kg_m2();
+        let hand_b = hand.damping_nms_per_rad();
+        let layout = match config.device {
+            DeviceKind::Conventional => BrakeLayout::Conventional,
+            _ => BrakeLayout::Bidirectional,
         };
-        let mut current = [0.0; 2];
-        let mut motor_torque = 0.0;
+        let current_max_a = config.controller_models[0]
+            .current_max_a()
+            .min(config.controller_models[1].current_max_a());
+        let controller = DirectionalController::new(
+            layout,
+            config.controller_models,
+            current_max_a,
+            d.encoder_counts_per_rev,
+            InputLimits::default(),
+            config.branch_deadband_nm,
+        )
+        .map_err(|source| SimError::Control { what: "haptic controller", source })?;
+        let estimator = VelocityEstimator::new(period, config.velocity_cutoff_hz)
+            .ok_or_else(|| SimError::Input("haptic: invalid velocity estimator settings".into()))?;
+        Ok(Self {
+            config,
+            controller,
+            estimator,
+            lags: [config.brakes[0].lag.discretise(dt_s), config.brakes[1].lag.discretise(dt_s)],
+            brake_present: match config.device {
+                DeviceKind::Conventional => [true, false],
+                DeviceKind::Bidirectional => [true, true],
+                DeviceKind::Motor => [false, false],
+            },
+            dt_s,
+            inertia,
+            implicit_inertia: inertia + dt_s * (d.viscous_nms_per_rad + hand_b),
+            hand_k: hand.stiffness_nm_per_rad(),
+            hand_b,
+            withdraw_start_s: config.scenario.withdraw_start_s(),
+        })
+    }
+
+    /// The plant at rest at the scenario's start angle, the brakes at zero current.
+    fn rest_state(&self) -> PlantState {
+        let brakes = &self.config.brakes;
+        PlantState {
+            brakes: [brakes[0].rest_state(), brakes[1].rest_state()],
+            angle_rad: self.config.scenario.start_angle_rad(),
+            velocity_rad_s: 0.0,
+        }
+    }
+
+    /// Free-motion drag against outward (negative) motion: the brake coupled for negative motion at
+    /// rest current, plus bearing friction, Nm.
+    fn outward_drag_nm(&self, plant: &PlantState) -> f64 {
+        self.config.device_parameters.coulomb_nm
+            + match self.config.device {
+                DeviceKind::Conventional => plant.brakes[0].lag[0],
+                DeviceKind::Bidirectional => plant.brakes[1].lag[0],
+                DeviceKind::Motor => 0.0,
+            }
+    }
+
+    /// The control tick at `t0`: read the encoder, estimate the velocity, run the controller (or the
+    /// ideal motor wall) and apply the currents to the brakes' hysteresis.
+    #[inline]
+    fn control(&self, t0: f64, control: &mut ControlState, plant: &mut PlantState) -> Command {
+        let config = self.config;
+        let d = &config.device_parameters;
+        let counts = encoder_counts(plant.angle_rad, d.encoder_counts_per_rev);
+        let measured_angle = counts as f64 * self.controller.radians_per_count();
+        let velocity_estimate = self.estimator.update(&mut control.velocity, measured_angle);
+        let (wall_position, _) = config.scenario.wall_position_and_rate(t0);
+        let wall = VirtualWall::new(
+            wall_position,
+            WallSide::Positive,
+            config.wall_stiffness_nm_per_rad,
+            config.wall_damping_nms_per_rad,
+        );
+        let mut current_a = [0.0; 2];
+        let mut motor_torque_nm = 0.0;
         if config.device == DeviceKind::Motor {
             let limit = d.motor_torque_max_nm;
-            motor_torque =
+            motor_torque_nm =
                 wall.ideal_torque_nm(measured_angle, velocity_estimate).clamp(-limit, limit);
         } else {
             // The controller's encoder counts are relative to its own zero: the same reference here.
-            let output = controller.step(
-                &mut control_state,
+            let output = self.controller.step(
+                &mut control.controller,
                 &ControlInput { encoder_counts: counts, velocity_rad_s: velocity_estimate, wall },
             );
-            current = output.current_a;
+            current_a = output.current_a;
         }
-        metrics.add_currents(current);
         for k in 0..2 {
-            if brake_present[k] {
-                config.brakes[k].apply_current(&mut brakes[k], current[k]);
+            if self.brake_present[k] {
+                config.brakes[k].apply_current(&mut plant.brakes[k], current_a[k]);
             }
         }
+        Command { wall, current_a, motor_torque_nm }
+    }
 
-        let mut actuator_sum = 0.0;
-        let mut device_sum = 0.0;
-        let mut hand_sum = 0.0;
+    /// Holds `command` for the tick starting at `t0`: the plant's `substeps` steps (module docs: the
+    /// brakes' lag, then the shaft and hand with the implicit Coulomb step), each added to `metrics`;
+    /// returns the tick's torque sums.
+    #[inline]
+    fn hold(
+        &self,
+        t0: f64,
+        command: &Command,
+        plant: &mut PlantState,
+        metrics: &mut MetricsAccumulator,
+    ) -> TorqueSums {
+        let config = self.config;
+        let d = &config.device_parameters;
+        let (dt, motor_torque, side) = (self.dt_s, command.motor_torque_nm, WallSide::Positive);
+        let (lags, present) = (&self.lags, self.brake_present);
+        let mut sums = TorqueSums::default();
         for sub in 0..config.substeps {
             let t = t0 + f64::from(sub) * dt;
             let mut capacity = [0.0; 2];
             for k in 0..2 {
-                if brake_present[k] {
-                    lags[k].advance(&mut brakes[k].lag, brakes[k].static_torque_nm);
-                    capacity[k] = brakes[k].lag[0].max(0.0);
+                if present[k] {
+                    lags[k].advance(&mut plant.brakes[k].lag, plant.brakes[k].static_torque_nm);
+                    capacity[k] = plant.brakes[k].lag[0].max(0.0);
                 }
             }
             let (intended, intended_rate) = config.scenario.intended(t + dt);
-            let explicit_hand = hand_k * (intended - angle) + hand_b * intended_rate;
-            let free =
-                (inertia * velocity + dt * (explicit_hand + motor_torque)) / implicit_inertia;
+            let explicit_hand =
+                self.hand_k * (intended - plant.angle_rad) + self.hand_b * intended_rate;
+            let free = (self.inertia * plant.velocity_rad_s + dt * (explicit_hand + motor_torque))
+                / self.implicit_inertia;
             let (resist_positive, resist_negative) = match config.device {
                 DeviceKind::Conventional => (capacity[0], capacity[0]),
                 DeviceKind::Bidirectional => (capacity[0], capacity[1]),
@@ -302,11 +408,12 @@ pub fn simulate(config: &HapticConfig, record: bool) -> Result<HapticRun, SimErr
                 free,
                 resist_positive + d.coulomb_nm,
                 resist_negative + d.coulomb_nm,
-                implicit_inertia,
+                self.implicit_inertia,
                 dt,
             );
-            velocity = step.velocity_rad_s;
-            angle += dt * velocity;
+            plant.velocity_rad_s = step.velocity_rad_s;
+            plant.angle_rad += dt * plant.velocity_rad_s;
+            let (angle, velocity) = (plant.angle_rad, plant.velocity_rad_s);
             // Share of the set-valued torque taken by the brakes (the rest is bearing friction).
             let brake_capacity =
                 if step.torque_nm < 0.0 { resist_positive } else { resist_negative };
@@ -317,55 +424,53 @@ pub fn simulate(config: &HapticConfig, record: bool) -> Result<HapticRun, SimErr
             };
             let actuator_torque = step.torque_nm * brake_share + motor_torque;
             let device_torque = step.torque_nm + motor_torque - d.viscous_nms_per_rad * velocity;
-            let hand_torque = explicit_hand - hand_b * velocity;
+            let hand_torque = explicit_hand - self.hand_b * velocity;
             let (wall_now, _) = config.scenario.wall_position_and_rate(t + dt);
-            metrics.add(
-                &Sample {
-                    time_s: t + dt,
-                    penetration_rad: side.sign() * (angle - wall_now),
-                    side: side.sign(),
-                    angle_rad: angle,
-                    velocity_rad_s: velocity,
-                    device_torque_nm: device_torque,
-                    hand_torque_nm: hand_torque,
-                },
-                dt,
-                withdraw_start,
-            );
-            actuator_sum += actuator_torque;
-            device_sum += device_torque;
-            hand_sum += hand_torque;
+            let sample = Sample {
+                time_s: t + dt,
+                penetration_rad: side.sign() * (angle - wall_now),
+                side: side.sign(),
+                angle_rad: angle,
+                velocity_rad_s: velocity,
+                device_torque_nm: device_torque,
+                hand_torque_nm: hand_torque,
+            };
+            metrics.add(&sample, dt, self.withdraw_start_s);
+            sums.actuator_nm += actuator_torque;
+            sums.device_nm += device_torque;
+            sums.hand_nm += hand_torque;
         }
-        if let Some(trace) = trace.as_mut() {
-            let n = f64::from(config.substeps);
-            let t1 = t0 + period;
-            let (wall_now, _) = config.scenario.wall_position_and_rate(t1);
-            trace.time_s.push(t1);
-            trace.angle_rad.push(angle);
-            trace.intended_rad.push(config.scenario.intended(t1).0);
-            trace.wall_rad.push(wall_now);
-            for k in 0..2 {
-                trace.current_a[k].push(current[k]);
-                trace.capacity_nm[k].push(if brake_present[k] {
-                    brakes[k].lag[0].max(0.0)
-                } else {
-                    0.0
-                });
-            }
-            trace.actuator_torque_nm.push(actuator_sum / n);
-            trace.device_torque_nm.push(device_sum / n);
-            trace.hand_torque_nm.push(hand_sum / n);
-            trace.ideal_wall_torque_nm.push(
-                VirtualWall { position_rad: wall_now, ..wall }.ideal_torque_nm(angle, velocity),
-            );
-        }
+        sums
     }
-    Ok(HapticRun {
-        metrics: metrics.finish(
-            config.device.name(),
-            config.scenario.name(),
-            control_state.fault_count(),
-        ),
-        trace,
-    })
+
+    /// Appends the tick ending at `t1` to the trace (torques as tick averages).
+    fn record(
+        &self,
+        trace: &mut Trace,
+        t1: f64,
+        command: &Command,
+        plant: &PlantState,
+        sums: TorqueSums,
+    ) {
+        let scenario = self.config.scenario;
+        let n = f64::from(self.config.substeps);
+        let (wall_now, _) = scenario.wall_position_and_rate(t1);
+        trace.time_s.push(t1);
+        trace.angle_rad.push(plant.angle_rad);
+        trace.intended_rad.push(scenario.intended(t1).0);
+        trace.wall_rad.push(wall_now);
+        for k in 0..2 {
+            trace.current_a[k].push(command.current_a[k]);
+            let capacity =
+                if self.brake_present[k] { plant.brakes[k].lag[0].max(0.0) } else { 0.0 };
+            trace.capacity_nm[k].push(capacity);
+        }
+        trace.actuator_torque_nm.push(sums.actuator_nm / n);
+        trace.device_torque_nm.push(sums.device_nm / n);
+        trace.hand_torque_nm.push(sums.hand_nm / n);
+        let wall = VirtualWall { position_rad: wall_now, ..command.wall };
+        trace
+            .ideal_wall_torque_nm
+            .push(wall.ideal_torque_nm(plant.angle_rad, plant.velocity_rad_s));
+    }
 }

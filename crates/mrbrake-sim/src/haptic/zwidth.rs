@@ -30,6 +30,7 @@ use mrbrake_control::{
 use serde::Serialize;
 
 use super::brake::BrakeModel;
+use super::check_range;
 use super::device::encoder_counts;
 use super::prototype::prototype_model;
 use crate::SimError;
@@ -250,14 +251,9 @@ pub fn brake_test_energy(
     worst
 }
 
+/// The test wall: at 0 rad on the positive side (the test motions stay inside it).
 fn wall(k: f64, b: f64) -> VirtualWall {
-    VirtualWall {
-        position_rad: 0.0,
-        side: WallSide::Positive,
-        stiffness_nm_per_rad: k,
-        damping_nms_per_rad: b,
-        field_damping_nms_per_rad: 0.0,
-    }
+    VirtualWall::new(0.0, WallSide::Positive, k, b)
 }
 
 /// Free response of the device alone with the sampled wall engaged: true when it loses energy.
@@ -307,13 +303,7 @@ pub fn free_response_decays(
 
 /// Runs the sweep.
 pub fn sweep(config: &ZWidthConfig) -> Result<ZWidthMap, SimError> {
-    let check = |field: &str, value: f64, min: f64, max: f64| {
-        if value.is_finite() && value >= min && value <= max {
-            Ok(())
-        } else {
-            Err(SimError::Input(format!("zwidth: {field} = {value} is outside [{min}, {max}]")))
-        }
-    };
+    let check = |field, value, min, max| check_range("zwidth", field, value, min, max);
     check("stiffness_max_nm_per_rad", config.stiffness_max_nm_per_rad, 1e-9, 1e6)?;
     check("damping_max_nms_per_rad", config.damping_max_nms_per_rad, 0.0, 1e3)?;
     check("stiffness_points", config.stiffness_points as f64, 2.0, 1000.0)?;

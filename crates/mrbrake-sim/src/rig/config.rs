@@ -3,6 +3,8 @@
 //! Every field has a default, so an empty file is the thesis set-up; unknown fields are rejected so a
 //! typo does not silently fall back to a default. `mrbrake rig config` prints the defaults.
 
+use std::path::Path;
+
 use serde::{Deserialize, Serialize};
 
 use crate::SimError;
@@ -217,10 +219,20 @@ impl Default for RigConfig {
 }
 
 impl RigConfig {
+    /// Reads and checks a configuration file.
+    pub fn read(path: &Path) -> Result<Self, SimError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
+            what: "rig configuration",
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_toml(&path.display().to_string(), &text)
+    }
+
     /// Parses TOML text; `source` names the file in errors.
     pub fn from_toml(source: &str, text: &str) -> Result<Self, SimError> {
-        let config: Self =
-            toml::from_str(text).map_err(|e| SimError::Input(format!("{source}: {e}")))?;
+        let config: Self = toml::from_str(text)
+            .map_err(|e| SimError::Toml { file: source.to_string(), source: e })?;
         config.validate(source)?;
         Ok(config)
     }
@@ -232,22 +244,29 @@ impl RigConfig {
 
     /// Checks ranges; the error names the file and the field.
     pub fn validate(&self, source: &str) -> Result<(), SimError> {
-        let bad =
-            |field: &str, msg: String| Err(SimError::Input(format!("{source}: {field}: {msg}")));
+        self.check_plant()
+            .and_then(|()| self.check_protocols())
+            .map_err(|(field, msg)| SimError::Input(format!("{source}: {field}: {msg}")))
+    }
+
+    /// Brake, motor, sensor and acquisition; `Err((field, message))` for the first bad field.
+    fn check_plant(&self) -> Result<(), (&'static str, String)> {
+        let bad = |field, msg: &str| Err((field, msg.to_string()));
         if self.brake.rising.is_empty() || self.brake.rising.iter().any(|c| !c.is_finite()) {
-            return bad("brake.rising", "must be a non-empty list of finite coefficients".into());
+            return bad("brake.rising", "must be a non-empty list of finite coefficients");
         }
         if self.brake.falling.is_empty() || self.brake.falling.iter().any(|c| !c.is_finite()) {
-            return bad("brake.falling", "must be a non-empty list of finite coefficients".into());
+            return bad("brake.falling", "must be a non-empty list of finite coefficients");
         }
         if !positive(self.brake.current_max_a) {
-            return bad("brake.current_max_A", format!("{} must be > 0", self.brake.current_max_a));
+            let msg = format!("{} must be > 0", self.brake.current_max_a);
+            return Err(("brake.current_max_A", msg));
         }
         if !non_negative(self.brake.viscous_nm_s_per_rad) {
-            return bad("brake.viscous_Nm_s_per_rad", "must be ≥ 0".into());
+            return bad("brake.viscous_Nm_s_per_rad", "must be ≥ 0");
         }
         if !positive(self.motor.belt_ratio) {
-            return bad("motor.belt_ratio", "must be > 0".into());
+            return bad("motor.belt_ratio", "must be > 0");
         }
         if !positive(self.sensor.stiffness_nm_per_rad)
             || !positive(self.sensor.full_scale_nm)
@@ -255,25 +274,30 @@ impl RigConfig {
         {
             return bad(
                 "sensor",
-                "stiffness_Nm_per_rad, full_scale_Nm and full_scale_V must be > 0".into(),
+                "stiffness_Nm_per_rad, full_scale_Nm and full_scale_V must be > 0",
             );
         }
         if !non_negative(self.sensor.noise_std_v) || !(1..=32).contains(&self.sensor.adc_bits) {
-            return bad("sensor", "noise_std_V must be ≥ 0 and adc_bits within 1..=32".into());
+            return bad("sensor", "noise_std_V must be ≥ 0 and adc_bits within 1..=32");
         }
         if !positive(self.daq.sample_rate_hz) || !positive(self.daq.output_rate_hz) {
-            return bad("daq", "sample_rate_Hz and output_rate_Hz must be > 0".into());
+            return bad("daq", "sample_rate_Hz and output_rate_Hz must be > 0");
         }
         let ratio = self.daq.output_rate_hz / self.daq.sample_rate_hz;
         if ratio < 1.0 || (ratio - ratio.round()).abs() > 1e-9 {
-            return bad(
-                "daq.output_rate_Hz",
-                format!(
-                    "{} must be an integer multiple of sample_rate_Hz",
-                    self.daq.output_rate_hz
-                ),
+            let msg = format!(
+                "{} must be an integer multiple of sample_rate_Hz",
+                self.daq.output_rate_hz
             );
+            return Err(("daq.output_rate_Hz", msg));
         }
+        Ok(())
+    }
+
+    /// The characterisation and frequency-response protocols; `Err((field, message))` for the first
+    /// bad field.
+    fn check_protocols(&self) -> Result<(), (&'static str, String)> {
+        let bad = |field, msg: &str| Err((field, msg.to_string()));
         let c = &self.characterization;
         if !positive(c.step_a)
             || c.step_a > self.brake.current_max_a
@@ -283,8 +307,7 @@ impl RigConfig {
         {
             return bad(
                 "characterization",
-                "step_A must be in (0, current_max_A], step_s > 0, pause_s ≥ 0, repetitions ≥ 1"
-                    .into(),
+                "step_A must be in (0, current_max_A], step_s > 0, pause_s ≥ 0, repetitions ≥ 1",
             );
         }
         let f = &self.frequency_response;
@@ -294,11 +317,11 @@ impl RigConfig {
         {
             return bad(
                 "frequency_response",
-                "need 0 < omega_min_rad_s ≤ omega_max_rad_s and points_per_decade ≥ 1".into(),
+                "need 0 < omega_min_rad_s ≤ omega_max_rad_s and points_per_decade ≥ 1",
             );
         }
         if !positive(f.torque_max_nm - f.torque_min_nm) {
-            return bad("frequency_response.torque_max_Nm", "must exceed torque_min_Nm".into());
+            return bad("frequency_response.torque_max_Nm", "must exceed torque_min_Nm");
         }
         if !(positive(f.periods_measured)
             && non_negative(f.periods_discarded)
@@ -307,7 +330,7 @@ impl RigConfig {
         {
             return bad(
                 "frequency_response",
-                "periods and durations must be non-negative (periods_measured > 0)".into(),
+                "periods and durations must be non-negative (periods_measured > 0)",
             );
         }
         Ok(())
@@ -338,10 +361,13 @@ mod tests {
 
     #[test]
     fn typo_and_bad_value_name_file_and_field() {
-        let e = RigConfig::from_toml("rig.toml", "[brake]\ncurent_max_A = 2.0\n")
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("rig.toml") && e.contains("curent_max_A"), "{e}");
+        let e = RigConfig::from_toml("rig.toml", "[brake]\ncurent_max_A = 2.0\n").unwrap_err();
+        assert!(matches!(&e, SimError::Toml { file, .. } if file == "rig.toml"));
+        let cause = std::error::Error::source(&e).unwrap().to_string();
+        assert!(cause.contains("curent_max_A"), "{cause}");
+        let missing = RigConfig::read(Path::new("no/such/rig.toml")).unwrap_err();
+        assert!(missing.to_string().contains("no/such/rig.toml"));
+        assert!(mrbrake_error::Kind::is_input_error(&missing));
         let e = RigConfig::from_toml("rig.toml", "[daq]\noutput_rate_Hz = 1500\n")
             .unwrap_err()
             .to_string();

@@ -18,18 +18,20 @@
 //! holds until the other branch is reached, so the loop stays continuous.
 //!
 //! Protocols: [`characterization_log`] (§5.3.1) and [`frequency_response_logs`] (§5.3.2: the current
-//! is shaped through the inverse model so that the torque demand is sinusoidal).
+//! is shaped through the inverse model so that the torque demand is sinusoidal). The inverse model is
+//! the controller's ([`mrbrake_control::InverseModel`]), and the current is shaped by the controller's
+//! own hysteresis compensation ([`InverseModel::compensate`], no deadband): the rig drives the brake
+//! exactly as the controller would.
 
 pub mod config;
 pub mod noise;
 
-use mrbrake_sysid::inverse::{
-    BranchPolynomial, Direction, HysteresisModel, InverseModel, InverseTracker,
-};
+use mrbrake_control::{Branch, CompensationState, InverseModel};
 use mrbrake_sysid::polynomial::Polynomial;
+use mrbrake_sysid::transfer_function::TransferFunction;
 
 use crate::SimError;
-use crate::lti::{ContinuousTf, DiscreteStateSpace};
+use crate::lti::DiscreteStateSpace;
 pub use config::RigConfig;
 use noise::GaussianNoise;
 
@@ -67,10 +69,11 @@ impl Plant {
     /// Builds the plant at output step `dt_s` with noise seed `seed`.
     pub fn new(config: &RigConfig, dt_s: f64, seed: u64) -> Result<Self, SimError> {
         let b = &config.brake;
-        let g = ContinuousTf::new(b.dynamics_numerator.clone(), b.dynamics_denominator.clone())
-            .map_err(|e| SimError::Input(format!("brake dynamics: {e}")))?;
-        let m = ContinuousTf::new(config.motor.numerator.clone(), config.motor.denominator.clone())
-            .map_err(|e| SimError::Input(format!("motor: {e}")))?;
+        let g = TransferFunction::new(b.dynamics_numerator.clone(), b.dynamics_denominator.clone())
+            .map_err(|source| SimError::Model { what: "brake dynamics", source })?;
+        let m =
+            TransferFunction::new(config.motor.numerator.clone(), config.motor.denominator.clone())
+                .map_err(|source| SimError::Model { what: "motor", source })?;
         let s = &config.sensor;
         Ok(Self {
             rising: Polynomial::new(b.rising.clone()),
@@ -243,15 +246,17 @@ pub fn sine_test_samples(
     let mid = 0.5 * (f.torque_min_nm + f.torque_max_nm);
     let amp = 0.5 * (f.torque_max_nm - f.torque_min_nm);
     let mut plant = Plant::new(config, dt, seed)?;
-    let mut tracker = InverseTracker::new(inverse.clone());
-    let i0 = tracker.current_for(mid);
+    let limit_a = inverse.current_max_a();
+    // No deadband: the demand is exact, so every change of its direction switches the branch.
+    let mut compensation = CompensationState::default();
+    let i0 = inverse.compensate(&mut compensation, mid, limit_a, 0.0);
     plant.settle(i0);
     let n = ((discard + measure) / dt).ceil() as usize;
     let mut out = Vec::with_capacity(n / sub + 1);
     for k in 0..n {
         let t = k as f64 * dt;
         let demand = mid + amp * (omega_rad_s * t).sin();
-        let current = tracker.current_for(demand);
+        let current = inverse.compensate(&mut compensation, demand, limit_a, 0.0);
         let logged = k % sub == 0;
         let s = plant.step(current, logged);
         if logged {
@@ -262,13 +267,11 @@ pub fn sine_test_samples(
 }
 
 /// The inverse model of the configured branches (what a perfectly characterised brake would use).
-pub fn configured_model(config: &RigConfig) -> HysteresisModel {
-    HysteresisModel {
-        rising: BranchPolynomial { coefficients: config.brake.rising.clone() },
-        falling: BranchPolynomial { coefficients: config.brake.falling.clone() },
-        current_min_a: 0.0,
-        current_max_a: config.brake.current_max_a,
-    }
+/// Fails when a branch has more coefficients than the controller holds or decreases on
+/// `[0, current_max_A]`.
+pub fn configured_model(config: &RigConfig) -> Result<InverseModel, SimError> {
+    InverseModel::new(&config.brake.rising, &config.brake.falling, 0.0, config.brake.current_max_a)
+        .map_err(|source| SimError::Control { what: "brake branches (rig configuration)", source })
 }
 
 /// The frequency-response protocol: one log per test frequency (`time_s, input, output, current_A`)
@@ -276,13 +279,21 @@ pub fn configured_model(config: &RigConfig) -> HysteresisModel {
 /// (default: the configured branches).
 pub fn frequency_response_logs(
     config: &RigConfig,
-    model: Option<&HysteresisModel>,
+    model: Option<&InverseModel>,
 ) -> Result<Vec<RigFile>, SimError> {
     config.validate("rig configuration")?;
-    let model = model.cloned().unwrap_or_else(|| configured_model(config));
-    let inverse = InverseModel::new(&model)?;
-    let (lo, hi) =
-        (inverse.torque_range(Direction::Rising), inverse.torque_range(Direction::Falling));
+    let inverse = match model {
+        Some(model) => *model,
+        None => configured_model(config)?,
+    };
+    // Each branch is non-decreasing, so its torque range runs from i_min to i_max.
+    let range = |branch| {
+        (
+            inverse.torque_nm(branch, inverse.current_min_a()),
+            inverse.torque_nm(branch, inverse.current_max_a()),
+        )
+    };
+    let (lo, hi) = (range(Branch::Rising), range(Branch::Falling));
     let f = &config.frequency_response;
     if f.torque_min_nm < lo.0.max(hi.0) || f.torque_max_nm > lo.1.min(hi.1) {
         return Err(SimError::Input(format!(

@@ -38,75 +38,21 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use serde::{Deserialize, Serialize};
+use mrbrake_fem::mesh::Mesh;
 
 use crate::ElementOrder;
 use crate::MagneticsError;
-use crate::field::{CoilLinkage, PointField, RegionStats, Solution};
-use crate::material::MagneticMaterial;
+use crate::field::{CoilLinkage, Solution};
+use crate::material::Magnetic;
 use crate::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 use crate::solver::{Solver, SolverOptions};
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawFile {
-    mesh: String,
-    #[serde(default)]
-    length_unit: Option<String>,
-    #[serde(default)]
-    order: Option<toml::Value>,
-    #[serde(default)]
-    solver: Option<RawSolver>,
-    #[serde(default)]
-    region: Vec<RawRegion>,
-    #[serde(default)]
-    boundary: Vec<RawBoundary>,
-    #[serde(default)]
-    probe: Vec<RawProbe>,
-    #[serde(default)]
-    line: Vec<RawLine>,
-}
+mod raw;
+mod report;
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawSolver {
-    max_iterations: Option<usize>,
-    tolerance: Option<f64>,
-    quadrature_degree: Option<usize>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawRegion {
-    physical: u32,
-    material: Option<toml::Value>,
-    source: Option<toml::Value>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawBoundary {
-    physical: u32,
-    kind: String,
-    centre_z: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawProbe {
-    name: String,
-    r: f64,
-    z: f64,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawLine {
-    name: String,
-    from: [f64; 2],
-    to: [f64; 2],
-    samples: Option<usize>,
-}
+use raw::{RawBoundary, RawFile, RawRegion, RawSolver};
+use report::probe_report;
+pub use report::{CoilReport, LineReport, ProbeReport, RegionReport, SolveReport, Timings};
 
 /// A named point where B is reported (coordinates in metres).
 #[derive(Debug, Clone, PartialEq)]
@@ -147,19 +93,10 @@ pub struct ProblemFile {
     pub mesh_read_s: f64,
 }
 
-/// Metres per unit for `length_unit`.
+/// Metres per unit for `length_unit` (the unit names of `mrbrake-units`).
 fn unit_scale(unit: &str, file: &str) -> Result<f64, MagneticsError> {
-    Ok(match unit {
-        "m" => 1.0,
-        "cm" => 1e-2,
-        "mm" => 1e-3,
-        "um" | "µm" => 1e-6,
-        other => {
-            return Err(MagneticsError::Input(format!(
-                "{file}: length_unit = \"{other}\" is not known; allowed: \"m\", \"cm\", \"mm\", \"um\""
-            )));
-        }
-    })
+    mrbrake_units::unit_scale(unit, mrbrake_units::Dimension::Length)
+        .map_err(|e| MagneticsError::Input(format!("{file}: length_unit = \"{unit}\": {e}")))
 }
 
 /// The element order of the `order` key (absent: P1).
@@ -195,9 +132,21 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
         other => other.into(),
     })?;
     let mesh_read_s = start.elapsed().as_secs_f64();
+    let regions = regions_of(&raw.region, dir, &file)?;
+    let boundaries = boundaries_of(&raw.boundary, &gmsh.mesh, scale, &file, &mesh_path)?;
+    let options = options_of(raw.solver.as_ref(), order, &file)?;
+    let (probes, lines) = probes_of(&raw, scale);
+    let problem = Problem { mesh: Arc::new(gmsh.mesh), regions, boundaries };
+    // Region/mesh consistency (unknown groups, missing materials) is checked here so the error
+    // names the file.
+    check_regions(&problem, &file, &mesh_path)?;
+    Ok(ProblemFile { problem, options, probes, lines, mesh_path, mesh_read_s })
+}
 
+/// The `[[region]]` tables: material and source of each physical surface.
+fn regions_of(raw: &[RawRegion], dir: &Path, file: &str) -> Result<Vec<Region>, MagneticsError> {
     let mut regions = Vec::new();
-    for (k, r) in raw.region.iter().enumerate() {
+    for (k, r) in raw.iter().enumerate() {
         let field = format!("{file}: region[{k}] (physical = {})", r.physical);
         let material = match &r.material {
             None => return Err(MagneticsError::Input(format!("{field}: missing `material`"))),
@@ -209,8 +158,19 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
         };
         regions.push(Region { tag: r.physical, material, source });
     }
+    Ok(regions)
+}
+
+/// The `[[boundary]]` tables (Neumann boundaries are left out: they are the natural condition).
+fn boundaries_of(
+    raw: &[RawBoundary],
+    mesh: &Mesh,
+    scale: f64,
+    file: &str,
+    mesh_path: &Path,
+) -> Result<Vec<Boundary>, MagneticsError> {
     let mut boundaries = Vec::new();
-    for (k, b) in raw.boundary.iter().enumerate() {
+    for (k, b) in raw.iter().enumerate() {
         let field = format!("{file}: boundary[{k}] (physical = {})", b.physical);
         let condition = match b.kind.as_str() {
             "dirichlet" => Some(BoundaryCondition::Dirichlet),
@@ -224,7 +184,7 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
                 )));
             }
         };
-        if !gmsh.mesh.edge_tags.contains(&b.physical) {
+        if !mesh.edge_tags.contains(&b.physical) {
             return Err(MagneticsError::Input(format!(
                 "{field}: the mesh {} has no curve with physical tag {}",
                 mesh_path.display(),
@@ -235,33 +195,46 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
             boundaries.push(Boundary { tag: b.physical, condition });
         }
     }
+    Ok(boundaries)
+}
+
+/// The `[solver]` table on top of the defaults.
+fn options_of(
+    raw: Option<&RawSolver>,
+    order: ElementOrder,
+    file: &str,
+) -> Result<SolverOptions, MagneticsError> {
     let mut options = SolverOptions { order, ..SolverOptions::default() };
-    if let Some(s) = &raw.solver {
-        if let Some(m) = s.max_iterations {
-            if m == 0 {
-                return Err(MagneticsError::Input(format!(
-                    "{file}: solver.max_iterations must be >= 1"
-                )));
-            }
-            options.max_iterations = m;
+    let Some(s) = raw else { return Ok(options) };
+    if let Some(m) = s.max_iterations {
+        if m == 0 {
+            return Err(MagneticsError::Input(format!(
+                "{file}: solver.max_iterations must be >= 1"
+            )));
         }
-        if let Some(t) = s.tolerance {
-            if !(t > 0.0 && t < 1.0) {
-                return Err(MagneticsError::Input(format!(
-                    "{file}: solver.tolerance = {t} must be in (0, 1)"
-                )));
-            }
-            options.residual_tolerance = t;
-        }
-        if let Some(q) = s.quadrature_degree {
-            if !(1..=5).contains(&q) {
-                return Err(MagneticsError::Input(format!(
-                    "{file}: solver.quadrature_degree = {q} must be 1 to 5"
-                )));
-            }
-            options.quadrature_degree = q;
-        }
+        options.max_iterations = m;
     }
+    if let Some(t) = s.tolerance {
+        if !(t > 0.0 && t < 1.0) {
+            return Err(MagneticsError::Input(format!(
+                "{file}: solver.tolerance = {t} must be in (0, 1)"
+            )));
+        }
+        options.residual_tolerance = t;
+    }
+    if let Some(q) = s.quadrature_degree {
+        if !(1..=5).contains(&q) {
+            return Err(MagneticsError::Input(format!(
+                "{file}: solver.quadrature_degree = {q} must be 1 to 5"
+            )));
+        }
+        options.quadrature_degree = q;
+    }
+    Ok(options)
+}
+
+/// The `[[probe]]` and `[[line]]` tables, in metres.
+fn probes_of(raw: &RawFile, scale: f64) -> (Vec<Probe>, Vec<LineProbe>) {
     let probes = raw
         .probe
         .iter()
@@ -277,10 +250,7 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
             samples: l.samples.unwrap_or(20).max(1),
         })
         .collect();
-    let problem = Problem { mesh: Arc::new(gmsh.mesh), regions, boundaries };
-    // Region/mesh consistency (unknown groups, missing materials) is checked here so the error names the file.
-    check_regions(&problem, &file, &mesh_path)?;
-    Ok(ProblemFile { problem, options, probes, lines, mesh_path, mesh_read_s })
+    (probes, lines)
 }
 
 fn check_regions(problem: &Problem, file: &str, mesh_path: &Path) -> Result<(), MagneticsError> {
@@ -304,15 +274,11 @@ fn check_regions(problem: &Problem, file: &str, mesh_path: &Path) -> Result<(), 
     Ok(())
 }
 
-fn material_of(
-    value: &toml::Value,
-    dir: &Path,
-    field: &str,
-) -> Result<MagneticMaterial, MagneticsError> {
+fn material_of(value: &toml::Value, dir: &Path, field: &str) -> Result<Magnetic, MagneticsError> {
     match value {
         toml::Value::String(name) => {
             let material = mrbrake_materials::library::get(name)?;
-            Ok(MagneticMaterial::from_library(&material.magnetic))
+            Ok(material.magnetic.clone())
         }
         toml::Value::Table(table) => {
             if let Some(mu) = table.get("mu_r") {
@@ -324,13 +290,13 @@ fn material_of(
                         "{field}: material.mu_r = {mu_r} must be > 0"
                     )));
                 }
-                Ok(MagneticMaterial::Linear { mu_r })
+                Ok(Magnetic::Linear { mu_r })
             } else if let Some(csv) = table.get("bh_csv") {
                 let csv = csv.as_str().ok_or_else(|| {
                     MagneticsError::Input(format!("{field}: material.bh_csv must be a path string"))
                 })?;
                 let curve = mrbrake_materials::BhCurve::from_csv_file(&dir.join(csv))?;
-                Ok(MagneticMaterial::NonLinear(Arc::new(curve)))
+                Ok(Magnetic::NonLinear(Arc::new(curve)))
             } else {
                 Err(MagneticsError::Input(format!(
                     "{field}: material table needs `mu_r` or `bh_csv` (or give a library name such as \"steel-1010\")"
@@ -388,130 +354,6 @@ fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError>
     }
 }
 
-/// B at a named probe (JSON field names as documented for `mrbrake fem solve --json`).
-#[derive(Debug, Clone, Serialize)]
-pub struct ProbeReport {
-    /// Probe name.
-    pub name: String,
-    /// Radius (m).
-    pub r: f64,
-    /// Axial position (m).
-    pub z: f64,
-    /// Radial flux density (T).
-    #[serde(rename = "B_r_T")]
-    pub b_r_t: f64,
-    /// Axial flux density (T).
-    #[serde(rename = "B_z_T")]
-    pub b_z_t: f64,
-    /// |B| (T).
-    #[serde(rename = "B_abs_T")]
-    pub b_abs_t: f64,
-}
-
-/// Region statistics in the report.
-#[derive(Debug, Clone, Serialize)]
-pub struct RegionReport {
-    /// Physical tag.
-    pub physical: u32,
-    /// Cross-section area (m²).
-    pub area_m2: f64,
-    /// Volume-weighted mean |B| (T).
-    #[serde(rename = "mean_B_T")]
-    pub mean_b_t: f64,
-    /// Max |B| (T).
-    #[serde(rename = "max_B_T")]
-    pub max_b_t: f64,
-    /// 10/50/90 % volume quantiles of |B| (T).
-    #[serde(rename = "quantiles_B_T")]
-    pub quantiles_b_t: [f64; 3],
-}
-
-/// Coil results in the report.
-#[derive(Debug, Clone, Serialize)]
-pub struct CoilReport {
-    /// Physical tag.
-    pub physical: u32,
-    /// Flux linkage (Wb).
-    #[serde(rename = "flux_linkage_Wb")]
-    pub flux_linkage_wb: f64,
-    /// Secant inductance λ/I (H).
-    #[serde(rename = "inductance_H")]
-    pub inductance_h: f64,
-    /// Incremental inductance dλ/dI (H).
-    #[serde(rename = "incremental_inductance_H")]
-    pub incremental_inductance_h: f64,
-}
-
-/// B along a named line.
-#[derive(Debug, Clone, Serialize)]
-pub struct LineReport {
-    /// Line name.
-    pub name: String,
-    /// Samples.
-    pub points: Vec<ProbeReport>,
-}
-
-/// Timings of a file-driven solve (s).
-#[derive(Debug, Clone, Copy, Default, Serialize)]
-pub struct Timings {
-    /// Reading the problem and mesh files.
-    pub read: f64,
-    /// Assembly (all Newton iterations and line-search trials).
-    pub assemble: f64,
-    /// Symbolic + numeric factorisations and triangular solves.
-    pub solve: f64,
-    /// Post-processing (probes, regions, coils, energy).
-    pub post: f64,
-    /// Everything.
-    pub total: f64,
-}
-
-/// The result of `mrbrake fem solve` (the `--json` object).
-#[derive(Debug, Clone, Serialize)]
-pub struct SolveReport {
-    /// B at the probes.
-    pub probes: Vec<ProbeReport>,
-    /// |B| statistics per region.
-    pub regions: Vec<RegionReport>,
-    /// Coils: flux linkage and inductances.
-    pub coils: Vec<CoilReport>,
-    /// B along the lines.
-    pub lines: Vec<LineReport>,
-    /// Stored magnetic energy (J).
-    #[serde(rename = "energy_J")]
-    pub energy_j: f64,
-    /// Co-energy (J).
-    #[serde(rename = "coenergy_J")]
-    pub coenergy_j: f64,
-    /// Newton iterations (linear solves).
-    pub newton_iterations: usize,
-    /// True when the stopping rule was met.
-    pub converged: bool,
-    /// Relative residual after each iteration.
-    pub residual_history: Vec<f64>,
-    /// Mesh nodes.
-    pub nodes: usize,
-    /// Mesh triangles.
-    pub elements: usize,
-    /// Element order: 1 (linear) or 2 (quadratic triangles).
-    pub order: usize,
-    /// Free unknowns.
-    pub unknowns: usize,
-    /// Timings (s).
-    pub timings_s: Timings,
-}
-
-fn probe_report(name: &str, f: &PointField) -> ProbeReport {
-    ProbeReport {
-        name: name.to_string(),
-        r: f.r,
-        z: f.z,
-        b_r_t: f.b_r_t,
-        b_z_t: f.b_z_t,
-        b_abs_t: f.b_abs_t,
-    }
-}
-
 /// Reads, solves and post-processes a problem file; returns the report and the solver and solution
 /// (for VTU output and field maps).
 pub fn solve_file(path: &Path) -> Result<(SolveReport, Solver, Solution), MagneticsError> {
@@ -530,40 +372,17 @@ pub fn solve_file_with_order(
         file.options.order = order;
     }
     let read = start.elapsed().as_secs_f64();
-    let mut solver = Solver::new(file.problem, file.options)?;
+    let mut solver = Solver::new(file.problem.clone(), file.options)?;
     let solution = solver.solve(None)?;
     let post_start = Instant::now();
-    let mut probes = Vec::new();
-    for p in &file.probes {
-        let f = solver.b_at(&solution, p.point).map_err(|e| {
-            MagneticsError::Input(format!("{}: probe `{}`: {e}", path.display(), p.name))
-        })?;
-        probes.push(probe_report(&p.name, &f));
-    }
-    let mut lines = Vec::new();
-    for l in &file.lines {
-        let samples = solver.b_along(&solution, &[l.from, l.to], l.samples).map_err(|e| {
-            MagneticsError::Input(format!("{}: line `{}`: {e}", path.display(), l.name))
-        })?;
-        lines.push(LineReport {
-            name: l.name.clone(),
-            points: samples.iter().map(|f| probe_report(&l.name, f)).collect(),
-        });
-    }
+    let (probes, lines) = sample_probes(&solver, &solution, &file, path)?;
     let mut regions = Vec::new();
     for tag in solver.mesh().region_tags() {
-        let s: RegionStats = solver.region_stats(&solution, tag)?;
-        regions.push(RegionReport {
-            physical: tag,
-            area_m2: s.area_m2,
-            mean_b_t: s.mean_b_t,
-            max_b_t: s.max_b_t,
-            quantiles_b_t: s.quantiles_b_t,
-        });
+        regions.push(RegionReport::from(&solver.region_stats(&solution, tag)?));
     }
     let linkages: Vec<CoilLinkage> = solver.coils(&solution);
     let (energy_j, coenergy_j) = solver.energy(&solution);
-    let post_first = post_start.elapsed().as_secs_f64();
+    let post = post_start.elapsed().as_secs_f64();
     // The incremental inductance needs one more factorisation (counted as solve time).
     let inc_start = Instant::now();
     let mut coils = Vec::new();
@@ -578,6 +397,13 @@ pub fn solve_file_with_order(
     }
     let incremental_s = inc_start.elapsed().as_secs_f64();
     let t = solution.report.timings;
+    let timings_s = Timings {
+        read,
+        assemble: t.assemble_s,
+        solve: solver.symbolic_factorisation_s() + t.factor_s + t.solve_s + incremental_s,
+        post,
+        total: start.elapsed().as_secs_f64(),
+    };
     let report = SolveReport {
         probes,
         regions,
@@ -592,13 +418,35 @@ pub fn solve_file_with_order(
         elements: solver.mesh().triangles.len(),
         order: solver.order().degree(),
         unknowns: solver.unknowns(),
-        timings_s: Timings {
-            read,
-            assemble: t.assemble_s,
-            solve: solver.symbolic_factorisation_s() + t.factor_s + t.solve_s + incremental_s,
-            post: post_first,
-            total: start.elapsed().as_secs_f64(),
-        },
+        timings_s,
     };
     Ok((report, solver, solution))
+}
+
+/// B at the file's probes and along its lines; a point outside the mesh is an input error naming
+/// the probe or line.
+fn sample_probes(
+    solver: &Solver,
+    solution: &Solution,
+    file: &ProblemFile,
+    path: &Path,
+) -> Result<(Vec<ProbeReport>, Vec<LineReport>), MagneticsError> {
+    let mut probes = Vec::new();
+    for p in &file.probes {
+        let f = solver.b_at(solution, p.point).map_err(|e| {
+            MagneticsError::Input(format!("{}: probe `{}`: {e}", path.display(), p.name))
+        })?;
+        probes.push(probe_report(&p.name, &f));
+    }
+    let mut lines = Vec::new();
+    for l in &file.lines {
+        let samples = solver.b_along(solution, &[l.from, l.to], l.samples).map_err(|e| {
+            MagneticsError::Input(format!("{}: line `{}`: {e}", path.display(), l.name))
+        })?;
+        lines.push(LineReport {
+            name: l.name.clone(),
+            points: samples.iter().map(|f| probe_report(&l.name, f)).collect(),
+        });
+    }
+    Ok((probes, lines))
 }

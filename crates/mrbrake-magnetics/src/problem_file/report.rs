@@ -1,0 +1,205 @@
+//! The result of a file-driven solve: the `--json` object of `mrbrake fem solve` and its text
+//! rendering (the one implementation the CLI and other front ends share).
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use crate::field::{PointField, RegionStats};
+
+/// B at a named probe (JSON field names as documented for `mrbrake fem solve --json`).
+#[derive(Debug, Clone, Serialize)]
+pub struct ProbeReport {
+    /// Probe name.
+    pub name: String,
+    /// Radius (m).
+    pub r: f64,
+    /// Axial position (m).
+    pub z: f64,
+    /// Radial flux density (T).
+    #[serde(rename = "B_r_T")]
+    pub b_r_t: f64,
+    /// Axial flux density (T).
+    #[serde(rename = "B_z_T")]
+    pub b_z_t: f64,
+    /// |B| (T).
+    #[serde(rename = "B_abs_T")]
+    pub b_abs_t: f64,
+}
+
+/// Region statistics in the report.
+#[derive(Debug, Clone, Serialize)]
+pub struct RegionReport {
+    /// Physical tag.
+    pub physical: u32,
+    /// Cross-section area (m²).
+    pub area_m2: f64,
+    /// Volume-weighted mean |B| (T).
+    #[serde(rename = "mean_B_T")]
+    pub mean_b_t: f64,
+    /// Max |B| (T).
+    #[serde(rename = "max_B_T")]
+    pub max_b_t: f64,
+    /// 10/50/90 % volume quantiles of |B| (T).
+    #[serde(rename = "quantiles_B_T")]
+    pub quantiles_b_t: [f64; 3],
+}
+
+/// Coil results in the report.
+#[derive(Debug, Clone, Serialize)]
+pub struct CoilReport {
+    /// Physical tag.
+    pub physical: u32,
+    /// Flux linkage (Wb).
+    #[serde(rename = "flux_linkage_Wb")]
+    pub flux_linkage_wb: f64,
+    /// Secant inductance λ/I (H).
+    #[serde(rename = "inductance_H")]
+    pub inductance_h: f64,
+    /// Incremental inductance dλ/dI (H).
+    #[serde(rename = "incremental_inductance_H")]
+    pub incremental_inductance_h: f64,
+}
+
+/// B along a named line.
+#[derive(Debug, Clone, Serialize)]
+pub struct LineReport {
+    /// Line name.
+    pub name: String,
+    /// Samples.
+    pub points: Vec<ProbeReport>,
+}
+
+/// Timings of a file-driven solve (s).
+#[derive(Debug, Clone, Copy, Default, Serialize)]
+pub struct Timings {
+    /// Reading the problem and mesh files.
+    pub read: f64,
+    /// Assembly (all Newton iterations and line-search trials).
+    pub assemble: f64,
+    /// Symbolic + numeric factorisations and triangular solves.
+    pub solve: f64,
+    /// Post-processing (probes, regions, coils, energy).
+    pub post: f64,
+    /// Everything.
+    pub total: f64,
+}
+
+/// The result of `mrbrake fem solve` (the `--json` object).
+#[derive(Debug, Clone, Serialize)]
+pub struct SolveReport {
+    /// B at the probes.
+    pub probes: Vec<ProbeReport>,
+    /// |B| statistics per region.
+    pub regions: Vec<RegionReport>,
+    /// Coils: flux linkage and inductances.
+    pub coils: Vec<CoilReport>,
+    /// B along the lines.
+    pub lines: Vec<LineReport>,
+    /// Stored magnetic energy (J).
+    #[serde(rename = "energy_J")]
+    pub energy_j: f64,
+    /// Co-energy (J).
+    #[serde(rename = "coenergy_J")]
+    pub coenergy_j: f64,
+    /// Newton iterations (linear solves).
+    pub newton_iterations: usize,
+    /// True when the stopping rule was met.
+    pub converged: bool,
+    /// Relative residual after each iteration.
+    pub residual_history: Vec<f64>,
+    /// Mesh nodes.
+    pub nodes: usize,
+    /// Mesh triangles.
+    pub elements: usize,
+    /// Element order: 1 (linear) or 2 (quadratic triangles).
+    pub order: usize,
+    /// Free unknowns.
+    pub unknowns: usize,
+    /// Timings (s).
+    pub timings_s: Timings,
+}
+
+pub(super) fn probe_report(name: &str, f: &PointField) -> ProbeReport {
+    ProbeReport {
+        name: name.to_string(),
+        r: f.r,
+        z: f.z,
+        b_r_t: f.b_r_t,
+        b_z_t: f.b_z_t,
+        b_abs_t: f.b_abs_t,
+    }
+}
+
+impl From<&RegionStats> for RegionReport {
+    fn from(s: &RegionStats) -> Self {
+        Self {
+            physical: s.physical,
+            area_m2: s.area_m2,
+            mean_b_t: s.mean_b_t,
+            max_b_t: s.max_b_t,
+            quantiles_b_t: s.quantiles_b_t,
+        }
+    }
+}
+
+impl SolveReport {
+    /// The text report of `mrbrake fem solve` for the problem named `name` (lengths in mm).
+    pub fn text(&self, name: &str) -> String {
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            "{name}: {} nodes, {} triangles, {} unknowns (P{}); Newton {} iteration(s), converged: {}",
+            self.nodes,
+            self.elements,
+            self.unknowns,
+            self.order,
+            self.newton_iterations,
+            self.converged
+        );
+        for p in &self.probes {
+            let _ = writeln!(
+                out,
+                "  probe {:<16} r = {:>9.4} mm  z = {:>9.4} mm  B_r = {:>9.5} T  B_z = {:>9.5} T  |B| = {:.5} T",
+                p.name,
+                p.r * 1e3,
+                p.z * 1e3,
+                p.b_r_t,
+                p.b_z_t,
+                p.b_abs_t
+            );
+        }
+        for r in &self.regions {
+            let _ = writeln!(
+                out,
+                "  region {:>4}: area {:.4e} m²  mean |B| {:.4} T  max |B| {:.4} T",
+                r.physical, r.area_m2, r.mean_b_t, r.max_b_t
+            );
+        }
+        self.write_coils_and_lines(&mut out);
+        let t = self.timings_s;
+        let _ = writeln!(
+            out,
+            "  time: read {:.3} s, assemble {:.3} s, solve {:.3} s, post {:.3} s, total {:.3} s",
+            t.read, t.assemble, t.solve, t.post, t.total
+        );
+        out
+    }
+
+    fn write_coils_and_lines(&self, out: &mut String) {
+        for c in &self.coils {
+            let _ = writeln!(
+                out,
+                "  coil {:>4}: flux linkage {:.5e} Wb  L = {:.5e} H  dλ/dI = {:.5e} H",
+                c.physical, c.flux_linkage_wb, c.inductance_h, c.incremental_inductance_h
+            );
+        }
+        for l in &self.lines {
+            let max = l.points.iter().map(|p| p.b_abs_t).fold(0.0, f64::max);
+            let _ =
+                writeln!(out, "  line {}: {} samples, max |B| {max:.4} T", l.name, l.points.len());
+        }
+        let _ =
+            writeln!(out, "  energy {:.5e} J, co-energy {:.5e} J", self.energy_j, self.coenergy_j);
+    }
+}
