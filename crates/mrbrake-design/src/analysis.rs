@@ -29,7 +29,6 @@
 //! maximum current with its own coil, and the torque that leaks into the idle unit's gaps (through the
 //! shaft and spacer) is reported as cross-coupling.
 
-use mrbrake_error::Kind as _;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -43,7 +42,7 @@ use serde::Serialize;
 
 use crate::DesignError;
 use crate::formula;
-use crate::geometry::{self, BrakeGeometry, Direction, GapInfo, GapOrientation, PartKind};
+use crate::geometry::{BrakeGeometry, Direction, GapInfo, GapOrientation, PartKind};
 use crate::mesh_build::{self, MeshLevel};
 use crate::spec::BrakeSpec;
 
@@ -328,9 +327,10 @@ pub fn analyze_with_field(
     }
     formula::non_negative("speed", options.speed_rad_s.abs())?;
     formula::non_negative("seal friction", options.seal_friction_nm)?;
+    let validated = spec.validate()?;
     let warnings: Vec<String> =
-        spec.validate()?.into_iter().map(|w| format!("{}: {}", w.field, w.message)).collect();
-    let geometry = geometry::build(spec)?;
+        validated.warnings.iter().map(|w| format!("{}: {}", w.field, w.message)).collect();
+    let geometry = validated.geometry;
     let mesh = Arc::new(mesh_build::mesh(&geometry, options.mesh)?);
     let t_mesh = t_start.elapsed().as_secs_f64();
 
@@ -479,15 +479,11 @@ fn flux_path_field(
 }
 
 fn numerical(e: mrbrake_magnetics::MagneticsError) -> DesignError {
-    if e.is_input_error() {
-        DesignError::Input(format!("field solution: {e}"))
-    } else {
-        DesignError::Numerical(format!("field solution: {e}"))
-    }
+    DesignError::FieldSolution(e)
 }
 
 fn material_error(e: mrbrake_materials::MaterialError) -> DesignError {
-    DesignError::Input(e.to_string())
+    DesignError::Material(e)
 }
 
 /// The fluid named by the spec.
@@ -506,7 +502,7 @@ pub fn problem_of(geometry: &BrakeGeometry, mesh: Arc<Mesh>) -> Result<Problem, 
     let mut regions = Vec::with_capacity(geometry.regions.len());
     for region in &geometry.regions {
         let material = library::get(&region.material)
-            .map_err(|e| DesignError::Input(format!("material of part '{}': {e}", region.name)))?;
+            .map_err(|source| DesignError::PartMaterial { part: region.name.clone(), source })?;
         regions.push(Region { tag: region.tag, material: material.magnetic.clone(), source: None });
     }
     let boundaries = vec![
@@ -690,7 +686,7 @@ fn coil_result(
         .coils
         .iter()
         .find(|c| unit1.contains(&c.tag))
-        .ok_or_else(|| DesignError::Numerical("the geometry has no coil in unit 1".into()))?;
+        .ok_or_else(|| DesignError::Internal("the geometry has no coil in unit 1".into()))?;
     let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
     let e = formula::coil_electrics(
         coil.turns,
@@ -813,7 +809,7 @@ mod tests {
     #[test]
     fn the_mirrored_warm_start_reaches_the_cold_start_answer_sooner() {
         let spec = crate::spec::default_spec();
-        let geometry = geometry::build(&spec).unwrap();
+        let geometry = crate::geometry::build(&spec).unwrap();
         let z = geometry.mirror_z.expect("the thesis brake is bidirectional");
         let mesh = Arc::new(mesh_build::mesh(&geometry, MeshLevel::Coarse).unwrap());
         let problem = problem_of(&geometry, mesh).unwrap();

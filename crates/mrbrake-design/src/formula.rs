@@ -286,9 +286,7 @@ pub fn coil_electrics(
         return Err(DesignError::Input("turns must be at least 1".into()));
     }
     positive("coil mean radius", mean_radius_m)?;
-    let r_per_m = wire
-        .resistance_ohm_per_m_at(temperature_c)
-        .map_err(|e| DesignError::Input(format!("temperature: {e}")))?;
+    let r_per_m = wire.resistance_ohm_per_m_at(temperature_c)?;
     let wire_length_m = f64::from(turns) * 2.0 * PI * mean_radius_m;
     let resistance_20c_ohm = wire_length_m * wire.resistance_ohm_per_m_20c;
     let resistance_ohm = wire_length_m * r_per_m;

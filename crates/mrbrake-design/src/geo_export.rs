@@ -13,6 +13,7 @@ use std::fmt::Write as _;
 use crate::DesignError;
 use crate::geometry::{BrakeGeometry, Rect};
 use crate::mesh_build::{MeshSettings, pslg};
+use mrbrake_fem::mesher::Segment;
 
 /// Writes the `.geo` text of a geometry meshed with `settings`.
 pub fn to_geo(
@@ -22,75 +23,69 @@ pub fn to_geo(
 ) -> Result<String, DesignError> {
     let graph = pslg(geometry)?
         .normalized()
-        .map_err(|e| DesignError::Input(format!("geometry → .geo: {e}")))?;
-    let v = &graph.vertices;
+        .map_err(|source| DesignError::GeometryGraph { stage: ".geo", source })?;
     let mut out = String::new();
-    let w = |out: &mut String, s: String| {
-        out.push_str(&s);
-        out.push('\n');
-    };
-    w(&mut out, format!("// {title}: exported by mrbrake export-geo (x = r, y = z, metres)."));
-    w(&mut out, "// Physical Surface tags = region tags of the mrbrake mesh; Physical Curve tags = edge tags.".into());
-    // Characteristic length per point: the finest target among the gaps the point touches.
-    let mut lc = vec![settings.max_edge_m; v.len()];
+    line(&mut out, format!("// {title}: exported by mrbrake export-geo (x = r, y = z, metres)."));
+    line(&mut out, "// Physical Surface tags = region tags of the mrbrake mesh; Physical Curve tags = edge tags.".into());
+    write_points(&mut out, geometry, settings, &graph.vertices);
+    let mut line_of: HashMap<(usize, usize), usize> = HashMap::new();
+    for (k, s) in graph.segments.iter().enumerate() {
+        line(&mut out, format!("Line({}) = {{{}, {}}};", k + 1, s.a + 1, s.b + 1));
+        line_of.insert((s.a, s.b), k + 1);
+    }
+    write_surfaces(&mut out, geometry, &graph.vertices, &line_of)?;
+    write_physical_curves(&mut out, geometry, &graph.segments);
+    line(&mut out, "Mesh.CharacteristicLengthExtendFromBoundary = 1;".into());
+    line(&mut out, "Mesh.Algorithm = 6; // Frontal-Delaunay".into());
+    Ok(out)
+}
+
+fn line(out: &mut String, text: String) {
+    out.push_str(&text);
+    out.push('\n');
+}
+
+/// One `Point` per vertex, its characteristic length the finest target among the gaps it touches.
+fn write_points(
+    out: &mut String,
+    geometry: &BrakeGeometry,
+    settings: &MeshSettings,
+    vertices: &[[f64; 2]],
+) {
+    let mut lc = vec![settings.max_edge_m; vertices.len()];
     for gap in &geometry.gaps {
         let h = gap.width_m / settings.gap_cells_across;
-        for (i, p) in v.iter().enumerate() {
+        for (i, p) in vertices.iter().enumerate() {
             if on_rect(&gap.rect, *p) {
                 lc[i] = lc[i].min(h);
             }
         }
     }
-    for (i, p) in v.iter().enumerate() {
-        w(
-            &mut out,
+    for (i, p) in vertices.iter().enumerate() {
+        line(
+            out,
             format!("Point({}) = {{{:.12e}, {:.12e}, 0, {:.6e}}};", i + 1, p[0], p[1], lc[i]),
         );
     }
-    let mut line_of: HashMap<(usize, usize), usize> = HashMap::new();
-    for (k, s) in graph.segments.iter().enumerate() {
-        w(&mut out, format!("Line({}) = {{{}, {}}};", k + 1, s.a + 1, s.b + 1));
-        line_of.insert((s.a, s.b), k + 1);
-    }
+}
+
+/// One `Plane Surface` per rectangle of every region, then one `Physical Surface` per region.
+fn write_surfaces(
+    out: &mut String,
+    geometry: &BrakeGeometry,
+    vertices: &[[f64; 2]],
+    line_of: &HashMap<(usize, usize), usize>,
+) -> Result<(), DesignError> {
     let mut surface = 0usize;
     let mut physical_surfaces = Vec::new();
     for region in &geometry.regions {
         let mut ids = Vec::new();
         for rc in &region.rects {
             surface += 1;
-            let corners = [[rc.r0, rc.z0], [rc.r1, rc.z0], [rc.r1, rc.z1], [rc.r0, rc.z1]];
-            let mut loop_lines: Vec<i64> = Vec::new();
-            for side in 0..4 {
-                let (a, b) = (corners[side], corners[(side + 1) % 4]);
-                let mut on: Vec<(f64, usize)> = v
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, p)| on_segment(a, b, **p))
-                    .map(|(i, p)| {
-                        ((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1]), i)
-                    })
-                    .collect();
-                on.sort_by(|x, y| x.0.total_cmp(&y.0));
-                for pair in on.windows(2) {
-                    let (i, j) = (pair[0].1, pair[1].1);
-                    let id = if let Some(&l) = line_of.get(&(i, j)) {
-                        l as i64
-                    } else if let Some(&l) = line_of.get(&(j, i)) {
-                        -(l as i64)
-                    } else {
-                        return Err(DesignError::Numerical(format!(
-                            "geometry → .geo: no line between points {} and {} of region {}",
-                            i + 1,
-                            j + 1,
-                            region.name
-                        )));
-                    };
-                    loop_lines.push(id);
-                }
-            }
+            let loop_lines = curve_loop(rc, vertices, line_of, &region.name)?;
             let list: Vec<String> = loop_lines.iter().map(i64::to_string).collect();
-            w(&mut out, format!("Curve Loop({surface}) = {{{}}};", list.join(", ")));
-            w(&mut out, format!("Plane Surface({surface}) = {{{surface}}};"));
+            line(out, format!("Curve Loop({surface}) = {{{}}};", list.join(", ")));
+            line(out, format!("Plane Surface({surface}) = {{{surface}}};"));
             ids.push(surface.to_string());
         }
         physical_surfaces.push(format!(
@@ -100,9 +95,51 @@ pub fn to_geo(
             ids.join(", ")
         ));
     }
-    for line in physical_surfaces {
-        w(&mut out, line);
+    for text in physical_surfaces {
+        line(out, text);
     }
+    Ok(())
+}
+
+/// The signed lines around a rectangle, counter-clockwise, through every vertex on its sides.
+fn curve_loop(
+    rc: &Rect,
+    vertices: &[[f64; 2]],
+    line_of: &HashMap<(usize, usize), usize>,
+    region: &str,
+) -> Result<Vec<i64>, DesignError> {
+    let corners = [[rc.r0, rc.z0], [rc.r1, rc.z0], [rc.r1, rc.z1], [rc.r0, rc.z1]];
+    let mut loop_lines: Vec<i64> = Vec::new();
+    for side in 0..4 {
+        let (a, b) = (corners[side], corners[(side + 1) % 4]);
+        let mut on: Vec<(f64, usize)> = vertices
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| on_segment(a, b, **p))
+            .map(|(i, p)| ((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1]), i))
+            .collect();
+        on.sort_by(|x, y| x.0.total_cmp(&y.0));
+        for pair in on.windows(2) {
+            let (i, j) = (pair[0].1, pair[1].1);
+            let id = if let Some(&l) = line_of.get(&(i, j)) {
+                l as i64
+            } else if let Some(&l) = line_of.get(&(j, i)) {
+                -(l as i64)
+            } else {
+                return Err(DesignError::Internal(format!(
+                    "geometry → .geo: no line between points {} and {} of region {region}",
+                    i + 1,
+                    j + 1,
+                )));
+            };
+            loop_lines.push(id);
+        }
+    }
+    Ok(loop_lines)
+}
+
+/// One `Physical Curve` per edge tag (axis, outer boundary, gap walls), in tag order.
+fn write_physical_curves(out: &mut String, geometry: &BrakeGeometry, segments: &[Segment]) {
     let mut curves: Vec<(u32, String, Vec<usize>)> = Vec::new();
     let names: HashMap<u32, String> = std::iter::once((geometry.axis_tag, "axis".to_string()))
         .chain(std::iter::once((geometry.outer_tag, "outer_boundary".to_string())))
@@ -114,7 +151,7 @@ pub fn to_geo(
             ]
         }))
         .collect();
-    for (k, s) in graph.segments.iter().enumerate() {
+    for (k, s) in segments.iter().enumerate() {
         if let Some(tag) = s.tag {
             match curves.iter_mut().find(|c| c.0 == tag) {
                 Some(c) => c.2.push(k + 1),
@@ -131,9 +168,6 @@ pub fn to_geo(
         let list: Vec<String> = lines.iter().map(usize::to_string).collect();
         let _ = writeln!(out, "Physical Curve(\"{name}\", {tag}) = {{{}}};", list.join(", "));
     }
-    w(&mut out, "Mesh.CharacteristicLengthExtendFromBoundary = 1;".into());
-    w(&mut out, "Mesh.Algorithm = 6; // Frontal-Delaunay".into());
-    Ok(out)
 }
 
 fn on_segment(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {

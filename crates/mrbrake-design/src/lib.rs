@@ -1,7 +1,16 @@
-//! MR brake design: closed-form torque models of the thesis, coil and winding formulas, passivity
-//! conditions, and (later) brake specifications, the geometry builder and studies.
+//! MR brake design: brake specifications, the geometry builder, meshing, the field analysis of a
+//! brake, the thesis's closed-form torque models and coil formulas, and design studies.
+//!
+//! Brief overview, in data-flow order: [`spec`] reads a brake spec (TOML; the configuration carries
+//! its working surfaces) and validates it once, assembling its [`geometry`] (tagged regions, fluid
+//! gaps, coils) on the way; [`mesh_build`] meshes it (or [`geo_export`] writes a Gmsh `.geo`);
+//! [`analysis`] solves the field over a current sweep and reduces it to torques, coil and
+//! mechanics; [`formula`] holds the thesis's closed-form models; [`study`] re-runs the thesis's
+//! comparison tables. Errors are one [`DesignError`], whose variants keep their kind (the spec's
+//! invalid fields as a list, the solver's and mesher's errors wrapped typed).
 
 pub mod analysis;
+mod error;
 pub mod formula;
 pub mod geo_export;
 pub mod geometry;
@@ -9,24 +18,4 @@ pub mod mesh_build;
 pub mod spec;
 pub mod study;
 
-/// Errors of this crate.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum DesignError {
-    /// Invalid input (a field out of its allowed range), with a message naming the field.
-    #[error("{0}")]
-    Input(String),
-    /// A numerical or internal failure (e.g. the mesher could not reach the requested size).
-    #[error("{0}")]
-    Numerical(String),
-}
-
-impl mrbrake_error::Kind for DesignError {
-    /// Input for invalid fields, numerical for failures of the mesher or the solver.
-    fn kind(&self) -> mrbrake_error::ErrorKind {
-        match self {
-            Self::Input(_) => mrbrake_error::ErrorKind::Input,
-            Self::Numerical(_) => mrbrake_error::ErrorKind::Numerical,
-        }
-    }
-}
+pub use error::DesignError;

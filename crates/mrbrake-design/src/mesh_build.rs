@@ -5,7 +5,6 @@
 //! the chosen [`MeshLevel`] (coarse 3, default 4, fine 6); the size grows away from the gaps at
 //! `growth` (m/m) up to the global maximum (a fraction of the device radius).
 
-use mrbrake_error::Kind as _;
 use mrbrake_fem::mesh::Mesh;
 use mrbrake_fem::mesher::{MeshOptions, Pslg, SizeField, quality, triangulate};
 
@@ -71,10 +70,8 @@ pub struct MeshSettings {
 pub fn pslg(geometry: &BrakeGeometry) -> Result<Pslg, DesignError> {
     let mut g = Pslg::new();
     // The geometry has passed validation, so a graph the mesher rejects is our defect, not the
-    // user's input: a numerical failure (exit 1; a study records the design as failed).
-    let fem = |e: mrbrake_fem::FemError| {
-        DesignError::Numerical(format!("geometry → mesh (please report this spec): {e}"))
-    };
+    // user's input: an internal failure (exit 1; a study records the design as failed).
+    let fem = |source| DesignError::GeometryGraph { stage: "mesh", source };
     // Coordinates on a 1 pm grid: parts computed along different arithmetic paths (a + b against
     // c − d) can meet 1e-17 m apart, which the mesher would see as two crossing segments.
     let snap = |x: f64| (x * 1e12).round() / 1e12;
@@ -126,13 +123,8 @@ pub fn mesh_with(geometry: &BrakeGeometry, settings: &MeshSettings) -> Result<Me
     let graph = pslg(geometry)?;
     let size = size_field(geometry, settings);
     let options = MeshOptions { min_angle_deg: settings.min_angle_deg, ..MeshOptions::default() };
-    triangulate(&graph, &size, &options).map_err(|e| {
-        if e.is_input_error() {
-            DesignError::Input(format!("meshing the brake: {e}"))
-        } else {
-            DesignError::Numerical(format!("meshing the brake: {e}"))
-        }
-    })
+    // The mesher's error keeps its kind: a size it cannot reach is input, a failure numerical.
+    Ok(triangulate(&graph, &size, &options)?)
 }
 
 /// The fewest triangles a straight line across the gap passes through, over `lines` lines spread

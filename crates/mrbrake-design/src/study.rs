@@ -14,7 +14,7 @@ use serde::Serialize;
 
 use crate::DesignError;
 use crate::analysis::{AnalysisOptions, analyze};
-use crate::spec::{BrakeSpec, CoilPlacement, Configuration, Current, Drum, Length};
+use crate::spec::{BrakeSpec, CoilPlacement, Configuration, Current, Disc, Drum, Length};
 
 /// The base design of the thesis-table study (single disc, outer coil).
 pub const STUDY_BASE_TOML: &str = include_str!("../../../examples/specs/study-single-disc.toml");
@@ -76,15 +76,14 @@ fn run_row(
     label: String,
     thesis: (f64, f64, f64),
 ) -> Result<StudyRow, DesignError> {
-    let a = analyze(spec, options)
-        .map_err(|e| DesignError::Input(format!("study row '{label}': {e}")))?;
-    let last = a.torque_current_curve.last().expect("at least two points");
-    let tau_y_kpa = {
-        // τ_y at the mean B of all direction-1 gaps, as the thesis method uses it.
-        let material = mrbrake_materials::library::fluid(&spec.materials.fluid)
-            .map_err(|e| DesignError::Input(e.to_string()))?;
-        material.tau_y_of_b(last.mean_b_t) / 1e3
+    let a = match analyze(spec, options) {
+        Ok(a) => a,
+        Err(e) => return Err(DesignError::StudyRow { label, source: Box::new(e) }),
     };
+    let last = a.torque_current_curve.last().expect("at least two points");
+    // τ_y at the mean B of all direction-1 gaps, as the thesis method uses it.
+    let material = mrbrake_materials::library::fluid(&spec.materials.fluid)?;
+    let tau_y_kpa = material.tau_y_of_b(last.mean_b_t) / 1e3;
     Ok(StudyRow {
         label,
         mean_b_t: last.mean_b_t,
@@ -97,112 +96,122 @@ fn run_row(
     })
 }
 
+/// The base at `amps`, with its disc changed by `edit` (the base is a single-disc brake).
+fn disc_variant(base: &BrakeSpec, amps: f64, edit: impl FnOnce(&mut Disc)) -> BrakeSpec {
+    let mut spec = base.clone();
+    spec.coil.max_current = Current(amps);
+    edit(spec.configuration.disc_mut().expect("the study base is a disc brake"));
+    spec
+}
+
 /// Re-runs Tables 4.1–4.4 of the thesis on mrbrake's geometries (see the module docs).
 pub fn thesis_tables(options: &AnalysisOptions) -> Result<Vec<StudyTable>, DesignError> {
     let base = study_base()?;
-    let at = |spec: &mut BrakeSpec, amps: f64| spec.coil.max_current = Current(amps);
     let options = AnalysisOptions { points: 2, speed_rad_s: 0.0, ..*options };
-    let mut tables = Vec::new();
+    Ok(vec![
+        table_4_1(&base, &options)?,
+        table_4_2(&base, &options)?,
+        table_4_3(&base, &options)?,
+        table_4_4(&base, &options)?,
+    ])
+}
 
-    // Table 4.1: disc thickness at 2 A, single disc.
+/// Table 4.1: disc thickness at 2 A, single disc.
+fn table_4_1(base: &BrakeSpec, options: &AnalysisOptions) -> Result<StudyTable, DesignError> {
     let mut rows = Vec::new();
     for (d, thesis) in [
         (1.0, (0.0565, 1.4773, 0.09)),
         (1.5, (0.0590, 1.6166, 0.09)),
         (2.0, (0.0604, 1.6924, 0.10)),
     ] {
-        let mut s = base.clone();
-        at(&mut s, 2.0);
-        s.disc.as_mut().expect("the base is a disc brake").thickness = mm(d);
-        rows.push(run_row(&s, &options, format!("d = {d} mm"), thesis)?);
+        let s = disc_variant(base, 2.0, |disc| disc.thickness = mm(d));
+        rows.push(run_row(&s, options, format!("d = {d} mm"), thesis)?);
     }
-    tables.push(StudyTable {
+    Ok(StudyTable {
         table: "Table 4.1",
         title: "disc thickness (single disc, 2 A)",
         current_a: 2.0,
         rows,
-    });
+    })
+}
 
-    // Table 4.2: gap width at 2 A.
+/// Table 4.2: gap width at 2 A.
+fn table_4_2(base: &BrakeSpec, options: &AnalysisOptions) -> Result<StudyTable, DesignError> {
     let mut rows = Vec::new();
     for (g, thesis) in [
         (1.0, (0.0604, 1.6924, 0.10)),
         (0.75, (0.0749, 2.2559, 0.13)),
         (0.5, (0.0866, 2.6457, 0.15)),
     ] {
-        let mut s = base.clone();
-        at(&mut s, 2.0);
-        s.disc.as_mut().expect("the base is a disc brake").gap = mm(g);
-        rows.push(run_row(&s, &options, format!("g = {g} mm"), thesis)?);
+        let s = disc_variant(base, 2.0, |disc| disc.gap = mm(g));
+        rows.push(run_row(&s, options, format!("g = {g} mm"), thesis)?);
     }
-    tables.push(StudyTable {
+    Ok(StudyTable {
         table: "Table 4.2",
         title: "fluid gap width (single disc, 2 A)",
         current_a: 2.0,
         rows,
-    });
+    })
+}
 
-    // Table 4.3: coil location, radii as printed.
+/// Table 4.3: coil location, radii as printed.
+fn table_4_3(base: &BrakeSpec, options: &AnalysisOptions) -> Result<StudyTable, DesignError> {
     let mut rows = Vec::new();
     for (placement, name, r1, r2, thesis) in [
         (CoilPlacement::Inner, "inner", 10.0, 30.0, (0.0156, 0.4394, 0.05)),
         (CoilPlacement::Outer, "outer", 4.0, 24.0, (0.0604, 1.6924, 0.10)),
         (CoilPlacement::TwoSided, "two sided", 10.0, 24.0, (0.0646, 1.8924, 0.10)),
     ] {
-        let mut s = base.clone();
-        at(&mut s, 2.0);
+        let mut s = disc_variant(base, 2.0, |disc| {
+            disc.inner_radius = mm(r1);
+            disc.outer_radius = mm(r2);
+        });
         s.coil.placement = placement;
-        let disc = s.disc.as_mut().expect("the base is a disc brake");
-        disc.inner_radius = mm(r1);
-        disc.outer_radius = mm(r2);
-        rows.push(run_row(&s, &options, format!("{name} (R1 {r1} mm, R2 {r2} mm)"), thesis)?);
+        rows.push(run_row(&s, options, format!("{name} (R1 {r1} mm, R2 {r2} mm)"), thesis)?);
     }
-    tables.push(StudyTable {
+    Ok(StudyTable {
         table: "Table 4.3",
         title: "coil location (single disc, 2 A)",
         current_a: 2.0,
         rows,
-    });
+    })
+}
 
-    // Table 4.4: configurations at 1 A, discs R1 = 4 mm, R2 = 24 mm.
+/// Table 4.4: configurations at 1 A, discs R1 = 4 mm, R2 = 24 mm.
+fn table_4_4(base: &BrakeSpec, options: &AnalysisOptions) -> Result<StudyTable, DesignError> {
     let mut rows = Vec::new();
-    {
-        let mut s = base.clone();
-        at(&mut s, 1.0);
-        s.configuration = Configuration::Drum;
-        s.disc = None;
-        s.drum = Some(Drum {
-            r0: mm(25.0),
-            height: mm(9.0),
-            cylinder_thickness: mm(1.0),
-            gap: mm(0.5),
-            rotating_cylinders: 1,
-        });
-        rows.push(run_row(&s, &options, "drum (R 25 mm, h 9 mm)".into(), (0.1100, 3.5517, 0.25))?);
-    }
+    let mut drum = base.clone();
+    drum.coil.max_current = Current(1.0);
+    drum.configuration = Configuration::Drum(Drum {
+        r0: mm(25.0),
+        height: mm(9.0),
+        cylinder_thickness: mm(1.0),
+        gap: mm(0.5),
+        rotating_cylinders: 1,
+    });
+    rows.push(run_row(&drum, options, "drum (R 25 mm, h 9 mm)".into(), (0.1100, 3.5517, 0.25))?);
     for (n, thesis) in [
         (1, (0.1475, 5.3654, 0.31)),
         (3, (0.1535, 5.5918, 0.97)),
         (5, (0.1692, 6.3388, 1.83)),
         (7, (0.1679, 6.2785, 2.53)),
     ] {
-        let mut s = base.clone();
-        at(&mut s, 1.0);
+        let mut s = disc_variant(base, 1.0, |disc| {
+            disc.inner_radius = mm(4.0);
+            disc.outer_radius = mm(24.0);
+            disc.count = n;
+        });
         if n > 1 {
-            s.configuration = Configuration::MultiDisc;
+            let disc = s.configuration.disc().expect("the study base is a disc brake").clone();
+            s.configuration = Configuration::MultiDisc(disc);
         }
-        let disc = s.disc.as_mut().expect("the base is a disc brake");
-        disc.inner_radius = mm(4.0);
-        disc.outer_radius = mm(24.0);
-        disc.count = n;
         let label = if n == 1 { "single disc".to_string() } else { format!("multi {n} disc") };
-        rows.push(run_row(&s, &options, label, thesis)?);
+        rows.push(run_row(&s, options, label, thesis)?);
     }
-    tables.push(StudyTable {
+    Ok(StudyTable {
         table: "Table 4.4",
         title: "configurations (1 A, R1 4 mm, R2 24 mm)",
         current_a: 1.0,
         rows,
-    });
-    Ok(tables)
+    })
 }

@@ -20,9 +20,9 @@ fn with_edit(text: &str, from: &str, to: &str) -> BrakeSpec {
 #[test]
 fn default_spec_is_valid_and_matches_the_thesis_numbers() {
     let spec = default_spec();
-    let warnings = spec.validate().unwrap();
+    let warnings = spec.validate().unwrap().warnings;
     assert!(warnings.is_empty(), "{warnings:?}");
-    let drum = spec.drum.as_ref().unwrap();
+    let drum = spec.configuration.drum().unwrap();
     assert_eq!(drum.surfaces(), 4);
     // (4.5): R_3 = 25 + 3 (1 + 0.5) = 29.5 mm.
     assert!((drum.surface_radius_m(3) - 0.0295).abs() < 1e-12);
@@ -73,7 +73,7 @@ fn overcurrent_is_a_warning_not_an_error() {
         "max_current = \"2A\"",
         "max_current = \"3A\"",
     );
-    let warnings = spec.validate().unwrap();
+    let warnings = spec.validate().unwrap().warnings;
     assert!(
         warnings.iter().any(|w| w.field == "coil.max_current" && w.message.contains("rating")),
         "{warnings:?}"

@@ -19,6 +19,9 @@
 //! JSON objects are written with sorted keys and floats in Rust's shortest round-trip form, so the
 //! document, and hence the key, is the same on every machine.
 
+use std::sync::Arc;
+
+use mrbrake_design::DesignError;
 use mrbrake_design::spec::BrakeSpec;
 use serde_json::{Value, json};
 use sha2::{Digest, Sha256};
@@ -53,8 +56,9 @@ pub struct Design {
     pub variables: Vec<(String, f64)>,
     /// The full spec as TOML (lengths in metres), ready for `mrbrake analyze`.
     pub spec_toml: String,
-    /// The parsed spec, or why this point is not a valid brake.
-    pub spec: Result<BrakeSpec, String>,
+    /// The parsed and validated spec, or why this point is not a valid brake (the design
+    /// crate's error, typed: its invalid fields as a list).
+    pub spec: Result<BrakeSpec, Arc<DesignError>>,
     /// The results-store key (64 hex digits).
     pub key: String,
 }
@@ -70,10 +74,10 @@ impl DesignSpace {
         variable_names: &[String],
         settings: EvaluationSettings,
     ) -> Result<Self, ExploreError> {
-        let mut base: toml::Table = toml::from_str(base_toml)
-            .map_err(|e| ExploreError::Input(format!("{origin}: not a TOML spec: {e}")))?;
-        // Parse once to learn the configuration and to report a broken base spec early.
+        // Parse once to learn the configuration and to report a broken base spec early (with its
+        // file and line); text the spec reader accepts is a TOML table.
         let spec = BrakeSpec::from_toml_str(base_toml, origin)?;
+        let mut base: toml::Table = toml::from_str(base_toml).map_err(internal)?;
         let is_drum = spec.configuration.is_drum();
         for (path, value) in overrides {
             apply_override(&mut base, path, value, is_drum)
@@ -147,13 +151,10 @@ impl DesignSpace {
         table.insert("name".into(), toml::Value::String(name));
         let text = toml::to_string(&table)
             .map_err(|e| ExploreError::Internal(format!("cannot write a design as TOML: {e}")))?;
-        let parsed =
-            BrakeSpec::from_toml_str(&text, "design").map_err(|e| e.to_string()).and_then(|spec| {
-                match spec.validate() {
-                    Ok(_) => Ok(spec),
-                    Err(e) => Err(e.to_string()),
-                }
-            });
+        // A generated spec: its errors name fields, not lines of a text the user never wrote.
+        let parsed = BrakeSpec::from_generated_toml(&text, "design")
+            .and_then(|spec| spec.validate().map(|_| spec))
+            .map_err(Arc::new);
         let (spec_toml, key) = match &parsed {
             // A valid design is written and keyed from the parsed spec: SI numbers, canonical.
             Ok(spec) => (spec.to_toml_string()?, design_key(spec, &self.settings)?),
@@ -274,7 +275,10 @@ mod tests {
         let s = space(&["drum.gap"]);
         let d = s.design(&[-1e-3]).unwrap();
         let reason = d.spec.unwrap_err();
-        assert!(reason.contains("drum.gap"), "{reason}");
+        let fields = reason.field_errors().expect("an invalid field");
+        assert_eq!(fields.errors()[0].field, "drum.gap");
+        assert!(fields.errors()[0].file.is_none(), "a generated spec has no file: {reason}");
+        assert!(reason.to_string().contains("drum.gap"), "{reason}");
         assert_eq!(d.key.len(), 64);
     }
 

@@ -11,7 +11,7 @@
 
 use mrbrake_design::analysis::{Analysis, AnalysisOptions, ElementOrder, analyze};
 use mrbrake_design::mesh_build::MeshLevel;
-use mrbrake_design::spec::BrakeSpec;
+use mrbrake_design::spec::{BrakeSpec, WorkingSurfaces};
 use mrbrake_error::Kind as _;
 use mrbrake_store::Status;
 use serde_json::{Value, json};
@@ -168,9 +168,24 @@ pub fn evaluate(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
         },
         // An input error raised during the analysis (a material that does not suit its part, a
         // mesh the geometry cannot have) is a property of the design: infeasible, not a crash.
-        Err(e) if e.is_input_error() => Outcome::infeasible(e.to_string()),
-        Err(e) => Outcome { status: Status::Failed, reason: Some(e.to_string()), metrics: vec![] },
+        Err(e) if e.is_input_error() => Outcome::infeasible(with_causes(&e)),
+        Err(e) => {
+            Outcome { status: Status::Failed, reason: Some(with_causes(&e)), metrics: vec![] }
+        }
     }
+}
+
+/// The error and its causes, `outer: inner: …` (as the CLI prints an error), so that a stored
+/// reason keeps what the wrapped error says (e.g. Newton's residual history).
+fn with_causes(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut cause = error.source();
+    while let Some(e) = cause {
+        text.push_str(": ");
+        text.push_str(&e.to_string());
+        cause = e.source();
+    }
+    text
 }
 
 fn metrics_of(spec: &BrakeSpec, a: &Analysis, settings: &EvaluationSettings) -> Vec<(String, f64)> {
@@ -231,8 +246,10 @@ fn min_wall_m(spec: &BrakeSpec) -> f64 {
         vec![h.case_thickness.m(), h.end_plate_thickness.m(), h.inner_case_thickness.m()];
     walls.extend(h.cover_thickness.map(|l| l.m()));
     walls.extend(h.rotor_disc_thickness.map(|l| l.m()));
-    walls.extend(spec.drum.as_ref().map(|d| d.cylinder_thickness.m()));
-    walls.extend(spec.disc.as_ref().map(|d| d.thickness.m()));
+    walls.push(match spec.configuration.surfaces() {
+        WorkingSurfaces::Drums(d) => d.cylinder_thickness.m(),
+        WorkingSurfaces::Discs(d) => d.thickness.m(),
+    });
     walls.into_iter().fold(f64::INFINITY, f64::min)
 }
 

@@ -38,6 +38,14 @@ pub enum ExploreError {
     /// The base spec or the analysis set-up.
     #[error(transparent)]
     Design(#[from] mrbrake_design::DesignError),
+    /// The base spec of a study is not a valid brake where a valid one is needed.
+    #[error("{what}: the base spec is invalid")]
+    InvalidBase {
+        /// What needed it, e.g. `algorithm.start = "base"`.
+        what: &'static str,
+        /// Why it is invalid (its invalid fields).
+        source: std::sync::Arc<mrbrake_design::DesignError>,
+    },
     /// A material name or curve.
     #[error(transparent)]
     Material(#[from] mrbrake_materials::MaterialError),
@@ -59,6 +67,7 @@ impl mrbrake_error::Kind for ExploreError {
         match self {
             Self::Input(_) => ErrorKind::Input,
             Self::Design(e) => e.kind(),
+            Self::InvalidBase { source, .. } => source.kind(),
             Self::Material(e) => e.kind(),
             Self::Store(e) => e.kind(),
             Self::Optim(e) => e.kind(),

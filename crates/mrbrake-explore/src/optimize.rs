@@ -154,10 +154,9 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
     /// The base spec's value of every variable, clamped into its bounds (a start point).
     pub fn base_point(&self) -> Result<Vec<f64>, ExploreError> {
         let base = self.space.base_design()?;
-        let spec = base.spec.map_err(|reason| {
-            ExploreError::Input(format!(
-                "algorithm.start = \"base\": the base spec is invalid: {reason}"
-            ))
+        let spec = base.spec.map_err(|source| ExploreError::InvalidBase {
+            what: "algorithm.start = \"base\"",
+            source,
         })?;
         let table = serde_json::to_value(&spec)
             .map_err(|e| ExploreError::Internal(format!("cannot read the base spec: {e}")))?;

@@ -247,155 +247,15 @@ impl OptimizationProblem {
         let bad = |what: String| ExploreError::Input(format!("{origin}: {what}"));
         let raw: RawProblem = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
         let folder = path.parent().unwrap_or_else(|| Path::new("."));
-        let spec_path = folder.join(&raw.spec);
-
-        let mut settings = EvaluationSettings::default();
-        if let Some(mesh) = &raw.mesh {
-            settings.mesh = MeshLevel::parse(mesh).map_err(|e| bad(format!("mesh: {e}")))?;
-        }
-        if let Some(degree) = raw.order {
-            settings.order = ElementOrder::from_degree(degree)
-                .ok_or_else(|| bad(format!("order: {degree} is not allowed; use 1 or 2")))?;
-        }
-        if let Some(speed) = &raw.speed {
-            settings.speed_rad_s =
-                parse(speed, Dimension::AngularVelocity).map_err(|e| bad(format!("speed: {e}")))?;
-        }
-        let mut overrides = Vec::new();
-        for (field, value) in &raw.set {
-            let text = match value {
-                toml::Value::String(s) => s.clone(),
-                other => other.to_string(),
-            };
-            overrides.push((field.clone(), text));
-        }
-
-        if raw.variables.is_empty() {
-            return Err(bad("no [[variable]]: give at least one design variable".into()));
-        }
-        let mut variables = Vec::new();
-        for (i, v) in raw.variables.iter().enumerate() {
-            let where_ = format!("variable {} ('{}')", i + 1, v.name);
-            // Bounds read with the variable's own unit; the symbol resolves against the spec
-            // later, so read them with the field the name denotes for either configuration.
-            let field_quantity = crate::variable::resolve(&v.name, true)
-                .or_else(|_| crate::variable::resolve(&v.name, false))
-                .map_err(|e| bad(format!("{where_}: {e}")))?;
-            let read = |q: &RawQuantity, which: &str| -> Result<f64, ExploreError> {
-                let text = match q {
-                    RawQuantity::Number(x) => return Ok(*x),
-                    RawQuantity::Integer(i) => return Ok(*i as f64),
-                    RawQuantity::Text(t) => t,
-                };
-                field_quantity.parse_value(text).map_err(|e| bad(format!("{where_}.{which}: {e}")))
-            };
-            let (min, max) = (read(&v.min, "min")?, read(&v.max, "max")?);
-            if !(min.is_finite() && max.is_finite() && min < max) {
-                return Err(bad(format!("{where_}: needs min < max, got {min} and {max}")));
-            }
-            variables.push(VariableBounds { name: v.name.clone(), min, max });
-        }
-
-        let mut constraints = Vec::new();
-        for (i, c) in raw.constraints.iter().enumerate() {
-            let where_ = format!("constraint {} ('{}')", i + 1, c.metric);
-            let info = known_metric(&c.metric).map_err(|e| bad(format!("{where_}: {e}")))?;
-            let read =
-                |q: &Option<RawQuantity>, which: &str| -> Result<Option<f64>, ExploreError> {
-                    q.as_ref()
-                        .map(|q| {
-                            metric_value(q, info.unit)
-                                .map_err(|e| bad(format!("{where_}.{which}: {e}")))
-                        })
-                        .transpose()
-                };
-            let (min, max) = (read(&c.min, "min")?, read(&c.max, "max")?);
-            if min.is_none() && max.is_none() {
-                return Err(bad(format!("{where_}: give min, max or both")));
-            }
-            if let (Some(lo), Some(hi)) = (min, max) {
-                if lo > hi {
-                    return Err(bad(format!("{where_}: min {lo} is above max {hi}")));
-                }
-            }
-            constraints.push(Constraint { metric: info.name.to_string(), min, max });
-        }
-
-        if raw.objectives.is_empty() {
-            return Err(bad("no [[objective]]: give one (pattern search) or more (nsga2)".into()));
-        }
-        let mut objectives = Vec::new();
-        for (i, o) in raw.objectives.iter().enumerate() {
-            let where_ = format!("objective {} ('{}')", i + 1, o.metric);
-            let info = known_metric(&o.metric).map_err(|e| bad(format!("{where_}: {e}")))?;
-            let goal = match o.goal.trim().to_ascii_lowercase().as_str() {
-                "minimize" | "minimise" | "min" => Goal::Minimize,
-                "maximize" | "maximise" | "max" => Goal::Maximize,
-                other => {
-                    return Err(bad(format!(
-                        "{where_}.goal: '{other}' is not allowed; use minimize or maximize"
-                    )));
-                }
-            };
-            objectives.push(Objective { metric: info.name.to_string(), goal });
-        }
-
-        let a = &raw.algorithm;
-        let seed = a.seed.unwrap_or(1);
-        let algorithm = match a.kind.trim().to_ascii_lowercase().as_str() {
-            "nsga2" | "nsga-ii" => {
-                let population = a.population.unwrap_or(24);
-                if population < 4 || population % 2 == 1 {
-                    return Err(bad(format!(
-                        "algorithm.population: {population} is not allowed; use an even number ≥ 4"
-                    )));
-                }
-                Algorithm::Nsga2 { population, generations: a.generations.unwrap_or(10), seed }
-            }
-            "pattern-search" | "pattern_search" => {
-                if objectives.len() != 1 {
-                    return Err(bad(format!(
-                        "algorithm.kind = pattern-search optimises one objective; {} are given \
-                         (use nsga2 for several)",
-                        objectives.len()
-                    )));
-                }
-                let random_poll = match a.poll.as_deref().map(str::trim) {
-                    None | Some("compass") => false,
-                    Some("random" | "random-orthogonal") => true,
-                    Some(other) => {
-                        return Err(bad(format!(
-                            "algorithm.poll: '{other}' is not allowed; use compass or random"
-                        )));
-                    }
-                };
-                let start_at_base = match a.start.as_deref().map(str::trim) {
-                    None | Some("centre" | "center") => false,
-                    Some("base") => true,
-                    Some(other) => {
-                        return Err(bad(format!(
-                            "algorithm.start: '{other}' is not allowed; use centre or base"
-                        )));
-                    }
-                };
-                Algorithm::PatternSearch {
-                    max_evaluations: a.max_evaluations.unwrap_or(200),
-                    seed,
-                    random_poll,
-                    start_at_base,
-                }
-            }
-            other => {
-                return Err(bad(format!(
-                    "algorithm.kind: '{other}' is not allowed; use nsga2 or pattern-search"
-                )));
-            }
-        };
-
+        let settings = settings_of(&raw).map_err(bad)?;
+        let variables = variables_of(&raw.variables).map_err(bad)?;
+        let constraints = constraints_of(&raw.constraints).map_err(bad)?;
+        let objectives = objectives_of(&raw.objectives).map_err(bad)?;
+        let algorithm = algorithm_of(&raw.algorithm, objectives.len()).map_err(bad)?;
         Ok(Self {
             path: path.to_path_buf(),
-            spec_path,
-            overrides,
+            spec_path: folder.join(&raw.spec),
+            overrides: overrides_of(&raw.set),
             reference: raw.reference.unwrap_or(true),
             settings,
             variables,
@@ -404,6 +264,166 @@ impl OptimizationProblem {
             algorithm,
         })
     }
+}
+
+// The readers of each part of the file return what is wrong, naming the table and the field; the
+// caller prefixes the file.
+
+/// Mesh level, element order and speed over the defaults.
+fn settings_of(raw: &RawProblem) -> Result<EvaluationSettings, String> {
+    let mut settings = EvaluationSettings::default();
+    if let Some(mesh) = &raw.mesh {
+        settings.mesh = MeshLevel::parse(mesh).map_err(|e| format!("mesh: {e}"))?;
+    }
+    if let Some(degree) = raw.order {
+        settings.order = ElementOrder::from_degree(degree)
+            .ok_or_else(|| format!("order: {degree} is not allowed; use 1 or 2"))?;
+    }
+    if let Some(speed) = &raw.speed {
+        settings.speed_rad_s =
+            parse(speed, Dimension::AngularVelocity).map_err(|e| format!("speed: {e}"))?;
+    }
+    Ok(settings)
+}
+
+/// The `[set]` table as `PATH`, `VALUE` pairs (strings unquoted, other values as TOML).
+fn overrides_of(set: &toml::Table) -> Vec<(String, String)> {
+    set.iter()
+        .map(|(field, value)| {
+            let text = match value {
+                toml::Value::String(s) => s.clone(),
+                other => other.to_string(),
+            };
+            (field.clone(), text)
+        })
+        .collect()
+}
+
+/// The variables with their bounds in SI, read with each variable's own unit.
+fn variables_of(raw: &[RawVariable]) -> Result<Vec<VariableBounds>, String> {
+    if raw.is_empty() {
+        return Err("no [[variable]]: give at least one design variable".into());
+    }
+    let mut variables = Vec::new();
+    for (i, v) in raw.iter().enumerate() {
+        let where_ = format!("variable {} ('{}')", i + 1, v.name);
+        // Bounds read with the variable's own unit; the symbol resolves against the spec
+        // later, so read them with the field the name denotes for either configuration.
+        let field_quantity = crate::variable::resolve(&v.name, true)
+            .or_else(|_| crate::variable::resolve(&v.name, false))
+            .map_err(|e| format!("{where_}: {e}"))?;
+        let read = |q: &RawQuantity, which: &str| -> Result<f64, String> {
+            let text = match q {
+                RawQuantity::Number(x) => return Ok(*x),
+                RawQuantity::Integer(i) => return Ok(*i as f64),
+                RawQuantity::Text(t) => t,
+            };
+            field_quantity.parse_value(text).map_err(|e| format!("{where_}.{which}: {e}"))
+        };
+        let (min, max) = (read(&v.min, "min")?, read(&v.max, "max")?);
+        if !(min.is_finite() && max.is_finite() && min < max) {
+            return Err(format!("{where_}: needs min < max, got {min} and {max}"));
+        }
+        variables.push(VariableBounds { name: v.name.clone(), min, max });
+    }
+    Ok(variables)
+}
+
+/// The constraints, each with a min, a max or both, in the metric's unit.
+fn constraints_of(raw: &[RawConstraint]) -> Result<Vec<Constraint>, String> {
+    let mut constraints = Vec::new();
+    for (i, c) in raw.iter().enumerate() {
+        let where_ = format!("constraint {} ('{}')", i + 1, c.metric);
+        let info = known_metric(&c.metric).map_err(|e| format!("{where_}: {e}"))?;
+        let read = |q: &Option<RawQuantity>, which: &str| -> Result<Option<f64>, String> {
+            q.as_ref()
+                .map(|q| metric_value(q, info.unit).map_err(|e| format!("{where_}.{which}: {e}")))
+                .transpose()
+        };
+        let (min, max) = (read(&c.min, "min")?, read(&c.max, "max")?);
+        if min.is_none() && max.is_none() {
+            return Err(format!("{where_}: give min, max or both"));
+        }
+        if let (Some(lo), Some(hi)) = (min, max) {
+            if lo > hi {
+                return Err(format!("{where_}: min {lo} is above max {hi}"));
+            }
+        }
+        constraints.push(Constraint { metric: info.name.to_string(), min, max });
+    }
+    Ok(constraints)
+}
+
+/// At least one objective, each minimised or maximised.
+fn objectives_of(raw: &[RawObjective]) -> Result<Vec<Objective>, String> {
+    if raw.is_empty() {
+        return Err("no [[objective]]: give one (pattern search) or more (nsga2)".into());
+    }
+    let mut objectives = Vec::new();
+    for (i, o) in raw.iter().enumerate() {
+        let where_ = format!("objective {} ('{}')", i + 1, o.metric);
+        let info = known_metric(&o.metric).map_err(|e| format!("{where_}: {e}"))?;
+        let goal = match o.goal.trim().to_ascii_lowercase().as_str() {
+            "minimize" | "minimise" | "min" => Goal::Minimize,
+            "maximize" | "maximise" | "max" => Goal::Maximize,
+            other => {
+                return Err(format!(
+                    "{where_}.goal: '{other}' is not allowed; use minimize or maximize"
+                ));
+            }
+        };
+        objectives.push(Objective { metric: info.name.to_string(), goal });
+    }
+    Ok(objectives)
+}
+
+/// The `[algorithm]` table, for a problem with `objectives` objectives.
+fn algorithm_of(a: &RawAlgorithm, objectives: usize) -> Result<Algorithm, String> {
+    let seed = a.seed.unwrap_or(1);
+    match a.kind.trim().to_ascii_lowercase().as_str() {
+        "nsga2" | "nsga-ii" => {
+            let population = a.population.unwrap_or(24);
+            if population < 4 || population % 2 == 1 {
+                return Err(format!(
+                    "algorithm.population: {population} is not allowed; use an even number ≥ 4"
+                ));
+            }
+            Ok(Algorithm::Nsga2 { population, generations: a.generations.unwrap_or(10), seed })
+        }
+        "pattern-search" | "pattern_search" => pattern_search_of(a, objectives, seed),
+        other => {
+            Err(format!("algorithm.kind: '{other}' is not allowed; use nsga2 or pattern-search"))
+        }
+    }
+}
+
+fn pattern_search_of(a: &RawAlgorithm, objectives: usize, seed: u64) -> Result<Algorithm, String> {
+    if objectives != 1 {
+        return Err(format!(
+            "algorithm.kind = pattern-search optimises one objective; {objectives} are given \
+             (use nsga2 for several)"
+        ));
+    }
+    let random_poll = match a.poll.as_deref().map(str::trim) {
+        None | Some("compass") => false,
+        Some("random" | "random-orthogonal") => true,
+        Some(other) => {
+            return Err(format!("algorithm.poll: '{other}' is not allowed; use compass or random"));
+        }
+    };
+    let start_at_base = match a.start.as_deref().map(str::trim) {
+        None | Some("centre" | "center") => false,
+        Some("base") => true,
+        Some(other) => {
+            return Err(format!("algorithm.start: '{other}' is not allowed; use centre or base"));
+        }
+    };
+    Ok(Algorithm::PatternSearch {
+        max_evaluations: a.max_evaluations.unwrap_or(200),
+        seed,
+        random_poll,
+        start_at_base,
+    })
 }
 
 fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {

@@ -74,6 +74,37 @@ impl<'a> Runner<'a> {
         on_progress: &mut dyn FnMut(&Progress),
     ) -> Result<(Vec<Record>, RunSummary), ExploreError> {
         let start = Instant::now();
+        let (todo, reused) = self.to_compute(designs)?;
+        let mut progress = Progress {
+            to_compute: todo.len(),
+            computed: 0,
+            reused,
+            infeasible: 0,
+            failed: 0,
+            elapsed_s: 0.0,
+        };
+        on_progress(&progress);
+        let mut timing = Timing { start, evaluation_s: 0.0, store_s: 0.0 };
+        self.evaluate_into_store(&todo, &mut timing, &mut progress, on_progress)?;
+        progress.elapsed_s = start.elapsed().as_secs_f64();
+        let mut records = Vec::with_capacity(designs.len());
+        for design in designs {
+            let record = self.store.get(&design.key)?.ok_or_else(|| {
+                ExploreError::Internal(format!("design {} missing from the store", design.key))
+            })?;
+            records.push(record);
+        }
+        let summary =
+            RunSummary { progress, evaluation_s: timing.evaluation_s, store_s: timing.store_s };
+        Ok((records, summary))
+    }
+
+    /// The designs of the batch to compute (not stored, first of their key) and how many are
+    /// stored already.
+    fn to_compute<'d>(
+        &self,
+        designs: &'d [Design],
+    ) -> Result<(Vec<&'d Design>, usize), ExploreError> {
         let stored = self.store.keys()?;
         let mut seen = HashSet::new();
         let mut todo: Vec<&Design> = Vec::new();
@@ -85,18 +116,18 @@ impl<'a> Runner<'a> {
                 todo.push(design);
             }
         }
-        let mut progress = Progress {
-            to_compute: todo.len(),
-            computed: 0,
-            reused,
-            infeasible: 0,
-            failed: 0,
-            elapsed_s: 0.0,
-        };
-        let mut store_s = 0.0;
-        let mut evaluation_s = 0.0;
-        on_progress(&progress);
+        Ok((todo, reused))
+    }
 
+    /// Analyses `todo` on the worker pool while this thread stores each outcome as it arrives;
+    /// after a store error the workers stop taking new designs and the error is returned.
+    fn evaluate_into_store(
+        &mut self,
+        todo: &[&Design],
+        timing: &mut Timing,
+        progress: &mut Progress,
+        on_progress: &mut dyn FnMut(&Progress),
+    ) -> Result<(), ExploreError> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(self.jobs)
             .thread_name(|i| format!("mrbrake-eval-{i}"))
@@ -107,7 +138,6 @@ impl<'a> Runner<'a> {
         let (sender, receiver) = mpsc::channel::<(usize, Outcome, f64)>();
         let mut first_error: Option<ExploreError> = None;
         std::thread::scope(|scope| {
-            let todo = &todo;
             let stop = &stop;
             scope.spawn(move || {
                 pool.install(|| {
@@ -118,7 +148,7 @@ impl<'a> Runner<'a> {
                         let t0 = Instant::now();
                         let outcome = match &design.spec {
                             Ok(spec) => evaluate(spec, &settings),
-                            Err(reason) => Outcome::infeasible(reason.clone()),
+                            Err(reason) => Outcome::infeasible(reason.to_string()),
                         };
                         // The receiver only hangs up after an error; then the result is moot.
                         let _ = sender.send((i, outcome, t0.elapsed().as_secs_f64()));
@@ -131,38 +161,45 @@ impl<'a> Runner<'a> {
                     continue;
                 }
                 let record = record_of(todo[i], outcome, seconds);
-                let t0 = Instant::now();
-                if let Err(e) = self.store.insert(&record) {
+                if let Err(e) = self.store_record(&record, seconds, timing, progress) {
                     stop.store(true, Ordering::Relaxed);
-                    first_error = Some(e.into());
+                    first_error = Some(e);
                     continue;
                 }
-                store_s += t0.elapsed().as_secs_f64();
-                evaluation_s += seconds;
-                progress.computed += 1;
-                match record.status {
-                    Status::Infeasible => progress.infeasible += 1,
-                    Status::Failed => progress.failed += 1,
-                    Status::Ok => {}
-                }
-                progress.elapsed_s = start.elapsed().as_secs_f64();
-                on_progress(&progress);
+                on_progress(progress);
             }
         });
-        if let Some(e) = first_error {
-            return Err(e);
-        }
-        progress.elapsed_s = start.elapsed().as_secs_f64();
-
-        let mut records = Vec::with_capacity(designs.len());
-        for design in designs {
-            let record = self.store.get(&design.key)?.ok_or_else(|| {
-                ExploreError::Internal(format!("design {} missing from the store", design.key))
-            })?;
-            records.push(record);
-        }
-        Ok((records, RunSummary { progress, evaluation_s, store_s }))
+        first_error.map_or(Ok(()), Err)
     }
+
+    /// Inserts one record (its own durable transaction) and counts it.
+    fn store_record(
+        &mut self,
+        record: &Record,
+        evaluation_s: f64,
+        timing: &mut Timing,
+        progress: &mut Progress,
+    ) -> Result<(), ExploreError> {
+        let t0 = Instant::now();
+        self.store.insert(record)?;
+        timing.store_s += t0.elapsed().as_secs_f64();
+        timing.evaluation_s += evaluation_s;
+        progress.computed += 1;
+        match record.status {
+            Status::Infeasible => progress.infeasible += 1,
+            Status::Failed => progress.failed += 1,
+            Status::Ok => {}
+        }
+        progress.elapsed_s = timing.start.elapsed().as_secs_f64();
+        Ok(())
+    }
+}
+
+/// When the run started and the time spent in analyses and in the store.
+struct Timing {
+    start: Instant,
+    evaluation_s: f64,
+    store_s: f64,
 }
 
 fn record_of(design: &Design, outcome: Outcome, seconds: f64) -> Record {

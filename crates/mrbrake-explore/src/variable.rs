@@ -1,112 +1,40 @@
 //! Design variables: the numeric fields of a brake spec that a study may vary, addressed by their
 //! TOML path (`drum.gap`, `coil.turns`) or by the thesis's symbol (`g`, `h`, `R0`, `N`).
 //!
-//! Brief overview: [`FIELDS`] lists every variable field with its [`Quantity`]; [`resolve`] turns a
-//! user's name into a [`Variable`] for a given base spec (a symbol such as `g` means `drum.gap` for a
+//! Brief overview: the variable fields are the spec's own numeric fields
+//! ([`mrbrake_design::spec::numeric_fields`], listed beside each table's definition, each with its
+//! [`Quantity`]); [`resolve`] turns a user's name into a [`Variable`] for a given base spec (a symbol such as `g` means `drum.gap` for a
 //! drum brake and `disc.gap` for a disc brake); [`Variable::parse_value`] reads a value with its unit
 //! (`0.5mm`) into SI; [`set_field`] writes an SI value into the spec's TOML table. Values are written
 //! as bare SI numbers, which the spec reader accepts, so a design file is unambiguous.
 
+use mrbrake_design::spec::numeric_fields;
+pub use mrbrake_design::spec::{Quantity, SpecField};
 use mrbrake_units::{Dimension, parse};
 
 use crate::ExploreError;
 
-/// What a variable field holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Quantity {
-    /// A length (m).
-    Length,
-    /// A current (A).
-    Current,
-    /// A whole number (turns, cylinders, discs, AWG gauge).
-    Integer,
-}
-
-impl Quantity {
-    /// The SI unit, for messages and CSV headers.
-    pub fn unit(self) -> &'static str {
-        match self {
-            Self::Length => "m",
-            Self::Current => "A",
-            Self::Integer => "",
-        }
-    }
-}
-
-/// A variable spec field: its TOML path and quantity.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Field {
-    /// The dotted TOML path, e.g. `drum.gap`.
-    pub path: &'static str,
-    /// What it holds.
-    pub quantity: Quantity,
-}
-
-const fn length(path: &'static str) -> Field {
-    Field { path, quantity: Quantity::Length }
-}
-
-const fn integer(path: &'static str) -> Field {
-    Field { path, quantity: Quantity::Integer }
-}
-
-const fn current(path: &'static str) -> Field {
-    Field { path, quantity: Quantity::Current }
-}
-
-/// Every numeric field of [`mrbrake_design::spec::BrakeSpec`] a study may vary.
-pub const FIELDS: &[Field] = &[
-    length("shaft.radius"),
-    length("housing.outer_radius"),
-    length("housing.case_thickness"),
-    length("housing.end_plate_thickness"),
-    length("housing.inner_case_thickness"),
-    length("housing.cover_thickness"),
-    length("housing.rotor_disc_thickness"),
-    length("drum.r0"),
-    length("drum.height"),
-    length("drum.cylinder_thickness"),
-    length("drum.gap"),
-    integer("drum.rotating_cylinders"),
-    length("disc.inner_radius"),
-    length("disc.outer_radius"),
-    length("disc.thickness"),
-    length("disc.gap"),
-    integer("disc.count"),
-    length("coil.window_width"),
-    length("coil.window_height"),
-    length("coil.bobbin_wall"),
-    integer("coil.turns"),
-    current("coil.max_current"),
-    integer("coil.wire.awg"),
-    length("coil.wire.diameter"),
-    current("coil.wire.rated_current"),
-    length("spacer.thickness"),
-    length("envelope.diameter"),
-    length("envelope.length"),
-    length("model.air_margin"),
-];
-
-/// The thesis's symbols (chapter 3 and 4.4.2) and their field for drum and disc brakes.
-/// `(symbol, drum field, disc field)`.
-const SYMBOLS: &[(&str, &str, &str)] = &[
-    ("g", "drum.gap", "disc.gap"),
-    ("h", "drum.height", ""),
-    ("d", "drum.cylinder_thickness", "disc.thickness"),
-    ("R0", "drum.r0", ""),
-    ("R1", "", "disc.inner_radius"),
-    ("R2", "", "disc.outer_radius"),
-    ("n", "drum.rotating_cylinders", "disc.count"),
-    ("N", "coil.turns", "coil.turns"),
-    ("I", "coil.max_current", "coil.max_current"),
-    ("AWG", "coil.wire.awg", "coil.wire.awg"),
+/// The thesis's symbols (chapter 3 and 4.4.2) and the field each names in a drum and in a disc
+/// brake: `(symbol, drum field, disc field)`. A test checks that every field is one of the spec's
+/// [`numeric_fields`] and exists in the configurations it is named for.
+pub const SYMBOLS: &[(&str, Option<&str>, Option<&str>)] = &[
+    ("g", Some("drum.gap"), Some("disc.gap")),
+    ("h", Some("drum.height"), None),
+    ("d", Some("drum.cylinder_thickness"), Some("disc.thickness")),
+    ("R0", Some("drum.r0"), None),
+    ("R1", None, Some("disc.inner_radius")),
+    ("R2", None, Some("disc.outer_radius")),
+    ("n", Some("drum.rotating_cylinders"), Some("disc.count")),
+    ("N", Some("coil.turns"), Some("coil.turns")),
+    ("I", Some("coil.max_current"), Some("coil.max_current")),
+    ("AWG", Some("coil.wire.awg"), Some("coil.wire.awg")),
 ];
 
 /// A variable resolved against a base spec.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Variable {
     /// The field it sets.
-    pub field: Field,
+    pub field: SpecField,
     /// The name the user gave (a path or a symbol), used in reports.
     pub name: String,
 }
@@ -155,23 +83,24 @@ fn round_sig(x: f64, significant: i32) -> f64 {
     (x * scale).round() / scale
 }
 
-/// Resolves `name` (a TOML path of [`FIELDS`] or a thesis symbol) for a base spec whose
-/// configuration uses drums (`is_drum`) or discs.
+/// Resolves `name` (a spec field's TOML path, see [`numeric_fields`], or a thesis symbol of
+/// [`SYMBOLS`]) for a base spec whose configuration uses drums (`is_drum`) or discs.
 pub fn resolve(name: &str, is_drum: bool) -> Result<Variable, ExploreError> {
     let trimmed = name.trim();
-    if let Some(field) = FIELDS.iter().find(|f| f.path == trimmed) {
-        return Ok(Variable { field: *field, name: trimmed.to_string() });
+    let variable = |field: &SpecField| Variable { field: *field, name: trimmed.to_string() };
+    if let Some(field) = numeric_fields().find(|f| f.path == trimmed) {
+        return Ok(variable(field));
     }
     if let Some(&(symbol, drum, disc)) = SYMBOLS.iter().find(|(s, _, _)| *s == trimmed) {
         let path = if is_drum { drum } else { disc };
-        let field = FIELDS.iter().find(|f| f.path == path).ok_or_else(|| {
+        let field = path.and_then(|path| numeric_fields().find(|f| f.path == path)).ok_or_else(|| {
             ExploreError::Input(format!(
                 "variable '{symbol}' has no meaning for a {} brake; name the field instead (one of: {})",
                 if is_drum { "drum" } else { "disc" },
                 field_list()
             ))
         })?;
-        return Ok(Variable { field: *field, name: trimmed.to_string() });
+        return Ok(variable(field));
     }
     Err(ExploreError::Input(format!(
         "unknown design variable '{trimmed}': use a spec field ({}) or a thesis symbol ({})",
@@ -181,12 +110,12 @@ pub fn resolve(name: &str, is_drum: bool) -> Result<Variable, ExploreError> {
 }
 
 fn field_list() -> String {
-    FIELDS.iter().map(|f| f.path).collect::<Vec<_>>().join(", ")
+    numeric_fields().map(|f| f.path).collect::<Vec<_>>().join(", ")
 }
 
 /// Writes the SI value `si` of `field` into the spec table, creating missing tables (e.g. a
 /// `[spacer]` the base spec left out).
-pub fn set_field(spec: &mut toml::Table, field: &Field, si: f64) -> Result<(), ExploreError> {
+pub fn set_field(spec: &mut toml::Table, field: &SpecField, si: f64) -> Result<(), ExploreError> {
     let value = match field.quantity {
         Quantity::Integer => {
             let rounded = si.round();

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::Args;
 
-use mrbrake_design::geometry;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::{BrakeSpec, default_spec};
 
@@ -33,15 +32,13 @@ pub fn run(args: ExportGeoArgs) -> anyhow::Result<()> {
         None => default_spec(),
     };
     let level = MeshLevel::parse(&args.mesh)?;
-    let origin = args
-        .spec
-        .as_ref()
-        .map_or("the embedded default spec".to_string(), |p| p.display().to_string());
-    let warnings = spec.validate().with_context(|| origin.clone())?;
+    // The spec's errors name its file and lines.
+    let validated = spec.validate()?;
+    let warnings = validated.warnings;
     for w in &warnings {
         eprintln!("{w}");
     }
-    let geometry = geometry::build(&spec)?;
+    let geometry = validated.geometry;
     let settings = level.settings(geometry.device.r1);
     let text = mrbrake_design::geo_export::to_geo(&geometry, &settings, &spec.name)?;
     mrbrake_report::write_atomic(&args.output, text.as_bytes())

@@ -2,8 +2,9 @@
 //!
 //! Brief overview: [`BrakeSpec`] is the whole file; [`BrakeSpec::from_toml_str`] parses it (lengths
 //! as strings with units, `"25mm"`, or bare SI numbers, `0.025`, read by [`mrbrake_units`]) and
-//! [`BrakeSpec::validate`] checks every rule, returning the warnings or an input error that names
-//! the field and its allowed range. [`default_spec`] is the embedded thesis bidirectional brake
+//! [`BrakeSpec::validate`] checks every rule once, returning a [`Validated`] spec (its geometry,
+//! assembled once, and the warnings) or an input error listing every invalid field with its allowed
+//! range, file and line. [`default_spec`] is the embedded thesis bidirectional brake
 //! (`examples/specs/thesis-bidirectional.toml`).
 //!
 //! Configurations (thesis ch. 3 and 4): single disc (3.7), multi-disc (3.8), drum (3.9),
@@ -11,10 +12,25 @@
 //! separated by a non-magnetic spacer, each with its own coil and a one-way bearing engaging in the
 //! opposite direction, thesis 4.3). Coil placement inner / outer / two-sided (thesis 3.1.4).
 //!
+//! A [`Configuration`] carries the tables it needs (a drum brake its [`Drum`], the bidirectional
+//! brake its [`Drum`] and [`Spacer`]), so a configuration without its working surfaces cannot be
+//! represented; the file keeps its flat form (`configuration = "bidirectional"` beside `[drum]` and
+//! `[spacer]` tables), read and written through the private `raw` module, which reports a missing
+//! or superfluous table as an input error naming it. The JSON of a spec (the results store's design
+//! keys hash it) is that same flat form.
+//!
+//! The numeric fields a design study may vary are listed beside each table's definition
+//! (`Drum::FIELDS`, …) and collected by [`numeric_fields`]; a test checks the list against the
+//! serialised spec of every configuration.
+//!
 //! The geometric meaning of every dimension (which part it sizes, and where) is documented on the
 //! field and drawn by [`crate::geometry`]; rules that need the assembled parts (overlaps, gaps bounded
 //! by a rotating and a static wall, envelope) are checked there too, and reported through
 //! [`BrakeSpec::validate`].
+
+mod raw;
+mod source;
+mod validate;
 
 use serde::{Deserialize, Deserializer, Serialize};
 
@@ -22,9 +38,13 @@ use mrbrake_units::{Dimension, parse};
 
 use crate::DesignError;
 
+pub use source::SpecSource;
+pub(crate) use validate::Problems;
+pub use validate::Validated;
+
 /// The embedded default specification: the thesis's bidirectional multi-drum brake.
 pub const DEFAULT_SPEC_TOML: &str =
-    include_str!("../../../examples/specs/thesis-bidirectional.toml");
+    include_str!("../../../../examples/specs/thesis-bidirectional.toml");
 
 /// Parses the embedded default specification.
 pub fn default_spec() -> BrakeSpec {
@@ -83,10 +103,73 @@ impl<'de> Deserialize<'de> for Current {
     }
 }
 
-/// The brake configuration (thesis 3.1.3 and 4.3).
+/// What a numeric spec field holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// A length ([`Length`], m).
+    Length,
+    /// A current ([`Current`], A).
+    Current,
+    /// A whole number (turns, cylinders, discs, AWG gauge).
+    Integer,
+}
+
+impl Quantity {
+    /// The SI unit, for messages and CSV headers (empty for whole numbers).
+    pub fn unit(self) -> &'static str {
+        match self {
+            Self::Length => "m",
+            Self::Current => "A",
+            Self::Integer => "",
+        }
+    }
+}
+
+/// A numeric field of the spec: its dotted TOML path and what it holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SpecField {
+    /// The dotted TOML path, e.g. `drum.gap`.
+    pub path: &'static str,
+    /// What it holds.
+    pub quantity: Quantity,
+}
+
+impl SpecField {
+    const fn length(path: &'static str) -> Self {
+        Self { path, quantity: Quantity::Length }
+    }
+
+    const fn current(path: &'static str) -> Self {
+        Self { path, quantity: Quantity::Current }
+    }
+
+    const fn integer(path: &'static str) -> Self {
+        Self { path, quantity: Quantity::Integer }
+    }
+}
+
+/// Every numeric field of a spec, of every configuration (the tables' `FIELDS`, in file order):
+/// the fields a design study may vary.
+pub fn numeric_fields() -> impl Iterator<Item = &'static SpecField> + Clone {
+    [
+        Shaft::FIELDS,
+        Housing::FIELDS,
+        Drum::FIELDS,
+        Disc::FIELDS,
+        Coil::FIELDS,
+        Wire::FIELDS,
+        Spacer::FIELDS,
+        Envelope::FIELDS,
+        Model::FIELDS,
+    ]
+    .into_iter()
+    .flatten()
+}
+
+/// The name of a configuration, as the file writes it (`configuration = "multi-drum"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Configuration {
+pub enum ConfigurationKind {
     /// One rotating disc between two static case faces, two fluid surfaces (3.7).
     SingleDisc,
     /// n rotating discs interleaved with n-1 static discs, 2n fluid surfaces (3.8).
@@ -100,7 +183,7 @@ pub enum Configuration {
     Bidirectional,
 }
 
-impl Configuration {
+impl ConfigurationKind {
     /// True for the configurations whose fluid surfaces are cylinders (flux crosses them radially).
     pub fn is_drum(self) -> bool {
         matches!(self, Self::Drum | Self::MultiDrum | Self::Bidirectional)
@@ -115,6 +198,126 @@ impl Configuration {
             Self::MultiDrum => "multi-drum",
             Self::Bidirectional => "bidirectional",
         }
+    }
+
+    /// The most rotating discs or cylinders the configuration allows: one for the single disc and
+    /// the drum, twenty (a sanity bound) for the multi-disc and multi-drum families.
+    pub fn max_rotors(self) -> u32 {
+        match self {
+            Self::SingleDisc | Self::Drum => 1,
+            Self::MultiDisc | Self::MultiDrum | Self::Bidirectional => 20,
+        }
+    }
+}
+
+/// The brake configuration (thesis 3.1.3 and 4.3) with its working surfaces: each configuration
+/// holds exactly the tables it needs.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Configuration {
+    /// One rotating disc (`count` 1) between two static case faces, two fluid surfaces (3.7).
+    SingleDisc(Disc),
+    /// n rotating discs interleaved with n-1 static discs, 2n fluid surfaces (3.8).
+    MultiDisc(Disc),
+    /// One rotating cylinder (`rotating_cylinders` 1) between a static core and the case (3.9).
+    Drum(Drum),
+    /// n rotating cylinders interleaved with static cylinders, 2n fluid surfaces (4.4, 4.5).
+    MultiDrum(Drum),
+    /// Two identical multi-drum units on one shaft, separated by a non-magnetic spacer, each with
+    /// its own coil and a one-way bearing engaging in the opposite direction (thesis 4.3).
+    Bidirectional {
+        /// The working surfaces of each unit.
+        drum: Drum,
+        /// The spacer between the units.
+        spacer: Spacer,
+    },
+}
+
+/// The working surfaces of a configuration: cylinders (drums) or annuli (discs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WorkingSurfaces<'a> {
+    /// Cylindrical fluid gaps (drum, multi-drum, each unit of the bidirectional brake).
+    Drums(&'a Drum),
+    /// Annular fluid gaps (single disc, multi-disc).
+    Discs(&'a Disc),
+}
+
+impl Configuration {
+    /// The configuration's name.
+    pub fn kind(&self) -> ConfigurationKind {
+        match self {
+            Self::SingleDisc(_) => ConfigurationKind::SingleDisc,
+            Self::MultiDisc(_) => ConfigurationKind::MultiDisc,
+            Self::Drum(_) => ConfigurationKind::Drum,
+            Self::MultiDrum(_) => ConfigurationKind::MultiDrum,
+            Self::Bidirectional { .. } => ConfigurationKind::Bidirectional,
+        }
+    }
+
+    /// The name used in TOML.
+    pub fn name(&self) -> &'static str {
+        self.kind().name()
+    }
+
+    /// True for the configurations whose fluid surfaces are cylinders (flux crosses them radially).
+    pub fn is_drum(&self) -> bool {
+        self.kind().is_drum()
+    }
+
+    /// The working surfaces.
+    pub fn surfaces(&self) -> WorkingSurfaces<'_> {
+        match self {
+            Self::SingleDisc(disc) | Self::MultiDisc(disc) => WorkingSurfaces::Discs(disc),
+            Self::Drum(drum) | Self::MultiDrum(drum) | Self::Bidirectional { drum, .. } => {
+                WorkingSurfaces::Drums(drum)
+            }
+        }
+    }
+
+    /// The drum surfaces of a drum configuration.
+    pub fn drum(&self) -> Option<&Drum> {
+        match self.surfaces() {
+            WorkingSurfaces::Drums(drum) => Some(drum),
+            WorkingSurfaces::Discs(_) => None,
+        }
+    }
+
+    /// The disc surfaces of a disc configuration.
+    pub fn disc(&self) -> Option<&Disc> {
+        match self.surfaces() {
+            WorkingSurfaces::Discs(disc) => Some(disc),
+            WorkingSurfaces::Drums(_) => None,
+        }
+    }
+
+    /// The drum surfaces of a drum configuration, to change them.
+    pub fn drum_mut(&mut self) -> Option<&mut Drum> {
+        match self {
+            Self::Drum(drum) | Self::MultiDrum(drum) | Self::Bidirectional { drum, .. } => {
+                Some(drum)
+            }
+            Self::SingleDisc(_) | Self::MultiDisc(_) => None,
+        }
+    }
+
+    /// The disc surfaces of a disc configuration, to change them.
+    pub fn disc_mut(&mut self) -> Option<&mut Disc> {
+        match self {
+            Self::SingleDisc(disc) | Self::MultiDisc(disc) => Some(disc),
+            Self::Drum(_) | Self::MultiDrum(_) | Self::Bidirectional { .. } => None,
+        }
+    }
+
+    /// The spacer of the bidirectional brake.
+    pub fn spacer(&self) -> Option<&Spacer> {
+        match self {
+            Self::Bidirectional { spacer, .. } => Some(spacer),
+            _ => None,
+        }
+    }
+
+    /// Number of units on the shaft: 2 for the bidirectional brake, else 1.
+    pub fn units(&self) -> usize {
+        if self.spacer().is_some() { 2 } else { 1 }
     }
 }
 
@@ -149,7 +352,7 @@ pub struct Materials {
     /// The coil conductor.
     #[serde(default = "default_copper")]
     pub coil: String,
-    /// The spacer between the two units of a bidirectional brake.
+    /// The spacer between the two units of a bidirectional brake (required there).
     #[serde(default)]
     pub spacer: Option<String>,
     /// What surrounds the device in the model (the air box).
@@ -173,6 +376,11 @@ pub struct Shaft {
     pub radius: Length,
 }
 
+impl Shaft {
+    /// The numeric fields of `[shaft]`.
+    pub const FIELDS: &'static [SpecField] = &[SpecField::length("shaft.radius")];
+}
+
 /// The static magnetic circuit and the non-magnetic closures around the working surfaces.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -187,13 +395,25 @@ pub struct Housing {
     /// Drums: radial thickness of the static steel inner core ("inner case", thesis Table 4.5: 7 mm).
     /// Discs: radial thickness of the steel pole ring inside an inner coil.
     pub inner_case_thickness: Length,
-    /// Drums only: axial thickness of the non-magnetic cover at the rotor end.
+    /// Drums (required there): axial thickness of the non-magnetic cover at the rotor end.
     #[serde(default)]
     pub cover_thickness: Option<Length>,
-    /// Drums only: axial thickness of the non-magnetic rotary part (rotor disc) that carries the
-    /// rotating cylinders to the hub on the shaft.
+    /// Drums (required there): axial thickness of the non-magnetic rotary part (rotor disc) that
+    /// carries the rotating cylinders to the hub on the shaft.
     #[serde(default)]
     pub rotor_disc_thickness: Option<Length>,
+}
+
+impl Housing {
+    /// The numeric fields of `[housing]`.
+    pub const FIELDS: &'static [SpecField] = &[
+        SpecField::length("housing.outer_radius"),
+        SpecField::length("housing.case_thickness"),
+        SpecField::length("housing.end_plate_thickness"),
+        SpecField::length("housing.inner_case_thickness"),
+        SpecField::length("housing.cover_thickness"),
+        SpecField::length("housing.rotor_disc_thickness"),
+    ];
 }
 
 /// Multi-drum working surfaces (thesis 4.4, 4.5, Figure 4.15).
@@ -213,6 +433,15 @@ pub struct Drum {
 }
 
 impl Drum {
+    /// The numeric fields of `[drum]`.
+    pub const FIELDS: &'static [SpecField] = &[
+        SpecField::length("drum.r0"),
+        SpecField::length("drum.height"),
+        SpecField::length("drum.cylinder_thickness"),
+        SpecField::length("drum.gap"),
+        SpecField::integer("drum.rotating_cylinders"),
+    ];
+
     /// R_k = R0 + k (d + g) (4.5): radius of fluid surface k (inner wall of gap k), m.
     pub fn surface_radius_m(&self, k: u32) -> f64 {
         self.r0.m() + f64::from(k) * (self.cylinder_thickness.m() + self.gap.m())
@@ -240,6 +469,17 @@ pub struct Disc {
     pub count: u32,
 }
 
+impl Disc {
+    /// The numeric fields of `[disc]`.
+    pub const FIELDS: &'static [SpecField] = &[
+        SpecField::length("disc.inner_radius"),
+        SpecField::length("disc.outer_radius"),
+        SpecField::length("disc.thickness"),
+        SpecField::length("disc.gap"),
+        SpecField::integer("disc.count"),
+    ];
+}
+
 /// The wire: by AWG gauge or by bare copper diameter.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -254,6 +494,29 @@ pub struct Wire {
     /// the maximum current as a warning.
     #[serde(default)]
     pub rated_current: Option<Current>,
+}
+
+impl Wire {
+    /// The numeric fields of `coil.wire`.
+    pub const FIELDS: &'static [SpecField] = &[
+        SpecField::integer("coil.wire.awg"),
+        SpecField::length("coil.wire.diameter"),
+        SpecField::current("coil.wire.rated_current"),
+    ];
+
+    /// The copper diameter (m): given, or from the AWG gauge.
+    pub fn diameter_m(&self) -> Option<f64> {
+        self.diameter
+            .map(Length::m)
+            .or_else(|| self.awg.map(mrbrake_materials::wire::awg_diameter_m))
+    }
+
+    /// The current rating (A): given, or from thesis Table 4.6 for AWG 20–26.
+    pub fn rated_current_a(&self) -> Option<f64> {
+        self.rated_current
+            .map(Current::a)
+            .or_else(|| self.awg.and_then(mrbrake_materials::wire::thesis_current_rating_a))
+    }
 }
 
 /// The coil (thesis 4.2.2: window C_w × C_h, (4.1)–(4.3)).
@@ -277,12 +540,28 @@ pub struct Coil {
     pub max_current: Current,
 }
 
+impl Coil {
+    /// The numeric fields of `[coil]` outside its wire ([`Wire::FIELDS`]).
+    pub const FIELDS: &'static [SpecField] = &[
+        SpecField::length("coil.window_width"),
+        SpecField::length("coil.window_height"),
+        SpecField::length("coil.bobbin_wall"),
+        SpecField::integer("coil.turns"),
+        SpecField::current("coil.max_current"),
+    ];
+}
+
 /// The spacer between the two units of a bidirectional brake.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Spacer {
     /// Axial thickness of the non-magnetic spacer.
     pub thickness: Length,
+}
+
+impl Spacer {
+    /// The numeric fields of `[spacer]`.
+    pub const FIELDS: &'static [SpecField] = &[SpecField::length("spacer.thickness")];
 }
 
 /// The envelope the device must fit in.
@@ -295,6 +574,12 @@ pub struct Envelope {
     pub length: Length,
 }
 
+impl Envelope {
+    /// The numeric fields of `[envelope]`.
+    pub const FIELDS: &'static [SpecField] =
+        &[SpecField::length("envelope.diameter"), SpecField::length("envelope.length")];
+}
+
 /// Model (not device) settings.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -303,19 +588,24 @@ pub struct Model {
     pub air_margin: Length,
 }
 
+impl Model {
+    /// The numeric fields of `[model]`.
+    pub const FIELDS: &'static [SpecField] = &[SpecField::length("model.air_margin")];
+}
+
 impl Default for Model {
     fn default() -> Self {
         Self { air_margin: Length(0.02) }
     }
 }
 
-/// A whole brake specification.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
+/// A whole brake specification. Read and written in the file's flat form (see the module docs);
+/// two specs are equal when they describe the same brake, wherever they were read from.
+#[derive(Debug, Clone)]
 pub struct BrakeSpec {
     /// A short name for reports.
     pub name: String,
-    /// The configuration.
+    /// The configuration and its working surfaces (`[drum]` or `[disc]`, and `[spacer]`).
     pub configuration: Configuration,
     /// Material of each part.
     pub materials: Materials,
@@ -323,22 +613,39 @@ pub struct BrakeSpec {
     pub shaft: Shaft,
     /// The static circuit.
     pub housing: Housing,
-    /// Drum working surfaces (drum, multi-drum, bidirectional).
-    #[serde(default)]
-    pub drum: Option<Drum>,
-    /// Disc working surfaces (single-disc, multi-disc).
-    #[serde(default)]
-    pub disc: Option<Disc>,
     /// The coil (one per unit).
     pub coil: Coil,
-    /// The spacer (bidirectional only).
-    #[serde(default)]
-    pub spacer: Option<Spacer>,
     /// The envelope.
     pub envelope: Envelope,
     /// Model settings.
-    #[serde(default)]
     pub model: Model,
+    /// Where it was read from, so that validation errors name the file and line.
+    source: SpecSource,
+}
+
+impl PartialEq for BrakeSpec {
+    fn eq(&self, other: &Self) -> bool {
+        // Destructured so that a new field cannot be forgotten; `source` is where, not what.
+        let Self {
+            name,
+            configuration,
+            materials,
+            shaft,
+            housing,
+            coil,
+            envelope,
+            model,
+            source: _,
+        } = self;
+        *name == other.name
+            && *configuration == other.configuration
+            && *materials == other.materials
+            && *shaft == other.shaft
+            && *housing == other.housing
+            && *coil == other.coil
+            && *envelope == other.envelope
+            && *model == other.model
+    }
 }
 
 /// A validation finding that does not stop the analysis.
@@ -356,92 +663,52 @@ impl std::fmt::Display for Warning {
     }
 }
 
-impl Wire {
-    /// The copper diameter (m): given, or from the AWG gauge.
-    pub fn diameter_m(&self) -> Option<f64> {
-        self.diameter
-            .map(Length::m)
-            .or_else(|| self.awg.map(mrbrake_materials::wire::awg_diameter_m))
-    }
-
-    /// The current rating (A): given, or from thesis Table 4.6 for AWG 20–26.
-    pub fn rated_current_a(&self) -> Option<f64> {
-        self.rated_current
-            .map(Current::a)
-            .or_else(|| self.awg.and_then(mrbrake_materials::wire::thesis_current_rating_a))
-    }
-}
-
-/// Collects errors, each naming its field and allowed range.
-#[derive(Debug, Default)]
-pub(crate) struct Problems {
-    pub errors: Vec<String>,
-    pub warnings: Vec<Warning>,
-}
-
-impl Problems {
-    pub fn error(&mut self, field: &str, message: impl Into<String>) {
-        self.errors.push(format!("{field}: {}", message.into()));
-    }
-
-    pub fn warn(&mut self, field: &str, message: impl Into<String>) {
-        self.warnings.push(Warning { field: field.into(), message: message.into() });
-    }
-
-    /// A length that must be > 0 (and below a sanity bound of 10 m).
-    pub fn positive(&mut self, field: &str, value: Length) {
-        let v = value.m();
-        if !(v.is_finite() && v > 0.0 && v < 10.0) {
-            self.error(field, format!("{} must be a length in (0, 10 m)", fmt_mm(v)));
-        }
-    }
-}
-
 /// Formats a length in millimetres for messages.
 pub(crate) fn fmt_mm(m: f64) -> String {
     format!("{:.4} mm", m * 1e3).replace(".0000 mm", " mm")
 }
 
 impl BrakeSpec {
-    /// Parses TOML text; `origin` (a file name) prefixes error messages.
+    /// Parses TOML text; `origin` (a file name) names the file in error messages, and validation
+    /// errors name its lines too.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, DesignError> {
-        toml::from_str(text).map_err(|e| DesignError::Input(format!("{origin}: {e}")))
+        Self::parse(text, origin, || SpecSource::read(origin, text))
+    }
+
+    /// Parses TOML text a program generated (a design study's point): like
+    /// [`Self::from_toml_str`], but its invalid fields are reported without file and line, which
+    /// would point into a text the user never saw.
+    pub fn from_generated_toml(text: &str, origin: &str) -> Result<Self, DesignError> {
+        Self::parse(text, origin, SpecSource::default)
+    }
+
+    fn parse(
+        text: &str,
+        origin: &str,
+        source: impl FnOnce() -> SpecSource,
+    ) -> Result<Self, DesignError> {
+        let raw: raw::RawSpec = toml::from_str(text)
+            .map_err(|e| DesignError::Parse { origin: origin.to_string(), error: Box::new(e) })?;
+        raw.into_spec(source())
     }
 
     /// The spec as TOML, lengths and currents as bare SI numbers: a file [`Self::from_toml_str`] reads
     /// back to an equal spec (design studies write their chosen designs this way).
     pub fn to_toml_string(&self) -> Result<String, DesignError> {
-        toml::to_string(self).map_err(|e| {
-            DesignError::Numerical(format!("cannot write spec '{}' as TOML: {e}", self.name))
-        })
+        toml::to_string(self)
+            .map_err(|source| DesignError::WriteToml { name: self.name.clone(), source })
     }
 
     /// Reads and parses a spec file.
     pub fn from_path(path: &std::path::Path) -> Result<Self, DesignError> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            DesignError::Input(format!("{}: cannot read the spec: {e}", path.display()))
-        })?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|source| DesignError::Read { path: path.to_path_buf(), source })?;
         Self::from_toml_str(&text, &path.display().to_string())
     }
 
-    /// Checks every rule; returns the warnings, or an input error listing every broken rule (each
-    /// naming its field and the allowed range). Includes the geometric rules (overlaps, fluid gaps,
-    /// envelope) by building the geometry.
-    pub fn validate(&self) -> Result<Vec<Warning>, DesignError> {
-        let mut p = Problems::default();
-        self.check_fields(&mut p);
-        if p.errors.is_empty() {
-            crate::geometry::check_assembly(self, &mut p);
-        }
-        if p.errors.is_empty() {
-            Ok(p.warnings)
-        } else {
-            Err(DesignError::Input(format!(
-                "invalid brake spec '{}':\n  {}",
-                self.name,
-                p.errors.join("\n  ")
-            )))
-        }
+    /// Where the spec was read from.
+    pub fn source(&self) -> &SpecSource {
+        &self.source
     }
 
     /// The wire diameter (m); validation guarantees it exists.
@@ -458,254 +725,6 @@ impl BrakeSpec {
                 self.coil.window_height.m(),
                 self.wire_diameter_m() / 2.0,
             ),
-        }
-    }
-
-    fn check_materials(&self, p: &mut Problems) {
-        use mrbrake_materials::MaterialKind;
-        let library = mrbrake_materials::library::names();
-        let kind_of = |name: &str| {
-            let wanted = name.trim().to_ascii_lowercase();
-            library.iter().find(|(n, _)| *n == wanted).map(|(_, k)| *k)
-        };
-        let names_of = |kind: Option<MaterialKind>| -> String {
-            library
-                .iter()
-                .filter(|(_, k)| kind.is_none_or(|want| *k == want))
-                .map(|(n, _)| *n)
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        let m = &self.materials;
-        let mut entries = vec![
-            ("materials.flux_path", &m.flux_path, None),
-            ("materials.non_magnetic", &m.non_magnetic, None),
-            ("materials.shaft", &m.shaft, None),
-            ("materials.fluid", &m.fluid, Some(MaterialKind::MrFluid)),
-            ("materials.coil", &m.coil, Some(MaterialKind::Linear)),
-            ("materials.surroundings", &m.surroundings, Some(MaterialKind::Linear)),
-        ];
-        if let Some(spacer) = &m.spacer {
-            entries.push(("materials.spacer", spacer, None));
-        }
-        for (field, name, wanted) in entries {
-            match (kind_of(name), wanted) {
-                (None, _) => p.error(
-                    field,
-                    format!("'{name}' is not in the material library; known: {}", names_of(wanted)),
-                ),
-                (Some(kind), Some(want)) if kind != want => p.error(
-                    field,
-                    format!(
-                        "'{name}' is a {} material; this part needs a {} material: {}",
-                        kind.as_str(),
-                        want.as_str(),
-                        names_of(Some(want))
-                    ),
-                ),
-                _ => {}
-            }
-        }
-        if kind_of(&m.flux_path).is_some_and(|k| k != MaterialKind::Steel) {
-            p.warn(
-                "materials.flux_path",
-                format!("'{}' is not a steel: the flux path will be non-magnetic", m.flux_path),
-            );
-        }
-        for (field, name) in [
-            ("materials.non_magnetic", &m.non_magnetic),
-            ("materials.spacer", m.spacer.as_ref().unwrap_or(&m.non_magnetic)),
-        ] {
-            if kind_of(name) == Some(MaterialKind::Steel) {
-                p.warn(
-                    field,
-                    format!("'{name}' is a steel: this part is meant to block flux (thesis 4.3.1)"),
-                );
-            }
-        }
-    }
-
-    fn check_fields(&self, p: &mut Problems) {
-        if self.name.trim().is_empty() {
-            p.error("name", "must not be empty");
-        }
-        self.check_materials(p);
-        p.positive("shaft.radius", self.shaft.radius);
-        let h = &self.housing;
-        p.positive("housing.outer_radius", h.outer_radius);
-        p.positive("housing.case_thickness", h.case_thickness);
-        p.positive("housing.end_plate_thickness", h.end_plate_thickness);
-        p.positive("housing.inner_case_thickness", h.inner_case_thickness);
-        for (field, value) in [
-            ("housing.cover_thickness", h.cover_thickness),
-            ("housing.rotor_disc_thickness", h.rotor_disc_thickness),
-        ] {
-            match value {
-                Some(v) => p.positive(field, v),
-                None if self.configuration.is_drum() => p.error(
-                    field,
-                    format!(
-                        "configuration '{}' needs it (a length > 0)",
-                        self.configuration.name()
-                    ),
-                ),
-                None => {}
-            }
-        }
-        p.positive("envelope.diameter", self.envelope.diameter);
-        p.positive("envelope.length", self.envelope.length);
-        p.positive("model.air_margin", self.model.air_margin);
-
-        let config = self.configuration;
-        if config.is_drum() {
-            match &self.drum {
-                None => p.error(
-                    "drum",
-                    format!("configuration '{}' needs a [drum] table", config.name()),
-                ),
-                Some(d) => {
-                    p.positive("drum.r0", d.r0);
-                    p.positive("drum.height", d.height);
-                    p.positive("drum.cylinder_thickness", d.cylinder_thickness);
-                    p.positive("drum.gap", d.gap);
-                    let range = if config == Configuration::Drum { 1..=1 } else { 1..=20 };
-                    if !range.contains(&d.rotating_cylinders) {
-                        p.error(
-                            "drum.rotating_cylinders",
-                            format!(
-                                "{} is outside the allowed range {}..={} for '{}'",
-                                d.rotating_cylinders,
-                                range.start(),
-                                range.end(),
-                                config.name()
-                            ),
-                        );
-                    }
-                }
-            }
-            if self.disc.is_some() {
-                p.error(
-                    "disc",
-                    format!("configuration '{}' uses [drum], not [disc]", config.name()),
-                );
-            }
-            if self.coil.placement == CoilPlacement::TwoSided {
-                p.error(
-                    "coil.placement",
-                    "'two-sided' is defined for disc configurations (thesis 3.1.4, Figure 3.9); drums accept 'inner' or 'outer'",
-                );
-            }
-        } else {
-            match &self.disc {
-                None => p.error(
-                    "disc",
-                    format!("configuration '{}' needs a [disc] table", config.name()),
-                ),
-                Some(d) => {
-                    p.positive("disc.inner_radius", d.inner_radius);
-                    p.positive("disc.outer_radius", d.outer_radius);
-                    p.positive("disc.thickness", d.thickness);
-                    p.positive("disc.gap", d.gap);
-                    if d.outer_radius.m() <= d.inner_radius.m() {
-                        p.error(
-                            "disc.outer_radius",
-                            format!(
-                                "{} must be greater than disc.inner_radius = {}",
-                                fmt_mm(d.outer_radius.m()),
-                                fmt_mm(d.inner_radius.m())
-                            ),
-                        );
-                    }
-                    let range = if config == Configuration::SingleDisc { 1..=1 } else { 1..=20 };
-                    if !range.contains(&d.count) {
-                        p.error(
-                            "disc.count",
-                            format!(
-                                "{} is outside the allowed range {}..={} for '{}'",
-                                d.count,
-                                range.start(),
-                                range.end(),
-                                config.name()
-                            ),
-                        );
-                    }
-                }
-            }
-            if self.drum.is_some() {
-                p.error(
-                    "drum",
-                    format!("configuration '{}' uses [disc], not [drum]", config.name()),
-                );
-            }
-        }
-        if config == Configuration::Bidirectional {
-            match &self.spacer {
-                None => p.error(
-                    "spacer",
-                    "the bidirectional brake needs a [spacer] table (its thickness)",
-                ),
-                Some(s) => p.positive("spacer.thickness", s.thickness),
-            }
-            if self.materials.spacer.as_deref().is_none_or(|s| s.trim().is_empty()) {
-                p.error(
-                    "materials.spacer",
-                    "the bidirectional brake needs the spacer's (non-magnetic) material",
-                );
-            }
-        } else if self.spacer.is_some() {
-            p.error(
-                "spacer",
-                format!("only the bidirectional brake has a spacer, not '{}'", config.name()),
-            );
-        }
-
-        let c = &self.coil;
-        p.positive("coil.window_width", c.window_width);
-        p.positive("coil.window_height", c.window_height);
-        p.positive("coil.bobbin_wall", c.bobbin_wall);
-        match (&c.wire.awg, &c.wire.diameter) {
-            (None, None) => p.error("coil.wire", "give either awg (18..=40) or diameter"),
-            (Some(_), Some(_)) => p.error("coil.wire", "give either awg or diameter, not both"),
-            (Some(g), None) if !(18..=40).contains(g) => {
-                p.error("coil.wire.awg", format!("{g} is outside 18..=40"))
-            }
-            (None, Some(d)) => p.positive("coil.wire.diameter", *d),
-            _ => {}
-        }
-        let current = c.max_current.a();
-        if !(current.is_finite() && current > 0.0 && current <= 100.0) {
-            p.error("coil.max_current", format!("{current} A must be in (0, 100] A"));
-        }
-        if let Some(d) = c.wire.diameter_m().filter(|d| *d > 0.0) {
-            if d > c.window_width.m() || d > c.window_height.m() {
-                p.error("coil.wire", format!("a {} wire does not fit the coil window", fmt_mm(d)));
-            } else {
-                let turns_fit = turns_in_window(c.window_width.m(), c.window_height.m(), d / 2.0);
-                match c.turns {
-                    Some(0) => p.error("coil.turns", "must be at least 1"),
-                    Some(n) if n > turns_fit => p.error(
-                        "coil.turns",
-                        format!("{n} turns do not fit the window: at most {turns_fit} by (4.2), (4.3) with a {} wire", fmt_mm(d)),
-                    ),
-                    _ => {}
-                }
-                // (4.1): J = I / (sqrt(3) d^2), the thesis's current density for hexagonal packing.
-                let j_a_per_mm2 = current / (3f64.sqrt() * (d * 1e3).powi(2));
-                if j_a_per_mm2 > 6.0 {
-                    p.warn(
-                        "coil.max_current",
-                        format!("current density (4.1) {j_a_per_mm2:.2} A/mm² exceeds the 2.5–6 A/mm² range the thesis allows for copper (4.2.2)"),
-                    );
-                }
-            }
-            if let Some(rating) = c.wire.rated_current_a()
-                && current > rating
-            {
-                p.warn(
-                    "coil.max_current",
-                    format!("{current} A exceeds the wire rating {rating} A"),
-                );
-            }
         }
     }
 }
