@@ -609,6 +609,7 @@ impl Model {
             None => solution_max.a_phi().to_vec(),
         };
         let s2 = self.solver.solve(Some(&start)).map_err(numerical)?;
+        // Taken again: the list borrows the model, which `energise` changed in between.
         let dir2_gaps = self.unit_gaps(1);
         let g2 = gap_results(&self.solver, &s2, &dir2_gaps, &self.fluid, options.speed_rad_s)?;
         solved.direction2_nm = Some(
