@@ -4,7 +4,10 @@
 //! Brief overview: [`analyze`] takes a validated [`BrakeSpec`] and [`AnalysisOptions`] and returns an
 //! [`Analysis`]: the torque–current curve, per-gap results at the maximum current, per-direction
 //! torque for the bidirectional brake, the coil's electrical figures and inductance, and the
-//! mechanical figures (mass, volume, rotor inertia, torque density).
+//! mechanical figures (mass, volume, rotor inertia, torque density). [`analyze_with_field`] also
+//! returns the field at the maximum current as plain data ([`FieldAtMaxCurrent`]: mesh, region
+//! names, B per triangle, flux function per node) for field maps and other front ends; the solver
+//! itself stays inside.
 //!
 //! # Torque models
 //! * **Local Bingham torque** (beyond the thesis): the yield stress follows the local flux density,
@@ -23,6 +26,11 @@
 //! * **Viscous torque** at the speed `ω` of the options (3.4): `2π R³ h η ω / g` per cylindrical gap
 //!   and `π η ω (R2⁴ − R1⁴) / (2 g)` per annular gap; plus a constant seal-friction torque.
 //!   The off-state torque is the total at zero current.
+//!
+//! The per-gap laws of the thesis method and of the viscous torque are those of [`formula`]
+//! ([`formula::cylinder_yield_torque`], [`formula::annulus_yield_torque`],
+//! [`formula::cylinder_viscous_torque`], [`formula::annulus_viscous_torque`]), the same that its
+//! closed-form configurations sum.
 //!
 //! For the bidirectional brake the sweep energises the coil of unit 1 only (the controller drives one
 //! brake at a time); the torque of direction 1 is that of unit 1's gaps. Unit 2 is solved once at the
@@ -298,19 +306,88 @@ pub struct Analysis {
     pub warnings: Vec<String>,
 }
 
-/// The pieces a caller may want to keep for plots (field map) after the analysis.
+/// The magnetic field at the maximum current (unit 1 energised) as owned plain data, with no solver
+/// attached: what a field map, a matplotlib `tripcolor` of a future Python `.field()` or an HTML
+/// report needs. [`analyze_with_field`] returns it; [`analyze`] does not build it (design studies
+/// run thousands of analyses and never draw the field).
+///
+/// The triangles are those of the mesh's vertices for both element orders: with quadratic (P2)
+/// elements `A_phi` and the flux function are given at the vertices and B at the centroids, so a
+/// P2 field is drawn on the same triangles as a P1 one.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FieldAtMaxCurrent {
-    /// The solver (mesh, materials, post-processing).
-    pub solver: Solver,
-    /// The solution at the maximum current (unit 1 energised).
-    pub solution: Solution,
-    /// The geometry.
-    pub geometry: BrakeGeometry,
+    /// Coil current of unit 1 at which the field was solved (A).
+    #[serde(rename = "current_A")]
+    pub current_a: f64,
+    /// Element order of the solution (1 or 2).
+    pub order: usize,
+    /// Node coordinates `[r, z]` (m).
+    pub nodes: Vec<[f64; 2]>,
+    /// Triangles (node indices, counter-clockwise).
+    pub triangles: Vec<[usize; 3]>,
+    /// Region tag of every triangle (named in [`Self::regions`]).
+    pub region_tags: Vec<u32>,
+    /// Every region of the geometry: its tag, part name and material.
+    pub regions: Vec<FieldRegion>,
+    /// `[B_r, B_z]` at the centroid of every triangle (T).
+    #[serde(rename = "b_T")]
+    pub b_t: Vec<[f64; 2]>,
+    /// `|B|` at the centroid of every triangle (T).
+    #[serde(rename = "b_abs_T")]
+    pub b_abs_t: Vec<f64>,
+    /// `A_phi` at the nodes (Wb/m).
+    #[serde(rename = "a_phi_Wb_per_m")]
+    pub a_phi_wb_per_m: Vec<f64>,
+    /// Flux function `ψ = r A_phi` at the nodes (Wb/rad): the flux through the disc of radius r at
+    /// height z is `2π ψ`, so flux lines are its level lines.
+    #[serde(rename = "flux_function_Wb")]
+    pub flux_function_wb: Vec<f64>,
+}
+
+/// One region of a [`FieldAtMaxCurrent`]: a part of the brake geometry (or the air around it).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct FieldRegion {
+    /// The tag that [`FieldAtMaxCurrent::region_tags`] refers to.
+    pub tag: u32,
+    /// Part name (e.g. `"shaft"`, `"gap 3"`).
+    pub name: String,
+    /// Library material of the part.
+    pub material: String,
+}
+
+impl FieldAtMaxCurrent {
+    /// The field of `solution` on `model`'s mesh, the regions named after its parts.
+    fn new(model: &Model, solution: &Solution) -> Self {
+        let snapshot = model.solver.field_snapshot(solution);
+        let regions = model
+            .geometry
+            .regions
+            .iter()
+            .map(|r| FieldRegion { tag: r.tag, name: r.name.clone(), material: r.material.clone() })
+            .collect();
+        Self {
+            current_a: model.max_current,
+            order: model.order.degree(),
+            nodes: snapshot.nodes,
+            triangles: snapshot.triangles,
+            region_tags: snapshot.region_tags,
+            regions,
+            b_t: snapshot.element_b_t,
+            b_abs_t: snapshot.element_b_abs_t,
+            a_phi_wb_per_m: snapshot.a_phi_wb_per_m,
+            flux_function_wb: snapshot.flux_function_wb,
+        }
+    }
+
+    /// The part name of region `tag` (`None` for a tag no region has).
+    pub fn region_name(&self, tag: u32) -> Option<&str> {
+        self.regions.iter().find(|r| r.tag == tag).map(|r| r.name.as_str())
+    }
 }
 
 /// Runs the whole analysis of `spec`.
 pub fn analyze(spec: &BrakeSpec, options: &AnalysisOptions) -> Result<Analysis, DesignError> {
-    analyze_with_field(spec, options).map(|(a, _)| a)
+    run_analysis(spec, options, |_, _| ()).map(|(analysis, ())| analysis)
 }
 
 /// Runs the analysis and also returns the field at the maximum current (for field maps).
@@ -318,6 +395,16 @@ pub fn analyze_with_field(
     spec: &BrakeSpec,
     options: &AnalysisOptions,
 ) -> Result<(Analysis, FieldAtMaxCurrent), DesignError> {
+    run_analysis(spec, options, FieldAtMaxCurrent::new)
+}
+
+/// The analysis; `keep_field` takes what the caller wants of the field at the maximum current
+/// (unit 1 energised) before the solver is dropped.
+fn run_analysis<F>(
+    spec: &BrakeSpec,
+    options: &AnalysisOptions,
+    keep_field: impl FnOnce(&Model, &Solution) -> F,
+) -> Result<(Analysis, F), DesignError> {
     let t_start = Instant::now();
     if options.points < 2 {
         return Err(DesignError::Input(format!(
@@ -334,107 +421,38 @@ pub fn analyze_with_field(
     let mesh = Arc::new(mesh_build::mesh(&geometry, options.mesh)?);
     let t_mesh = t_start.elapsed().as_secs_f64();
 
-    let fluid = fluid_of(spec)?;
-    let problem = problem_of(&geometry, Arc::clone(&mesh))?;
     let t0 = Instant::now();
-    let solver_options = SolverOptions { order: options.order, ..SolverOptions::default() };
-    let mut solver = Solver::new(problem, solver_options).map_err(numerical)?;
+    let mut model = Model::new(spec, geometry, Arc::clone(&mesh), options)?;
     let t_setup = t0.elapsed().as_secs_f64();
 
-    let max_current = spec.coil.max_current.a();
-    let turns = spec.turns();
-    let unit1_coils: Vec<u32> =
-        geometry.coils.iter().filter(|c| c.unit == 0).map(|c| c.tag).collect();
-    let unit2_coils: Vec<u32> =
-        geometry.coils.iter().filter(|c| c.unit == 1).map(|c| c.tag).collect();
-    let dir1_gaps: Vec<&GapInfo> = geometry.gaps.iter().filter(|g| g.unit == 0).collect();
-    let dir2_gaps: Vec<&GapInfo> = geometry.gaps.iter().filter(|g| g.unit == 1).collect();
-
-    // The sweep: unit 1 energised, warm-started from the previous current.
     let t0 = Instant::now();
-    let mut curve = Vec::with_capacity(options.points);
-    let mut previous: Option<Solution> = None;
-    let mut dir1_at_max = Vec::new();
-    for k in 0..options.points {
-        let current = max_current * k as f64 / (options.points - 1) as f64;
-        set_coils(&mut solver, &geometry, &unit1_coils, &unit2_coils, current, 0.0, turns)?;
-        let solution = solver.solve(previous.as_ref().map(|s| s.a_phi())).map_err(numerical)?;
-        let gaps = gap_results(&solver, &solution, &dir1_gaps, &fluid, options.speed_rad_s)?;
-        let point = curve_point(&solver, &solution, &gaps, &dir1_gaps, &fluid, current, options)?;
-        curve.push(point);
-        if k + 1 == options.points {
-            dir1_at_max = gaps;
-        }
-        previous = Some(solution);
-    }
-    let solution_max = previous.expect("the sweep has at least two points");
-    let mut t_solve = t0.elapsed().as_secs_f64();
-
-    // Cross-coupling into the idle unit, and direction 2 with its own coil.
-    let t0 = Instant::now();
-    let mut gaps = dir1_at_max;
-    let mut direction2 = None;
-    let mut cross_coupling = None;
-    if !dir2_gaps.is_empty() {
-        let idle = gap_results(&solver, &solution_max, &dir2_gaps, &fluid, 0.0)?;
-        let idle_yield: f64 = idle.iter().map(|g| g.torque_nm).sum();
-        let active_yield: f64 = gaps.iter().map(|g| g.torque_nm).sum();
-        cross_coupling = Some(if active_yield > 0.0 { idle_yield / active_yield } else { 0.0 });
-        set_coils(&mut solver, &geometry, &unit1_coils, &unit2_coils, 0.0, max_current, turns)?;
-        // Unit 2 is unit 1 mirrored, so direction 1's field mirrored is direction 2's up to the
-        // mesh (the mesher need not be symmetric): a start a few Newton steps from the answer.
-        let start = match geometry.mirror_z {
-            Some(z) => mirrored_potential(&solver, &solution_max, z),
-            None => solution_max.a_phi().to_vec(),
-        };
-        let s2 = solver.solve(Some(&start)).map_err(numerical)?;
-        let g2 = gap_results(&solver, &s2, &dir2_gaps, &fluid, options.speed_rad_s)?;
-        direction2 = Some(
-            g2.iter().map(|g| g.torque_nm + g.viscous_torque_nm).sum::<f64>()
-                + options.seal_friction_nm,
-        );
-        gaps.extend(g2);
-        // Leave the solver energised as for the returned solution.
-        set_coils(&mut solver, &geometry, &unit1_coils, &unit2_coils, max_current, 0.0, turns)?;
-    }
-    t_solve += t0.elapsed().as_secs_f64();
+    let sweep = model.sweep(options)?;
+    let solved = model.direction2(sweep, options)?;
+    let t_solve = t0.elapsed().as_secs_f64();
 
     // Coil: figures from the formulas plus the field's inductance.
     let t0 = Instant::now();
     let coil = coil_result(
         spec,
-        &geometry,
-        &mut solver,
-        &solution_max,
-        &unit1_coils,
-        max_current,
+        &model.geometry,
+        &mut model.solver,
+        &solved.solution_at_max,
+        &model.unit_coils[0],
+        model.max_current,
         options,
     )?;
-    let last = *curve.last().expect("the sweep has at least two points");
-    let first = curve[0];
-    let mechanics = mechanics(&geometry, spec, last.torque_nm)?;
-    let flux_path = flux_path_field(&solver, &solution_max, &geometry)?;
-    let torque = TorqueSummary {
-        at_max_current_nm: last.torque_nm,
-        off_state_nm: first.torque_nm,
-        thesis_formula_nm: last.thesis_formula_nm,
-        mean_b_t: last.mean_b_t,
-        dynamic_range: if first.torque_nm > 0.0 {
-            last.torque_nm / first.torque_nm
-        } else {
-            f64::INFINITY
-        },
-        direction2_at_max_current_nm: direction2,
-        cross_coupling,
-    };
+    let last = *solved.curve.last().expect("the sweep has at least two points");
+    let mechanics = mechanics(&model.geometry, spec, last.torque_nm)?;
+    let flux_path = flux_path_field(&model.solver, &solved.solution_at_max, &model.geometry)?;
+    let torque = torque_summary(&solved);
     let t_post = t0.elapsed().as_secs_f64();
     let analysis = Analysis {
         name: spec.name.clone(),
         configuration: spec.configuration.name(),
-        max_current_a: max_current,
-        torque_current_curve: curve,
+        max_current_a: model.max_current,
+        torque_current_curve: solved.curve,
         torque,
-        gaps,
+        gaps: solved.gaps,
         coil,
         mechanics,
         flux_path,
@@ -442,7 +460,7 @@ pub fn analyze_with_field(
             nodes: mesh.nodes.len(),
             elements: mesh.triangles.len(),
             order: options.order.degree(),
-            unknowns: solver.unknowns(),
+            unknowns: model.solver.unknowns(),
         },
         speed_rad_s: options.speed_rad_s,
         timings_s: Timings {
@@ -454,7 +472,175 @@ pub fn analyze_with_field(
         },
         warnings,
     };
-    Ok((analysis, FieldAtMaxCurrent { solver, solution: solution_max, geometry }))
+    let field = keep_field(&model, &solved.solution_at_max);
+    Ok((analysis, field))
+}
+
+/// The field solver of one brake, with the coils of each unit and the fluid of its gaps.
+struct Model {
+    geometry: BrakeGeometry,
+    fluid: Arc<MrFluid>,
+    solver: Solver,
+    /// Coil tags of unit 1 and unit 2 (empty for a single brake).
+    unit_coils: [Vec<u32>; 2],
+    max_current: f64,
+    turns: u32,
+    order: ElementOrder,
+}
+
+/// The direction-1 sweep: the curve, unit 1's gaps and the solution at the maximum current.
+struct Sweep {
+    curve: Vec<CurvePoint>,
+    gaps_at_max: Vec<GapResult>,
+    solution_at_max: Solution,
+}
+
+/// Both directions solved: the sweep's curve, every gap at the maximum current, direction 2's
+/// torque and the cross-coupling into the idle unit (bidirectional brakes only).
+struct Solved {
+    curve: Vec<CurvePoint>,
+    gaps: Vec<GapResult>,
+    solution_at_max: Solution,
+    direction2_nm: Option<f64>,
+    cross_coupling: Option<f64>,
+}
+
+impl Model {
+    /// The magnetostatic problem of `geometry` on `mesh` and its solver.
+    fn new(
+        spec: &BrakeSpec,
+        geometry: BrakeGeometry,
+        mesh: Arc<Mesh>,
+        options: &AnalysisOptions,
+    ) -> Result<Self, DesignError> {
+        let fluid = fluid_of(spec)?;
+        let problem = problem_of(&geometry, mesh)?;
+        let solver_options = SolverOptions { order: options.order, ..SolverOptions::default() };
+        let solver = Solver::new(problem, solver_options).map_err(numerical)?;
+        let unit_coils = |unit: usize| -> Vec<u32> {
+            geometry.coils.iter().filter(|c| c.unit == unit).map(|c| c.tag).collect()
+        };
+        let unit_coils = [unit_coils(0), unit_coils(1)];
+        Ok(Self {
+            fluid,
+            solver,
+            unit_coils,
+            max_current: spec.coil.max_current.a(),
+            turns: spec.turns(),
+            order: options.order,
+            geometry,
+        })
+    }
+
+    /// Drives unit 1's coils with `i1` and unit 2's with `i2`.
+    fn energise(&mut self, i1: f64, i2: f64) -> Result<(), DesignError> {
+        let [unit1, unit2] = &self.unit_coils;
+        set_coils(&mut self.solver, &self.geometry, unit1, unit2, i1, i2, self.turns)
+    }
+
+    /// The fluid gaps of `unit` (0 or 1).
+    fn unit_gaps(&self, unit: usize) -> Vec<&GapInfo> {
+        self.geometry.gaps.iter().filter(|g| g.unit == unit).collect()
+    }
+
+    /// The torque–current sweep: unit 1 energised, warm-started from the previous current.
+    fn sweep(&mut self, options: &AnalysisOptions) -> Result<Sweep, DesignError> {
+        let mut curve = Vec::with_capacity(options.points);
+        let mut previous: Option<Solution> = None;
+        let mut gaps_at_max = Vec::new();
+        for k in 0..options.points {
+            let current = self.max_current * k as f64 / (options.points - 1) as f64;
+            self.energise(current, 0.0)?;
+            let solution =
+                self.solver.solve(previous.as_ref().map(|s| s.a_phi())).map_err(numerical)?;
+            let dir1_gaps = self.unit_gaps(0);
+            let speed = options.speed_rad_s;
+            let gaps = gap_results(&self.solver, &solution, &dir1_gaps, &self.fluid, speed)?;
+            let point = curve_point(
+                &self.solver,
+                &solution,
+                &gaps,
+                &dir1_gaps,
+                &self.fluid,
+                current,
+                options,
+            )?;
+            curve.push(point);
+            if k + 1 == options.points {
+                gaps_at_max = gaps;
+            }
+            previous = Some(solution);
+        }
+        let solution_at_max = previous.expect("the sweep has at least two points");
+        Ok(Sweep { curve, gaps_at_max, solution_at_max })
+    }
+
+    /// Cross-coupling into the idle unit, and direction 2 with its own coil (bidirectional brakes);
+    /// leaves the solver energised as for the sweep's maximum current.
+    fn direction2(
+        &mut self,
+        sweep: Sweep,
+        options: &AnalysisOptions,
+    ) -> Result<Solved, DesignError> {
+        let Sweep { curve, gaps_at_max: mut gaps, solution_at_max } = sweep;
+        let mut solved = Solved {
+            curve,
+            gaps: Vec::new(),
+            solution_at_max,
+            direction2_nm: None,
+            cross_coupling: None,
+        };
+        if self.unit_gaps(1).is_empty() {
+            solved.gaps = gaps;
+            return Ok(solved);
+        }
+        let dir2_gaps = self.unit_gaps(1);
+        let solution_max = &solved.solution_at_max;
+        let idle = gap_results(&self.solver, solution_max, &dir2_gaps, &self.fluid, 0.0)?;
+        let idle_yield: f64 = idle.iter().map(|g| g.torque_nm).sum();
+        let active_yield: f64 = gaps.iter().map(|g| g.torque_nm).sum();
+        solved.cross_coupling =
+            Some(if active_yield > 0.0 { idle_yield / active_yield } else { 0.0 });
+        self.energise(0.0, self.max_current)?;
+        // Unit 2 is unit 1 mirrored, so direction 1's field mirrored is direction 2's up to the
+        // mesh (the mesher need not be symmetric): a start a few Newton steps from the answer.
+        let start = match self.geometry.mirror_z {
+            Some(z) => mirrored_potential(&self.solver, solution_max, z),
+            None => solution_max.a_phi().to_vec(),
+        };
+        let s2 = self.solver.solve(Some(&start)).map_err(numerical)?;
+        // Taken again: the list borrows the model, which `energise` changed in between.
+        let dir2_gaps = self.unit_gaps(1);
+        let g2 = gap_results(&self.solver, &s2, &dir2_gaps, &self.fluid, options.speed_rad_s)?;
+        solved.direction2_nm = Some(
+            g2.iter().map(|g| g.torque_nm + g.viscous_torque_nm).sum::<f64>()
+                + options.seal_friction_nm,
+        );
+        gaps.extend(g2);
+        solved.gaps = gaps;
+        // Leave the solver energised as for the returned solution.
+        self.energise(self.max_current, 0.0)?;
+        Ok(solved)
+    }
+}
+
+/// The torque summary from the solved curve and directions.
+fn torque_summary(solved: &Solved) -> TorqueSummary {
+    let last = *solved.curve.last().expect("the sweep has at least two points");
+    let first = solved.curve[0];
+    TorqueSummary {
+        at_max_current_nm: last.torque_nm,
+        off_state_nm: first.torque_nm,
+        thesis_formula_nm: last.thesis_formula_nm,
+        mean_b_t: last.mean_b_t,
+        dynamic_range: if first.torque_nm > 0.0 {
+            last.torque_nm / first.torque_nm
+        } else {
+            f64::INFINITY
+        },
+        direction2_at_max_current_nm: solved.direction2_nm,
+        cross_coupling: solved.cross_coupling,
+    }
 }
 
 /// |B| statistics over the flux-path parts ([`PartKind::FluxPath`]).
@@ -600,26 +786,23 @@ fn gap_results(
         .collect()
 }
 
-/// Viscous torque of one gap at relative speed `omega` (3.4): cylindrical `2π R³ h η ω / g`; annular
-/// (one face of (3.6)) `π η ω (R2⁴ − R1⁴) / (2 g)`.
+/// Viscous torque of one gap at relative speed `omega` (3.4), by the per-surface laws of
+/// [`formula`]: cylindrical `2π R³ h η ω / g`; annular (one face of (3.6)) `π η ω (R2⁴ − R1⁴)/(2 g)`.
 fn viscous_torque(gap: &GapInfo, eta: f64, omega: f64) -> f64 {
-    let pi = std::f64::consts::PI;
+    let viscous = formula::Viscous { eta_pa_s: eta, omega_rad_s: omega.abs(), gap_m: gap.width_m };
     match gap.orientation {
         GapOrientation::Cylindrical => {
-            2.0 * pi * gap.shear_radius_m.powi(3) * gap.height_m * eta * omega.abs() / gap.width_m
+            formula::cylinder_viscous_torque(gap.shear_radius_m, gap.height_m, &viscous)
         }
         GapOrientation::Annular => {
-            let r1 = gap.rect.r0;
-            let r2 = gap.rect.r1;
-            pi * eta * omega.abs() * (r2.powi(4) - r1.powi(4)) / (2.0 * gap.width_m)
+            formula::annulus_viscous_torque(1.0, gap.rect.r0, gap.rect.r1, &viscous)
         }
     }
 }
 
 /// The thesis's method: volume-mean |B| over the direction's gaps → τ_y → (4.4) for cylindrical
-/// surfaces, one face of (3.7) for annular ones.
+/// surfaces, one face of (3.7) for annular ones (the laws of [`formula`]).
 fn thesis_torque(gaps: &[GapResult], infos: &[&GapInfo], fluid: &MrFluid) -> (f64, f64) {
-    let pi = std::f64::consts::PI;
     let mut weighted = 0.0;
     let mut volume = 0.0;
     for info in infos {
@@ -633,9 +816,11 @@ fn thesis_torque(gaps: &[GapResult], infos: &[&GapInfo], fluid: &MrFluid) -> (f6
     let torque = infos
         .iter()
         .map(|g| match g.orientation {
-            GapOrientation::Cylindrical => 2.0 * pi * g.height_m * tau * g.shear_radius_m.powi(2),
+            GapOrientation::Cylindrical => {
+                formula::cylinder_yield_torque(g.height_m, tau, g.shear_radius_m.powi(2))
+            }
             GapOrientation::Annular => {
-                2.0 * pi * tau * (g.rect.r1.powi(3) - g.rect.r0.powi(3)) / 3.0
+                formula::annulus_yield_torque(1.0, g.rect.r0, g.rect.r1, tau)
             }
         })
         .sum();
@@ -803,6 +988,44 @@ fn mechanics(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The field product is the solution at the maximum current on the mesh, with every region
+    /// named, and asking for it changes no result.
+    #[test]
+    fn the_field_at_max_current_is_plain_data_of_the_last_solve() {
+        let spec = crate::spec::default_spec();
+        let options = AnalysisOptions { mesh: MeshLevel::Coarse, points: 2, ..Default::default() };
+        let (analysis, field) = analyze_with_field(&spec, &options).unwrap();
+        let alone = analyze(&spec, &options).unwrap();
+        assert_eq!(
+            alone.torque.at_max_current_nm.to_bits(),
+            analysis.torque.at_max_current_nm.to_bits()
+        );
+        assert_eq!(field.current_a.to_bits(), analysis.max_current_a.to_bits());
+        assert_eq!(
+            (field.nodes.len(), field.triangles.len()),
+            (analysis.mesh.nodes, analysis.mesh.elements)
+        );
+        assert_eq!(field.order, 1);
+        let n = field.nodes.len();
+        assert_eq!(field.flux_function_wb.len(), n);
+        assert_eq!(field.a_phi_wb_per_m.len(), n);
+        for (k, p) in field.nodes.iter().enumerate() {
+            let psi = p[0] * field.a_phi_wb_per_m[k];
+            assert!((field.flux_function_wb[k] - psi).abs() <= 1e-15 * psi.abs().max(1e-30));
+        }
+        assert_eq!(field.b_abs_t.len(), field.triangles.len());
+        for (b, b_abs) in field.b_t.iter().zip(&field.b_abs_t) {
+            assert!((b[0].hypot(b[1]) - b_abs).abs() <= 1e-15 * b_abs.max(1e-30));
+        }
+        assert!(field.triangles.iter().flatten().all(|&v| v < n));
+        assert!(field.region_tags.iter().all(|&tag| field.region_name(tag).is_some()));
+        // The centroid values sample the field of the flux-path statistics: their peak reaches
+        // the most loaded steel part's 90 % quantile.
+        let b_max = field.b_abs_t.iter().fold(0.0_f64, |m, &b| m.max(b));
+        assert!(b_max >= analysis.flux_path.q90_b_t, "{b_max} < {}", analysis.flux_path.q90_b_t);
+        assert!(field.region_name(u32::MAX).is_none());
+    }
 
     /// Direction 2 warm-started from direction 1's field mirrored (the bidirectional brake's unit
     /// 2 is unit 1 mirrored) converges to the same field as a cold start, in fewer iterations.

@@ -15,6 +15,11 @@
 //! | drum (3.9) | `4 pi tau_y R^2 h` | `4 pi eta omega R^3 h / g` |
 //! | multi-drum (4.4, 4.5) | `2 pi h tau_y sum_k R_k^2` | `2 pi h eta omega sum_k R_k^3 / g` |
 //!
+//! The laws of one sheared surface, which the configurations above and the finite-element analysis
+//! ([`crate::analysis`]) both sum, are [`annulus_yield_torque`] and [`annulus_viscous_torque`] (an
+//! annular face, as on a disc) and [`cylinder_yield_torque`] and [`cylinder_viscous_torque`] (a
+//! cylindrical surface, as on a drum).
+//!
 //! ```
 //! use mrbrake_design::formula::{single_disc, Viscous};
 //! let t = single_disc(0.0225, 0.0275, 24_315.0, None).unwrap();
@@ -99,6 +104,41 @@ fn check_radii(r1: f64, r2: f64) -> Result<(), DesignError> {
     Ok(())
 }
 
+/// Yield torque of `faces` annular fluid faces between radii `r_inner_m` and `r_outer_m`, one face
+/// of thesis (3.6)/(3.7) each: `faces · 2π τ_y (R2³ − R1³)/3` (`∫_{R1}^{R2} 2π r² τ_y dr` per face).
+///
+/// A disc shears two faces, so (3.7) is `faces = 2` and (3.8) `faces = 2n`. No input checks: the
+/// configuration functions check theirs, the analysis takes radii from a validated geometry.
+pub fn annulus_yield_torque(faces: f64, r_inner_m: f64, r_outer_m: f64, tau_y_pa: f64) -> f64 {
+    faces * 2.0 * PI * tau_y_pa * (r_outer_m.powi(3) - r_inner_m.powi(3)) / 3.0
+}
+
+/// Viscous torque of `faces` annular fluid faces between radii `r_inner_m` and `r_outer_m`, the
+/// viscous term of thesis (3.6) per face: `faces · π η ω (R2⁴ − R1⁴)/(2 g)`
+/// (`∫_{R1}^{R2} 2π r³ η ω / g dr` per face, from (3.4)).
+pub fn annulus_viscous_torque(
+    faces: f64,
+    r_inner_m: f64,
+    r_outer_m: f64,
+    viscous: &Viscous,
+) -> f64 {
+    faces * PI * viscous.eta_pa_s * viscous.omega_rad_s * (r_outer_m.powi(4) - r_inner_m.powi(4))
+        / (2.0 * viscous.gap_m)
+}
+
+/// Yield torque of cylindrical fluid surfaces of height `h_m` sheared at radii `R_k`, thesis (4.4):
+/// `2π h τ_y Σ_k R_k²`, from the sum of the squared radii (`R²` for one surface, (3.5) integrated
+/// over the cylinder).
+pub fn cylinder_yield_torque(h_m: f64, tau_y_pa: f64, sum_of_squared_radii_m2: f64) -> f64 {
+    2.0 * PI * h_m * tau_y_pa * sum_of_squared_radii_m2
+}
+
+/// Viscous torque of one cylindrical fluid surface of radius `r_m` and height `h_m`, from (3.4):
+/// `2π R³ h η ω / g` (the shear stress `η ω R / g` on the area `2π R h`, at arm `R`).
+pub fn cylinder_viscous_torque(r_m: f64, h_m: f64, viscous: &Viscous) -> f64 {
+    2.0 * PI * r_m.powi(3) * h_m * viscous.eta_pa_s * viscous.omega_rad_s / viscous.gap_m
+}
+
 /// Single-disc brake torque, thesis (3.6) with its viscous term and (3.7) without it.
 ///
 /// `T = 2 ∫_{R1}^{R2} 2π (τ_y r² + η ω r³ / g) dr = 4π τ_y (R2³ − R1³)/3 + π η ω (R2⁴ − R1⁴)/g`:
@@ -126,11 +166,10 @@ pub fn multi_disc(
     check_radii(r1_m, r2_m)?;
     non_negative("tau_y (yield stress)", tau_y_pa)?;
     let viscous = check_viscous(viscous)?;
-    let n = f64::from(n);
-    let yield_nm = n * 4.0 * PI * tau_y_pa * (r2_m.powi(3) - r1_m.powi(3)) / 3.0;
-    let viscous_nm = viscous.map_or(0.0, |v| {
-        n * PI * v.eta_pa_s * v.omega_rad_s * (r2_m.powi(4) - r1_m.powi(4)) / v.gap_m
-    });
+    // Each disc shears fluid on both faces.
+    let faces = 2.0 * f64::from(n);
+    let yield_nm = annulus_yield_torque(faces, r1_m, r2_m, tau_y_pa);
+    let viscous_nm = viscous.map_or(0.0, |v| annulus_viscous_torque(faces, r1_m, r2_m, &v));
     Ok(BrakeTorque::new(yield_nm, viscous_nm))
 }
 
@@ -188,7 +227,7 @@ pub fn multi_drum(
     let radii = multi_drum_radii(r0_m, d_m, g_m, surfaces);
     let sum_r2: f64 = radii.iter().map(|r| r * r).sum();
     let sum_r3: f64 = radii.iter().map(|r| r * r * r).sum();
-    let yield_nm = 2.0 * PI * h_m * tau_y_pa * sum_r2;
+    let yield_nm = cylinder_yield_torque(h_m, tau_y_pa, sum_r2);
     let viscous_nm =
         viscous.map_or(0.0, |v| 2.0 * PI * h_m * v.eta_pa_s * v.omega_rad_s * sum_r3 / v.gap_m);
     Ok(BrakeTorque::new(yield_nm, viscous_nm))
@@ -373,6 +412,64 @@ mod tests {
         // A drum with both faces at R equals two surfaces at the same radius (d + g = 0 limit).
         let b = 2.0 * multi_drum(0.025, 0.009, 1e-12, 1e-12, 1, 1000.0, None).unwrap().total_nm;
         assert!(rel(a.total_nm, b) < 1e-9);
+    }
+
+    /// The analysis summed its gaps, and `multi_disc` its discs, with these expressions before
+    /// they called the per-surface laws; the laws give the same bits, so no result moved.
+    #[test]
+    fn per_surface_laws_reproduce_the_analysis_expressions_bit_for_bit() {
+        for k in 0..200 {
+            let x = f64::from(k);
+            let (r0, r1, h, g) =
+                (0.01 + 1e-4 * x, 0.02 + 3e-4 * x, 0.009 - 2e-5 * x, 5e-4 + 1e-6 * x);
+            let (tau, eta, omega) = (1e3 + 157.0 * x, 0.05 + 1e-3 * x, -3.0 + 0.07 * x);
+            let v = Viscous { eta_pa_s: eta, omega_rad_s: omega.abs(), gap_m: g };
+            let pairs = [
+                (
+                    cylinder_viscous_torque(r1, h, &v),
+                    2.0 * PI * r1.powi(3) * h * eta * omega.abs() / g,
+                ),
+                (
+                    annulus_viscous_torque(1.0, r0, r1, &v),
+                    PI * eta * omega.abs() * (r1.powi(4) - r0.powi(4)) / (2.0 * g),
+                ),
+                (cylinder_yield_torque(h, tau, r1.powi(2)), 2.0 * PI * h * tau * r1.powi(2)),
+                (
+                    annulus_yield_torque(1.0, r0, r1, tau),
+                    2.0 * PI * tau * (r1.powi(3) - r0.powi(3)) / 3.0,
+                ),
+            ];
+            // multi_disc summed n discs as `n · 4π …` and `n · π … / g` before it called the laws.
+            let n = 1 + k % 9;
+            let t = multi_disc(n, r0, r1, tau, Some(v)).unwrap();
+            let n = f64::from(n);
+            let discs = [
+                (t.yield_nm, n * 4.0 * PI * tau * (r1.powi(3) - r0.powi(3)) / 3.0),
+                (t.viscous_nm, n * PI * eta * omega.abs() * (r1.powi(4) - r0.powi(4)) / g),
+            ];
+            for (law, before) in pairs.into_iter().chain(discs) {
+                assert_eq!(law.to_bits(), before.to_bits(), "{law:e} vs {before:e} at k = {k}");
+            }
+        }
+    }
+
+    /// (3.8) is 2n annular faces, (3.9) two cylindrical surfaces at R, (4.4) the sum over R_k.
+    #[test]
+    fn configurations_are_sums_of_the_per_surface_laws() {
+        let v = Viscous { eta_pa_s: 0.11, omega_rad_s: 6.0, gap_m: 0.5e-3 };
+        let discs = multi_disc(5, 0.012, 0.02, 24e3, Some(v)).unwrap();
+        assert!(rel(discs.yield_nm, 10.0 * annulus_yield_torque(1.0, 0.012, 0.02, 24e3)) < 1e-14);
+        assert!(rel(discs.viscous_nm, 10.0 * annulus_viscous_torque(1.0, 0.012, 0.02, &v)) < 1e-14);
+        let one = drum(0.025, 0.009, 25e3, Some(v)).unwrap();
+        assert!(rel(one.yield_nm, 2.0 * cylinder_yield_torque(0.009, 25e3, 0.025 * 0.025)) < 1e-14);
+        assert!(rel(one.viscous_nm, 2.0 * cylinder_viscous_torque(0.025, 0.009, &v)) < 1e-14);
+        let stack = multi_drum(25e-3, 9e-3, 1e-3, 0.5e-3, 4, 25.67e3, Some((0.11, 6.0))).unwrap();
+        let radii = multi_drum_radii(25e-3, 1e-3, 0.5e-3, 4);
+        let yield_sum: f64 =
+            radii.iter().map(|&r| cylinder_yield_torque(9e-3, 25.67e3, r * r)).sum();
+        let viscous_sum: f64 = radii.iter().map(|&r| cylinder_viscous_torque(r, 9e-3, &v)).sum();
+        assert!(rel(stack.yield_nm, yield_sum) < 1e-14);
+        assert!(rel(stack.viscous_nm, viscous_sum) < 1e-14);
     }
 
     #[test]

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use mrbrake_sim::haptic::zwidth::{Interaction, ZWidthCell, ZWidthMap};
-use mrbrake_sim::haptic::{Trace, WallMetrics};
+use mrbrake_sim::haptic::{DeviceKind, HapticRun, Trace, WallMetrics};
 use serde_json::{Value, json};
 
 use crate::ReportError;
@@ -108,6 +108,32 @@ pub fn wall_metrics_text(m: &WallMetrics, stiffness_nm_per_rad: f64) -> String {
         m.current_peak_a, m.fault_ticks
     );
     out
+}
+
+/// The recorded trace of `run` (an error names `device` if the run was simulated without
+/// recording).
+fn trace_of(device: DeviceKind, run: &HapticRun) -> Result<&Trace, ReportError> {
+    run.trace.as_ref().ok_or_else(|| {
+        ReportError::Data(format!("the {} run recorded no trace to report", device.name()))
+    })
+}
+
+/// The time histories of a recorded run as CSV (1 kHz rows).
+pub fn trace_csv(device: DeviceKind, run: &HapticRun) -> Result<String, ReportError> {
+    Ok(trace_of(device, run)?.to_csv())
+}
+
+/// The wall plot of recorded runs, one column per run titled with its device's name (see
+/// [`wall_comparison_figure`]).
+pub fn wall_runs_figure(
+    title: &str,
+    runs: &[(DeviceKind, &HapticRun)],
+) -> Result<Figure, ReportError> {
+    let histories: Vec<TimeHistory> = runs
+        .iter()
+        .map(|&(device, run)| Ok(TimeHistory::from_trace(device.name(), trace_of(device, run)?)))
+        .collect::<Result<_, ReportError>>()?;
+    Ok(wall_comparison_figure(title, &histories))
 }
 
 /// Largest number of points drawn per series (the SVG stays small; 1 kHz data is decimated).
@@ -284,7 +310,7 @@ pub fn zwidth_summary(map: &ZWidthMap) -> Value {
 mod tests {
     use super::*;
     use mrbrake_sim::haptic::zwidth::{ZWidthConfig, sweep};
-    use mrbrake_sim::haptic::{DeviceKind, HapticConfig, Scenario, simulate};
+    use mrbrake_sim::haptic::{HapticConfig, Scenario, simulate};
 
     #[test]
     fn wall_report_and_history_come_from_the_run() {

@@ -1,22 +1,38 @@
-//! Reports for mrbrake: plots (SVG via plotters), text and JSON reports, and atomic output files.
+//! Reports for mrbrake: text, JSON, plots (SVG/PNG via plotters) and output folders, composed once
+//! for every front end.
 //!
-//! Brief overview: [`write_atomic`] writes any output file through a temporary file and a rename, so a
-//! reader never sees half a file; [`chart`] draws XY line/scatter charts (linear or log axes, one or
-//! several stacked panels) that the Bode, hysteresis, torque–current and time-history plots build on.
-//! [`identification`] composes the reports of a characterisation, a frequency response and a
-//! transfer-function estimate, [`rig`] the virtual rig's output folder, [`haptic`] the haptic
-//! simulation's; the command-line program only prints or writes what these compose, so every front
-//! end (CLI, Python, HTML) shares one presentation.
+//! Brief overview: [`write_atomic`] writes any output file through a temporary file and a rename,
+//! so a reader never sees half a file; [`chart`] draws XY line/scatter charts (linear or log axes,
+//! one or several stacked panels) that the Bode, hysteresis, torque–current and time-history plots
+//! build on, and [`field_map`] the |B| map with flux lines. The reports:
+//!
+//! * [`analysis`]: a brake analysis (text; torque–current, gap and field-map plots);
+//! * [`formula`]: the thesis's closed-form torque and coil models;
+//! * [`geometry`]: a brake geometry exported for Gmsh;
+//! * [`materials`]: the material library (list, curves, provenance);
+//! * [`study`]: sweeps, optimisations and their output folder, store merges, the thesis's tables;
+//! * [`identification`]: characterisation, frequency response, transfer-function estimate;
+//! * [`rig`]: the virtual rig's output folder;
+//! * [`haptic`]: the haptic simulation (wall runs, Z-width map).
+//!
+//! The command-line program only parses, calls and prints or writes what these compose (as
+//! `String`s, `serde_json::Value`s, figures and folders), so every front end (CLI, Python, HTML)
+//! shares one presentation.
 
+pub mod analysis;
 pub mod atomic;
 pub mod bode;
 pub mod chart;
 pub mod field_map;
+pub mod formula;
+pub mod geometry;
 pub mod haptic;
 pub mod hysteresis;
 pub mod identification;
+pub mod materials;
 pub mod pareto;
 pub mod rig;
+pub mod study;
 
 pub use atomic::write_atomic;
 
@@ -49,17 +65,22 @@ pub enum ReportError {
     /// A report could not be turned into JSON (a bug: every report serialises).
     #[error("cannot compose the JSON report")]
     Json(#[from] serde_json::Error),
+    /// Records of a results store could not be written as CSV.
+    #[error(transparent)]
+    Store(#[from] mrbrake_store::StoreError),
 }
 
 impl mrbrake_error::Kind for ReportError {
     /// An output path that cannot be written takes the kind of its I/O error (a missing directory
-    /// or a denied permission is input); unplottable data is input; a backend failure is internal.
+    /// or a denied permission is input); unplottable data is input; a backend failure is internal;
+    /// a store's error keeps its own kind.
     fn kind(&self) -> mrbrake_error::ErrorKind {
         use mrbrake_error::{ErrorKind, Kind};
         match self {
             Self::Io { source, .. } | Self::Folder { source, .. } => Kind::kind(source),
             Self::Data(_) => ErrorKind::Input,
             Self::Backend(_) | Self::Json(_) => ErrorKind::Internal,
+            Self::Store(e) => e.kind(),
         }
     }
 }

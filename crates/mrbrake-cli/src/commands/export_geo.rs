@@ -8,6 +8,7 @@ use clap::Args;
 
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::{BrakeSpec, default_spec};
+use mrbrake_report::geometry as geometry_report;
 
 /// Arguments of `mrbrake export-geo`.
 #[derive(Debug, Args)]
@@ -44,46 +45,10 @@ pub fn run(args: ExportGeoArgs) -> anyhow::Result<()> {
     mrbrake_report::write_atomic(&args.output, text.as_bytes())
         .with_context(|| format!("writing {}", args.output.display()))?;
     if args.json {
-        let regions: Vec<_> = geometry
-            .regions
-            .iter()
-            .map(|r| serde_json::json!({ "tag": r.tag, "name": r.name, "material": r.material, "area_m2": r.area_m2() }))
-            .collect();
-        let gaps: Vec<_> = geometry
-            .gaps
-            .iter()
-            .map(|g| {
-                serde_json::json!({
-                    "index": g.index, "unit": g.unit + 1, "index_in_unit": g.index_in_unit, "tag": g.tag,
-                    "r_m": g.shear_radius_m, "height_m": g.height_m, "width_m": g.width_m,
-                    "inner_wall_tag": g.inner_wall_tag, "outer_wall_tag": g.outer_wall_tag,
-                })
-            })
-            .collect();
-        let coils: Vec<_> = geometry
-            .coils
-            .iter()
-            .map(|c| serde_json::json!({ "tag": c.tag, "unit": c.unit + 1, "turns": c.turns, "current_sign": c.current_sign }))
-            .collect();
-        crate::output::print_json(&serde_json::json!({
-            "output": args.output.display().to_string(),
-            "spec": spec.name,
-            "axis_tag": geometry.axis_tag,
-            "outer_tag": geometry.outer_tag,
-            "regions": regions,
-            "gaps": gaps,
-            "coils": coils,
-            "warnings": warnings.iter().map(ToString::to_string).collect::<Vec<_>>(),
-        }))
-    } else {
-        crate::outln!(
-            "wrote {} ({} regions, {} fluid gaps, {} coils; mesh it with: gmsh -2 {})",
-            args.output.display(),
-            geometry.regions.len(),
-            geometry.gaps.len(),
-            geometry.coils.len(),
-            args.output.display()
-        );
-        Ok(())
+        let warnings: Vec<String> = warnings.iter().map(ToString::to_string).collect();
+        let report = geometry_report::export_json(&geometry, &spec.name, &args.output, &warnings);
+        return crate::output::print_json(&report);
     }
+    crate::out!("{}", geometry_report::export_text(&geometry, &args.output));
+    Ok(())
 }

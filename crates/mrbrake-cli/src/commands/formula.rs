@@ -6,7 +6,10 @@
 
 use clap::{Args, Subcommand};
 use mrbrake_design::formula::{self, BrakeTorque, Viscous};
-use mrbrake_materials::{CopperWire, library};
+use mrbrake_materials::{CopperWire, MrFluid, library};
+use mrbrake_report::formula::{
+    self as formula_report, BrakeFormulaReport, CoilReport, FluidSource,
+};
 use mrbrake_units::{Dimension, parse};
 use serde_json::{Value, json};
 
@@ -164,7 +167,7 @@ pub fn run(command: FormulaCommand) -> anyhow::Result<()> {
             let h = length("--h", &a.h)?;
             let fluid = resolve_fluid(&a.fluid)?;
             let viscous = fluid.viscous(a.gap.as_deref())?;
-            let t = formula::drum(r, h, fluid.tau_y_pa, viscous)?;
+            let t = formula::drum(r, h, fluid.source.tau_y_pa, viscous)?;
             let inputs = json!({ "r_m": r, "h_m": h });
             report("drum", "(3.9)", inputs, &fluid, viscous, t, a.fluid.json)
         }
@@ -175,7 +178,7 @@ pub fn run(command: FormulaCommand) -> anyhow::Result<()> {
             let g = length("--g", &a.g)?;
             let fluid = resolve_fluid(&a.fluid)?;
             let eta_omega = fluid.speed.map(|w| (fluid.eta_pa_s, w));
-            let t = formula::multi_drum(r0, h, d, g, a.surfaces, fluid.tau_y_pa, eta_omega)?;
+            let t = formula::multi_drum(r0, h, d, g, a.surfaces, fluid.source.tau_y_pa, eta_omega)?;
             let radii = formula::multi_drum_radii(r0, d, g, a.surfaces);
             let inputs = json!({
                 "r0_m": r0, "h_m": h, "d_m": d, "g_m": g, "surfaces": a.surfaces, "radii_m": radii,
@@ -194,7 +197,7 @@ fn disc(n: u32, a: &SingleDiscArgs, configuration: &str, equation: &str) -> anyh
     let r2 = length("--r2", &a.r2)?;
     let fluid = resolve_fluid(&a.fluid)?;
     let viscous = fluid.viscous(a.gap.as_deref())?;
-    let t = formula::multi_disc(n, r1, r2, fluid.tau_y_pa, viscous)?;
+    let t = formula::multi_disc(n, r1, r2, fluid.source.tau_y_pa, viscous)?;
     let inputs = json!({ "discs": n, "r1_m": r1, "r2_m": r2 });
     report(configuration, equation, inputs, &fluid, viscous, t, a.fluid.json)
 }
@@ -205,12 +208,8 @@ fn length(flag: &str, text: &str) -> anyhow::Result<f64> {
 
 /// The yield stress (and where it came from) plus the viscous-term inputs.
 struct ResolvedFluid {
-    tau_y_pa: f64,
-    tau_y_source: String,
-    b_t: Option<f64>,
-    fluid: String,
+    source: FluidSource,
     eta_pa_s: f64,
-    eta_source: String,
     speed: Option<f64>,
 }
 
@@ -232,16 +231,16 @@ impl ResolvedFluid {
     }
 }
 
-fn resolve_fluid(a: &FluidArgs) -> anyhow::Result<ResolvedFluid> {
-    let fluid = library::fluid(&a.fluid)?;
-    let (tau_y_pa, tau_y_source, b_t) = match (&a.tau_y, &a.b) {
+/// The yield stress from `--tau-y` or from the fluid's curve at `--b`: value, source, B.
+fn resolve_tau_y(a: &FluidArgs, fluid: &MrFluid) -> anyhow::Result<(f64, String, Option<f64>)> {
+    match (&a.tau_y, &a.b) {
         (Some(t), _) => {
             let tau =
                 parse(t, Dimension::Stress).map_err(|e| InputError(format!("--tau-y: {e}")))?;
             if tau < 0.0 {
                 return Err(InputError(format!("--tau-y must be >= 0, got {t}")).into());
             }
-            (tau, "given".to_string(), None)
+            Ok((tau, "given".to_string(), None))
         }
         (None, Some(b)) => {
             let b_t =
@@ -249,10 +248,15 @@ fn resolve_fluid(a: &FluidArgs) -> anyhow::Result<ResolvedFluid> {
             if !(0.0..=3.0).contains(&b_t) {
                 return Err(InputError(format!("--b must be between 0 T and 3 T, got {b}")).into());
             }
-            (fluid.tau_y_of_b(b_t), format!("{} tau_y(B) at {b_t} T", fluid.name()), Some(b_t))
+            Ok((fluid.tau_y_of_b(b_t), format!("{} tau_y(B) at {b_t} T", fluid.name()), Some(b_t)))
         }
-        (None, None) => return Err(InputError("give --tau-y or --b".into()).into()),
-    };
+        (None, None) => Err(InputError("give --tau-y or --b".into()).into()),
+    }
+}
+
+fn resolve_fluid(a: &FluidArgs) -> anyhow::Result<ResolvedFluid> {
+    let fluid = library::fluid(&a.fluid)?;
+    let (tau_y_pa, tau_y_source, b_t) = resolve_tau_y(a, fluid)?;
     let speed = match &a.speed {
         Some(s) => Some(
             parse(s, Dimension::AngularVelocity)
@@ -271,66 +275,32 @@ fn resolve_fluid(a: &FluidArgs) -> anyhow::Result<ResolvedFluid> {
         }
         None => (fluid.viscosity_pa_s(), format!("{} off-state viscosity", fluid.name())),
     };
-    Ok(ResolvedFluid {
-        tau_y_pa,
-        tau_y_source,
-        b_t,
-        fluid: fluid.name().to_string(),
-        eta_pa_s,
-        eta_source,
-        speed,
-    })
+    let source =
+        FluidSource { tau_y_pa, tau_y_source, b_t, fluid: fluid.name().to_string(), eta_source };
+    Ok(ResolvedFluid { source, eta_pa_s, speed })
 }
 
 fn report(
     configuration: &str,
     equation: &str,
-    mut inputs: Value,
+    inputs: Value,
     fluid: &ResolvedFluid,
     viscous: Option<Viscous>,
-    t: BrakeTorque,
+    torque: BrakeTorque,
     as_json: bool,
 ) -> anyhow::Result<()> {
-    inputs["tau_y_Pa"] = json!(fluid.tau_y_pa);
-    inputs["tau_y_source"] = json!(fluid.tau_y_source);
-    if let Some(b) = fluid.b_t {
-        inputs["B_T"] = json!(b);
-        inputs["fluid"] = json!(fluid.fluid);
-    }
-    if let Some(v) = viscous {
-        inputs["eta_Pa_s"] = json!(v.eta_pa_s);
-        inputs["eta_source"] = json!(fluid.eta_source);
-        inputs["omega_rad_s"] = json!(v.omega_rad_s);
-        inputs["gap_m"] = json!(v.gap_m);
-    }
+    let report = BrakeFormulaReport {
+        configuration,
+        equation,
+        inputs,
+        fluid: &fluid.source,
+        viscous,
+        torque,
+    };
     if as_json {
-        return print_json(&json!({
-            "configuration": configuration,
-            "equation": equation,
-            "inputs": inputs,
-            "torque_Nm": t.total_nm,
-            "yield_torque_Nm": t.yield_nm,
-            "viscous_torque_Nm": t.viscous_nm,
-        }));
+        return print_json(&report.json());
     }
-    crate::outln!("{configuration} brake, thesis {equation}");
-    crate::outln!(
-        "  yield stress   tau_y = {:.4} kPa  ({})",
-        fluid.tau_y_pa / 1e3,
-        fluid.tau_y_source
-    );
-    if let Some(v) = viscous {
-        crate::outln!(
-            "  viscous term   eta = {} Pa·s ({}), omega = {:.4} rad/s, g = {} mm",
-            v.eta_pa_s,
-            fluid.eta_source,
-            v.omega_rad_s,
-            v.gap_m * 1e3
-        );
-        crate::outln!("  yield torque   {:.4} N·m", t.yield_nm);
-        crate::outln!("  viscous torque {:.4} N·m", t.viscous_nm);
-    }
-    crate::outln!("  torque         T = {:.4} N·m", t.total_nm);
+    crate::out!("{}", report.text());
     Ok(())
 }
 
@@ -349,71 +319,29 @@ fn coil(a: CoilArgs) -> anyhow::Result<()> {
     };
     let window = formula::turns_in_window(cw, ch, wire.diameter_m / 2.0)?;
     let turns = a.turns.unwrap_or(window.turns);
-    if turns > window.turns {
-        eprintln!(
-            "warning: {turns} turns do not fit the window by (4.2)/(4.3) (at most {} turns)",
-            window.turns
-        );
+    if let Some(warning) = formula_report::turns_warning(turns, &window) {
+        eprintln!("warning: {warning}");
     }
     let mean_radius = inner + cw / 2.0;
-    let e = formula::coil_electrics(turns, mean_radius, &wire, current, temperature)?;
-    let rating = wire.thesis_current_rating_a;
-    if let Some(limit) = rating.filter(|&limit| current > limit) {
-        eprintln!("warning: {current} A exceeds the wire's rating of {limit} A (thesis Table 4.6)");
+    let electrics = formula::coil_electrics(turns, mean_radius, &wire, current, temperature)?;
+    if let Some(warning) = formula_report::rating_warning(&wire, current) {
+        eprintln!("warning: {warning}");
     }
+    let report = CoilReport {
+        window_width_m: cw,
+        window_height_m: ch,
+        inner_radius_m: inner,
+        wire: &wire,
+        current_a: current,
+        temperature_c: temperature,
+        window,
+        turns,
+        mean_radius_m: mean_radius,
+        electrics,
+    };
     if a.json {
-        return print_json(&json!({
-            "inputs": {
-                "window_width_m": cw, "window_height_m": ch, "inner_radius_m": inner,
-                "wire_diameter_m": wire.diameter_m, "awg": wire.awg, "current_A": current,
-                "temperature_C": temperature,
-            },
-            "layers_i": window.layers_i,
-            "turns_fit": window.turns,
-            "turns_exact": window.turns_exact,
-            "turns": turns,
-            "mean_radius_m": mean_radius,
-            "wire_length_m": e.wire_length_m,
-            "resistance_20C_ohm": e.resistance_20c_ohm,
-            "resistance_ohm": e.resistance_ohm,
-            "current_density_A_per_mm2": e.current_density_a_per_mm2,
-            "conductor_current_density_A_per_mm2": e.conductor_current_density_a_per_mm2,
-            "power_W": e.power_w,
-            "voltage_V": e.voltage_v,
-            "wire_current_rating_A": rating,
-        }));
+        return print_json(&report.json());
     }
-    let gauge = wire.awg.map_or(String::new(), |g| format!("AWG {g}, "));
-    crate::outln!("coil, thesis (4.1)-(4.3)");
-    crate::outln!(
-        "  window         {:.3} mm (radial) × {:.3} mm (axial), inner radius {:.3} mm",
-        cw * 1e3,
-        ch * 1e3,
-        inner * 1e3
-    );
-    crate::outln!("  wire           {gauge}{:.4} mm bare copper", wire.diameter_m * 1e3);
-    crate::outln!(
-        "  layers i       {} (4.2); turns that fit N_c = {:.2} -> {} (4.3)",
-        window.layers_i,
-        window.turns_exact,
-        window.turns
-    );
-    crate::outln!("  turns used     {turns}");
-    crate::outln!(
-        "  wire length    {:.2} m (mean radius {:.3} mm)",
-        e.wire_length_m,
-        mean_radius * 1e3
-    );
-    crate::outln!(
-        "  resistance     {:.3} Ω at 20 °C, {:.3} Ω at {temperature} °C",
-        e.resistance_20c_ohm,
-        e.resistance_ohm
-    );
-    crate::outln!(
-        "  current        {current} A: J_D = {:.3} A/mm² (4.1), {:.3} A/mm² in the copper",
-        e.current_density_a_per_mm2,
-        e.conductor_current_density_a_per_mm2
-    );
-    crate::outln!("  power          {:.3} W at {:.3} V", e.power_w, e.voltage_v);
+    crate::out!("{}", report.text());
     Ok(())
 }

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::{Args, Subcommand, ValueEnum};
 use mrbrake_report::haptic::{
-    TimeHistory, save_zwidth_plot, wall_comparison_figure, wall_metrics_text, wall_plot_title,
+    save_zwidth_plot, trace_csv, wall_metrics_text, wall_plot_title, wall_runs_figure,
     zwidth_summary,
 };
 use mrbrake_sim::haptic::zwidth::{ZWidthConfig, sweep};
@@ -161,12 +161,6 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> anyhow::Result<HapticConf
     Ok(config)
 }
 
-fn history<'a>(label: &'a str, run: &'a HapticRun) -> anyhow::Result<TimeHistory<'a>> {
-    let trace =
-        run.trace.as_ref().ok_or_else(|| anyhow::anyhow!("internal: run recorded no trace"))?;
-    Ok(TimeHistory::from_trace(label, trace))
-}
-
 fn wall(args: WallArgs) -> anyhow::Result<()> {
     for (flag, value) in
         [("--stiffness-nm-per-rad", args.stiffness), ("--damping-nms-per-rad", args.damping)]
@@ -179,9 +173,7 @@ fn wall(args: WallArgs) -> anyhow::Result<()> {
     let record = args.plot.is_some() || args.csv.is_some();
     let run = simulate(&wall_config(&args, device)?, record)?;
     if let Some(path) = &args.csv {
-        let trace =
-            run.trace.as_ref().ok_or_else(|| anyhow::anyhow!("internal: run recorded no trace"))?;
-        mrbrake_report::write_atomic(path, trace.to_csv().as_bytes())?;
+        mrbrake_report::write_atomic(path, trace_csv(device, &run)?.as_bytes())?;
     }
     if let Some(path) = &args.plot {
         let title = wall_plot_title(run.metrics.scenario, args.stiffness, args.damping);
@@ -198,9 +190,7 @@ fn wall(args: WallArgs) -> anyhow::Result<()> {
         } else {
             vec![(device, &run)]
         };
-        let histories: Vec<TimeHistory> =
-            runs.iter().map(|(k, r)| history(k.name(), r)).collect::<anyhow::Result<_>>()?;
-        wall_comparison_figure(&title, &histories).save(path)?;
+        wall_runs_figure(&title, &runs)?.save(path)?;
     }
     if args.json {
         return print_json(&run.metrics);

@@ -5,6 +5,7 @@ use clap::{Args, Subcommand};
 use mrbrake_design::analysis::AnalysisOptions;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::study;
+use mrbrake_report::study::thesis_tables_text;
 
 use crate::output::print_json;
 
@@ -37,34 +38,7 @@ pub fn run(command: StudyCommand) -> anyhow::Result<()> {
             if a.json {
                 return print_json(&tables);
             }
-            for t in &tables {
-                crate::outln!("{}: {} — ours | thesis", t.table, t.title);
-                crate::outln!(
-                    "  {:<32} {:>8} {:>10} {:>10} {:>10} | {:>8} {:>10} {:>8}",
-                    "",
-                    "B [T]",
-                    "tau [kPa]",
-                    "T mean-B",
-                    "T local",
-                    "B [T]",
-                    "tau [kPa]",
-                    "T [N·m]"
-                );
-                for r in &t.rows {
-                    crate::outln!(
-                        "  {:<32} {:>8.4} {:>10.3} {:>10.3} {:>10.3} | {:>8.4} {:>10.4} {:>8.2}",
-                        r.label,
-                        r.mean_b_t,
-                        r.tau_y_kpa,
-                        r.thesis_method_nm,
-                        r.local_nm,
-                        r.thesis_b_t,
-                        r.thesis_tau_y_kpa,
-                        r.thesis_torque_nm
-                    );
-                }
-                crate::outln!();
-            }
+            crate::out!("{}", thesis_tables_text(&tables));
             Ok(())
         }
     }

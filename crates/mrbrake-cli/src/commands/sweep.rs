@@ -9,8 +9,9 @@ use mrbrake_design::analysis::ElementOrder;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::DEFAULT_SPEC_TOML;
 use mrbrake_explore::plan::{self, Sampling, Shard, VarySpec};
-use mrbrake_explore::{DesignSpace, EvaluationSettings, Runner};
-use mrbrake_store::{Record, Status, Store};
+use mrbrake_explore::{Design, DesignSpace, EvaluationSettings, Runner};
+use mrbrake_report::study::{self as study_report, SweepReport};
+use mrbrake_store::Store;
 use mrbrake_units::{Dimension, parse};
 
 use crate::exit::InputError;
@@ -107,16 +108,21 @@ pub fn settings_from(mesh: &str, speed: &str, order: u8) -> anyhow::Result<Evalu
     })
 }
 
-/// Runs `mrbrake sweep`.
-pub fn run_sweep(a: SweepArgs) -> anyhow::Result<()> {
-    let (spec_text, origin) = match &a.spec {
+/// The base spec's text and where it came from.
+fn base_spec(spec: Option<&PathBuf>) -> anyhow::Result<(String, String)> {
+    Ok(match spec {
         Some(path) => (
             std::fs::read_to_string(path)
                 .with_context(|| format!("cannot read the spec {}", path.display()))?,
             path.display().to_string(),
         ),
         None => (DEFAULT_SPEC_TOML.to_string(), "thesis-bidirectional.toml (embedded)".into()),
-    };
+    })
+}
+
+/// The design space, the whole plan's points and this shard's designs, from the arguments.
+fn plan_from(a: &SweepArgs) -> anyhow::Result<(DesignSpace, usize, Shard, Vec<Design>)> {
+    let (spec_text, origin) = base_spec(a.spec.as_ref())?;
     let overrides: Vec<(String, String)> =
         a.set.iter().map(|s| split_pair(s, "--set")).collect::<Result<_, _>>()?;
     let pairs: Vec<(String, String)> =
@@ -142,105 +148,39 @@ pub fn run_sweep(a: SweepArgs) -> anyhow::Result<()> {
     let mine: Vec<Vec<f64>> =
         points.iter().enumerate().filter(|(i, _)| shard.owns(*i)).map(|(_, p)| p.clone()).collect();
     let designs = mine.iter().map(|p| space.design(p)).collect::<Result<Vec<_>, _>>()?;
+    Ok((space, points.len(), shard, designs))
+}
 
+/// Runs `mrbrake sweep`.
+pub fn run_sweep(a: SweepArgs) -> anyhow::Result<()> {
+    let (space, plan_points, shard, designs) = plan_from(&a)?;
     let mut store = Store::open_or_create(&a.store, a.resume)?;
     if store.meta("created_by")?.is_none() {
         store.set_meta("created_by", &format!("mrbrake {}", env!("CARGO_PKG_VERSION")))?;
     }
     let mut display = ProgressDisplay::new("sweep", a.json);
-    let mut runner = Runner::new(&mut store, settings, a.jobs);
+    let mut runner = Runner::new(&mut store, *space.settings(), a.jobs);
     let (records, summary) = runner.run(&designs, &mut |p| display.update(p))?;
     display.finish();
 
     if let Some(path) = &a.csv {
         mrbrake_report::write_atomic(path, &mrbrake_store::to_csv(&records)?)?;
     }
-    let p = summary.progress;
-    let rate = if p.elapsed_s > 0.0 { p.computed as f64 * 60.0 / p.elapsed_s } else { 0.0 };
-    let overhead = if p.elapsed_s > 0.0 { summary.store_s / p.elapsed_s } else { 0.0 };
+    let name = if a.json { None } else { space.base_design()?.spec.map(|s| s.name).ok() };
+    let report = SweepReport {
+        name: name.as_deref().unwrap_or_default(),
+        variables: space.variables(),
+        records: &records,
+        summary: &summary,
+        plan_points,
+        shard,
+        store: &a.store,
+    };
     if a.json {
-        return print_json(&serde_json::json!({
-            "store": a.store.display().to_string(),
-            "plan_points": points.len(),
-            "shard": format!("{}/{}", shard.index, shard.count),
-            "designs": mrbrake_store::to_json(&records),
-            "summary": {
-                "computed": p.computed, "reused": p.reused, "infeasible": p.infeasible,
-                "failed": p.failed, "elapsed_s": p.elapsed_s,
-                "evaluations_per_min": rate, "evaluation_s": summary.evaluation_s,
-                "store_s": summary.store_s, "store_overhead": overhead,
-            },
-        }));
+        return print_json(&report.json());
     }
-    crate::outln!(
-        "{} — {} of {} plan points (shard {}/{}), store {}",
-        space.base_design()?.spec.map(|s| s.name).unwrap_or_default(),
-        designs.len(),
-        points.len(),
-        shard.index,
-        shard.count,
-        a.store.display()
-    );
-    print_table(&space, &records);
-    if p.computed == 0 {
-        crate::outln!("nothing to compute: all {} designs were already in the store", p.reused);
-    } else {
-        // The writer thread inserts while the workers analyse, so the store's time overlaps the
-        // analyses; the measured cost of the store is the evaluation-rate benchmark's to report.
-        crate::outln!(
-            "computed {} ({} infeasible, {} failed), reused {} from the store; {:.1} s wall, \
-             {:.0} evaluations/min; store writes {:.3} s on the writer thread, alongside the analyses",
-            p.computed,
-            p.infeasible,
-            p.failed,
-            p.reused,
-            p.elapsed_s,
-            rate,
-            summary.store_s,
-        );
-    }
+    crate::out!("{}", report.text());
     Ok(())
-}
-
-/// Prints one line per design: the variables, then the headline metrics or the reason.
-fn print_table(space: &DesignSpace, records: &[Record]) {
-    let columns = [
-        ("torque_max_nm", "T_max[N·m]", 1.0),
-        ("torque_off_nm", "T_off[N·m]", 1.0),
-        ("mean_b_fluid_t", "B_gap[T]", 1.0),
-        ("flux_path_q90_b_t", "B_steel90[T]", 1.0),
-        ("volume_m3", "V[cm³]", 1e6),
-        ("rotor_inertia_kg_m2", "J[kg·mm²]", 1e6),
-        ("power_w", "P[W]", 1.0),
-    ];
-    let mut header = String::new();
-    for v in space.variables() {
-        header.push_str(&format!("{:>12} ", v.name));
-    }
-    header.push_str(&format!("{:>11} ", "status"));
-    for (_, title, _) in &columns {
-        header.push_str(&format!("{title:>13} "));
-    }
-    crate::outln!("{}", header.trim_end());
-    for r in records {
-        let mut line = String::new();
-        for (v, (_, value)) in space.variables().iter().zip(&r.variables) {
-            line.push_str(&format!("{:>12} ", v.display_value(*value)));
-        }
-        line.push_str(&format!("{:>11} ", r.status.as_str()));
-        if r.status == Status::Ok {
-            for (name, _, scale) in &columns {
-                match r.metrics.iter().find(|(k, _)| k == name) {
-                    Some((_, v)) => line.push_str(&format!("{:>13.4} ", v * scale)),
-                    None => line.push_str(&format!("{:>13} ", "—")),
-                }
-            }
-        } else if let Some(reason) = &r.reason {
-            let last = reason.lines().map(str::trim).rfind(|l| !l.is_empty());
-            line.push_str(last.unwrap_or(""));
-        }
-        crate::outln!("{}", line.trim_end());
-    }
 }
 
 /// Runs `mrbrake merge`.
@@ -250,21 +190,7 @@ pub fn run_merge(a: MergeArgs) -> anyhow::Result<()> {
     for input in &a.inputs {
         let summary = store.merge_from(input)?;
         total += summary.inserted;
-        crate::outln!(
-            "{}: {} added, {} already present{}",
-            input.display(),
-            summary.inserted,
-            summary.duplicates,
-            if summary.conflicts.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    ", {} CONFLICTS (same design, different results; kept the existing): {}",
-                    summary.conflicts.len(),
-                    summary.conflicts.join(", ")
-                )
-            }
-        );
+        crate::out!("{}", study_report::merge_text(input, &summary));
     }
     crate::outln!("{}: {} designs ({} added)", a.output.display(), store.len()?, total);
     Ok(())
@@ -281,14 +207,7 @@ pub fn run_export(a: ExportArgs) -> anyhow::Result<()> {
         return print_json(&mrbrake_store::to_json(&records));
     }
     if a.csv.is_none() {
-        let ok = records.iter().filter(|r| r.status == Status::Ok).count();
-        crate::outln!(
-            "{}: {} designs ({} ok, {} infeasible or failed); use --csv FILE or --json to export",
-            a.store.display(),
-            records.len(),
-            ok,
-            records.len() - ok
-        );
+        crate::out!("{}", study_report::store_summary_text(&a.store, &records));
     }
     Ok(())
 }

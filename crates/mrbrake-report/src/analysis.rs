@@ -1,0 +1,245 @@
+//! The report of a brake analysis (`mrbrake_design::analysis`): the text summary (torque–current
+//! curve, gaps, coil, mechanics, timings) and the plots (torque–current curve, |B| along the fluid
+//! gaps, the field map with flux lines at the maximum current).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use mrbrake_design::analysis::{Analysis, CurvePoint, FieldAtMaxCurrent};
+
+use crate::ReportError;
+use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
+use crate::field_map::{FieldMap, save_field_map};
+
+/// Flux lines drawn on the field map.
+const FLUX_LINES: usize = 24;
+
+/// The text report of `a`; `source` says where the spec came from (its path, or
+/// `"embedded default"`).
+pub fn text(a: &Analysis, source: &str) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "{} ({}, {source})", a.name, a.configuration);
+    let _ = writeln!(
+        out,
+        "mesh: {} nodes, {} triangles (P{} elements, {} unknowns)",
+        a.mesh.nodes, a.mesh.elements, a.mesh.order, a.mesh.unknowns
+    );
+    let _ = writeln!(out);
+    curve_text(&mut out, a);
+    torque_text(&mut out, a);
+    gaps_text(&mut out, a);
+    coil_and_mechanics_text(&mut out, a);
+    let tm = &a.timings_s;
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "time: {:.3} s (mesh {:.3}, setup {:.3}, solve {:.3}, post {:.3})",
+        tm.total, tm.mesh, tm.setup, tm.solve, tm.post
+    );
+    out
+}
+
+/// The torque–current table.
+fn curve_text(out: &mut String, a: &Analysis) {
+    let _ = writeln!(out, "torque–current curve (direction 1, speed {} rad/s):", a.speed_rad_s);
+    let _ =
+        writeln!(out, "  current [A]  torque [N·m]  thesis method [N·m]  mean B [T]  Newton its");
+    for p in &a.torque_current_curve {
+        let _ = writeln!(
+            out,
+            "  {:>10.3}  {:>12.4}  {:>19.4}  {:>10.4}  {:>10}",
+            p.current_a, p.torque_nm, p.thesis_formula_nm, p.mean_b_t, p.newton_iterations
+        );
+    }
+}
+
+/// The torques at the maximum current (both directions, cross-coupling).
+fn torque_text(out: &mut String, a: &Analysis) {
+    let t = &a.torque;
+    let _ = writeln!(out);
+    let _ = writeln!(out, "at {:.3} A:", a.max_current_a);
+    let _ = writeln!(out, "  torque (local Bingham + viscous) {:.4} N·m", t.at_max_current_nm);
+    let _ = writeln!(
+        out,
+        "  thesis method (mean B -> tau_y)  {:.4} N·m at mean B = {:.4} T",
+        t.thesis_formula_nm, t.mean_b_t
+    );
+    let _ = writeln!(out, "  off-state torque                 {:.4} N·m", t.off_state_nm);
+    if let Some(t2) = t.direction2_at_max_current_nm {
+        let _ = writeln!(out, "  direction 2 (own coil)           {t2:.4} N·m");
+    }
+    if let Some(c) = t.cross_coupling {
+        let _ = writeln!(
+            out,
+            "  cross-coupling into idle unit    {:.2} % of the active unit's yield torque",
+            100.0 * c
+        );
+    }
+}
+
+/// One line per fluid gap at the maximum current.
+fn gaps_text(out: &mut String, a: &Analysis) {
+    let _ = writeln!(out);
+    let _ = writeln!(out, "gaps at the maximum current:");
+    let _ = writeln!(
+        out,
+        "  gap unit  R [mm]  h [mm]  g [mm]  mean B [T]  max B [T]  tau_y(mean B) [kPa]  torque [N·m]"
+    );
+    for g in &a.gaps {
+        let _ = writeln!(
+            out,
+            "  {:>3} {:>4} {:>7.2} {:>7.2} {:>7.2} {:>11.4} {:>10.4} {:>20.3} {:>13.4}",
+            g.index,
+            g.unit + 1,
+            g.r_m * 1e3,
+            g.height_m * 1e3,
+            g.width_m * 1e3,
+            g.mean_b_t,
+            g.max_b_t,
+            g.tau_y_pa / 1e3,
+            g.torque_nm
+        );
+    }
+}
+
+/// The coil's electrical figures and the mechanics.
+fn coil_and_mechanics_text(out: &mut String, a: &Analysis) {
+    let c = &a.coil;
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "coil: {} turns of {:.3} mm wire, {:.1} m, {:.3} Ω at 20 °C ({:.3} Ω hot), J = {:.2} A/mm² (4.1), {:.2} W",
+        c.turns,
+        c.wire_diameter_m * 1e3,
+        c.wire_length_m,
+        c.resistance_20c_ohm,
+        c.resistance_ohm,
+        c.current_density_a_per_mm2,
+        c.power_w
+    );
+    let _ = writeln!(
+        out,
+        "      L = {:.2} mH (secant), {:.2} mH (incremental) at max current; L/R = {:.2} ms",
+        c.inductance_h * 1e3,
+        c.incremental_inductance_h * 1e3,
+        c.time_constant_s * 1e3
+    );
+    let m = &a.mechanics;
+    let _ = write!(
+        out,
+        "mechanics: mass {:.3} kg, envelope {:.1} cm³, rotor inertia {:.1} kg·mm²",
+        m.mass_kg,
+        m.volume_m3 * 1e6,
+        m.rotor_inertia_kg_m2 * 1e6
+    );
+    if let Some(j2) = m.rotor_inertia_direction2_kg_m2 {
+        let _ = write!(out, " (direction 2: {:.1} kg·mm²)", j2 * 1e6);
+    }
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "           torque density {:.1} kN·m/m³, {:.3} N·m/kg",
+        m.torque_density_nm_per_m3 / 1e3,
+        m.torque_density_nm_per_kg
+    );
+}
+
+/// The torque–current curve: the local Bingham torque (with the viscous term) and the thesis's
+/// mean-B method.
+pub fn torque_current_figure(a: &Analysis) -> Figure {
+    let pts = |f: fn(&CurvePoint) -> f64| -> Vec<(f64, f64)> {
+        a.torque_current_curve.iter().map(|p| (p.current_a, f(p))).collect()
+    };
+    Figure::new(format!("{}: torque–current curve", a.name)).panel(
+        Panel::new("current [A]", "torque [N·m]")
+            .series(Series::line_points("local Bingham + viscous", pts(|p| p.torque_nm)))
+            .series(Series::dashed("thesis method (mean B)", pts(|p| p.thesis_formula_nm))),
+    )
+}
+
+/// |B| along the mid-line of every fluid gap at the maximum current.
+pub fn gap_flux_density_figure(a: &Analysis) -> Figure {
+    let mut gaps = Panel::new("position along the gap [mm]", "|B| [T]")
+        .legend(SeriesLabelPosition::LowerRight);
+    for g in &a.gaps {
+        let profile = g.profile.iter().map(|&(s, b)| (s * 1e3, b)).collect();
+        gaps = gaps.series(Series::line(format!("gap {} (unit {})", g.index, g.unit + 1), profile));
+    }
+    Figure::new(format!("{}: |B| along the fluid gaps at {} A", a.name, a.max_current_a))
+        .panel(gaps)
+}
+
+/// The title of the field map of `a`.
+pub fn field_map_title(a: &Analysis) -> String {
+    format!("{}: |B| and flux lines at {} A", a.name, a.max_current_a)
+}
+
+/// The field map (|B| and flux lines) of `field`, under `title`.
+pub fn field_map<'a>(title: &'a str, field: &'a FieldAtMaxCurrent) -> FieldMap<'a> {
+    FieldMap {
+        title,
+        nodes: &field.nodes,
+        triangles: &field.triangles,
+        region_tags: &field.region_tags,
+        b_abs_t: &field.b_abs_t,
+        flux_function: &field.flux_function_wb,
+        flux_lines: FLUX_LINES,
+    }
+}
+
+/// Writes the plots of an analysis into the existing folder `dir`: `torque_current`,
+/// `gap_flux_density` and `field_map`, as SVG and, with `png`, also as PNG.
+pub fn write_plots(
+    a: &Analysis,
+    field: &FieldAtMaxCurrent,
+    dir: &Path,
+    png: bool,
+) -> Result<(), ReportError> {
+    let extensions: &[&str] = if png { &["svg", "png"] } else { &["svg"] };
+    let curve = torque_current_figure(a);
+    let gaps = gap_flux_density_figure(a);
+    let title = field_map_title(a);
+    let map = field_map(&title, field);
+    for ext in extensions {
+        curve.save(&dir.join(format!("torque_current.{ext}")))?;
+        gaps.save(&dir.join(format!("gap_flux_density.{ext}")))?;
+        save_field_map(&map, &dir.join(format!("field_map.{ext}")))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mrbrake_design::analysis::{AnalysisOptions, analyze_with_field};
+    use mrbrake_design::mesh_build::MeshLevel;
+    use mrbrake_design::spec::default_spec;
+
+    /// The text has one line per current and per gap between fixed sections, and the plots are the
+    /// three figures in each format.
+    #[test]
+    fn text_and_plots_of_the_thesis_brake() {
+        let options = AnalysisOptions { mesh: MeshLevel::Coarse, points: 3, ..Default::default() };
+        let (analysis, field) = analyze_with_field(&default_spec(), &options).unwrap();
+        let text = text(&analysis, "embedded default");
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[0].ends_with("(bidirectional, embedded default)"), "{}", lines[0]);
+        // Title, mesh, blank, curve title and header; 3 points; blank, "at", 5 torque lines (both
+        // directions); blank, 2 gap titles, 8 gaps; blank, 2 coil, 2 mechanics; blank, time.
+        assert_eq!(lines.len(), 5 + 3 + 7 + 11 + 5 + 2, "{text}");
+        assert!(lines[10].starts_with("  torque (local Bingham + viscous) "), "{}", lines[10]);
+        assert_eq!(lines[16], "gaps at the maximum current:");
+        assert!(lines[29].starts_with("mechanics: mass ") && lines[29].contains("(direction 2: "));
+        assert!(lines[lines.len() - 1].starts_with("time: ") && text.ends_with(")\n"));
+
+        let dir = tempfile::tempdir().unwrap();
+        write_plots(&analysis, &field, dir.path(), true).unwrap();
+        for name in ["torque_current", "gap_flux_density", "field_map"] {
+            for ext in ["svg", "png"] {
+                let path = dir.path().join(format!("{name}.{ext}"));
+                assert!(std::fs::metadata(&path).unwrap().len() > 1000, "{}", path.display());
+            }
+        }
+        assert!(field_map_title(&analysis).ends_with("|B| and flux lines at 2 A"));
+    }
+}

@@ -1,0 +1,622 @@
+//! Reports of design studies (`mrbrake_explore`, `mrbrake_design::study`): a parameter sweep's
+//! table and summary, an optimisation's summary, its designs and its output folder (CSV, plots,
+//! ready-to-analyse spec files), the merge and export of results stores, and the thesis's
+//! comparison tables.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use mrbrake_design::study::StudyTable;
+use mrbrake_explore::evaluate::{METRICS, metric_info};
+use mrbrake_explore::optimize::{Evaluated, OptimizationResult};
+use mrbrake_explore::plan::Shard;
+use mrbrake_explore::problem::{Constraint, OptimizationProblem};
+use mrbrake_explore::variable::Variable;
+use mrbrake_explore::{Progress, RunSummary};
+use mrbrake_store::{MergeSummary, Record, Status};
+use serde_json::{Value, json};
+
+use crate::pareto::{
+    ConstraintActivity, ObjectivePlot, constraint_activity_figure, objective_figure,
+};
+use crate::{ReportError, write_atomic};
+
+/// Evaluations per minute of a run (0 before any time has passed).
+fn evaluations_per_min(progress: &Progress) -> f64 {
+    if progress.elapsed_s > 0.0 {
+        progress.computed as f64 * 60.0 / progress.elapsed_s
+    } else {
+        0.0
+    }
+}
+
+/// Display scale and axis or column label of a metric (lengths in mm, volumes in cm³, inertias
+/// in kg·mm²; other metrics in their SI unit).
+pub fn metric_axis(name: &str) -> (f64, String) {
+    let (scale, unit) = match name {
+        n if n.ends_with("_m3") => (1e6, "cm³"),
+        n if n.ends_with("_kg_m2") => (1e6, "kg·mm²"),
+        n if n.ends_with("_m") => (1e3, "mm"),
+        _ => (1.0, metric_info(name).map_or("", |m| m.unit)),
+    };
+    (scale, format!("{name} [{unit}]"))
+}
+
+/// The metrics a problem may constrain or optimise: name, unit and meaning, one per line.
+pub fn metrics_text() -> String {
+    let mut out = String::new();
+    for m in METRICS {
+        let _ = writeln!(out, "{:<28} {:<8} {}", m.name, m.unit, m.meaning);
+    }
+    out
+}
+
+/// A parameter sweep (or one shard of it) to report.
+#[derive(Debug, Clone, Copy)]
+pub struct SweepReport<'a> {
+    /// Name of the base design.
+    pub name: &'a str,
+    /// The varied variables.
+    pub variables: &'a [Variable],
+    /// One record per design of this shard, in plan order.
+    pub records: &'a [Record],
+    /// The run's counts and times.
+    pub summary: &'a RunSummary,
+    /// Points of the whole plan (all shards).
+    pub plan_points: usize,
+    /// The shard evaluated.
+    pub shard: Shard,
+    /// The results store.
+    pub store: &'a Path,
+}
+
+/// Headline metrics of a sweep's table: metric, column title, display scale.
+const SWEEP_COLUMNS: [(&str, &str, f64); 7] = [
+    ("torque_max_nm", "T_max[N·m]", 1.0),
+    ("torque_off_nm", "T_off[N·m]", 1.0),
+    ("mean_b_fluid_t", "B_gap[T]", 1.0),
+    ("flux_path_q90_b_t", "B_steel90[T]", 1.0),
+    ("volume_m3", "V[cm³]", 1e6),
+    ("rotor_inertia_kg_m2", "J[kg·mm²]", 1e6),
+    ("power_w", "P[W]", 1.0),
+];
+
+impl SweepReport<'_> {
+    /// The JSON report: the store, the plan, every design and the run's summary.
+    pub fn json(&self) -> Value {
+        let p = &self.summary.progress;
+        let overhead = if p.elapsed_s > 0.0 { self.summary.store_s / p.elapsed_s } else { 0.0 };
+        json!({
+            "store": self.store.display().to_string(),
+            "plan_points": self.plan_points,
+            "shard": format!("{}/{}", self.shard.index, self.shard.count),
+            "designs": mrbrake_store::to_json(self.records),
+            "summary": {
+                "computed": p.computed, "reused": p.reused, "infeasible": p.infeasible,
+                "failed": p.failed, "elapsed_s": p.elapsed_s,
+                "evaluations_per_min": evaluations_per_min(p),
+                "evaluation_s": self.summary.evaluation_s,
+                "store_s": self.summary.store_s, "store_overhead": overhead,
+            },
+        })
+    }
+
+    /// The text report: a title line, one line per design, and what was computed.
+    pub fn text(&self) -> String {
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            "{} — {} of {} plan points (shard {}/{}), store {}",
+            self.name,
+            self.records.len(),
+            self.plan_points,
+            self.shard.index,
+            self.shard.count,
+            self.store.display()
+        );
+        self.table(&mut out);
+        let p = &self.summary.progress;
+        if p.computed == 0 {
+            let _ = writeln!(
+                out,
+                "nothing to compute: all {} designs were already in the store",
+                p.reused
+            );
+        } else {
+            // The writer thread inserts while the workers analyse, so the store's time overlaps
+            // the analyses; the measured cost of the store is the evaluation-rate benchmark's.
+            let _ = writeln!(
+                out,
+                "computed {} ({} infeasible, {} failed), reused {} from the store; {:.1} s wall, \
+                 {:.0} evaluations/min; store writes {:.3} s on the writer thread, alongside the analyses",
+                p.computed,
+                p.infeasible,
+                p.failed,
+                p.reused,
+                p.elapsed_s,
+                evaluations_per_min(p),
+                self.summary.store_s,
+            );
+        }
+        out
+    }
+
+    /// One line per design: the variables, then the headline metrics or the reason.
+    fn table(&self, out: &mut String) {
+        let mut header = String::new();
+        for v in self.variables {
+            let _ = write!(header, "{:>12} ", v.name);
+        }
+        let _ = write!(header, "{:>11} ", "status");
+        for (_, title, _) in &SWEEP_COLUMNS {
+            let _ = write!(header, "{title:>13} ");
+        }
+        let _ = writeln!(out, "{}", header.trim_end());
+        for r in self.records {
+            let mut line = String::new();
+            for (v, (_, value)) in self.variables.iter().zip(&r.variables) {
+                let _ = write!(line, "{:>12} ", v.display_value(*value));
+            }
+            let _ = write!(line, "{:>11} ", r.status.as_str());
+            if r.status == Status::Ok {
+                for (name, _, scale) in &SWEEP_COLUMNS {
+                    match r.metric(name) {
+                        Some(v) => _ = write!(line, "{:>13.4} ", v * scale),
+                        None => _ = write!(line, "{:>13} ", "—"),
+                    }
+                }
+            } else if let Some(reason) = &r.reason {
+                let last = reason.lines().map(str::trim).rfind(|l| !l.is_empty());
+                line.push_str(last.unwrap_or(""));
+            }
+            let _ = writeln!(out, "{}", line.trim_end());
+        }
+    }
+}
+
+/// The line reporting the merge of the store at `input`.
+pub fn merge_text(input: &Path, summary: &MergeSummary) -> String {
+    let conflicts = if summary.conflicts.is_empty() {
+        String::new()
+    } else {
+        format!(
+            ", {} CONFLICTS (same design, different results; kept the existing): {}",
+            summary.conflicts.len(),
+            summary.conflicts.join(", ")
+        )
+    };
+    format!(
+        "{}: {} added, {} already present{conflicts}\n",
+        input.display(),
+        summary.inserted,
+        summary.duplicates
+    )
+}
+
+/// The summary of a store's records when nothing is exported.
+pub fn store_summary_text(store: &Path, records: &[Record]) -> String {
+    let ok = records.iter().filter(|r| r.status == Status::Ok).count();
+    format!(
+        "{}: {} designs ({} ok, {} infeasible or failed); use --csv FILE or --json to export\n",
+        store.display(),
+        records.len(),
+        ok,
+        records.len() - ok
+    )
+}
+
+/// An optimisation run to report: the problem, its result, and where they were read and stored.
+#[derive(Debug, Clone, Copy)]
+pub struct OptimizationReport<'a> {
+    /// The problem.
+    pub problem: &'a OptimizationProblem,
+    /// The result.
+    pub result: &'a OptimizationResult,
+    /// The problem file, as the user named it.
+    pub problem_path: &'a Path,
+    /// The results store.
+    pub store: &'a Path,
+}
+
+impl OptimizationReport<'_> {
+    /// The records of the front, in the front's order.
+    fn front(&self) -> Vec<Record> {
+        self.result.front.iter().map(|&i| self.result.evaluated[i].record.clone()).collect()
+    }
+
+    /// The JSON report: the run's counts and the front and reference designs.
+    pub fn json(&self) -> Value {
+        let (result, totals) = (self.result, &self.result.totals.progress);
+        json!({
+            "problem": self.problem_path.display().to_string(),
+            "store": self.store.display().to_string(),
+            "evaluated": result.evaluated.len(),
+            "requested": result.requested,
+            "iterations": result.iterations,
+            "converged": result.converged,
+            "computed": totals.computed,
+            "reused": totals.reused,
+            "elapsed_s": totals.elapsed_s,
+            "evaluations_per_min": evaluations_per_min(totals),
+            "front": mrbrake_store::to_json(&self.front()),
+            "reference": result.reference.as_ref().map(|r| mrbrake_store::to_json(std::slice::from_ref(&r.record))),
+        })
+    }
+
+    /// The text report: how the run ended and what it cost, then the front (or the best design)
+    /// and the reference design as tables; `out_dir` is the output folder, if one was written.
+    pub fn text(&self, out_dir: Option<&Path>) -> String {
+        let (problem, result) = (self.problem, self.result);
+        let mut out = String::new();
+        let _ = writeln!(out, "{}", self.run_summary());
+        let feasible = result.evaluated.iter().filter(|e| e.evaluation.feasible()).count();
+        if result.front.is_empty() {
+            let _ = writeln!(out, "no evaluated design meets every constraint");
+        } else if problem.objectives.len() == 1 {
+            let _ = writeln!(out, "{feasible} feasible; the best feasible design:");
+        } else {
+            let _ = writeln!(
+                out,
+                "{feasible} feasible; Pareto front of {} designs:",
+                result.front.len()
+            );
+        }
+        let front = result.front.iter().map(|&i| &result.evaluated[i]);
+        self.designs_table(&mut out, front, "front");
+        if let Some(reference) = &result.reference {
+            self.designs_table(&mut out, std::iter::once(reference), "reference (base spec)");
+        }
+        if let Some(dir) = out_dir {
+            let _ = writeln!(out, "outputs in {}", dir.display());
+        }
+        out
+    }
+
+    /// How the run ended, the designs and what they cost (one line).
+    fn run_summary(&self) -> String {
+        let (result, totals) = (self.result, &self.result.totals.progress);
+        let how = match result.converged {
+            None => format!("{} generations", result.iterations),
+            Some(true) => format!("converged after {} iterations", result.iterations),
+            Some(false) => format!(
+                "evaluation budget spent after {} iterations (not converged)",
+                result.iterations
+            ),
+        };
+        let work = if totals.computed == 0 {
+            format!("all {} answers read from the store, nothing computed", totals.reused)
+        } else {
+            format!(
+                "{} evaluated now, {} answers read from the store (repeated designs and earlier \
+                 runs); {:.1} s, {:.0} evaluations/min",
+                totals.computed,
+                totals.reused,
+                totals.elapsed_s,
+                evaluations_per_min(totals)
+            )
+        };
+        format!(
+            "{}: {how}; {} distinct designs{}; {work}; store {}",
+            self.problem_path.display(),
+            result.evaluated.len(),
+            if result.reference.is_some() { " + the reference" } else { "" },
+            self.store.display()
+        )
+    }
+
+    /// A table of `designs` under the title `what`: the variables (`base` where a design keeps the
+    /// base spec's value), then the objectives' and constraints' metrics in display units.
+    fn designs_table<'e>(
+        &self,
+        out: &mut String,
+        designs: impl Iterator<Item = &'e Evaluated>,
+        what: &str,
+    ) {
+        let problem = self.problem;
+        let metrics: Vec<&String> = problem
+            .objectives
+            .iter()
+            .map(|o| &o.metric)
+            .chain(problem.constraints.iter().map(|c| &c.metric))
+            .collect();
+        // Every column as wide as its header (at least 10 characters), values right-aligned under it.
+        let mut headers: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
+        headers.extend(metrics.iter().map(|name| metric_axis(name).1));
+        let widths: Vec<usize> = headers.iter().map(|h| h.chars().count().max(10)).collect();
+        let first = what.chars().count().max(10);
+        let mut header = format!("  {what:<first$}");
+        for (h, w) in headers.iter().zip(&widths) {
+            let _ = write!(header, " {h:>w$}");
+        }
+        let _ = writeln!(out, "{header}");
+        for (k, e) in designs.enumerate() {
+            let mut cells: Vec<String> = self
+                .result
+                .variables
+                .iter()
+                .map(|v| {
+                    let value = e.record.variable(&v.name);
+                    value.map_or_else(|| "base".to_string(), |x| v.display_value(x))
+                })
+                .collect();
+            cells.extend(metrics.iter().map(|name| match e.record.metric(name) {
+                Some(v) => format!("{:.4}", v * metric_axis(name).0),
+                None => e.record.status.as_str().to_string(),
+            }));
+            let mut line = format!("  {:<first$}", format!("#{}", k + 1));
+            for (cell, w) in cells.iter().zip(&widths) {
+                let _ = write!(line, " {cell:>w$}");
+            }
+            let _ = writeln!(out, "{line}");
+        }
+    }
+
+    /// Writes the output folder `dir`: `evaluations.csv`, `pareto.csv`, `designs/front-NN.toml`
+    /// and `designs/reference.toml`, the objective plot `pareto.svg/.png` and the constraint
+    /// activity `constraints.svg/.png` (creating the folder if needed).
+    pub fn write_outputs(&self, dir: &Path) -> Result<(), ReportError> {
+        let designs = dir.join("designs");
+        std::fs::create_dir_all(&designs)
+            .map_err(|source| ReportError::Folder { path: dir.to_path_buf(), source })?;
+        let all: Vec<Record> = self.result.evaluated.iter().map(|e| e.record.clone()).collect();
+        write_atomic(&dir.join("evaluations.csv"), &mrbrake_store::to_csv(&all)?)?;
+        let front = self.front();
+        write_atomic(&dir.join("pareto.csv"), &mrbrake_store::to_csv(&front)?)?;
+        for (k, record) in front.iter().enumerate() {
+            let text = format!(
+                "# Design {} of the front of {} (key {}).\n{}",
+                k + 1,
+                self.problem.path.display(),
+                record.key,
+                record.spec_toml
+            );
+            write_atomic(&designs.join(format!("front-{:02}.toml", k + 1)), text.as_bytes())?;
+        }
+        if let Some(reference) = &self.result.reference {
+            write_atomic(&designs.join("reference.toml"), reference.record.spec_toml.as_bytes())?;
+        }
+        if let Some(plot) = self.objective_plot(&front) {
+            let figure = objective_figure(&plot);
+            figure.save(&dir.join("pareto.svg"))?;
+            figure.save(&dir.join("pareto.png"))?;
+        }
+        if !self.problem.constraints.is_empty() && !front.is_empty() {
+            let figure = constraint_activity_figure(&self.constraint_activity(&front));
+            figure.save(&dir.join("constraints.svg"))?;
+            figure.save(&dir.join("constraints.png"))?;
+        }
+        Ok(())
+    }
+
+    /// The metrics on the plots' axes: the first objective on x; on y the second objective, or
+    /// else the first constraint's metric (`None`: nothing to plot against).
+    fn plot_metrics(&self) -> (&str, Option<&str>) {
+        let problem = self.problem;
+        let x = problem.objectives[0].metric.as_str();
+        let y = problem
+            .objectives
+            .get(1)
+            .map(|o| o.metric.as_str())
+            .or_else(|| problem.constraints.first().map(|c| c.metric.as_str()));
+        (x, y)
+    }
+
+    /// The objective plot: every evaluated design, the front and the reference.
+    fn objective_plot(&self, front: &[Record]) -> Option<ObjectivePlot> {
+        let (problem, result) = (self.problem, self.result);
+        let (x_metric, y_metric) = self.plot_metrics();
+        let y_metric = y_metric?;
+        let ((xs, x_label), (ys, y_label)) = (metric_axis(x_metric), metric_axis(y_metric));
+        let point = |r: &Record| Some((r.metric(x_metric)? * xs, r.metric(y_metric)? * ys));
+        let mut plot = ObjectivePlot {
+            title: format!(
+                "{} — {} evaluated designs",
+                problem.path.file_stem().and_then(|s| s.to_str()).unwrap_or("optimisation"),
+                result.evaluated.len()
+            ),
+            x_label,
+            y_label,
+            ..ObjectivePlot::default()
+        };
+        for e in &result.evaluated {
+            if let Some(p) = point(&e.record) {
+                if e.evaluation.feasible() {
+                    plot.feasible.push(p)
+                } else {
+                    plot.infeasible.push(p)
+                }
+            }
+        }
+        plot.front = front.iter().filter_map(point).collect();
+        plot.front.sort_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some(reference) = &result.reference {
+            if let Some(p) = point(&reference.record) {
+                let base = problem.spec_path.file_name().map(|f| f.to_string_lossy());
+                plot.references
+                    .push((format!("reference: base spec {}", base.unwrap_or_default()), p));
+            }
+        }
+        Some(plot)
+    }
+
+    /// Each constraint's margin (0 = active) along the front, against the first objective.
+    fn constraint_activity(&self, front: &[Record]) -> ConstraintActivity {
+        let (x_metric, _) = self.plot_metrics();
+        let (xs, x_label) = metric_axis(x_metric);
+        let along_front = |c: &Constraint| {
+            let mut points: Vec<(f64, f64)> = front
+                .iter()
+                .filter_map(|r| Some((r.metric(x_metric)? * xs, c.margin(r.metric(&c.metric)?))))
+                .collect();
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            points
+        };
+        ConstraintActivity {
+            title: "Constraint activity along the front (0 = active)".into(),
+            x_label,
+            constraints: self
+                .problem
+                .constraints
+                .iter()
+                .map(|c| (constraint_label(c), along_front(c)))
+                .collect(),
+        }
+    }
+}
+
+/// A constraint as a legend label, e.g. `torque_max_nm ≥ 3`.
+fn constraint_label(c: &Constraint) -> String {
+    format!(
+        "{}{}{}",
+        c.metric,
+        c.min.map_or(String::new(), |v| format!(" ≥ {v}")),
+        c.max.map_or(String::new(), |v| format!(" ≤ {v}"))
+    )
+}
+
+/// The thesis's comparison tables (Tables 4.1–4.4) beside mrbrake's values, one block per table.
+pub fn thesis_tables_text(tables: &[StudyTable]) -> String {
+    let mut out = String::new();
+    for t in tables {
+        let _ = writeln!(out, "{}: {} — ours | thesis", t.table, t.title);
+        let _ = writeln!(
+            out,
+            "  {:<32} {:>8} {:>10} {:>10} {:>10} | {:>8} {:>10} {:>8}",
+            "", "B [T]", "tau [kPa]", "T mean-B", "T local", "B [T]", "tau [kPa]", "T [N·m]"
+        );
+        for r in &t.rows {
+            let _ = writeln!(
+                out,
+                "  {:<32} {:>8.4} {:>10.3} {:>10.3} {:>10.3} | {:>8.4} {:>10.4} {:>8.2}",
+                r.label,
+                r.mean_b_t,
+                r.tau_y_kpa,
+                r.thesis_method_nm,
+                r.local_nm,
+                r.thesis_b_t,
+                r.thesis_tau_y_kpa,
+                r.thesis_torque_nm
+            );
+        }
+        let _ = writeln!(out);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn record(key: char, status: Status, reason: Option<&str>, metrics: &[(&str, f64)]) -> Record {
+        Record {
+            key: key.to_string().repeat(64),
+            status,
+            reason: reason.map(str::to_string),
+            variables: Vec::new(),
+            metrics: metrics.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
+            spec_toml: String::new(),
+            eval_seconds: 0.5,
+            solver_version: "test".into(),
+        }
+    }
+
+    fn run_summary(computed: usize, reused: usize) -> RunSummary {
+        let progress = Progress {
+            to_compute: computed,
+            computed,
+            reused,
+            infeasible: 1,
+            failed: 0,
+            elapsed_s: 2.0,
+        };
+        RunSummary { progress, evaluation_s: 3.0, store_s: 0.01 }
+    }
+
+    #[test]
+    fn a_sweep_table_has_the_headline_metrics_or_the_reason() {
+        let records = [
+            record('a', Status::Ok, None, &[("torque_max_nm", 5.38), ("volume_m3", 396.092e-6)]),
+            record('b', Status::Infeasible, Some("coil.window_width: too wide\n  "), &[]),
+        ];
+        let summary = run_summary(2, 0);
+        let report = SweepReport {
+            name: "brake",
+            variables: &[],
+            records: &records,
+            summary: &summary,
+            plan_points: 4,
+            shard: Shard { index: 1, count: 2 },
+            store: Path::new("s.sqlite"),
+        };
+        let text = report.text();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "brake — 2 of 4 plan points (shard 1/2), store s.sqlite");
+        assert!(lines[1].ends_with("status    T_max[N·m]    T_off[N·m]      B_gap[T]  B_steel90[T]        V[cm³]     J[kg·mm²]          P[W]"), "{}", lines[1]);
+        // Missing metrics are a dash; volumes in cm³.
+        assert!(lines[2].starts_with("         ok        5.3800             —"), "{}", lines[2]);
+        assert!(lines[2].contains("      396.0920"), "{}", lines[2]);
+        assert_eq!(lines[3], " infeasible coil.window_width: too wide");
+        assert!(
+            lines[4].starts_with("computed 2 (1 infeasible, 0 failed), reused 0"),
+            "{}",
+            lines[4]
+        );
+        assert!(lines[4].contains("60 evaluations/min"), "{}", lines[4]);
+        let json = report.json();
+        assert_eq!(json["shard"], "1/2");
+        assert_eq!(json["designs"].as_array().unwrap().len(), 2);
+        assert!((json["summary"]["store_overhead"].as_f64().unwrap() - 0.005).abs() < 1e-15);
+
+        let resumed = run_summary(0, 2);
+        let text = SweepReport { summary: &resumed, ..report }.text();
+        assert!(text.ends_with("nothing to compute: all 2 designs were already in the store\n"));
+    }
+
+    #[test]
+    fn metrics_are_shown_in_readable_units() {
+        let cases = [
+            ("volume_m3", 1e6, "volume_m3 [cm³]"),
+            ("rotor_inertia_kg_m2", 1e6, "rotor_inertia_kg_m2 [kg·mm²]"),
+            ("outer_diameter_m", 1e3, "outer_diameter_m [mm]"),
+            ("torque_max_nm", 1.0, "torque_max_nm [N·m]"),
+            ("no_such_metric", 1.0, "no_such_metric []"),
+        ];
+        for (name, scale, label) in cases {
+            let (s, l) = metric_axis(name);
+            assert!((s - scale).abs() < 1e-9 * scale && l == label, "{name}: {s} {l}");
+        }
+        assert_eq!(metrics_text().lines().count(), METRICS.len());
+    }
+
+    #[test]
+    fn merges_report_their_conflicts() {
+        let clean = MergeSummary { inserted: 3, duplicates: 1, conflicts: Vec::new() };
+        assert_eq!(
+            merge_text(Path::new("a.sqlite"), &clean),
+            "a.sqlite: 3 added, 1 already present\n"
+        );
+        let conflicting =
+            MergeSummary { inserted: 0, duplicates: 0, conflicts: vec!["k1".into(), "k2".into()] };
+        let text = merge_text(Path::new("b.sqlite"), &conflicting);
+        assert!(
+            text.ends_with(
+                ", 2 CONFLICTS (same design, different results; kept the existing): k1, k2\n"
+            ),
+            "{text}"
+        );
+        let records =
+            [record('a', Status::Ok, None, &[]), record('b', Status::Failed, Some("x"), &[])];
+        assert_eq!(
+            store_summary_text(Path::new("s.sqlite"), &records),
+            "s.sqlite: 2 designs (1 ok, 1 infeasible or failed); use --csv FILE or --json to export\n"
+        );
+    }
+
+    #[test]
+    fn constraint_labels_show_their_bounds() {
+        let c = Constraint { metric: "torque_max_nm".into(), min: Some(3.0), max: None };
+        assert_eq!(constraint_label(&c), "torque_max_nm ≥ 3");
+        let c = Constraint { metric: "outer_diameter_m".into(), min: Some(0.01), max: Some(0.08) };
+        assert_eq!(constraint_label(&c), "outer_diameter_m ≥ 0.01 ≤ 0.08");
+    }
+}
