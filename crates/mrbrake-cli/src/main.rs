@@ -5,7 +5,7 @@
 //! failure with code 1.
 
 mod commands;
-mod exit;
+mod error;
 mod output;
 mod progress;
 
@@ -35,8 +35,8 @@ fn main() {
     match commands::run(cli.command) {
         Ok(()) => {}
         Err(err) => {
-            eprintln!("error: {err:#}");
-            std::process::exit(exit::code_for(&err));
+            eprintln!("error: {err}");
+            std::process::exit(err.exit_code());
         }
     }
 }

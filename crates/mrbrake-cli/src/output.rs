@@ -4,10 +4,18 @@ use std::io::Write;
 
 use serde::Serialize;
 
+use crate::error::{CommandResult, InternalError};
+
+/// `value` as pretty JSON text. Every result type serialises; a failure is a bug (internal).
+pub fn json_text<T: Serialize>(value: &T) -> CommandResult<String> {
+    serde_json::to_string_pretty(value)
+        .map_err(|e| InternalError(format!("cannot write the result as JSON: {e}")).into())
+}
+
 /// Prints `value` as pretty JSON on stdout. A closed pipe (`mrbrake … --json | head`) ends the
 /// output quietly instead of panicking as `println!` would.
-pub fn print_json<T: Serialize>(value: &T) -> anyhow::Result<()> {
-    let text = serde_json::to_string_pretty(value)?;
+pub fn print_json<T: Serialize>(value: &T) -> CommandResult {
+    let text = json_text(value)?;
     let mut out = std::io::stdout().lock();
     match writeln!(out, "{text}").and_then(|()| out.flush()) {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),

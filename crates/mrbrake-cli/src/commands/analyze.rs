@@ -10,7 +10,8 @@ use mrbrake_design::spec::{BrakeSpec, default_spec};
 use mrbrake_report::analysis as report;
 use mrbrake_units::{Dimension, parse};
 
-use crate::exit::InputError;
+use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::print_json;
 
 /// Arguments of `mrbrake analyze`.
@@ -50,7 +51,7 @@ pub struct AnalyzeArgs {
 }
 
 /// Runs `mrbrake analyze`.
-pub fn run(a: AnalyzeArgs) -> anyhow::Result<()> {
+pub fn run(a: AnalyzeArgs) -> CommandResult {
     let spec = match &a.spec {
         Some(path) => BrakeSpec::from_path(path)?,
         None => default_spec(),

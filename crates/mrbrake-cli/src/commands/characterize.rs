@@ -8,7 +8,8 @@ use mrbrake_report::identification::CharacterizationReport;
 use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
 use mrbrake_sysid::log::read_log;
 
-use crate::exit::InputError;
+use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::print_json;
 
 /// Arguments of `mrbrake characterize`.
@@ -43,7 +44,7 @@ pub struct CharacterizeArgs {
 }
 
 /// Runs `mrbrake characterize`.
-pub fn run(args: CharacterizeArgs) -> anyhow::Result<()> {
+pub fn run(args: CharacterizeArgs) -> CommandResult {
     if args.order == 0 || args.order > 12 {
         return Err(InputError(format!("--order {} is outside 1..=12", args.order)).into());
     }
@@ -64,7 +65,7 @@ pub fn run(args: CharacterizeArgs) -> anyhow::Result<()> {
     };
     if let Some(path) = &args.save_model {
         // The characterisation's JSON is the inverse-model file (mrbrake_sysid::model_file).
-        let text = serde_json::to_string_pretty(&c)?;
+        let text = crate::output::json_text(&c)?;
         mrbrake_report::write_atomic(path, text.as_bytes())?;
     }
     if let Some(path) = &args.plot {

@@ -3,9 +3,10 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
+use crate::error::Context;
 use clap::Args;
 
+use crate::error::CommandResult;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::{BrakeSpec, default_spec};
 use mrbrake_report::geometry as geometry_report;
@@ -27,7 +28,7 @@ pub struct ExportGeoArgs {
 }
 
 /// Runs `mrbrake export-geo`.
-pub fn run(args: ExportGeoArgs) -> anyhow::Result<()> {
+pub fn run(args: ExportGeoArgs) -> CommandResult {
     let spec = match &args.spec {
         Some(path) => BrakeSpec::from_path(path)?,
         None => default_spec(),

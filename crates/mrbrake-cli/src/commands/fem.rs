@@ -9,6 +9,7 @@ use mrbrake_magnetics::ElementOrder;
 use mrbrake_magnetics::problem_file::solve_file_with_order;
 use mrbrake_report::field_map::{FieldMap, save_field_map};
 
+use crate::error::CommandResult;
 use crate::output::print_json;
 
 /// `mrbrake fem ...` subcommands.
@@ -44,13 +45,13 @@ pub struct SolveArgs {
 }
 
 /// Runs `mrbrake fem ...`.
-pub fn run(command: FemCommand) -> anyhow::Result<()> {
+pub fn run(command: FemCommand) -> CommandResult {
     match command {
         FemCommand::Solve(args) => solve(args),
     }
 }
 
-fn solve(args: SolveArgs) -> anyhow::Result<()> {
+fn solve(args: SolveArgs) -> CommandResult {
     let order = args
         .order
         .map(|degree| ElementOrder::from_degree(degree.into()).expect("clap accepts only 1 and 2"));

@@ -13,7 +13,8 @@ use mrbrake_report::formula::{
 use mrbrake_units::{Dimension, parse};
 use serde_json::{Value, json};
 
-use crate::exit::InputError;
+use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::print_json;
 
 /// `mrbrake formula` subcommands.
@@ -158,7 +159,7 @@ pub struct CoilArgs {
 }
 
 /// Runs `mrbrake formula …`.
-pub fn run(command: FormulaCommand) -> anyhow::Result<()> {
+pub fn run(command: FormulaCommand) -> CommandResult {
     match command {
         FormulaCommand::SingleDisc(a) => disc(1, &a, "single-disc", "(3.6)/(3.7)"),
         FormulaCommand::MultiDisc(a) => disc(a.discs, &a.disc, "multi-disc", "(3.8)"),
@@ -192,7 +193,7 @@ pub fn run(command: FormulaCommand) -> anyhow::Result<()> {
 }
 
 /// Single disc (n = 1) or multi-disc brake torque, (3.6)–(3.8).
-fn disc(n: u32, a: &SingleDiscArgs, configuration: &str, equation: &str) -> anyhow::Result<()> {
+fn disc(n: u32, a: &SingleDiscArgs, configuration: &str, equation: &str) -> CommandResult {
     let r1 = length("--r1", &a.r1)?;
     let r2 = length("--r2", &a.r2)?;
     let fluid = resolve_fluid(&a.fluid)?;
@@ -202,7 +203,7 @@ fn disc(n: u32, a: &SingleDiscArgs, configuration: &str, equation: &str) -> anyh
     report(configuration, equation, inputs, &fluid, viscous, t, a.fluid.json)
 }
 
-fn length(flag: &str, text: &str) -> anyhow::Result<f64> {
+fn length(flag: &str, text: &str) -> CommandResult<f64> {
     parse(text, Dimension::Length).map_err(|e| InputError(format!("{flag}: {e}")).into())
 }
 
@@ -215,7 +216,7 @@ struct ResolvedFluid {
 
 impl ResolvedFluid {
     /// The viscous term for brakes whose gap is an extra option (disc, drum).
-    fn viscous(&self, gap: Option<&str>) -> anyhow::Result<Option<Viscous>> {
+    fn viscous(&self, gap: Option<&str>) -> CommandResult<Option<Viscous>> {
         let Some(omega) = self.speed else { return Ok(None) };
         let Some(gap) = gap else {
             return Err(InputError(
@@ -232,7 +233,7 @@ impl ResolvedFluid {
 }
 
 /// The yield stress from `--tau-y` or from the fluid's curve at `--b`: value, source, B.
-fn resolve_tau_y(a: &FluidArgs, fluid: &MrFluid) -> anyhow::Result<(f64, String, Option<f64>)> {
+fn resolve_tau_y(a: &FluidArgs, fluid: &MrFluid) -> CommandResult<(f64, String, Option<f64>)> {
     match (&a.tau_y, &a.b) {
         (Some(t), _) => {
             let tau =
@@ -254,7 +255,7 @@ fn resolve_tau_y(a: &FluidArgs, fluid: &MrFluid) -> anyhow::Result<(f64, String,
     }
 }
 
-fn resolve_fluid(a: &FluidArgs) -> anyhow::Result<ResolvedFluid> {
+fn resolve_fluid(a: &FluidArgs) -> CommandResult<ResolvedFluid> {
     let fluid = library::fluid(&a.fluid)?;
     let (tau_y_pa, tau_y_source, b_t) = resolve_tau_y(a, fluid)?;
     let speed = match &a.speed {
@@ -288,7 +289,7 @@ fn report(
     viscous: Option<Viscous>,
     torque: BrakeTorque,
     as_json: bool,
-) -> anyhow::Result<()> {
+) -> CommandResult {
     let report = BrakeFormulaReport {
         configuration,
         equation,
@@ -304,7 +305,7 @@ fn report(
     Ok(())
 }
 
-fn coil(a: CoilArgs) -> anyhow::Result<()> {
+fn coil(a: CoilArgs) -> CommandResult {
     let cw = length("--window-width", &a.window_width)?;
     let ch = length("--window-height", &a.window_height)?;
     let inner = length("--inner-radius", &a.inner_radius)?;

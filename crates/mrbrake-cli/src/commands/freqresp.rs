@@ -10,7 +10,8 @@ use mrbrake_report::identification::{
 use mrbrake_sysid::freqresp::{FreqRespOptions, frd_csv, frequency_response};
 use mrbrake_units::{Dimension, parse};
 
-use crate::exit::InputError;
+use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::print_json;
 
 /// Arguments of `mrbrake freqresp`.
@@ -45,7 +46,7 @@ pub struct FreqRespArgs {
 }
 
 /// Runs `mrbrake freqresp`.
-pub fn run(args: FreqRespArgs) -> anyhow::Result<()> {
+pub fn run(args: FreqRespArgs) -> CommandResult {
     let settle_s = parse(&args.settle, Dimension::Time)?;
     let non_negative = |v: f64| v.is_finite() && v >= 0.0;
     if !non_negative(settle_s) || !non_negative(args.discard_periods) {

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
+use crate::error::Context;
 use clap::{Args, Subcommand, ValueEnum};
 use mrbrake_report::haptic::{
     save_zwidth_plot, trace_csv, wall_metrics_text, wall_plot_title, wall_runs_figure,
@@ -14,7 +14,8 @@ use mrbrake_sim::haptic::{DeviceKind, HapticConfig, HapticRun, Scenario, simulat
 use mrbrake_sysid::model_file::read_inverse_model;
 use mrbrake_units::{Dimension, parse};
 
-use crate::exit::InputError;
+use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::print_json;
 
 /// `mrbrake haptic` subcommands.
@@ -138,14 +139,14 @@ pub struct ZwidthArgs {
 }
 
 /// Runs a `haptic` subcommand.
-pub fn run(command: HapticCommand) -> anyhow::Result<()> {
+pub fn run(command: HapticCommand) -> CommandResult {
     match command {
         HapticCommand::Wall(args) => wall(args),
         HapticCommand::Zwidth(args) => zwidth(args),
     }
 }
 
-fn wall_config(args: &WallArgs, device: DeviceKind) -> anyhow::Result<HapticConfig> {
+fn wall_config(args: &WallArgs, device: DeviceKind) -> CommandResult<HapticConfig> {
     let mut config = HapticConfig::new(device, args.scenario.into());
     config.wall_stiffness_nm_per_rad = args.stiffness;
     config.wall_damping_nms_per_rad = args.damping;
@@ -161,7 +162,7 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> anyhow::Result<HapticConf
     Ok(config)
 }
 
-fn wall(args: WallArgs) -> anyhow::Result<()> {
+fn wall(args: WallArgs) -> CommandResult {
     for (flag, value) in
         [("--stiffness-nm-per-rad", args.stiffness), ("--damping-nms-per-rad", args.damping)]
     {
@@ -181,7 +182,7 @@ fn wall(args: WallArgs) -> anyhow::Result<()> {
             [DeviceKind::Conventional, DeviceKind::Bidirectional, DeviceKind::Motor]
                 .into_iter()
                 .map(|kind| Ok((kind, simulate(&wall_config(&args, kind)?, true)?)))
-                .collect::<anyhow::Result<_>>()?
+                .collect::<CommandResult<_>>()?
         } else {
             Vec::new()
         };
@@ -199,7 +200,7 @@ fn wall(args: WallArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn zwidth(args: ZwidthArgs) -> anyhow::Result<()> {
+fn zwidth(args: ZwidthArgs) -> CommandResult {
     let period = parse(&args.period, Dimension::Time).context("--period")?;
     if !(2..=1000).contains(&args.points) {
         return Err(InputError(format!("--points = {} must be in 2..=1000", args.points)).into());
@@ -225,6 +226,6 @@ fn zwidth(args: ZwidthArgs) -> anyhow::Result<()> {
     if args.json {
         return print_json(&summary);
     }
-    crate::outln!("{}", serde_json::to_string_pretty(&summary)?);
+    crate::outln!("{}", crate::output::json_text(&summary)?);
     Ok(())
 }

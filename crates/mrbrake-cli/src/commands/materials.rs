@@ -5,7 +5,8 @@ use mrbrake_materials::library;
 use mrbrake_report::materials as report;
 use mrbrake_units::{Dimension, parse};
 
-use crate::exit::InputError;
+use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::print_json;
 
 /// Field strengths [A/m] at which `show` reports B for a non-linear material.
@@ -51,14 +52,14 @@ pub struct ShowArgs {
 }
 
 /// Runs a `materials` subcommand.
-pub fn run(command: MaterialsCommand) -> anyhow::Result<()> {
+pub fn run(command: MaterialsCommand) -> CommandResult {
     match command {
         MaterialsCommand::List(a) => list(&a),
         MaterialsCommand::Show(a) => show(&a),
     }
 }
 
-fn list(a: &ListArgs) -> anyhow::Result<()> {
+fn list(a: &ListArgs) -> CommandResult {
     let mut rows = Vec::new();
     for (name, _) in library::names() {
         rows.push(library::get(name)?);
@@ -71,7 +72,7 @@ fn list(a: &ListArgs) -> anyhow::Result<()> {
 }
 
 /// Parses a list of non-negative quantities of one dimension.
-fn non_negative_values(flag: &str, texts: &[String], dim: Dimension) -> anyhow::Result<Vec<f64>> {
+fn non_negative_values(flag: &str, texts: &[String], dim: Dimension) -> CommandResult<Vec<f64>> {
     texts
         .iter()
         .map(|t| {
@@ -89,7 +90,7 @@ fn non_negative_values(flag: &str, texts: &[String], dim: Dimension) -> anyhow::
         .collect()
 }
 
-fn show(a: &ShowArgs) -> anyhow::Result<()> {
+fn show(a: &ShowArgs) -> CommandResult {
     let material = library::get(&a.name)?;
     let b_values = if a.b.is_empty() {
         DEFAULT_B_T.to_vec()

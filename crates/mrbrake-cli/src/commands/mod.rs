@@ -1,6 +1,7 @@
 //! One module per subcommand; each defines its clap arguments and a `run` function.
 //! To add a subcommand: a `mod` line, an enum variant and a match arm.
 
+use crate::error::CommandResult;
 use clap::Subcommand;
 
 mod analyze;
@@ -62,7 +63,7 @@ pub enum Command {
 }
 
 /// Runs one subcommand.
-pub fn run(command: Command) -> anyhow::Result<()> {
+pub fn run(command: Command) -> CommandResult {
     match command {
         Command::Analyze(a) => analyze::run(a),
         Command::Formula(c) => formula::run(c),

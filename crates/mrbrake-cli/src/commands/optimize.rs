@@ -10,7 +10,8 @@ use mrbrake_explore::problem::OptimizationProblem;
 use mrbrake_report::study::{self as study_report, OptimizationReport};
 use mrbrake_store::Store;
 
-use crate::exit::InputError;
+use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::print_json;
 use crate::progress::ProgressDisplay;
 
@@ -44,7 +45,7 @@ pub struct OptimizeArgs {
 }
 
 /// Runs `mrbrake optimize`.
-pub fn run(a: OptimizeArgs) -> anyhow::Result<()> {
+pub fn run(a: OptimizeArgs) -> CommandResult {
     if a.list_metrics {
         crate::out!("{}", study_report::metrics_text());
         return Ok(());

@@ -7,6 +7,7 @@ use mrbrake_report::rig::{rig_json, rig_text, write_rig_folder};
 use mrbrake_sim::rig::{self, RigConfig};
 use mrbrake_sysid::model_file::read_inverse_model;
 
+use crate::error::CommandResult;
 use crate::output::print_json;
 
 /// `mrbrake rig` subcommands.
@@ -49,7 +50,7 @@ pub struct RigFreqArgs {
     model: Option<PathBuf>,
 }
 
-fn load_config(args: &RigArgs) -> anyhow::Result<RigConfig> {
+fn load_config(args: &RigArgs) -> CommandResult<RigConfig> {
     let mut config = match &args.config {
         Some(path) => RigConfig::read(path)?,
         None => RigConfig::default(),
@@ -61,7 +62,7 @@ fn load_config(args: &RigArgs) -> anyhow::Result<RigConfig> {
 }
 
 /// Runs `mrbrake rig …`.
-pub fn run(command: RigCommand) -> anyhow::Result<()> {
+pub fn run(command: RigCommand) -> CommandResult {
     match command {
         RigCommand::Config => {
             crate::out!("{}", RigConfig::default().to_toml());
@@ -83,7 +84,7 @@ pub fn run(command: RigCommand) -> anyhow::Result<()> {
     }
 }
 
-fn report(args: &RigArgs, written: &[PathBuf], what: &str) -> anyhow::Result<()> {
+fn report(args: &RigArgs, written: &[PathBuf], what: &str) -> CommandResult {
     if args.json {
         return print_json(&rig_json(written));
     }

@@ -7,6 +7,7 @@ use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::study;
 use mrbrake_report::study::thesis_tables_text;
 
+use crate::error::CommandResult;
 use crate::output::print_json;
 
 /// `mrbrake study` subcommands.
@@ -29,7 +30,7 @@ pub struct ThesisTablesArgs {
 }
 
 /// Runs `mrbrake study …`.
-pub fn run(command: StudyCommand) -> anyhow::Result<()> {
+pub fn run(command: StudyCommand) -> CommandResult {
     match command {
         StudyCommand::ThesisTables(a) => {
             let options =

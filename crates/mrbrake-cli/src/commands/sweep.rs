@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
+use crate::error::Context;
 use clap::Args;
 use mrbrake_design::analysis::ElementOrder;
 use mrbrake_design::mesh_build::MeshLevel;
@@ -14,7 +14,8 @@ use mrbrake_report::study::{self as study_report, SweepReport};
 use mrbrake_store::Store;
 use mrbrake_units::{Dimension, parse};
 
-use crate::exit::InputError;
+use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::print_json;
 use crate::progress::ProgressDisplay;
 
@@ -91,7 +92,7 @@ pub struct ExportArgs {
     json: bool,
 }
 
-fn split_pair(text: &str, flag: &str) -> anyhow::Result<(String, String)> {
+fn split_pair(text: &str, flag: &str) -> CommandResult<(String, String)> {
     let (a, b) = text
         .split_once('=')
         .ok_or_else(|| InputError(format!("{flag} '{text}': expected NAME=VALUE")))?;
@@ -99,7 +100,7 @@ fn split_pair(text: &str, flag: &str) -> anyhow::Result<(String, String)> {
 }
 
 /// The evaluation settings from the common flags.
-pub fn settings_from(mesh: &str, speed: &str, order: u8) -> anyhow::Result<EvaluationSettings> {
+pub fn settings_from(mesh: &str, speed: &str, order: u8) -> CommandResult<EvaluationSettings> {
     Ok(EvaluationSettings {
         mesh: MeshLevel::parse(mesh)?,
         speed_rad_s: parse(speed, Dimension::AngularVelocity).context("--speed")?,
@@ -109,7 +110,7 @@ pub fn settings_from(mesh: &str, speed: &str, order: u8) -> anyhow::Result<Evalu
 }
 
 /// The base spec's text and where it came from.
-fn base_spec(spec: Option<&PathBuf>) -> anyhow::Result<(String, String)> {
+fn base_spec(spec: Option<&PathBuf>) -> CommandResult<(String, String)> {
     Ok(match spec {
         Some(path) => (
             std::fs::read_to_string(path)
@@ -121,7 +122,7 @@ fn base_spec(spec: Option<&PathBuf>) -> anyhow::Result<(String, String)> {
 }
 
 /// The design space, the whole plan's points and this shard's designs, from the arguments.
-fn plan_from(a: &SweepArgs) -> anyhow::Result<(DesignSpace, usize, Shard, Vec<Design>)> {
+fn plan_from(a: &SweepArgs) -> CommandResult<(DesignSpace, usize, Shard, Vec<Design>)> {
     let (spec_text, origin) = base_spec(a.spec.as_ref())?;
     let overrides: Vec<(String, String)> =
         a.set.iter().map(|s| split_pair(s, "--set")).collect::<Result<_, _>>()?;
@@ -152,7 +153,7 @@ fn plan_from(a: &SweepArgs) -> anyhow::Result<(DesignSpace, usize, Shard, Vec<De
 }
 
 /// Runs `mrbrake sweep`.
-pub fn run_sweep(a: SweepArgs) -> anyhow::Result<()> {
+pub fn run_sweep(a: SweepArgs) -> CommandResult {
     let (space, plan_points, shard, designs) = plan_from(&a)?;
     let mut store = Store::open_or_create(&a.store, a.resume)?;
     if store.meta("created_by")?.is_none() {
@@ -184,7 +185,7 @@ pub fn run_sweep(a: SweepArgs) -> anyhow::Result<()> {
 }
 
 /// Runs `mrbrake merge`.
-pub fn run_merge(a: MergeArgs) -> anyhow::Result<()> {
+pub fn run_merge(a: MergeArgs) -> CommandResult {
     let mut store = Store::open_or_create(&a.output, true)?;
     let mut total = 0;
     for input in &a.inputs {
@@ -197,7 +198,7 @@ pub fn run_merge(a: MergeArgs) -> anyhow::Result<()> {
 }
 
 /// Runs `mrbrake export`.
-pub fn run_export(a: ExportArgs) -> anyhow::Result<()> {
+pub fn run_export(a: ExportArgs) -> CommandResult {
     let store = Store::open(&a.store)?;
     let records = store.records()?;
     if let Some(path) = &a.csv {

@@ -9,7 +9,8 @@ use mrbrake_sysid::frd::read_frd;
 use mrbrake_sysid::tfest::{TfestOptions, Weighting, tfest};
 use mrbrake_units::{Dimension, parse};
 
-use crate::exit::InputError;
+use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::print_json;
 
 /// Weighting of the complex fitting error.
@@ -53,7 +54,7 @@ pub struct TfestArgs {
 }
 
 /// Runs `mrbrake tfest`.
-pub fn run(args: TfestArgs) -> anyhow::Result<()> {
+pub fn run(args: TfestArgs) -> CommandResult {
     if args.poles == 0 || args.zeros > args.poles {
         return Err(InputError(format!(
             "--poles must be ≥ 1 and --zeros ≤ --poles (got {} and {})",
@@ -72,7 +73,7 @@ pub fn run(args: TfestArgs) -> anyhow::Result<()> {
     let fit = tfest(&frd, &options)?;
     let summary = fit.summary()?;
     if let Some(path) = &args.save {
-        mrbrake_report::write_atomic(path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
+        mrbrake_report::write_atomic(path, crate::output::json_text(&summary)?.as_bytes())?;
     }
     if let Some(path) = &args.plot {
         save_tfest_plot(path, &frd, &fit, args.poles, args.zeros)?;
