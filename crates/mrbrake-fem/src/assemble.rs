@@ -25,6 +25,8 @@
 //! scatter into global arrays is sequential in element order, so the arithmetic (and every result
 //! bit) is the same whatever the number of threads.
 
+use std::sync::Arc;
+
 use rayon::prelude::*;
 
 use crate::FemError;
@@ -174,9 +176,8 @@ pub struct LocalMatrix {
 pub struct Assembly {
     basis: Basis,
     constraints: Constraints,
-    /// Free index of each element's DOFs (or CONSTRAINED), `N` per element.
-    element_free_dofs: Vec<usize>,
-    pattern: SymmetricPattern,
+    /// Shared with the Newton solver of this assembly (no copy of the pattern and scatter map).
+    pattern: Arc<SymmetricPattern>,
     element_residual: Vec<f64>,
     element_jacobian: Vec<f64>,
     /// Sum of the constant element Jacobians and the couplings (values on the pattern).
@@ -202,8 +203,11 @@ impl Assembly {
             return Err(FemError::Input("every node is constrained: nothing to solve".into()));
         }
         let k = basis.dofs().dofs_per_triangle();
+        // The free index of each element DOF is needed only to build the pattern: the scatters
+        // look it up through the constraints (kept: 8 bytes per element DOF, 4.6 MB at 100 k nodes).
         let element_free_dofs = constraints.free_dofs_of(basis.dofs().element_dofs());
-        let pattern = SymmetricPattern::new(constraints.n_free(), k, &element_free_dofs);
+        let pattern = Arc::new(SymmetricPattern::new(constraints.n_free(), k, &element_free_dofs));
+        drop(element_free_dofs);
         let n = basis.n_elements();
         Ok(Self {
             element_residual: vec![0.0; k * n],
@@ -212,7 +216,6 @@ impl Assembly {
             varying_elements: (0..n).collect(),
             couplings: Couplings::default(),
             prepared: false,
-            element_free_dofs,
             pattern,
             basis,
             constraints,
@@ -230,7 +233,7 @@ impl Assembly {
     }
 
     /// The sparsity pattern of the free DOFs.
-    pub fn pattern(&self) -> &SymmetricPattern {
+    pub fn pattern(&self) -> &Arc<SymmetricPattern> {
         &self.pattern
     }
 
@@ -352,7 +355,12 @@ impl Assembly {
             &mut self.element_residual,
             want_jacobian.then_some(&mut self.element_jacobian[..]),
         );
-        scatter::<N>(&self.element_free_dofs, &self.element_residual, residual);
+        scatter::<N>(
+            self.basis.dofs().element_dofs(),
+            self.constraints.free_index(),
+            &self.element_residual,
+            residual,
+        );
         let free = self.constraints.free_index();
         for &(i, j, value) in &self.couplings.residual {
             let d = free[i];
@@ -382,11 +390,17 @@ impl Assembly {
     pub fn vector(&self, element_vectors: &[f64], scale: impl Fn(usize) -> f64) -> Vec<f64> {
         let k = self.basis.dofs().dofs_per_triangle();
         let mut out = vec![0.0; self.n_free()];
-        for (t, (dofs, values)) in
-            self.element_free_dofs.chunks_exact(k).zip(element_vectors.chunks_exact(k)).enumerate()
+        for (t, (dofs, values)) in self
+            .basis
+            .dofs()
+            .element_dofs()
+            .chunks_exact(k)
+            .zip(element_vectors.chunks_exact(k))
+            .enumerate()
         {
             let s = scale(t);
-            for (&d, &v) in dofs.iter().zip(values) {
+            let free = self.constraints.free_index();
+            for (&d, &v) in dofs.iter().map(|&g| &free[g]).zip(values) {
                 if d != CONSTRAINED {
                     out[d] += s * v;
                 }
@@ -429,13 +443,19 @@ fn element_residuals<E: TriangleBasis<N>, const N: usize, F: ElementForm>(
 }
 
 /// Adds the element residuals (`N` per element) into the free-DOF vector `out` (zeroed first)
-/// through the free index of each element DOF.
-fn scatter<const N: usize>(element_free_dofs: &[usize], element_residual: &[f64], out: &mut [f64]) {
+/// through the free index (`free_index`) of each element DOF (`element_dofs`, global).
+fn scatter<const N: usize>(
+    element_dofs: &[usize],
+    free_index: &[usize],
+    element_residual: &[f64],
+    out: &mut [f64],
+) {
     out.iter_mut().for_each(|r| *r = 0.0);
-    for (dofs, res) in element_free_dofs.chunks_exact(N).zip(element_residual.chunks_exact(N)) {
+    for (dofs, res) in element_dofs.chunks_exact(N).zip(element_residual.chunks_exact(N)) {
         for k in 0..N {
-            if dofs[k] != CONSTRAINED {
-                out[dofs[k]] += res[k];
+            let d = free_index[dofs[k]];
+            if d != CONSTRAINED {
+                out[d] += res[k];
             }
         }
     }

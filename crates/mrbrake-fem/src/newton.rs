@@ -51,6 +51,7 @@
 //! few preconditioned CG iterations in the tail) and one triangular solve, plus one evaluation per
 //! rejected line-search trial: the accepted trial point's Jacobian is the next iteration's.
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -217,7 +218,7 @@ fn format_history(history: &[NewtonStep]) -> String {
 /// on the same pattern (a current sweep, the time steps of a transient).
 #[derive(Debug)]
 pub struct NewtonSolver {
-    pattern: SymmetricPattern,
+    pattern: Arc<SymmetricPattern>,
     cholesky: SparseCholesky,
     /// Jacobian values on the pattern (the last evaluation with a Jacobian).
     values: Vec<f64>,
@@ -231,7 +232,7 @@ impl NewtonSolver {
     /// 2D meshes, see [`crate::ordering`]). `threads` is the parallelism of the numeric
     /// factorisation ([`SparseCholesky::new`]).
     pub fn new(
-        pattern: &SymmetricPattern,
+        pattern: &Arc<SymmetricPattern>,
         free_coordinates: &[[f64; 2]],
         threads: usize,
     ) -> Result<Self, FemError> {
@@ -240,7 +241,7 @@ impl NewtonSolver {
         let cholesky = SparseCholesky::with_order(pattern, threads, Some(&order))?;
         Ok(Self {
             values: vec![0.0; pattern.nnz()],
-            pattern: pattern.clone(),
+            pattern: Arc::clone(pattern),
             cholesky,
             work: NewtonWork::default(),
             symbolic_s: start.elapsed().as_secs_f64(),
