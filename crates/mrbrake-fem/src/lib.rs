@@ -29,7 +29,9 @@
 //!   [`ordering`] gives it a nested-dissection elimination order for 2D meshes.
 //! - [`locate::PointLocator`] finds the triangle containing a point (uniform bucket grid).
 //! - [`basis`], [`constraints`], [`assemble`] (with the [`by_order!`] dispatch macro),
-//!   [`boundary`], [`newton`], [`lu`]: the generic finite-element workflow above.
+//!   [`boundary`], [`newton`], [`lu`]: the generic finite-element workflow above;
+//!   [`low_rank`]: dense rank-one Jacobian terms (an eliminated circuit equation) applied with the
+//!   sparse factor by the Woodbury formula.
 
 pub mod assemble;
 pub mod basis;
@@ -40,6 +42,7 @@ pub mod dofs;
 pub mod element;
 pub mod gmsh;
 pub mod locate;
+pub mod low_rank;
 pub mod lu;
 pub mod mesh;
 pub mod mesher;

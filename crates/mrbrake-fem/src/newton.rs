@@ -60,6 +60,7 @@ use crate::FemError;
 use crate::assemble::{Assembly, ElementForm};
 use crate::cholesky::SparseCholesky;
 use crate::constraints::Constraints;
+use crate::low_rank::{LowRankTerm, Woodbury};
 use crate::ordering::nested_dissection;
 use crate::pattern::{CONSTRAINED, SymmetricPattern};
 
@@ -75,6 +76,13 @@ pub trait NonlinearSystem {
 
     /// True when the Jacobian does not depend on `u` (one Newton step solves the system).
     fn is_linear(&self) -> bool;
+
+    /// Dense symmetric rank-one terms `w c cᵀ` of the Jacobian besides its sparse part (none by
+    /// default), constant during a solve: the solver applies them with the sparse factor by the
+    /// Woodbury formula ([`crate::low_rank`]); the residual must include their contribution.
+    fn low_rank(&self) -> &[LowRankTerm] {
+        &[]
+    }
 }
 
 /// An [`Assembly`] with an [`ElementForm`]: the usual [`NonlinearSystem`] of a finite-element
@@ -223,6 +231,8 @@ pub struct NewtonSolver {
     /// Jacobian values on the pattern (the last evaluation with a Jacobian).
     values: Vec<f64>,
     work: NewtonWork,
+    /// The system's low-rank Jacobian terms with the current factor.
+    woodbury: Woodbury,
     symbolic_s: f64,
 }
 
@@ -244,6 +254,7 @@ impl NewtonSolver {
             pattern: Arc::clone(pattern),
             cholesky,
             work: NewtonWork::default(),
+            woodbury: Woodbury::default(),
             symbolic_s: start.elapsed().as_secs_f64(),
         })
     }
@@ -270,7 +281,8 @@ impl NewtonSolver {
     }
 
     /// Evaluates the Jacobian of `system` at `u` and factorises it (for solves with the tangent
-    /// matrix at a solution, e.g. a small-signal response). Returns the residual at `u`.
+    /// matrix at a solution, e.g. a small-signal response, or every step of a linear transient at
+    /// a fixed step). Returns the residual at `u`.
     pub fn factorize_at<S: NonlinearSystem>(
         &mut self,
         system: &mut S,
@@ -278,14 +290,29 @@ impl NewtonSolver {
     ) -> Result<Vec<f64>, FemError> {
         let mut residual = vec![0.0; system.constraints().n_free()];
         system.evaluate(u, &mut residual, Some(&mut self.values));
-        self.cholesky.factorize(&self.values)?;
+        self.factorize_with(system.low_rank())?;
         Ok(residual)
     }
 
-    /// Solves `K x = rhs` in place with the last factorisation ([`Self::factorize_at`] or the last
-    /// Newton factorisation).
+    /// Factorises the stored Jacobian values and prepares the low-rank `terms` for it.
+    fn factorize_with(&mut self, terms: &[LowRankTerm]) -> Result<(), FemError> {
+        self.cholesky.factorize(&self.values)?;
+        self.woodbury.set_terms(terms)?;
+        let cholesky = &mut self.cholesky;
+        self.woodbury.refresh(|v| cholesky.solve_in_place(v))
+    }
+
+    /// Solves `K x = rhs` in place with the sparse part `K` of the last factorisation
+    /// ([`Self::factorize_at`] or the last Newton factorisation).
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), FemError> {
         self.cholesky.solve_in_place(rhs)
+    }
+
+    /// Solves `J x = rhs` in place with the whole Jacobian of the last factorisation: its sparse
+    /// part and its low-rank terms ([`NonlinearSystem::low_rank`]).
+    pub fn solve_jacobian_in_place(&mut self, rhs: &mut [f64]) -> Result<(), FemError> {
+        self.cholesky.solve_in_place(rhs)?;
+        self.woodbury.correct(rhs)
     }
 
     /// Solves `R(u) = 0` from the start `u` (one value per DOF; its constrained entries are set to
@@ -303,6 +330,9 @@ impl NewtonSolver {
         self.work.resize(n_free);
         let free_index = system.constraints().free_index().to_vec();
         let mut iteration = Iteration::new(free_index, u.clone(), scale);
+        self.woodbury
+            .set_terms(system.low_rank())
+            .map_err(|e| iteration.failure(&e.to_string()))?;
         let t = Instant::now();
         system.evaluate(u, &mut iteration.residual, Some(&mut self.values));
         iteration.timings.assemble_s += t.elapsed().as_secs_f64();
@@ -343,7 +373,7 @@ impl NewtonSolver {
             return Ok(StepOutcome::IterationLimit);
         }
         it.iterations += 1;
-        let cg_iterations = self.direction(it, r_norm, options)?;
+        let cg_iterations = self.direction(system.low_rank(), it, r_norm, options)?;
         let (alpha, accepted) = self.line_search(system, it, options);
         let a_max = it.u.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         let d_max = it.delta.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * alpha;
@@ -370,13 +400,17 @@ impl NewtonSolver {
 
     /// The Newton direction `δ` into `it.delta`: by CG with the previous factor in the tail phase
     /// (returns its iteration count), else by factorising the Jacobian (returns 0).
+    /// With low-rank terms the tail is skipped (the stale factor would need their correction
+    /// too) and the exact step includes them.
     fn direction(
         &mut self,
+        terms: &[LowRankTerm],
         it: &mut Iteration,
         r_norm: f64,
         options: &NewtonOptions,
     ) -> Result<usize, NewtonError> {
         if let Some((previous_norm, true)) = it.previous
+            && terms.is_empty()
             && it.factorizations > 0
             && r_norm <= options.tail_phase_reduction * previous_norm
         {
@@ -393,7 +427,7 @@ impl NewtonSolver {
             }
         }
         let t = Instant::now();
-        if let Err(e) = self.cholesky.factorize(&self.values) {
+        if let Err(e) = self.factorize_with(terms) {
             return Err(it.failure(&format!(
                 "{e} (Jacobian not positive definite: is a material law non-monotone?)"
             )));
@@ -404,7 +438,7 @@ impl NewtonSolver {
         for (d, r) in it.delta.iter_mut().zip(&it.residual) {
             *d = -r;
         }
-        self.cholesky.solve_in_place(&mut it.delta).map_err(|e| it.failure(&e.to_string()))?;
+        self.solve_jacobian_in_place(&mut it.delta).map_err(|e| it.failure(&e.to_string()))?;
         it.timings.solve_s += t.elapsed().as_secs_f64();
         Ok(0)
     }
@@ -438,7 +472,7 @@ impl NewtonSolver {
             }
             // Slope g'(α) = δᵀ K(u + αδ) δ with the Jacobian this trial evaluated.
             self.pattern.symmetric_mul(&self.values, &it.delta, &mut self.work.slope);
-            let slope = dot(&it.delta, &self.work.slope);
+            let slope = dot(&it.delta, &self.work.slope) + self.woodbury.curvature(&it.delta);
             alpha = bracket.next(alpha, g, slope);
         }
         (alpha, false)

@@ -64,6 +64,21 @@ impl Solution {
         Self { a_phi, n_vertices, report }
     }
 
+    /// A potential that no Newton solve produced (a time step, a real or imaginary part of a
+    /// harmonic solution): its report is empty.
+    pub(crate) fn from_potential(a_phi: Vec<f64>, n_vertices: usize) -> Self {
+        let report = NewtonReport {
+            iterations: 0,
+            factorizations: 0,
+            converged: true,
+            residual_scale: 0.0,
+            final_relative_residual: 0.0,
+            history: Vec::new(),
+            timings: Default::default(),
+        };
+        Self { a_phi, n_vertices, report }
+    }
+
     /// Values of `A_phi` (Wb/m) at every degree of freedom (usable as a warm start of the same
     /// solver): one per mesh node for P1; for P2 the mesh nodes, then the edge midpoints
     /// ([`Solver::dof_coordinates`]).

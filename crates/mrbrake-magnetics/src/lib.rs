@@ -50,6 +50,7 @@
 //! ```
 
 pub mod benchmark;
+pub mod dynamics;
 pub mod exact;
 pub mod field;
 pub mod form;
@@ -82,6 +83,16 @@ pub enum MagneticsError {
     /// Another numerical failure.
     #[error("{0}")]
     Numerical(String),
+    /// A time step of a transient failed: which step, at what time, and why.
+    #[error("time step {step} (t = {time_s:.6e} s): {source}")]
+    TimeStep {
+        /// 1-based step number.
+        step: usize,
+        /// The time the step was to reach (s).
+        time_s: f64,
+        /// The failure (Newton's residual history, a factorisation, …).
+        source: Box<MagneticsError>,
+    },
 }
 
 impl mrbrake_error::Kind for MagneticsError {
@@ -94,6 +105,7 @@ impl mrbrake_error::Kind for MagneticsError {
             Self::Fem(e) => e.kind(),
             Self::Material(e) => e.kind(),
             Self::NotConverged { .. } | Self::Numerical(_) => ErrorKind::Numerical,
+            Self::TimeStep { source, .. } => source.kind(),
         }
     }
 }

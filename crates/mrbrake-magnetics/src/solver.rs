@@ -89,7 +89,7 @@ pub const TAIL_CG_MAX_ITERATIONS: usize = 4;
 
 impl SolverOptions {
     /// The options of the core's Newton iteration.
-    fn newton(&self) -> NewtonOptions {
+    pub(crate) fn newton(&self) -> NewtonOptions {
         NewtonOptions {
             max_iterations: self.max_iterations,
             residual_tolerance: self.residual_tolerance,
@@ -109,7 +109,7 @@ pub struct Solver {
     /// Materials, region of every element, sources, linear-element matrices.
     pub(crate) form: AphiForm,
     /// Cholesky factorisation and Newton work arrays.
-    newton: NewtonSolver,
+    pub(crate) newton: NewtonSolver,
     /// Cross-section area (m²) of every region.
     pub(crate) region_area: Vec<f64>,
     /// Point-location and recovery tables, built on the first point query.
@@ -242,7 +242,7 @@ impl Solver {
     }
 
     /// Residual scale `s = ‖F‖ + ‖R_lin(A_D)‖` of the stopping rule (see the module docs).
-    fn residual_scale(&mut self) -> f64 {
+    pub(crate) fn residual_scale(&mut self) -> f64 {
         // Linear state: every material at its B = 0 reluctivity.
         let linear = self
             .form
