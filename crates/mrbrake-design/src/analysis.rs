@@ -664,7 +664,7 @@ fn flux_path_field(
     Ok(field)
 }
 
-fn numerical(e: mrbrake_magnetics::MagneticsError) -> DesignError {
+pub(crate) fn numerical(e: mrbrake_magnetics::MagneticsError) -> DesignError {
     DesignError::FieldSolution(e)
 }
 
@@ -673,7 +673,7 @@ fn material_error(e: mrbrake_materials::MaterialError) -> DesignError {
 }
 
 /// The fluid named by the spec.
-fn fluid_of(spec: &BrakeSpec) -> Result<Arc<MrFluid>, DesignError> {
+pub(crate) fn fluid_of(spec: &BrakeSpec) -> Result<Arc<MrFluid>, DesignError> {
     let material = library::get(&spec.materials.fluid).map_err(material_error)?;
     material.fluid.clone().ok_or_else(|| {
         DesignError::Input(format!(
@@ -745,18 +745,7 @@ fn gap_results(
     gaps.iter()
         .map(|gap| {
             let stats = solver.region_stats(solution, gap.tag).map_err(numerical)?;
-            // (1/g) ∫∫ 2π r² τ_y(|B|) dr dz over the gap's cross-section (module docs).
-            let two_pi = 2.0 * std::f64::consts::PI;
-            let torque = solver
-                .integrate_over_region(solution, gap.tag, |p, b| {
-                    let r = match gap.orientation {
-                        GapOrientation::Cylindrical => gap.shear_radius_m,
-                        GapOrientation::Annular => p[0],
-                    };
-                    two_pi * r * r * fluid.tau_y_of_b(b[0].hypot(b[1]))
-                })
-                .map_err(numerical)?
-                / gap.width_m;
+            let torque = gap_yield_torque(solver, solution, gap, fluid)?;
             // The |B| profile along the mid-line, for plots.
             let line =
                 solver.b_along(solution, &gap.sample_line, GAP_SAMPLES).map_err(numerical)?;
@@ -784,6 +773,27 @@ fn gap_results(
             })
         })
         .collect()
+}
+
+/// The local Bingham yield torque of one gap: `(1/g) ∫∫ 2π r² τ_y(|B|) dr dz` over its
+/// cross-section (module docs).
+pub(crate) fn gap_yield_torque(
+    solver: &Solver,
+    solution: &Solution,
+    gap: &GapInfo,
+    fluid: &MrFluid,
+) -> Result<f64, DesignError> {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let integral = solver
+        .integrate_over_region(solution, gap.tag, |p, b| {
+            let r = match gap.orientation {
+                GapOrientation::Cylindrical => gap.shear_radius_m,
+                GapOrientation::Annular => p[0],
+            };
+            two_pi * r * r * fluid.tau_y_of_b(b[0].hypot(b[1]))
+        })
+        .map_err(numerical)?;
+    Ok(integral / gap.width_m)
 }
 
 /// Viscous torque of one gap at relative speed `omega` (3.4), by the per-surface laws of

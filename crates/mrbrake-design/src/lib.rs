@@ -5,7 +5,8 @@
 //! its working surfaces) and validates it once, assembling its [`geometry`] (tagged regions, fluid
 //! gaps, coils) on the way; [`mesh_build`] meshes it (or [`geo_export`] writes a Gmsh `.geo`);
 //! [`analysis`] solves the field over a current sweep and reduces it to torques, coil and
-//! mechanics; [`formula`] holds the thesis's closed-form models; [`study`] re-runs the thesis's
+//! mechanics; [`response`] predicts how fast the torque follows the current (eddy currents in
+//! the flux path, the coil circuit); [`formula`] holds the thesis's closed-form models; [`study`] re-runs the thesis's
 //! comparison tables. Errors are one [`DesignError`], whose variants keep their kind (the spec's
 //! invalid fields as a list, the solver's and mesher's errors wrapped typed).
 
@@ -15,6 +16,7 @@ pub mod formula;
 pub mod geo_export;
 pub mod geometry;
 pub mod mesh_build;
+pub mod response;
 pub mod spec;
 pub mod study;
 

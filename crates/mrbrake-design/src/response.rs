@@ -1,0 +1,600 @@
+//! How fast a brake's torque follows its current: the step response and the small-signal
+//! frequency response predicted from the design (eddy currents in the solid flux path, the coil
+//! circuit, an optional first-order lag of the fluid itself).
+//!
+//! The brake's field problem (the same mesh, materials and coils as [`crate::analysis`]) gets the
+//! electrical conductivity of every solid part from the material library (each value with its
+//! source: FEMM gives 5.8 MS/m for its 1006–1020 steels, the ANSYS 1008 curve 2 MS/m; the spread is
+//! real material and data uncertainty, so [`ResponseOptions::flux_path_conductivity_s_per_m`]
+//! overrides the flux-path steel's value to show how the prediction moves); the MR fluid and the
+//! air do not conduct (the fluid's conductivity is orders below the steel's; no source in the
+//! library), the coils are stranded. The transient and harmonic solves are those of
+//! [`mrbrake_magnetics::dynamics`].
+//!
+//! - Step response: the direction's coils driven by a current step (`from → to`, the thesis's
+//!   linear current amplifier, 3.3, 5.3) or a voltage step through the coil's resistance;
+//!   every accepted time step gives the local Bingham yield torque from `B(t)` in the direction's
+//!   gaps (the integral of [`crate::analysis`]), then the fluid's lag, a first-order filter of time
+//!   constant `τ_f` integrated exactly for a piecewise-linear input. Rise times `t63`, `t90`: the
+//!   first times the torque has covered 63 % and 90 % of its change.
+//! - Frequency response: the field linearised about the DC bias (half the maximum current by
+//!   default, the middle of the thesis's test range); per frequency the incremental potential
+//!   `δÂ` per ampere, and the torque phasor `δT̂ = dT/dA · δÂ` by a central difference of the torque
+//!   integral along `Re δÂ` and `Im δÂ` (a relative step of 1e-3 of the bias field; the torque is
+//!   smooth in A). The magnitude is normalised by the zero-frequency gain (as the thesis's (5.5),
+//!   (5.6) are, DC gain ≈ 1); the bandwidth is the first frequency where it falls 3 dB below
+//!   (log-log interpolation between the computed points, 0.1–1000 rad/s, ten a decade as in the
+//!   thesis, 5.3.2).
+//!
+//! Default fluid lag: MRF-132DG's measured response time T90 ≈ 0.8–1.4 ms (Kubík et al., Sci.
+//! Rep. 12:10612, 2022); a first-order lag with T90 = 1.1 ms has `τ_f = 1.1 ms / ln 10 = 0.48 ms`.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use mrbrake_magnetics::dynamics::transient::{Scheme, TimeStep, TransientOptions};
+use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
+use mrbrake_magnetics::{Solution, Solver, SolverOptions};
+use mrbrake_materials::{CopperWire, MrFluid, library};
+use num_complex::Complex64;
+use serde::Serialize;
+
+use crate::DesignError;
+use crate::analysis::{fluid_of, gap_yield_torque, numerical, problem_of};
+use crate::formula;
+use crate::geometry::{BrakeGeometry, GapInfo, PartKind};
+use crate::mesh_build::{self, MeshLevel};
+use crate::spec::BrakeSpec;
+
+pub use mrbrake_magnetics::ElementOrder;
+
+/// The fluid's default first-order lag (s): T90 = 1.1 ms (Kubík et al. 2022) over ln 10.
+pub const DEFAULT_FLUID_LAG_S: f64 = 1.1e-3 / std::f64::consts::LN_10;
+
+/// How the coil is driven.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ResponseDrive {
+    /// A current amplifier (the thesis's rig): the current follows the demand at once.
+    Current,
+    /// A voltage source through the coil's own resistance (at the analysis temperature): the
+    /// coil's `L/R` adds to the eddy currents.
+    Voltage,
+}
+
+/// Settings of a response prediction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ResponseOptions {
+    /// Mesh density.
+    pub mesh: MeshLevel,
+    /// Element order.
+    pub order: ElementOrder,
+    /// Drive.
+    pub drive: ResponseDrive,
+    /// Step from this current (A)…
+    pub step_from_a: f64,
+    /// …to this one (A); `None`: the spec's maximum current.
+    pub step_to_a: Option<f64>,
+    /// DC bias of the frequency response (A); `None`: half the maximum current.
+    pub bias_a: Option<f64>,
+    /// Duration of the step response (s).
+    pub duration_s: f64,
+    /// Relative tolerance of the adaptive time steps.
+    pub rtol: f64,
+    /// First-order lag of the fluid (s), 0 for none.
+    pub fluid_lag_s: f64,
+    /// Conductivity of the flux-path steel (S/m) instead of its library value.
+    pub flux_path_conductivity_s_per_m: Option<f64>,
+    /// Angular frequencies of the frequency response (rad/s).
+    pub omegas_rad_s: Vec<f64>,
+    /// Copper temperature for the coil resistance of a voltage drive (°C).
+    pub temperature_c: f64,
+}
+
+impl Default for ResponseOptions {
+    fn default() -> Self {
+        Self {
+            mesh: MeshLevel::Default,
+            order: ElementOrder::P1,
+            drive: ResponseDrive::Current,
+            step_from_a: 0.0,
+            step_to_a: None,
+            bias_a: None,
+            duration_s: 0.1,
+            rtol: 1e-3,
+            fluid_lag_s: DEFAULT_FLUID_LAG_S,
+            flux_path_conductivity_s_per_m: None,
+            omegas_rad_s: decades(0.1, 1000.0, 10),
+            temperature_c: 20.0,
+        }
+    }
+}
+
+/// `per_decade` log-spaced points from `from` to `to` inclusive.
+pub fn decades(from: f64, to: f64, per_decade: usize) -> Vec<f64> {
+    let n = ((to / from).log10() * per_decade as f64).round() as usize;
+    (0..=n).map(|k| from * 10f64.powf(k as f64 / per_decade as f64)).collect()
+}
+
+/// The torque step response of one direction.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StepResponse {
+    /// Direction (1 or 2).
+    pub direction: usize,
+    /// Times (s).
+    pub time_s: Vec<f64>,
+    /// Coil current (A).
+    #[serde(rename = "current_A")]
+    pub current_a: Vec<f64>,
+    /// Torque after the fluid's lag (N·m): yield torque of the direction's gaps.
+    #[serde(rename = "torque_Nm")]
+    pub torque_nm: Vec<f64>,
+    /// Time to 63 % of the torque change (s), `None` if not reached.
+    pub t63_s: Option<f64>,
+    /// Time to 90 % (s).
+    pub t90_s: Option<f64>,
+    /// Time steps taken (accepted, rejected).
+    pub steps: [usize; 2],
+}
+
+/// One point of the frequency response (torque per current, normalised by the DC gain).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FrequencyPoint {
+    /// Angular frequency (rad/s).
+    pub omega_rad_s: f64,
+    /// `20 log10 |G/G0|` (dB).
+    #[serde(rename = "magnitude_dB")]
+    pub magnitude_db: f64,
+    /// Phase (degrees).
+    pub phase_deg: f64,
+    /// `G/G0`, real part.
+    pub re: f64,
+    /// `G/G0`, imaginary part.
+    pub im: f64,
+}
+
+/// The predicted dynamics of a brake.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Response {
+    /// Design name.
+    pub name: String,
+    /// Drive.
+    pub drive: ResponseDrive,
+    /// Step responses (direction 1, and 2 for the bidirectional brake).
+    pub step: Vec<StepResponse>,
+    /// Bias of the frequency response (A).
+    #[serde(rename = "bias_A")]
+    pub bias_a: f64,
+    /// Small-signal gain `dT/dI` at zero frequency (N·m/A).
+    #[serde(rename = "dc_gain_Nm_per_A")]
+    pub dc_gain_nm_per_a: f64,
+    /// Frequency response of direction 1.
+    pub frequency_response: Vec<FrequencyPoint>,
+    /// −3 dB bandwidth (rad/s), `None` above the highest frequency.
+    pub bandwidth_rad_s: Option<f64>,
+    /// Conductivity of the flux-path steel used (S/m), and where it comes from.
+    #[serde(rename = "flux_path_conductivity_S_per_m")]
+    pub flux_path_conductivity_s_per_m: f64,
+    /// Source of that value.
+    pub conductivity_source: String,
+    /// Fluid lag (s).
+    pub fluid_lag_s: f64,
+    /// Mesh nodes.
+    pub nodes: usize,
+    /// Timings (s).
+    pub timings_s: ResponseTimings,
+}
+
+/// Wall times (s).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ResponseTimings {
+    /// Step responses.
+    pub step: f64,
+    /// Frequency response.
+    pub frequency: f64,
+    /// Everything.
+    pub total: f64,
+}
+
+/// Predicts the step and frequency responses of `spec` (module docs).
+pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response, DesignError> {
+    let start = Instant::now();
+    check_options(options)?;
+    let geometry = spec.validate()?.geometry;
+    let mesh = Arc::new(mesh_build::mesh(&geometry, options.mesh)?);
+    let model = Model::new(spec, geometry, mesh, options)?;
+    let max_current = spec.coil.max_current.a();
+    let to = options.step_to_a.unwrap_or(max_current);
+    if to.abs() < f64::MIN_POSITIVE {
+        return Err(DesignError::Input(
+            "response: the step must end at a non-zero current (--step FROM..TO, TO != 0)".into(),
+        ));
+    }
+    let t0 = Instant::now();
+    let mut step = Vec::with_capacity(model.geometry.units);
+    for unit in 0..model.geometry.units {
+        step.push(model.step_response(unit, options.step_from_a, to)?);
+    }
+    let step_s = t0.elapsed().as_secs_f64();
+    let t0 = Instant::now();
+    let bias = options.bias_a.unwrap_or(0.5 * max_current);
+    let (dc_gain, frequency_response) = model.frequency_response(bias)?;
+    let frequency_s = t0.elapsed().as_secs_f64();
+    Ok(Response {
+        name: spec.name.clone(),
+        drive: options.drive,
+        step,
+        bias_a: bias,
+        dc_gain_nm_per_a: dc_gain,
+        bandwidth_rad_s: bandwidth(&frequency_response),
+        frequency_response,
+        flux_path_conductivity_s_per_m: model.flux_path_sigma.0,
+        conductivity_source: model.flux_path_sigma.1.clone(),
+        fluid_lag_s: options.fluid_lag_s,
+        nodes: model.mesh.nodes.len(),
+        timings_s: ResponseTimings {
+            step: step_s,
+            frequency: frequency_s,
+            total: start.elapsed().as_secs_f64(),
+        },
+    })
+}
+
+fn check_options(options: &ResponseOptions) -> Result<(), DesignError> {
+    let positive = |name: &str, v: f64| {
+        if v > 0.0 && v.is_finite() {
+            Ok(())
+        } else {
+            Err(DesignError::Input(format!("response: {name} = {v} must be finite and > 0")))
+        }
+    };
+    positive("duration", options.duration_s)?;
+    positive("rtol", options.rtol)?;
+    if !(options.fluid_lag_s >= 0.0 && options.fluid_lag_s.is_finite()) {
+        return Err(DesignError::Input(format!(
+            "response: fluid lag = {} s must be finite and >= 0",
+            options.fluid_lag_s
+        )));
+    }
+    if let Some(s) = options.flux_path_conductivity_s_per_m {
+        positive("flux-path conductivity", s)?;
+    }
+    if options.omegas_rad_s.iter().any(|w| !(*w > 0.0 && w.is_finite())) {
+        return Err(DesignError::Input("response: frequencies must be finite and > 0".into()));
+    }
+    Ok(())
+}
+
+/// The brake's field model with conductivities.
+struct Model<'a> {
+    spec: &'a BrakeSpec,
+    geometry: BrakeGeometry,
+    mesh: Arc<mrbrake_fem::mesh::Mesh>,
+    fluid: Arc<MrFluid>,
+    conductors: Vec<Conductor>,
+    /// The flux-path steel's conductivity and its source.
+    flux_path_sigma: (f64, String),
+    options: &'a ResponseOptions,
+}
+
+impl<'a> Model<'a> {
+    fn new(
+        spec: &'a BrakeSpec,
+        geometry: BrakeGeometry,
+        mesh: Arc<mrbrake_fem::mesh::Mesh>,
+        options: &'a ResponseOptions,
+    ) -> Result<Self, DesignError> {
+        let fluid = fluid_of(spec)?;
+        let (conductors, flux_path_sigma) = conductors(&geometry, options)?;
+        Ok(Self { spec, geometry, mesh, fluid, conductors, flux_path_sigma, options })
+    }
+
+    /// The dynamics of `unit`'s coils, each driven by `drive(sign, coil resistance)`.
+    fn dynamics(
+        &self,
+        unit: usize,
+        drive: impl Fn(f64, f64) -> Drive,
+        waveform: Waveform,
+    ) -> Result<Dynamics, DesignError> {
+        let problem = problem_of(&self.geometry, Arc::clone(&self.mesh))?;
+        let solver_options =
+            SolverOptions { order: self.options.order, ..SolverOptions::default() };
+        let solver = Solver::new(problem, solver_options).map_err(numerical)?;
+        let wire = CopperWire::from_diameter(self.spec.wire_diameter_m())
+            .map_err(|e| DesignError::Input(e.to_string()))?;
+        let mut coils = Vec::new();
+        for coil in self.geometry.coils.iter().filter(|c| c.unit == unit) {
+            let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
+            let max = self.spec.coil.max_current.a();
+            let electrics = formula::coil_electrics(
+                coil.turns,
+                mean_radius,
+                &wire,
+                max,
+                self.options.temperature_c,
+            )?;
+            coils.push(Coil {
+                tag: coil.tag,
+                turns: f64::from(coil.turns),
+                drive: drive(coil.current_sign, electrics.resistance_ohm),
+                waveform: waveform.clone(),
+            });
+        }
+        Dynamics::new(solver, &self.conductors, coils).map_err(numerical)
+    }
+
+    /// The yield torque of `unit`'s gaps for the potential `a`.
+    fn torque(&self, dynamics: &Dynamics, unit: usize, a: Vec<f64>) -> Result<f64, DesignError> {
+        let solution: Solution = dynamics.solution(a);
+        let gaps: Vec<&GapInfo> = self.geometry.gaps.iter().filter(|g| g.unit == unit).collect();
+        let mut torque = 0.0;
+        for gap in gaps {
+            torque += gap_yield_torque(dynamics.solver(), &solution, gap, &self.fluid)?;
+        }
+        Ok(torque)
+    }
+}
+
+/// The conductors of the brake: every part's library conductivity (0 when the library has none:
+/// fluid, air, coils), the flux-path steel's overridable.
+fn conductors(
+    geometry: &BrakeGeometry,
+    options: &ResponseOptions,
+) -> Result<(Vec<Conductor>, (f64, String)), DesignError> {
+    let mut out = Vec::new();
+    let mut flux_path = (0.0, String::from("no flux-path steel"));
+    for region in &geometry.regions {
+        if matches!(region.kind, PartKind::Coil | PartKind::Fluid | PartKind::Air) {
+            continue;
+        }
+        let material = library::get(&region.material)
+            .map_err(|source| DesignError::PartMaterial { part: region.name.clone(), source })?;
+        let library_value = material.conductivity_s_per_m.as_ref();
+        let mut sigma = library_value.map_or(0.0, |s| s.value);
+        if region.kind == PartKind::FluxPath {
+            let source = match (options.flux_path_conductivity_s_per_m, library_value) {
+                (Some(s), _) => {
+                    sigma = s;
+                    "given (--conductivity)".to_string()
+                }
+                (None, Some(s)) => format!("{}: {}", region.material, s.provenance.source),
+                (None, None) => format!("{}: none in the library (0)", region.material),
+            };
+            flux_path = (sigma, source);
+        }
+        out.push(Conductor { tag: region.tag, conductivity_s_per_m: sigma });
+    }
+    Ok((out, flux_path))
+}
+
+impl Model<'_> {
+    /// The torque step response of `unit` from `from` to `to` amperes.
+    fn step_response(&self, unit: usize, from: f64, to: f64) -> Result<StepResponse, DesignError> {
+        let waveform = Waveform::Step { initial: from / to };
+        let drive = |sign: f64, resistance: f64| match self.options.drive {
+            ResponseDrive::Current => Drive::Current { amplitude_a: sign * to },
+            ResponseDrive::Voltage => Drive::Voltage {
+                amplitude_v: sign * to * resistance,
+                series_resistance_ohm: resistance,
+            },
+        };
+        let mut dynamics = self.dynamics(unit, drive, waveform)?;
+        let duration = self.options.duration_s;
+        let step = TimeStep::Adaptive { rtol: self.options.rtol, dt_initial_s: 1e-4 * duration };
+        let transient = TransientOptions::new(duration, Scheme::Bdf2, step);
+        let mut yield_torque = Vec::new();
+        let mut failure = None;
+        let result = dynamics
+            .transient_observed(&transient, |view| {
+                match self.torque(view.dynamics, unit, view.a.to_vec()) {
+                    Ok(t) => yield_torque.push(t),
+                    Err(e) => failure = Some(e),
+                }
+                Ok(())
+            })
+            .map_err(numerical)?;
+        if let Some(e) = failure {
+            return Err(e);
+        }
+        let time = result.time_s;
+        let torque = first_order_lag(&time, &yield_torque, self.options.fluid_lag_s);
+        let sign =
+            self.geometry.coils.iter().find(|c| c.unit == unit).map_or(1.0, |c| c.current_sign);
+        let current = result.coils[0].current_a.iter().map(|i| i * sign).collect();
+        Ok(StepResponse {
+            direction: unit + 1,
+            t63_s: rise_time(&time, &torque, 0.63),
+            t90_s: rise_time(&time, &torque, 0.90),
+            steps: [time.len() - 1, result.rejected_steps],
+            time_s: time,
+            current_a: current,
+            torque_nm: torque,
+        })
+    }
+
+    /// The small-signal torque per current of direction 1 about `bias` amperes: the DC gain and
+    /// the normalised response at the options' frequencies.
+    fn frequency_response(&self, bias: f64) -> Result<(f64, Vec<FrequencyPoint>), DesignError> {
+        let unit = 0;
+        let drive = |sign: f64, _| Drive::Current { amplitude_a: sign };
+        let mut dynamics = self.dynamics(unit, drive, Waveform::Step { initial: 0.0 })?;
+        let signs: Vec<f64> =
+            self.geometry.coils.iter().filter(|c| c.unit == unit).map(|c| c.current_sign).collect();
+        let bias_currents: Vec<f64> = signs.iter().map(|s| s * bias).collect();
+        let two_pi = 2.0 * std::f64::consts::PI;
+        let mut frequencies = vec![0.0];
+        frequencies.extend(self.options.omegas_rad_s.iter().map(|w| w / two_pi));
+        let potentials =
+            dynamics.harmonic_potentials(&frequencies, Some(&bias_currents)).map_err(numerical)?;
+        let a0 = dynamics.static_solution(&bias_currents).map_err(numerical)?.a_phi().to_vec();
+        let mut gains = Vec::with_capacity(potentials.len());
+        for p in &potentials {
+            let torque = Complex64::new(
+                self.torque_derivative(&dynamics, &a0, &p.re)?,
+                self.torque_derivative(&dynamics, &a0, &p.im)?,
+            );
+            let lag = Complex64::new(1.0, two_pi * p.frequency_hz * self.options.fluid_lag_s);
+            let mut gain = torque / lag;
+            if self.options.drive == ResponseDrive::Voltage {
+                gain *= self.voltage_factor(&dynamics, p)?;
+            }
+            gains.push(gain);
+        }
+        let dc = gains[0];
+        let points = self
+            .options
+            .omegas_rad_s
+            .iter()
+            .zip(&gains[1..])
+            .map(|(&omega, g)| {
+                let g = g / dc;
+                FrequencyPoint {
+                    omega_rad_s: omega,
+                    magnitude_db: 20.0 * g.norm().log10(),
+                    phase_deg: g.arg().to_degrees(),
+                    re: g.re,
+                    im: g.im,
+                }
+            })
+            .collect();
+        Ok((dc.re, points))
+    }
+
+    /// `dT/dA · x` by a central difference about `a0` (module docs).
+    fn torque_derivative(
+        &self,
+        dynamics: &Dynamics,
+        a0: &[f64],
+        x: &[f64],
+    ) -> Result<f64, DesignError> {
+        let scale = a0.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let size = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if size <= 0.0 {
+            return Ok(0.0);
+        }
+        let eps = 1e-3 * scale.max(size) / size;
+        let shifted = |s: f64| a0.iter().zip(x).map(|(a, x)| a + s * eps * x).collect::<Vec<f64>>();
+        let plus = self.torque(dynamics, 0, shifted(1.0))?;
+        let minus = self.torque(dynamics, 0, shifted(-1.0))?;
+        Ok((plus - minus) / (2.0 * eps))
+    }
+
+    /// `R / (R + Z)`: the coil current per `V/R` of a voltage drive (coils in series).
+    fn voltage_factor(
+        &self,
+        dynamics: &Dynamics,
+        p: &mrbrake_magnetics::dynamics::harmonic::HarmonicPotential,
+    ) -> Result<Complex64, DesignError> {
+        let point = dynamics.harmonic_point(p, &[]).map_err(numerical)?;
+        let impedance: Complex64 = point
+            .coils
+            .iter()
+            .map(|c| Complex64::new(c.impedance_ohm[0], c.impedance_ohm[1]))
+            .sum();
+        let resistance: f64 = dynamics
+            .coils()
+            .map(|c| match c.drive {
+                Drive::Voltage { series_resistance_ohm, .. } => series_resistance_ohm,
+                Drive::Current { .. } => 0.0,
+            })
+            .sum();
+        let resistance = if resistance > 0.0 { resistance } else { self.coil_resistance()? };
+        Ok(Complex64::new(resistance, 0.0) / (resistance + impedance))
+    }
+
+    /// The series resistance of direction 1's coils at the options' temperature.
+    fn coil_resistance(&self) -> Result<f64, DesignError> {
+        let wire = CopperWire::from_diameter(self.spec.wire_diameter_m())
+            .map_err(|e| DesignError::Input(e.to_string()))?;
+        let mut total = 0.0;
+        for coil in self.geometry.coils.iter().filter(|c| c.unit == 0) {
+            let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
+            let max = self.spec.coil.max_current.a();
+            total += formula::coil_electrics(
+                coil.turns,
+                mean_radius,
+                &wire,
+                max,
+                self.options.temperature_c,
+            )?
+            .resistance_ohm;
+        }
+        Ok(total)
+    }
+}
+
+/// `y' = (u − y)/τ` from `y(0) = u(0)`, exact for `u` linear between the samples:
+/// `y₁ = u₁ + (y₀ − u₀) e^{−h/τ} − (u₁ − u₀)(τ/h)(1 − e^{−h/τ})`.
+pub fn first_order_lag(time: &[f64], input: &[f64], tau: f64) -> Vec<f64> {
+    if tau <= 0.0 || input.is_empty() {
+        return input.to_vec();
+    }
+    let mut out = Vec::with_capacity(input.len());
+    out.push(input[0]);
+    for k in 1..input.len() {
+        let h = time[k] - time[k - 1];
+        let decay = (-h / tau).exp();
+        let (u0, u1, y0) = (input[k - 1], input[k], out[k - 1]);
+        out.push(u1 + (y0 - u0) * decay - (u1 - u0) * (tau / h) * (1.0 - decay));
+    }
+    out
+}
+
+/// The first time `y` has covered `fraction` of its change from the first to the last sample
+/// (linear interpolation), or `None`.
+pub fn rise_time(time: &[f64], y: &[f64], fraction: f64) -> Option<f64> {
+    let (first, last) = (*y.first()?, *y.last()?);
+    let target = first + fraction * (last - first);
+    let rising = last >= first;
+    let reached = |v: f64| if rising { v >= target } else { v <= target };
+    let k = y.iter().position(|&v| reached(v))?;
+    if k == 0 {
+        return Some(time[0]);
+    }
+    let (y0, y1) = (y[k - 1], y[k]);
+    let s = if (y1 - y0).abs() > 0.0 { (target - y0) / (y1 - y0) } else { 1.0 };
+    Some(time[k - 1] + s * (time[k] - time[k - 1]))
+}
+
+/// The −3 dB bandwidth: the first frequency where the magnitude falls to −3 dB (log-log
+/// interpolation), or `None`.
+pub fn bandwidth(points: &[FrequencyPoint]) -> Option<f64> {
+    let k = points.iter().position(|p| p.magnitude_db <= -3.0)?;
+    if k == 0 {
+        return Some(points[0].omega_rad_s);
+    }
+    let (a, b) = (points[k - 1], points[k]);
+    let s = (-3.0 - a.magnitude_db) / (b.magnitude_db - a.magnitude_db);
+    Some((a.omega_rad_s.ln() + s * (b.omega_rad_s.ln() - a.omega_rad_s.ln())).exp())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lag_rise_time_and_bandwidth_helpers() {
+        // A first-order lag of a step reaches 63.2 % at τ.
+        let time: Vec<f64> = (0..=4000).map(|k| k as f64 * 1e-5).collect();
+        let step: Vec<f64> = time.iter().map(|&t| if t > 0.0 { 1.0 } else { 0.0 }).collect();
+        let y = first_order_lag(&time, &step, 5e-3);
+        let t63 = rise_time(&time, &y, 1.0 - (-1.0f64).exp()).unwrap();
+        assert!((t63 - 5e-3).abs() < 2e-5, "t63 = {t63}");
+        // |1/(1 + jω/ω_c)| is −3.01 dB at ω_c.
+        let points: Vec<FrequencyPoint> = decades(1.0, 1000.0, 20)
+            .into_iter()
+            .map(|w| {
+                let g = Complex64::new(1.0, 0.0) / Complex64::new(1.0, w / 50.0);
+                FrequencyPoint {
+                    omega_rad_s: w,
+                    magnitude_db: 20.0 * g.norm().log10(),
+                    phase_deg: g.arg().to_degrees(),
+                    re: g.re,
+                    im: g.im,
+                }
+            })
+            .collect();
+        let bw = bandwidth(&points).unwrap();
+        assert!((bw / 50.0 - 1.0).abs() < 0.01, "bandwidth {bw}");
+    }
+}
