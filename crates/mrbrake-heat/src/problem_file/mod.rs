@@ -1,0 +1,1 @@
+//! The `physics = "heat"` problem files of `mrbrake fem solve`.
