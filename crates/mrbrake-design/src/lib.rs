@@ -17,5 +17,6 @@ pub mod geometry;
 pub mod mesh_build;
 pub mod spec;
 pub mod study;
+pub mod thermal;
 
 pub use error::DesignError;
