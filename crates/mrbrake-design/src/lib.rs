@@ -19,5 +19,6 @@ pub mod mesh_build;
 pub mod response;
 pub mod spec;
 pub mod study;
+pub mod thermal;
 
 pub use error::DesignError;

@@ -12,6 +12,8 @@
 //!   `NonLinear(Arc<BhCurve>)`, density, conductivity.
 //! * [`library`] — the built-in materials by name (`steel-1008`, `air`, `mrf-122eg`, …), vendored from
 //!   `data/` and parsed once.
+//! * [`thermal`] — thermal conductivity, density, specific heat (with sources) and the homogenised
+//!   winding.
 //! * [`wire`] — copper wire by AWG (18–32) or by diameter, resistance at a temperature.
 //! * Every curve and property carries a [`Provenance`] (source, method, [`Trust`]).
 //!
@@ -34,6 +36,7 @@ mod material;
 mod mr_fluid;
 mod provenance;
 mod table;
+pub mod thermal;
 pub mod wire;
 mod yield_stress;
 

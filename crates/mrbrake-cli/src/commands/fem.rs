@@ -55,6 +55,11 @@ fn solve(args: SolveArgs) -> CommandResult {
     let order = args
         .order
         .map(|degree| ElementOrder::from_degree(degree.into()).expect("clap accepts only 1 and 2"));
+    // `physics = "heat"` files go to the heat solver; every other file is magnetostatic.
+    if super::fem_heat::is_heat(&args.problem) {
+        let (vtu, plot) = (args.vtu.as_deref(), args.plot.as_deref());
+        return super::fem_heat::solve(&args.problem, order, args.json, vtu, plot);
+    }
     let (report, solver, solution) = solve_file_with_order(&args.problem, order)?;
     if args.vtu.is_some() || args.plot.is_some() {
         let field = solver.field_snapshot(&solution);
