@@ -33,6 +33,7 @@ pub mod hysteresis;
 pub mod identification;
 pub mod materials;
 pub mod pareto;
+pub mod response;
 pub mod rig;
 pub mod study;
 

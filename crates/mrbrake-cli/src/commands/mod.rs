@@ -14,6 +14,7 @@ mod freqresp;
 mod haptic;
 mod materials;
 mod optimize;
+mod response;
 mod rig;
 mod study;
 mod sweep;
@@ -40,6 +41,9 @@ pub enum Command {
     Freqresp(freqresp::FreqRespArgs),
     /// Continuous-time transfer function from frequency-response data.
     Tfest(tfest::TfestArgs),
+    /// Predicted dynamics of a brake design: torque step response and small-signal frequency
+    /// response (eddy currents in the flux path, the coil circuit, the fluid's lag).
+    Response(response::ResponseArgs),
     /// Axisymmetric non-linear magnetostatic finite elements (problem files, Gmsh meshes).
     #[command(subcommand)]
     Fem(fem::FemCommand),
@@ -74,6 +78,7 @@ pub fn run(command: Command) -> CommandResult {
         Command::Freqresp(a) => freqresp::run(a),
         Command::Tfest(a) => tfest::run(a),
         Command::Rig(c) => rig::run(c),
+        Command::Response(a) => response::run(a),
         Command::Fem(c) => fem::run(c),
         Command::Study(c) => study::run(c),
         Command::ExportGeo(a) => export_geo::run(a),

@@ -1,0 +1,113 @@
+//! `mrbrake response [SPEC]`: how fast the brake's torque follows its current — the predicted
+//! step response and small-signal frequency response (eddy currents, coil circuit, fluid lag).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use mrbrake_design::mesh_build::MeshLevel;
+use mrbrake_design::response::{ElementOrder, ResponseDrive, ResponseOptions, response};
+use mrbrake_design::spec::{BrakeSpec, default_spec};
+use mrbrake_report::response as report;
+use mrbrake_units::{Dimension, parse};
+
+use crate::error::{CommandResult, InputError};
+use crate::output::print_json;
+
+/// Arguments of `mrbrake response`.
+#[derive(Debug, Args)]
+pub struct ResponseArgs {
+    /// Brake specification (TOML). Omitted: the embedded thesis bidirectional brake.
+    spec: Option<PathBuf>,
+    /// Mesh density: coarse, default or fine.
+    #[arg(long, default_value = "default")]
+    mesh: String,
+    /// Coil drive: current (a current amplifier, as on the thesis's rig) or voltage (through the
+    /// coil's resistance: its L/R adds to the eddy currents).
+    #[arg(long, value_name = "current|voltage", default_value = "current")]
+    drive: String,
+    /// Current step FROM..TO (e.g. 0A..2A); default 0 A to the spec's maximum current.
+    #[arg(long, value_name = "FROM..TO")]
+    step: Option<String>,
+    /// DC bias of the frequency response (e.g. 1A); default half the maximum current.
+    #[arg(long)]
+    bias: Option<String>,
+    /// Duration of the step response (e.g. 100ms).
+    #[arg(long, default_value = "100ms")]
+    duration: String,
+    /// Conductivity of the flux-path steel in S/m (default: the material library's value).
+    #[arg(long, value_name = "S_PER_M")]
+    conductivity: Option<f64>,
+    /// First-order lag of the MR fluid (e.g. 0.48ms, 0s for none); default T90 = 1.1 ms (Kubík et
+    /// al. 2022) over ln 10.
+    #[arg(long)]
+    fluid_lag: Option<String>,
+    /// Write the frequency response as FRD CSV (the form `mrbrake tfest` reads).
+    #[arg(long, value_name = "FILE.csv")]
+    frd: Option<PathBuf>,
+    /// Write plots here: step response, Bode diagram (SVG).
+    #[arg(long, value_name = "DIR")]
+    plot_dir: Option<PathBuf>,
+    /// Print a JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+fn quantity(flag: &str, text: &str, dimension: Dimension) -> Result<f64, InputError> {
+    parse(text, dimension).map_err(|e| InputError(format!("--{flag}: {e}")))
+}
+
+fn options(a: &ResponseArgs) -> Result<ResponseOptions, InputError> {
+    let mut o = ResponseOptions {
+        mesh: MeshLevel::parse(&a.mesh).map_err(|e| InputError(e.to_string()))?,
+        order: ElementOrder::P1,
+        drive: match a.drive.as_str() {
+            "current" => ResponseDrive::Current,
+            "voltage" => ResponseDrive::Voltage,
+            other => {
+                return Err(InputError(format!("--drive: '{other}' (use current or voltage)")));
+            }
+        },
+        duration_s: quantity("duration", &a.duration, Dimension::Time)?,
+        flux_path_conductivity_s_per_m: a.conductivity,
+        ..ResponseOptions::default()
+    };
+    if let Some(step) = &a.step {
+        let (from, to) = step
+            .split_once("..")
+            .ok_or_else(|| InputError(format!("--step: '{step}' (write FROM..TO, e.g. 0A..2A)")))?;
+        o.step_from_a = quantity("step", from, Dimension::Current)?;
+        o.step_to_a = Some(quantity("step", to, Dimension::Current)?);
+    }
+    if let Some(bias) = &a.bias {
+        o.bias_a = Some(quantity("bias", bias, Dimension::Current)?);
+    }
+    if let Some(lag) = &a.fluid_lag {
+        o.fluid_lag_s = quantity("fluid-lag", lag, Dimension::Time)?;
+    }
+    Ok(o)
+}
+
+/// Runs `mrbrake response`.
+pub fn run(a: ResponseArgs) -> CommandResult {
+    let spec = match &a.spec {
+        Some(path) => BrakeSpec::from_path(path)?,
+        None => default_spec(),
+    };
+    let r = response(&spec, &options(&a)?)?;
+    if let Some(path) = &a.frd {
+        report::write_frd(&r, path)?;
+    }
+    if let Some(dir) = &a.plot_dir {
+        std::fs::create_dir_all(dir).map_err(|e| {
+            InputError(format!("--plot-dir {}: cannot create it: {e}", dir.display()))
+        })?;
+        report::write_plots(&r, dir, a.spec.is_none())?;
+    }
+    if a.json {
+        return print_json(&r);
+    }
+    let source =
+        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
+    crate::out!("{}", report::text(&r, &source));
+    Ok(())
+}
