@@ -252,6 +252,9 @@ pub struct StepView<'a> {
 #[derive(Debug, Clone)]
 struct Level {
     t: f64,
+    /// The step that reached this level (0 for the initial one): BDF2's step ratio uses it, so
+    /// fixed steps have exactly ω = 1 (no round-off from differences of times).
+    dt: f64,
     a: Vec<f64>,
     lambda: Vec<f64>,
 }
@@ -326,7 +329,7 @@ fn coefficients(scheme: Scheme, levels: &[Level], dt: f64) -> StepCoefficients {
         };
     }
     let older = &levels[levels.len() - 2];
-    let omega = dt / (newest.t - older.t);
+    let omega = dt / newest.dt;
     let gamma = (1.0 + 2.0 * omega) / (1.0 + omega);
     let (w_n, w_old) = ((1.0 + omega) / gamma, omega * omega / (1.0 + omega) / gamma);
     let combine = |x: &[f64], y: &[f64]| -> Vec<f64> {
@@ -414,7 +417,7 @@ impl Run {
             total_s: 0.0,
         };
         let a_max = max_abs(&a);
-        let levels = vec![Level { t: 0.0, a, lambda }];
+        let levels = vec![Level { t: 0.0, dt: 0.0, a, lambda }];
         Ok(Self { levels, result, factor_rate: None, scale, a_max, next_snapshot: 0 })
     }
 }
@@ -467,9 +470,12 @@ impl Run {
         self.observe(dynamics, observer)?;
         let t_end = options.t_end_s;
         let breakpoints = breakpoints(dynamics, t_end);
-        let (mut dt, adaptive_rtol) = match options.step {
-            TimeStep::Fixed { dt_s } => (t_end / (t_end / dt_s - 1e-9).ceil().max(1.0), None),
-            TimeStep::Adaptive { rtol, dt_initial_s } => (dt_initial_s, Some(rtol)),
+        let (mut dt, adaptive_rtol, fixed_steps) = match options.step {
+            TimeStep::Fixed { dt_s } => {
+                let n = (t_end / dt_s - 1e-9).ceil().max(1.0);
+                (t_end / n, None, Some(n as usize))
+            }
+            TimeStep::Adaptive { rtol, dt_initial_s } => (dt_initial_s, Some(rtol), None),
         };
         let mut step = 0usize;
         let mut t = 0.0;
@@ -482,8 +488,16 @@ impl Run {
                     options.max_steps
                 )));
             }
-            let dt_try = step_to_next_stop(t, dt, t_end, &breakpoints);
-            let attempt = match self.attempt(dynamics, options.scheme, t + dt_try, dt_try) {
+            let (t_next, dt_try) = match fixed_steps {
+                // Fixed: every step exactly dt, times n·dt (no accumulated round-off).
+                Some(n) if step >= n => (t_end, dt),
+                Some(_) => (step as f64 * dt, dt),
+                None => {
+                    let h = step_to_next_stop(t, dt, t_end, &breakpoints);
+                    (t + h, h)
+                }
+            };
+            let attempt = match self.attempt(dynamics, options.scheme, t_next, dt_try) {
                 Ok(attempt) => attempt,
                 Err(e) if adaptive_rtol.is_some() && dt_try > 1e-9 * t_end => {
                     let _ = e;
@@ -494,7 +508,7 @@ impl Run {
                 Err(e) => {
                     return Err(MagneticsError::TimeStep {
                         step,
-                        time_s: t + dt_try,
+                        time_s: t_next,
                         source: Box::new(e),
                     });
                 }
@@ -751,7 +765,7 @@ impl Run {
         r.eddy_energy_j.push(r.eddy_energy_j[r.eddy_energy_j.len() - 1] + attempt.dt * eddy);
         r.newton_iterations.push(attempt.iterations);
         self.a_max = self.a_max.max(max_abs(&attempt.a));
-        let level = Level { t: attempt.t, a: attempt.a, lambda };
+        let level = Level { t: attempt.t, dt: attempt.dt, a: attempt.a, lambda };
         self.record_field(dynamics, options, &level)?;
         if self.levels.len() == 3 {
             self.levels.remove(0);

@@ -1,0 +1,56 @@
+//! Criterion benchmarks of the magnetodynamics (issue 13 targets):
+//! `cargo bench -p mrbrake-magnetics --bench dynamics`.
+//!
+//! - `linear_transient/16k`: the pot core of the saturating benchmark with a linear conducting
+//!   core (μr = 1000, σ = 5.8 MS/m, FEMM's steel value) on ~16 k nodes, a current step, 500 fixed
+//!   BDF2 steps (two factorisations: the Euler start and the rest). Target ≤ 0.5 s.
+//! - `harmonic/16k_31`: the same problem, 31 frequencies (complex sparse LU per frequency).
+//!
+//! Each sample includes the set-up (pattern, symbolic factorisation, mass matrices).
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use mrbrake_magnetics::benchmark::{COIL, STEEL, pot_core_problem};
+use mrbrake_magnetics::dynamics::transient::{Scheme, TimeStep, TransientOptions};
+use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
+use mrbrake_magnetics::{Solver, SolverOptions};
+use mrbrake_materials::Magnetic;
+
+fn dynamics() -> Dynamics {
+    let problem =
+        pot_core_problem(16_000, Magnetic::Linear { mu_r: 1000.0 }, 1.0).expect("problem");
+    let solver = Solver::new(problem, SolverOptions::default()).expect("setup");
+    let conductors = [Conductor { tag: STEEL, conductivity_s_per_m: 5.8e6 }];
+    let coil = Coil {
+        tag: COIL,
+        turns: 500.0,
+        drive: Drive::Current { amplitude_a: 1.0 },
+        waveform: Waveform::Step { initial: 0.0 },
+    };
+    Dynamics::new(solver, &conductors, vec![coil]).expect("dynamics")
+}
+
+fn benchmarks(c: &mut Criterion) {
+    let mut group = c.benchmark_group("dynamics");
+    group.sample_size(10);
+    let options = TransientOptions::new(0.05, Scheme::Bdf2, TimeStep::Fixed { dt_s: 1e-4 });
+    group.bench_function("linear_transient/16k_500_steps", |b| {
+        b.iter(|| {
+            let mut d = dynamics();
+            let result = d.transient(&options).expect("transient");
+            assert_eq!(result.time_s.len(), 501);
+            assert_eq!(result.factorizations, 2);
+            result.coils[0].flux_linkage_wb[500]
+        })
+    });
+    let frequencies: Vec<f64> = (0..31).map(|k| 10f64.powf(k as f64 / 10.0)).collect();
+    group.bench_function("harmonic/16k_31_frequencies", |b| {
+        b.iter(|| {
+            let mut d = dynamics();
+            d.harmonic(&frequencies, None, &[]).expect("harmonic").0.len()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, benchmarks);
+criterion_main!(benches);
