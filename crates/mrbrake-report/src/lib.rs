@@ -13,7 +13,8 @@
 //! * [`study`]: sweeps, optimisations and their output folder, store merges, the thesis's tables;
 //! * [`identification`]: characterisation, frequency response, transfer-function estimate;
 //! * [`rig`]: the virtual rig's output folder;
-//! * [`haptic`]: the haptic simulation (wall runs, Z-width map).
+//! * [`haptic`]: the haptic simulation (wall runs, Z-width map);
+//! * [`html`]: self-contained HTML reports of a design, a study and a characterisation.
 //!
 //! The command-line program only parses, calls and prints or writes what these compose (as
 //! `String`s, `serde_json::Value`s, figures and folders), so every front end (CLI, Python, HTML)
@@ -27,6 +28,7 @@ pub mod field_map;
 pub mod formula;
 pub mod geometry;
 pub mod haptic;
+pub mod html;
 pub mod hysteresis;
 pub mod identification;
 pub mod materials;

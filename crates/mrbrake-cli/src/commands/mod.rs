@@ -13,6 +13,7 @@ mod freqresp;
 mod haptic;
 mod materials;
 mod optimize;
+mod report;
 mod rig;
 mod study;
 mod sweep;
@@ -60,6 +61,9 @@ pub enum Command {
     Merge(sweep::MergeArgs),
     /// Export a results store as CSV or JSON.
     Export(sweep::ExportArgs),
+    /// One self-contained HTML report (offline, printable on A4): a design ([SPEC]; default the
+    /// thesis brake), a study (--store) or a characterisation (--log, --frd).
+    Report(report::ReportArgs),
 }
 
 /// Runs one subcommand.
@@ -80,5 +84,6 @@ pub fn run(command: Command) -> CommandResult {
         Command::Optimize(a) => optimize::run(a),
         Command::Merge(a) => sweep::run_merge(a),
         Command::Export(a) => sweep::run_export(a),
+        Command::Report(a) => report::run(a),
     }
 }
