@@ -276,6 +276,12 @@ impl Figure {
         render_svg(self)
     }
 
+    /// Renders the figure as a PNG image in memory (for figures with too many points to inline
+    /// as SVG, such as a log's raw samples).
+    pub fn to_png(&self) -> Result<Vec<u8>, ReportError> {
+        render_png(self)
+    }
+
     /// Writes the figure to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
     pub fn save(&self, path: &Path) -> Result<(), ReportError> {
         save_picture(self, path)
@@ -326,6 +332,26 @@ pub(crate) fn render_svg(picture: &impl Picture) -> Result<String, ReportError> 
         root.present().map_err(|e| ReportError::Backend(e.to_string()))?;
     }
     Ok(buf)
+}
+
+/// The PNG image (8-bit RGB) of `picture`, in memory (for `data:` URLs in the HTML reports).
+pub(crate) fn render_png(picture: &impl Picture) -> Result<Vec<u8>, ReportError> {
+    let (w, h) = picture.size();
+    let mut rgb = vec![0u8; w as usize * h as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        picture.draw(&root)?;
+        root.present().map_err(|e| ReportError::Backend(e.to_string()))?;
+    }
+    let backend = |e: png::EncodingError| ReportError::Backend(format!("PNG encoding: {e}"));
+    let mut out = Vec::new();
+    let mut encoder = png::Encoder::new(&mut out, w, h);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().map_err(backend)?;
+    writer.write_image_data(&rgb).map_err(backend)?;
+    writer.finish().map_err(backend)?;
+    Ok(out)
 }
 
 /// Writes `picture` to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.

@@ -284,6 +284,12 @@ pub fn field_map_svg(map: &FieldMap<'_>) -> Result<String, ReportError> {
     render_svg(map)
 }
 
+/// Renders the map as a PNG image in memory, with its size in pixels.
+pub fn field_map_png(map: &FieldMap<'_>) -> Result<(Vec<u8>, (u32, u32)), ReportError> {
+    check(map)?;
+    Ok((crate::chart::render_png(map)?, map.size()))
+}
+
 /// Writes the map to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
 pub fn save_field_map(map: &FieldMap<'_>, path: &Path) -> Result<(), ReportError> {
     check(map)?;

@@ -15,6 +15,7 @@
 //! * [`rig`]: the virtual rig's output folder;
 //! * [`haptic`]: the haptic simulation (wall runs, Z-width map);
 //! * [`heat`]: heat solves (`fem solve` with `physics = "heat"`).
+//! * [`html`]: self-contained HTML reports of a design, a study and a characterisation.
 //!
 //! The command-line program only parses, calls and prints or writes what these compose (as
 //! `String`s, `serde_json::Value`s, figures and folders), so every front end (CLI, Python, HTML)
@@ -29,6 +30,7 @@ pub mod formula;
 pub mod geometry;
 pub mod haptic;
 pub mod heat;
+pub mod html;
 pub mod hysteresis;
 pub mod identification;
 pub mod materials;

@@ -15,6 +15,7 @@ mod haptic;
 mod materials;
 mod optimize;
 mod response;
+mod report;
 mod rig;
 mod study;
 mod sweep;
@@ -65,6 +66,9 @@ pub enum Command {
     Merge(sweep::MergeArgs),
     /// Export a results store as CSV or JSON.
     Export(sweep::ExportArgs),
+    /// One self-contained HTML report (offline, printable on A4): a design ([SPEC]; default the
+    /// thesis brake), a study (--store) or a characterisation (--log, --frd).
+    Report(report::ReportArgs),
 }
 
 /// Runs one subcommand.
@@ -86,5 +90,6 @@ pub fn run(command: Command) -> CommandResult {
         Command::Optimize(a) => optimize::run(a),
         Command::Merge(a) => sweep::run_merge(a),
         Command::Export(a) => sweep::run_export(a),
+        Command::Report(a) => report::run(a),
     }
 }

@@ -1,0 +1,241 @@
+//! `mrbrake report`: one self-contained HTML file (inline CSS and figures, no script, nothing
+//! fetched) for a design (`[SPEC]`), a study (`--store`) or a characterisation (`--log`, `--frd`).
+//! The pages are composed by `mrbrake_report::html`; this command parses, runs the analyses and
+//! writes the file atomically.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use mrbrake_design::analysis::{self, AnalysisOptions, ElementOrder};
+use mrbrake_design::geometry;
+use mrbrake_design::mesh_build::MeshLevel;
+use mrbrake_design::spec::{BrakeSpec, DEFAULT_SPEC_TOML, default_spec};
+use mrbrake_report::html::design::DesignReport;
+use mrbrake_units::{Dimension, parse};
+
+use crate::error::{CommandResult, InputError};
+
+/// Arguments of `mrbrake report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// Brake specification (TOML) for a design report. Omitted (and no --store or --log): the
+    /// embedded thesis bidirectional brake, compared with the thesis's published values.
+    #[arg(conflicts_with_all = ["store", "log"])]
+    spec: Option<PathBuf>,
+    /// The HTML file to write.
+    #[arg(short, long, value_name = "FILE.html")]
+    output: PathBuf,
+    /// A study report of this results store (from `mrbrake optimize` or `mrbrake sweep`).
+    #[arg(long, value_name = "STUDY.sqlite", conflicts_with = "log")]
+    store: Option<PathBuf>,
+    /// The optimisation problem whose objectives and constraints define the study's front.
+    /// Default: the problem recorded in the store by `mrbrake optimize`.
+    #[arg(long, value_name = "PROBLEM.toml", requires = "store")]
+    problem: Option<PathBuf>,
+    /// A characterisation report of this repeated-ramp test-rig log (CSV).
+    #[arg(long, value_name = "LOG.csv")]
+    log: Option<PathBuf>,
+    /// Frequency-response data (CSV, from `mrbrake freqresp`) for the characterisation report's
+    /// Bode diagram and fitted transfer function.
+    #[arg(long, value_name = "FRD.csv", requires = "log")]
+    frd: Option<PathBuf>,
+    /// Poles of the fitted transfer function (with --frd).
+    #[arg(long, default_value_t = 2, requires = "frd")]
+    poles: usize,
+    /// Zeros of the fitted transfer function (with --frd).
+    #[arg(long, default_value_t = 0, requires = "frd")]
+    zeros: usize,
+    /// Polynomial order of the hysteresis branch fits (with --log).
+    #[arg(long, default_value_t = 5, requires = "log")]
+    fit_order: usize,
+    /// Mesh density of a design report: coarse, default or fine.
+    #[arg(long, default_value = "default")]
+    mesh: String,
+    /// Element order of a design report's field solution: 1 or 2.
+    #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+    order: u8,
+    /// Currents in a design report's torque–current sweep.
+    #[arg(long, default_value_t = 21)]
+    points: usize,
+    /// Relative speed for the viscous torque (e.g. 1rad/s, 60rpm).
+    #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
+    speed: String,
+    /// Copper temperature for the coil resistance (e.g. 20C, 75C).
+    #[arg(long, default_value = "20C", allow_hyphen_values = true)]
+    temperature: String,
+}
+
+/// Runs `mrbrake report`.
+pub fn run(a: ReportArgs) -> CommandResult {
+    let page = if let Some(store) = &a.store {
+        study::page(store, a.problem.as_deref())?
+    } else if let Some(log) = &a.log {
+        characterization::page(log, a.frd.as_deref(), a.fit_order, a.poles, a.zeros)?
+    } else {
+        design_page(&a)?
+    };
+    mrbrake_report::write_atomic(&a.output, page.as_bytes())?;
+    eprintln!("wrote {}", a.output.display());
+    Ok(())
+}
+
+/// The design report of the spec (or the embedded default).
+fn design_page(a: &ReportArgs) -> CommandResult<String> {
+    let (spec, text) = match &a.spec {
+        Some(path) => {
+            let spec = BrakeSpec::from_path(path)?;
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| InputError(format!("{}: cannot read: {e}", path.display())))?;
+            (spec, text)
+        }
+        None => (default_spec(), DEFAULT_SPEC_TOML.to_string()),
+    };
+    if a.points < 2 {
+        return Err(InputError(format!("--points must be at least 2, got {}", a.points)).into());
+    }
+    let options = AnalysisOptions {
+        mesh: MeshLevel::parse(&a.mesh)?,
+        points: a.points,
+        speed_rad_s: parse(&a.speed, Dimension::AngularVelocity)
+            .map_err(|e| InputError(format!("--speed: {e}")))?,
+        temperature_c: parse(&a.temperature, Dimension::TemperatureCelsius)
+            .map_err(|e| InputError(format!("--temperature: {e}")))?,
+        order: ElementOrder::from_degree(a.order.into()).expect("clap accepts only 1 and 2"),
+        ..AnalysisOptions::default()
+    };
+    let (analysis, field) = analysis::analyze_with_field(&spec, &options)?;
+    for w in &analysis.warnings {
+        eprintln!("warning: {w}");
+    }
+    let geometry = geometry::build(&spec)?;
+    let source =
+        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
+    let report = DesignReport {
+        analysis: &analysis,
+        field: &field,
+        geometry: &geometry,
+        spec_text: &text,
+        source: &source,
+        thesis_comparison: a.spec.is_none(),
+        extra_sections: Vec::new(),
+    };
+    Ok(report.html()?)
+}
+
+/// The study report of a results store.
+mod study {
+    use std::path::Path;
+
+    use mrbrake_explore::problem::{Objective, OptimizationProblem};
+    use mrbrake_report::html::study::{DEFAULT_OBJECTIVES, StudyReport};
+    use mrbrake_store::Store;
+
+    use crate::error::CommandResult;
+
+    /// The page of `store`, with the objectives of `problem`, else of the problem the store
+    /// records, else the default pair.
+    pub fn page(store: &Path, problem: Option<&Path>) -> CommandResult<String> {
+        let opened = Store::open_read_only(store)?;
+        let records = opened.records()?;
+        let recorded = opened.meta("problem")?;
+        let problem = match (problem, recorded) {
+            (Some(path), _) => {
+                Some((OptimizationProblem::from_path(path)?, path.display().to_string()))
+            }
+            (None, Some(text)) => {
+                let origin = format!("{} (problem recorded in the store)", store.display());
+                Some((
+                    OptimizationProblem::from_toml_str(&text, Path::new(&origin))?,
+                    "recorded in the store".into(),
+                ))
+            }
+            (None, None) => None,
+        };
+        let report = match problem {
+            Some((p, source)) => StudyReport {
+                store,
+                records: &records,
+                bounds: Some(p.variables.iter().map(|v| (v.name.clone(), v.min, v.max)).collect()),
+                objectives: p.objectives,
+                constraints: p.constraints,
+                objectives_source: format!("problem {source}"),
+            },
+            None => StudyReport {
+                store,
+                records: &records,
+                bounds: None,
+                objectives: DEFAULT_OBJECTIVES
+                    .iter()
+                    .map(|&(metric, goal)| Objective { metric: metric.into(), goal })
+                    .collect(),
+                constraints: Vec::new(),
+                objectives_source: "no problem recorded: the default pair".into(),
+            },
+        };
+        Ok(report.html()?)
+    }
+}
+
+/// The characterisation report of a rig log.
+mod characterization {
+    use std::path::Path;
+
+    use mrbrake_report::html::characterization::{CharacterizationPage, FrequencyFit};
+    use mrbrake_report::identification::CharacterizationReport;
+    use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
+    use mrbrake_sysid::frd::read_frd;
+    use mrbrake_sysid::log::read_log;
+    use mrbrake_sysid::tfest::{TfestOptions, tfest};
+
+    use crate::error::{CommandResult, InputError};
+
+    /// The page of `log` (columns `time_s`, `current_A`, `torque_Nm`, as the rig writes them) and,
+    /// with `frd`, of a `poles`/`zeros` transfer function fitted to it.
+    pub fn page(
+        log_path: &Path,
+        frd_path: Option<&Path>,
+        order: usize,
+        poles: usize,
+        zeros: usize,
+    ) -> CommandResult<String> {
+        if order == 0 || order > 12 {
+            return Err(InputError(format!("--fit-order {order} is outside 1..=12")).into());
+        }
+        if poles == 0 || zeros > poles {
+            return Err(InputError(format!(
+                "--poles must be ≥ 1 and --zeros ≤ --poles (got {poles} and {zeros})"
+            ))
+            .into());
+        }
+        let log = read_log(log_path, "time_s", &["current_A", "torque_Nm"], 2 * (order + 1))?;
+        let (current, torque) = (&log.channels[0], &log.channels[1]);
+        let c = characterize(current, torque, CharacterizeOptions { order, bins: 200 })?;
+        let report = CharacterizationReport {
+            characterization: &c,
+            log: log_path,
+            samples: log.len(),
+            sample_rate_hz: log.mean_sample_rate_hz(),
+        };
+        let Some(frd_path) = frd_path else {
+            let page = CharacterizationPage {
+                report,
+                current_a: current,
+                torque_nm: torque,
+                frequency: None,
+            };
+            return Ok(page.html()?);
+        };
+        let frd = read_frd(frd_path, None)?;
+        let fit = tfest(&frd, &TfestOptions::new(poles, zeros))?;
+        let summary = fit.summary()?;
+        let frequency =
+            FrequencyFit { frd_path, frd: &frd, fit: &fit, summary: &summary, poles, zeros };
+        let page = CharacterizationPage {
+            report,
+            current_a: current,
+            torque_nm: torque,
+            frequency: Some(frequency),
+        };
+        Ok(page.html()?)
+    }
+}
