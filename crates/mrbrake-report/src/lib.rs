@@ -14,7 +14,8 @@
 //! * [`identification`]: characterisation, frequency response, transfer-function estimate;
 //! * [`rig`]: the virtual rig's output folder;
 //! * [`haptic`]: the haptic simulation (wall runs, Z-width map);
-//! * [`heat`]: heat solves (`fem solve` with `physics = "heat"`).
+//! * [`heat`]: heat solves (`fem solve` with `physics = "heat"`);
+//! * [`response`]: a brake's predicted step and frequency response (`mrbrake response`);
 //! * [`html`]: self-contained HTML reports of a design, a study and a characterisation.
 //!
 //! The command-line program only parses, calls and prints or writes what these compose (as
