@@ -102,18 +102,19 @@ pub fn second_order_points(k: f64, a: f64, b: f64, omegas: &[f64]) -> Vec<(f64, 
         .collect()
 }
 
-/// Writes `step_response.svg` and `bode.svg` into `dir` (with the thesis's measured transfer
-/// functions when `thesis` is true).
-pub fn write_plots(r: &Response, dir: &Path, thesis: bool) -> Result<(), ReportError> {
+/// The step-response figure (torque against time, each direction).
+pub fn step_figure(r: &Response) -> Figure {
     let mut panel = Panel::new("time [ms]", "torque [N·m]");
     for (k, step) in r.step.iter().enumerate() {
         let points = step.time_s.iter().zip(&step.torque_nm).map(|(t, q)| (t * 1e3, *q)).collect();
         panel =
             panel.series(Series::line(format!("direction {}", step.direction), points).color(k));
     }
-    Figure::new("predicted torque step response")
-        .panel(panel)
-        .save(&dir.join("step_response.svg"))?;
+    Figure::new("predicted torque step response").panel(panel)
+}
+
+/// The Bode curves: the prediction, and the thesis's measured transfer functions when `thesis`.
+pub fn bode_curves(r: &Response, thesis: bool) -> Vec<BodeCurve> {
     let predicted: Vec<(f64, f64, f64)> =
         r.frequency_response.iter().map(|p| (p.omega_rad_s, p.magnitude_db, p.phase_deg)).collect();
     let omegas: Vec<f64> = predicted.iter().map(|p| p.0).collect();
@@ -121,12 +122,19 @@ pub fn write_plots(r: &Response, dir: &Path, thesis: bool) -> Result<(), ReportE
         vec![BodeCurve { label: "predicted".into(), points: predicted, markers: false }];
     if thesis {
         for (label, k, a, b) in THESIS_TRANSFER_FUNCTIONS {
-            curves.push(BodeCurve {
-                label: label.into(),
-                points: second_order_points(k, a, b, &omegas),
-                markers: false,
-            });
+            let points = second_order_points(k, a, b, &omegas);
+            curves.push(BodeCurve { label: label.into(), points, markers: false });
         }
     }
-    save_bode(&dir.join("bode.svg"), "torque per current, normalised", &curves)
+    curves
+}
+
+/// The Bode title.
+pub const BODE_TITLE: &str = "torque per current, normalised";
+
+/// Writes `step_response.svg` and `bode.svg` into `dir` (with the thesis's measured transfer
+/// functions when `thesis` is true).
+pub fn write_plots(r: &Response, dir: &Path, thesis: bool) -> Result<(), ReportError> {
+    step_figure(r).save(&dir.join("step_response.svg"))?;
+    save_bode(&dir.join("bode.svg"), BODE_TITLE, &bode_curves(r, thesis))
 }

@@ -20,7 +20,9 @@
 //! - [`materials`]: B-H curves, MR-fluid yield stress and viscosity, copper wire, with provenance.
 //! - [`fem`]: the physics-free finite-element core (mesh, basis, assembly of user forms,
 //!   constraints, sparse solves, Newton).
-//! - [`magnetics`]: axisymmetric non-linear magnetostatics (A_phi) on the core, post-processing.
+//! - [`magnetics`]: axisymmetric non-linear magnetostatics (A_phi) on the core, post-processing;
+//!   magnetodynamics (transient eddy currents, coil circuits, time-harmonic and small-signal).
+//! - [`heat`]: axisymmetric heat conduction on the same core (steady, transient, Joule coupling).
 //! - [`design`]: brake specifications, geometry, the thesis's closed forms, the brake analysis.
 //! - [`optim`], [`store`], [`explore`]: optimisers, the results store, design studies.
 //! - [`sysid`]: characterisation logs, hysteresis fits, frequency responses, transfer functions.
@@ -45,6 +47,7 @@ pub use mrbrake_design as design;
 pub use mrbrake_error as error;
 pub use mrbrake_explore as explore;
 pub use mrbrake_fem as fem;
+pub use mrbrake_heat as heat;
 pub use mrbrake_magnetics as magnetics;
 pub use mrbrake_materials as materials;
 pub use mrbrake_optim as optim;

@@ -63,6 +63,10 @@ pub struct ReportArgs {
     /// Copper temperature for the coil resistance (e.g. 20C, 75C).
     #[arg(long, default_value = "20C", allow_hyphen_values = true)]
     temperature: String,
+    /// Add the predicted dynamics (step response, Bode diagram: `mrbrake response` with its
+    /// defaults; about half a minute more on the default mesh).
+    #[arg(long, conflicts_with_all = ["store", "log"])]
+    response: bool,
 }
 
 /// Runs `mrbrake report`.
@@ -117,7 +121,7 @@ fn design_page(a: &ReportArgs) -> CommandResult<String> {
         spec_text: &text,
         source: &source,
         thesis_comparison: a.spec.is_none(),
-        extra_sections: Vec::new(),
+        extra_sections: extra_sections(a, &spec)?,
     };
     Ok(report.html()?)
 }
@@ -238,4 +242,21 @@ mod characterization {
         };
         Ok(page.html()?)
     }
+}
+
+/// The sections of the analyses asked for beside the static one (`--response`).
+fn extra_sections(
+    a: &ReportArgs,
+    spec: &mrbrake_design::spec::BrakeSpec,
+) -> CommandResult<Vec<mrbrake_report::html::Section>> {
+    let mut sections = Vec::new();
+    if a.response {
+        let options = mrbrake_design::response::ResponseOptions {
+            mesh: mrbrake_design::mesh_build::MeshLevel::parse(&a.mesh)?,
+            ..Default::default()
+        };
+        let r = mrbrake_design::response::response(spec, &options)?;
+        sections.push(mrbrake_report::html::response::section(&r, a.spec.is_none())?);
+    }
+    Ok(sections)
 }

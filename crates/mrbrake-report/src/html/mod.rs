@@ -31,6 +31,7 @@ pub mod characterization;
 pub mod check;
 pub mod cross_section;
 pub mod design;
+pub mod response;
 pub mod spec_notes;
 pub mod study;
 pub mod writer;
