@@ -272,3 +272,27 @@ fn example_eddy_cylinder_solves() {
     // The flux diffuses in: B on the axis rises from 0 and lags the surface.
     assert!(axis[0].abs() < 1e-12 && axis[axis.len() - 1] > 0.5, "{:?}", axis.last());
 }
+
+/// Small-signal about a saturated DC state: at low frequency `Im Z / ω` is the incremental
+/// inductance `dλ/dI` of the static solve at the bias current (the report's static part, the DC
+/// state at `current_A`, here equal to the bias).
+#[test]
+fn small_signal_file_tends_to_the_incremental_inductance() {
+    let dir = mesh_dir();
+    let core = "\"steel-1010\"";
+    let source = "{ turns = 10, current_A = 0.5 }";
+    let tail = "[harmonic]\nfrequencies_Hz = [0.001]\nbias = { current_A = 0.5 }\n";
+    let report = solve_in(dir.path(), &problem(core, source, tail)).unwrap();
+    let incremental = report.coils[0].incremental_inductance_h;
+    let secant = report.coils[0].inductance_h;
+    let point = &report.dynamics.as_ref().unwrap().harmonic.as_ref().unwrap()[0];
+    let omega = 2.0 * std::f64::consts::PI * point.frequency_hz;
+    let small_signal = point.coils[0].impedance_ohm[1] / omega;
+    let error = (small_signal - incremental).abs() / incremental;
+    println!(
+        "small signal at 0.5 A: Im Z / ω = {small_signal:.6e} H, dλ/dI = {incremental:.6e} H \
+         (secant L = {secant:.6e} H), rel. error {error:.2e}"
+    );
+    assert!(error < 1e-3, "{error:.3e}");
+    assert!((secant - incremental).abs() > 0.05 * secant, "the bias saturates the steel");
+}
