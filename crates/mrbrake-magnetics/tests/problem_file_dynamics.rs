@@ -296,3 +296,19 @@ fn small_signal_file_tends_to_the_incremental_inductance() {
     assert!(error < 1e-3, "{error:.3e}");
     assert!((secant - incremental).abs() > 0.05 * secant, "the bias saturates the steel");
 }
+
+#[test]
+fn a_static_file_refuses_a_negative_conductivity_and_ignores_a_valid_one() {
+    bad(
+        &format!("{LINEAR_CORE}\nconductivity_S_per_m = -2.0"),
+        CURRENT,
+        "",
+        &[],
+        "conductivity_S_per_m",
+    );
+    let dir = mesh_dir();
+    let core = format!("{LINEAR_CORE}\nconductivity_S_per_m = 1e6");
+    let report = solve_in(dir.path(), &problem(&core, CURRENT, "")).unwrap();
+    assert!(report.dynamics.is_none());
+    assert!(serde_json::to_value(&report).unwrap().get("conductors").is_none());
+}

@@ -75,7 +75,7 @@ pub struct ConductorReport {
 /// What a problem file asks beyond the static solve.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Analysis {
-    /// A transient; `vtu_times` empty means the final state.
+    /// A transient; its `snapshot_times_s` are the file's `vtu_times` (default: `t_end`).
     Transient(TransientOptions),
     /// Harmonic solves at these frequencies, about the DC state at `bias_a` (every coil) if given.
     Harmonic {
@@ -179,7 +179,6 @@ pub(super) fn spec_of(
     dir: &Path,
     file: &str,
 ) -> Result<Option<DynamicsSpec>, MagneticsError> {
-    let conductors = conductors_of(&raw.region, problem, file)?;
     let (analysis, waveform) = match (&raw.transient, &raw.harmonic) {
         (Some(_), Some(_)) => {
             return Err(input(format!(
@@ -200,9 +199,22 @@ pub(super) fn spec_of(
                     raw.region[k].physical
                 )));
             }
+            // A static solve does not use conductivities; a bad one is still refused.
+            for (k, r) in raw.region.iter().enumerate() {
+                if let Some(s) = r.conductivity
+                    && !(s >= 0.0 && s.is_finite())
+                {
+                    return Err(input(format!(
+                        "{file}: region[{k}] (physical = {}): conductivity_S_per_m = {s} must be \
+                         finite and >= 0",
+                        r.physical
+                    )));
+                }
+            }
             return Ok(None);
         }
     };
+    let conductors = conductors_of(&raw.region, problem, file)?;
     let coils = coils_of(&raw.region, problem, &waveform, file)?;
     Ok(Some(DynamicsSpec { conductors, coils, analysis }))
 }
