@@ -83,8 +83,9 @@ pub enum MagneticsError {
     /// Another numerical failure.
     #[error("{0}")]
     Numerical(String),
-    /// A time step of a transient failed: which step, at what time, and why.
-    #[error("time step {step} (t = {time_s:.6e} s): {source}")]
+    /// A time step of a transient failed: which step, at what time, and why (the `source`, e.g.
+    /// Newton's residual history, is the next error of the chain, not repeated in this message).
+    #[error("time step {step} (t = {time_s:.6e} s) failed")]
     TimeStep {
         /// 1-based step number.
         step: usize,

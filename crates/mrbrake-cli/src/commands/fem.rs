@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
 use mrbrake_magnetics::ElementOrder;
-use mrbrake_magnetics::problem_file::solve_file_with_order;
+use mrbrake_magnetics::problem_file::{solve_file_with_order, vtu_files};
 use mrbrake_report::field_map::{FieldMap, save_field_map};
 
 use crate::error::CommandResult;
@@ -33,7 +33,8 @@ pub struct SolveArgs {
     #[arg(long)]
     json: bool,
     /// Write the field (A_phi and r·A_phi at the mesh nodes, B at the triangle centroids, |B|,
-    /// region) as a ParaView .vtu file.
+    /// region) as a ParaView .vtu file; for a `[transient]`, at its `vtu_times` (default the final
+    /// state; several instants go to FILE_000.vtu, … with a FILE.pvd collection).
     #[arg(long, value_name = "FILE.vtu")]
     vtu: Option<PathBuf>,
     /// Draw the |B| map with flux lines (SVG, or PNG for a .png name).
@@ -61,11 +62,14 @@ fn solve(args: SolveArgs) -> CommandResult {
         return super::fem_heat::solve(&args.problem, order, args.json, vtu, plot);
     }
     let (report, solver, solution) = solve_file_with_order(&args.problem, order)?;
-    if args.vtu.is_some() || args.plot.is_some() {
-        let field = solver.field_snapshot(&solution);
-        if let Some(path) = &args.vtu {
-            mrbrake_report::write_atomic(path, field.to_vtu(solver.mesh()).as_bytes())?;
+    if let Some(path) = &args.vtu {
+        // The static field, or a transient's chosen instants (see `vtu_files`).
+        for (file, text) in vtu_files(&report, &solver, &solution, path) {
+            mrbrake_report::write_atomic(&file, text.as_bytes())?;
         }
+    }
+    if args.plot.is_some() {
+        let field = solver.field_snapshot(&solution);
         if let Some(path) = &args.plot {
             let title = format!("|B| and flux lines: {}", args.problem.display());
             let map = FieldMap {

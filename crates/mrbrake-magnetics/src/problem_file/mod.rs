@@ -33,6 +33,9 @@
 //!
 //! Every error names the file and the offending field (TOML syntax errors also give the line).
 //! The symmetry axis always has `A = 0`.
+//!
+//! Magnetodynamics (eddy currents, voltage-driven coils, `[transient]` or `[harmonic]`) adds the
+//! keys described in [`dynamics`].
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -47,9 +50,11 @@ use crate::material::Magnetic;
 use crate::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 use crate::solver::{Solver, SolverOptions};
 
+pub mod dynamics;
 mod raw;
 mod report;
 
+pub use dynamics::{DynamicsReport, DynamicsSpec, vtu_files};
 use raw::{RawBoundary, RawFile, RawRegion, RawSolver};
 use report::probe_report;
 pub use report::{CoilReport, LineReport, ProbeReport, RegionReport, SolveReport, Timings};
@@ -91,6 +96,8 @@ pub struct ProblemFile {
     pub mesh_path: PathBuf,
     /// Seconds spent reading the mesh file.
     pub mesh_read_s: f64,
+    /// The transient or harmonic solve asked for (`None`: a static file).
+    pub dynamics: Option<DynamicsSpec>,
 }
 
 /// Metres per unit for `length_unit` (the unit names of `mrbrake-units`).
@@ -140,7 +147,8 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     // Region/mesh consistency (unknown groups, missing materials) is checked here so the error
     // names the file.
     check_regions(&problem, &file, &mesh_path)?;
-    Ok(ProblemFile { problem, options, probes, lines, mesh_path, mesh_read_s })
+    let dynamics = dynamics::spec_of(&raw, &problem, dir, &file)?;
+    Ok(ProblemFile { problem, options, probes, lines, mesh_path, mesh_read_s, dynamics })
 }
 
 /// The `[[region]]` tables: material and source of each physical surface.
@@ -330,11 +338,14 @@ fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError>
         ))
     })?;
     for key in table.keys() {
-        if !["turns", "current_A", "current_density_A_per_m2"].contains(&key.as_str()) {
+        if !["turns", "current_A", "current_density_A_per_m2", "drive"].contains(&key.as_str()) {
             return Err(MagneticsError::Input(format!(
-                "{field}: unknown source field `{key}`; allowed: turns, current_A, current_density_A_per_m2"
+                "{field}: unknown source field `{key}`; allowed: turns, current_A, current_density_A_per_m2, drive"
             )));
         }
+    }
+    if let Some(drive) = table.get("drive") {
+        return voltage_source(table, drive, field);
     }
     if let Some(j) = number(table, "current_density_A_per_m2", field)? {
         return Ok(Source::CurrentDensity { a_per_m2: j });
@@ -352,6 +363,29 @@ fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError>
             "{field}: source needs both `turns` and `current_A`, or `current_density_A_per_m2`"
         ))),
     }
+}
+
+/// A voltage-driven coil; its static source is the DC current `V/R`.
+fn voltage_source(
+    table: &toml::Table,
+    drive: &toml::Value,
+    field: &str,
+) -> Result<Source, MagneticsError> {
+    let turns = number(table, "turns", field)?.filter(|&n| n > 0.0).ok_or_else(|| {
+        MagneticsError::Input(format!("{field}: a voltage-driven source needs `turns` > 0"))
+    })?;
+    if table.contains_key("current_A") || table.contains_key("current_density_A_per_m2") {
+        return Err(MagneticsError::Input(format!(
+            "{field}: source takes `current_A` or `drive`, not both"
+        )));
+    }
+    let current_a = match dynamics::voltage_drive(drive, field)? {
+        crate::dynamics::Drive::Voltage { amplitude_v, series_resistance_ohm } => {
+            amplitude_v / series_resistance_ohm
+        }
+        crate::dynamics::Drive::Current { amplitude_a } => amplitude_a,
+    };
+    Ok(Source::Coil { turns, current_a })
 }
 
 /// Reads, solves and post-processes a problem file; returns the report and the solver and solution
@@ -419,7 +453,13 @@ pub fn solve_file_with_order(
         order: solver.order().degree(),
         unknowns: solver.unknowns(),
         timings_s,
+        dynamics: None,
     };
+    let mut report = report;
+    if let Some(spec) = &file.dynamics {
+        report.dynamics = Some(dynamics::run(spec, &file, path)?);
+        report.timings_s.total = start.elapsed().as_secs_f64();
+    }
     Ok((report, solver, solution))
 }
 

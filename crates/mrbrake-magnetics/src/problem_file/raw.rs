@@ -20,6 +20,10 @@ pub(super) struct RawFile {
     pub probe: Vec<RawProbe>,
     #[serde(default)]
     pub line: Vec<RawLine>,
+    #[serde(default)]
+    pub transient: Option<RawTransient>,
+    #[serde(default)]
+    pub harmonic: Option<RawHarmonic>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -36,6 +40,8 @@ pub(super) struct RawRegion {
     pub physical: u32,
     pub material: Option<toml::Value>,
     pub source: Option<toml::Value>,
+    #[serde(rename = "conductivity_S_per_m")]
+    pub conductivity: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -61,4 +67,51 @@ pub(super) struct RawLine {
     pub from: [f64; 2],
     pub to: [f64; 2],
     pub samples: Option<usize>,
+}
+
+/// `[transient]`: a time-stepped solve (see `super::dynamics`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawTransient {
+    pub t_end: f64,
+    pub dt: Option<f64>,
+    pub adaptive: Option<RawAdaptive>,
+    pub scheme: Option<String>,
+    pub waveform: Option<RawWaveform>,
+    pub vtu_times: Option<Vec<f64>>,
+    pub max_steps: Option<usize>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawAdaptive {
+    pub rtol: f64,
+    pub dt_initial: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawWaveform {
+    pub kind: String,
+    pub rise_s: Option<f64>,
+    #[serde(rename = "frequency_Hz")]
+    pub frequency_hz: Option<f64>,
+    pub offset: Option<f64>,
+    pub file: Option<String>,
+}
+
+/// `[harmonic]`: time-harmonic (or small-signal) solves.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawHarmonic {
+    #[serde(rename = "frequencies_Hz")]
+    pub frequencies_hz: Vec<f64>,
+    pub bias: Option<RawBias>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawBias {
+    #[serde(rename = "current_A")]
+    pub current_a: f64,
 }

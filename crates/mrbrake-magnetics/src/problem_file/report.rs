@@ -118,6 +118,9 @@ pub struct SolveReport {
     pub unknowns: usize,
     /// Timings (s).
     pub timings_s: Timings,
+    /// Conductivities and the transient or harmonic solve (absent for a static file).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub dynamics: Option<super::DynamicsReport>,
 }
 
 pub(super) fn probe_report(name: &str, f: &PointField) -> ProbeReport {
@@ -177,6 +180,9 @@ impl SolveReport {
             );
         }
         self.write_coils_and_lines(&mut out);
+        if let Some(dynamics) = &self.dynamics {
+            dynamics.write_text(&mut out);
+        }
         let t = self.timings_s;
         let _ = writeln!(
             out,

@@ -1,0 +1,710 @@
+//! Magnetodynamics in problem files: the `[transient]` and `[harmonic]` tables, region
+//! conductivities, voltage-driven coils, and their part of the report.
+//!
+//! ```toml
+//! [[region]]
+//! physical = 1
+//! material = "steel-1010"              # library materials bring their sourced conductivity
+//! conductivity_S_per_m = 5.0e6         # optional; overrides the library value (S/m, finite, >= 0)
+//! [[region]]
+//! physical = 2
+//! material = "air"
+//! source = { turns = 1000, current_A = 1.0 }   # the amplitude the waveform scales
+//! # or: source = { turns = 450, drive = { voltage_V = 15.0, series_resistance_ohm = 7.6 } }
+//! [transient]
+//! t_end = 0.05                         # s
+//! dt = 1e-4                            # s; or adaptive = { rtol = 1e-4, dt_initial = 1e-5 }
+//! scheme = "bdf2"                      # or "euler" (implicit Euler); default "bdf2"
+//! waveform = { kind = "step" }         # default; 0 at t <= 0, 1 after
+//!                                      # { kind = "ramp", rise_s = 1e-3 } (0 to 1 over rise_s)
+//!                                      # { kind = "sine", frequency_Hz = 50.0, offset = 0.0 }
+//!                                      # { kind = "csv", file = "w.csv" } (time_s,value rows,
+//!                                      #   strictly increasing time; path relative to this file)
+//! vtu_times = [0.01, 0.05]             # optional: `fem solve --vtu` writes these instants
+//! max_steps = 1000000                  # optional bound on the number of steps
+//! [harmonic]                           # instead of [transient]
+//! frequencies_Hz = [1.0, 10.0, 100.0]
+//! bias = { current_A = 1.0 }           # optional: small-signal about the DC state at this current
+//! ```
+//!
+//! Times are in seconds and frequencies in hertz whatever the file's `length_unit` (which scales
+//! coordinates only). The waveform scales every coil's amplitude (`current_A`, or `voltage_V` of a
+//! voltage drive in series with `series_resistance_ohm`, the circuit `v = R i + dλ/dt` solved with
+//! the field). The solve starts from the DC state at `w(0)`. Harmonic solves use peak phasors and
+//! the time factor `exp(+jωt)` (a quantity is `Re(x̂ e^{jωt})`); they drive coils by current and
+//! are linear about `a = 0` (initial permeability) or, with `bias`, about the DC state at the bias
+//! current (the small-signal response of a saturated device).
+//!
+//! Conductivity: an explicit `conductivity_S_per_m` wins; otherwise a library material's sourced
+//! value (FEMM's 5.8 MS/m for its 1006-1020 steels, the ANSYS steel-1008 curve's 2 MS/m: the spread
+//! is real); MR fluids, air and `{ mu_r }` / `{ bh_csv }` materials have none and do not conduct.
+//! A coil is a stranded winding: an explicit conductivity > 0 on a coil region is refused, a
+//! library material's conductivity there is not used (the report says so). A
+//! `current_density_A_per_m2` source stays a constant (DC) load. The static part of the report
+//! (probes, regions, coils with their inductances) is the DC state at the drives' amplitudes
+//! (`current_A`, or `voltage_V / series_resistance_ohm`).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::raw::{RawFile, RawHarmonic, RawRegion, RawTransient, RawWaveform};
+use super::{ProblemFile, SolveReport};
+use crate::MagneticsError;
+use crate::dynamics::harmonic::HarmonicPoint;
+use crate::dynamics::transient::{Probe, Scheme, TimeStep, TransientOptions, TransientResult};
+use crate::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
+use crate::field::Solution;
+use crate::problem::{Problem, Source};
+use crate::solver::Solver;
+
+/// The conductivity a region is solved with, and where it comes from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConductorReport {
+    /// Physical tag of the region.
+    pub physical: u32,
+    /// σ (S/m).
+    #[serde(rename = "conductivity_S_per_m")]
+    pub conductivity_s_per_m: f64,
+    /// Where the value comes from (the file, a library material and its source, or none).
+    pub source: String,
+}
+
+/// What a problem file asks beyond the static solve.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Analysis {
+    /// A transient; its `snapshot_times_s` are the file's `vtu_times` (default: `t_end`).
+    Transient(TransientOptions),
+    /// Harmonic solves at these frequencies, about the DC state at `bias_a` (every coil) if given.
+    Harmonic {
+        /// Frequencies (Hz).
+        frequencies_hz: Vec<f64>,
+        /// Bias current of every coil (A).
+        bias_a: Option<f64>,
+    },
+}
+
+/// The dynamic part of a problem file, read and checked.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicsSpec {
+    /// Conductivity of every region.
+    pub conductors: Vec<ConductorReport>,
+    /// The driven coils.
+    pub coils: Vec<Coil>,
+    /// Transient or harmonic.
+    pub analysis: Analysis,
+}
+
+/// A transient in the report: the scheme and the traces (JSON keys of [`TransientResult`]).
+#[derive(Debug, Clone, Serialize)]
+pub struct TransientReport {
+    /// Time scheme.
+    pub scheme: Scheme,
+    /// The traces over time.
+    #[serde(flatten)]
+    pub result: TransientResult,
+}
+
+/// The dynamic part of the report (flattened into the `--json` object).
+#[derive(Debug, Clone, Serialize)]
+pub struct DynamicsReport {
+    /// Conductivity of every region and its source.
+    pub conductors: Vec<ConductorReport>,
+    /// Transient traces.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub transient: Option<TransientReport>,
+    /// Harmonic response per frequency (peak phasors `[re, im]`, time factor `exp(+jωt)`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub harmonic: Option<Vec<HarmonicPoint>>,
+    /// The DC bias of a small-signal harmonic solve (A), every coil.
+    #[serde(rename = "harmonic_bias_A", skip_serializing_if = "Option::is_none")]
+    pub harmonic_bias_a: Option<f64>,
+    /// Wall time of the transient or harmonic solve (s).
+    pub dynamics_s: f64,
+}
+
+fn input(message: String) -> MagneticsError {
+    MagneticsError::Input(message)
+}
+
+/// The voltage drive of a coil `source = { turns, drive = { voltage_V, series_resistance_ohm } }`.
+pub(super) fn voltage_drive(value: &toml::Value, field: &str) -> Result<Drive, MagneticsError> {
+    let table = value.as_table().ok_or_else(|| {
+        input(format!(
+            "{field}: source.drive must be a table {{ voltage_V = ..., series_resistance_ohm = ... }}"
+        ))
+    })?;
+    for key in table.keys() {
+        if !["voltage_V", "series_resistance_ohm"].contains(&key.as_str()) {
+            return Err(input(format!(
+                "{field}: unknown source.drive field `{key}`; allowed: voltage_V, series_resistance_ohm"
+            )));
+        }
+    }
+    let number = |key: &str| -> Result<Option<f64>, MagneticsError> {
+        table
+            .get(key)
+            .map(|v| {
+                v.as_float()
+                    .or_else(|| v.as_integer().map(|i| i as f64))
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| {
+                        input(format!("{field}: source.drive.{key} must be a finite number"))
+                    })
+            })
+            .transpose()
+    };
+    let amplitude_v = number("voltage_V")?
+        .ok_or_else(|| input(format!("{field}: source.drive needs `voltage_V` (V)")))?;
+    let resistance = number("series_resistance_ohm")?.ok_or_else(|| {
+        input(format!(
+            "{field}: a voltage drive needs `series_resistance_ohm` (Ω, > 0: the winding's \
+             resistance plus the source's)"
+        ))
+    })?;
+    if resistance <= 0.0 {
+        return Err(input(format!(
+            "{field}: source.drive.series_resistance_ohm = {resistance} must be > 0"
+        )));
+    }
+    Ok(Drive::Voltage { amplitude_v, series_resistance_ohm: resistance })
+}
+
+/// The dynamic part of a problem file (`None` for a static file).
+pub(super) fn spec_of(
+    raw: &RawFile,
+    problem: &Problem,
+    dir: &Path,
+    file: &str,
+) -> Result<Option<DynamicsSpec>, MagneticsError> {
+    let (analysis, waveform) = match (&raw.transient, &raw.harmonic) {
+        (Some(_), Some(_)) => {
+            return Err(input(format!(
+                "{file}: [transient] and [harmonic] cannot be solved together; give one of them"
+            )));
+        }
+        (Some(t), None) => (
+            Analysis::Transient(transient_of(t, file)?),
+            waveform_of(t.waveform.as_ref(), dir, file)?,
+        ),
+        // The waveform of a harmonic solve is the phasor's `exp(+jωt)`; the coils' is unused.
+        (None, Some(h)) => (harmonic_of(h, file)?, Waveform::Step { initial: 0.0 }),
+        (None, None) => {
+            if let Some(k) = raw.region.iter().position(has_drive) {
+                return Err(input(format!(
+                    "{file}: region[{k}] (physical = {}): a voltage drive (source.drive) needs a \
+                     [transient] table; a static solve takes current_A",
+                    raw.region[k].physical
+                )));
+            }
+            // A static solve does not use conductivities; a bad one is still refused.
+            for (k, r) in raw.region.iter().enumerate() {
+                if let Some(s) = r.conductivity
+                    && !(s >= 0.0 && s.is_finite())
+                {
+                    return Err(input(format!(
+                        "{file}: region[{k}] (physical = {}): conductivity_S_per_m = {s} must be \
+                         finite and >= 0",
+                        r.physical
+                    )));
+                }
+            }
+            return Ok(None);
+        }
+    };
+    let conductors = conductors_of(&raw.region, problem, file)?;
+    let coils = coils_of(&raw.region, problem, &waveform, file)?;
+    Ok(Some(DynamicsSpec { conductors, coils, analysis }))
+}
+
+fn has_drive(region: &RawRegion) -> bool {
+    region.source.as_ref().and_then(|s| s.as_table()).is_some_and(|t| t.contains_key("drive"))
+}
+
+/// The conductivity of every region: the file's value, else the library material's, else 0.
+fn conductors_of(
+    raw: &[RawRegion],
+    problem: &Problem,
+    file: &str,
+) -> Result<Vec<ConductorReport>, MagneticsError> {
+    let mut out = Vec::with_capacity(raw.len());
+    for (k, r) in raw.iter().enumerate() {
+        let field = format!("{file}: region[{k}] (physical = {})", r.physical);
+        let is_coil = matches!(
+            problem.region(r.physical).and_then(|region| region.source),
+            Some(Source::Coil { .. })
+        );
+        let (sigma, source) = match r.conductivity {
+            Some(s) if !(s >= 0.0 && s.is_finite()) => {
+                return Err(input(format!(
+                    "{field}: conductivity_S_per_m = {s} must be finite and >= 0"
+                )));
+            }
+            Some(s) if s > 0.0 && is_coil => {
+                return Err(input(format!(
+                    "{field}: conductivity_S_per_m = {s}: a coil region is a stranded winding \
+                     (no eddy currents); it cannot conduct (remove the key or set 0)"
+                )));
+            }
+            Some(s) => (s, "given in the problem file".to_string()),
+            None => library_conductivity(r.material.as_ref(), is_coil)?,
+        };
+        out.push(ConductorReport { physical: r.physical, conductivity_s_per_m: sigma, source });
+    }
+    Ok(out)
+}
+
+/// A library material's sourced conductivity (0 for other materials, and in a coil region).
+fn library_conductivity(
+    material: Option<&toml::Value>,
+    is_coil: bool,
+) -> Result<(f64, String), MagneticsError> {
+    let Some(name) = material.and_then(|m| m.as_str()) else {
+        return Ok((0.0, "none given: not conducting".to_string()));
+    };
+    let material = mrbrake_materials::library::get(name)?;
+    Ok(match (&material.conductivity_s_per_m, is_coil) {
+        (Some(s), true) if s.value > 0.0 => (
+            0.0,
+            format!("stranded coil: the {:.3e} S/m of library \"{name}\" is not used", s.value),
+        ),
+        (Some(s), _) => (
+            s.value,
+            format!(
+                "library \"{name}\": {} ({}; trust {})",
+                s.provenance.source, s.provenance.method, s.provenance.trust
+            ),
+        ),
+        (None, _) => (0.0, format!("library \"{name}\" gives none: not conducting")),
+    })
+}
+
+/// Every coil region's drive, scaled by `waveform`.
+fn coils_of(
+    raw: &[RawRegion],
+    problem: &Problem,
+    waveform: &Waveform,
+    file: &str,
+) -> Result<Vec<Coil>, MagneticsError> {
+    let mut coils = Vec::new();
+    for (k, r) in raw.iter().enumerate() {
+        let Some(Source::Coil { turns, current_a }) =
+            problem.region(r.physical).and_then(|x| x.source)
+        else {
+            continue;
+        };
+        let field = format!("{file}: region[{k}] (physical = {})", r.physical);
+        let drive = match r.source.as_ref().and_then(|s| s.get("drive")) {
+            Some(value) => voltage_drive(value, &field)?,
+            None => Drive::Current { amplitude_a: current_a },
+        };
+        coils.push(Coil { tag: r.physical, turns, drive, waveform: waveform.clone() });
+    }
+    if coils.is_empty() {
+        return Err(input(format!(
+            "{file}: a [transient] or [harmonic] solve needs a coil: a region with source = \
+             {{ turns, current_A }} or {{ turns, drive = {{ voltage_V, series_resistance_ohm }} }}"
+        )));
+    }
+    Ok(coils)
+}
+
+/// The `[transient]` table as solver options (the waveform goes to the coils separately).
+fn transient_of(raw: &RawTransient, file: &str) -> Result<TransientOptions, MagneticsError> {
+    let scheme = match raw.scheme.as_deref().unwrap_or("bdf2") {
+        "bdf2" => Scheme::Bdf2,
+        "euler" => Scheme::ImplicitEuler,
+        other => {
+            return Err(input(format!(
+                "{file}: transient.scheme = \"{other}\" is not known; allowed: \"bdf2\", \"euler\""
+            )));
+        }
+    };
+    let t_end = raw.t_end;
+    if !(t_end > 0.0 && t_end.is_finite()) {
+        return Err(input(format!("{file}: transient.t_end = {t_end} s must be finite and > 0")));
+    }
+    let step = match (raw.dt, &raw.adaptive) {
+        (Some(_), Some(_)) => {
+            return Err(input(format!(
+                "{file}: [transient] takes either `dt` (fixed steps) or `adaptive`, not both"
+            )));
+        }
+        (None, None) => {
+            return Err(input(format!(
+                "{file}: [transient] needs `dt` (s) or `adaptive = {{ rtol, dt_initial }}`"
+            )));
+        }
+        (Some(dt), None) => {
+            if !(dt > 0.0 && dt.is_finite()) {
+                return Err(input(format!("{file}: transient.dt = {dt} s must be finite and > 0")));
+            }
+            if t_end < dt {
+                return Err(input(format!(
+                    "{file}: transient.t_end = {t_end} s is shorter than transient.dt = {dt} s"
+                )));
+            }
+            TimeStep::Fixed { dt_s: dt }
+        }
+        (None, Some(a)) => TimeStep::Adaptive { rtol: a.rtol, dt_initial_s: a.dt_initial },
+    };
+    let mut options = TransientOptions::new(t_end, scheme, step);
+    options.energy = true;
+    if let Some(m) = raw.max_steps {
+        options.max_steps = m;
+    }
+    options.snapshot_times_s = vtu_times_of(raw.vtu_times.as_deref(), t_end, file)?;
+    options.validate().map_err(|e| input(format!("{file}: [transient]: {e}")))?;
+    Ok(options)
+}
+
+/// `vtu_times` (default: the final state), checked to lie in `[0, t_end]` and increase.
+fn vtu_times_of(times: Option<&[f64]>, t_end: f64, file: &str) -> Result<Vec<f64>, MagneticsError> {
+    let Some(times) = times else { return Ok(vec![t_end]) };
+    if times.is_empty() {
+        return Err(input(format!("{file}: transient.vtu_times is empty (omit it for t_end)")));
+    }
+    for (k, &t) in times.iter().enumerate() {
+        if !(0.0..=t_end).contains(&t) || (k > 0 && t <= times[k - 1]) {
+            return Err(input(format!(
+                "{file}: transient.vtu_times[{k}] = {t} s: times must increase strictly within \
+                 [0, t_end = {t_end} s]"
+            )));
+        }
+    }
+    Ok(times.to_vec())
+}
+
+/// The `waveform` of `[transient]` (default: a step from 0).
+fn waveform_of(
+    raw: Option<&RawWaveform>,
+    dir: &Path,
+    file: &str,
+) -> Result<Waveform, MagneticsError> {
+    let Some(w) = raw else { return Ok(Waveform::Step { initial: 0.0 }) };
+    let field = format!("{file}: transient.waveform");
+    let allowed: &[&str] = match w.kind.as_str() {
+        "step" => &[],
+        "ramp" => &["rise_s"],
+        "sine" => &["frequency_Hz", "offset"],
+        "csv" => &["file"],
+        other => {
+            return Err(input(format!(
+                "{field}: kind = \"{other}\" is not known; allowed: \"step\", \"ramp\" (rise_s), \
+                 \"sine\" (frequency_Hz, offset), \"csv\" (file)"
+            )));
+        }
+    };
+    let given = [
+        ("rise_s", w.rise_s.is_some()),
+        ("frequency_Hz", w.frequency_hz.is_some()),
+        ("offset", w.offset.is_some()),
+        ("file", w.file.is_some()),
+    ];
+    if let Some((key, _)) = given.iter().find(|(key, set)| *set && !allowed.contains(key)) {
+        return Err(input(format!(
+            "{field}: `{key}` is not a parameter of kind = \"{}\" (its parameters: {allowed:?})",
+            w.kind
+        )));
+    }
+    let missing = |key: &str| input(format!("{field}: kind = \"{}\" needs `{key}`", w.kind));
+    let waveform = match w.kind.as_str() {
+        "step" => Waveform::Step { initial: 0.0 },
+        "ramp" => Waveform::Ramp { rise_s: w.rise_s.ok_or_else(|| missing("rise_s"))? },
+        "sine" => Waveform::Sine {
+            frequency_hz: w.frequency_hz.ok_or_else(|| missing("frequency_Hz"))?,
+            offset: w.offset.unwrap_or(0.0),
+        },
+        _ => {
+            let name = w.file.as_deref().ok_or_else(|| missing("file"))?;
+            Waveform::Table { points: read_waveform_csv(&dir.join(name), &field, name)? }
+        }
+    };
+    waveform.validate().map_err(|e| input(format!("{field}: {e}")))?;
+    Ok(waveform)
+}
+
+/// `time_s,value` rows (an optional header line, `#` comments), time strictly increasing.
+fn read_waveform_csv(
+    path: &Path,
+    field: &str,
+    name: &str,
+) -> Result<Vec<(f64, f64)>, MagneticsError> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        input(format!("{field}: file = \"{name}\": cannot read {}: {e}", path.display()))
+    })?;
+    let mut points: Vec<(f64, f64)> = Vec::new();
+    for (line_no, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        let parsed = match cells.as_slice() {
+            [t, v] => t.parse::<f64>().ok().zip(v.parse::<f64>().ok()),
+            _ => None,
+        };
+        let at = format!("{field}: {} line {}", path.display(), line_no + 1);
+        match parsed {
+            None if points.is_empty() && line_no == 0 => continue, // the header
+            None => {
+                return Err(input(format!("{at}: expected `time_s,value` numbers, got `{line}`")));
+            }
+            Some((t, v)) => {
+                if let Some(&(previous, _)) = points.last()
+                    && t <= previous
+                {
+                    return Err(input(format!(
+                        "{at}: time_s must increase strictly (t = {t} s follows t = {previous} s)"
+                    )));
+                }
+                points.push((t, v));
+            }
+        }
+    }
+    if points.is_empty() {
+        return Err(input(format!("{field}: {} has no `time_s,value` rows", path.display())));
+    }
+    Ok(points)
+}
+
+fn harmonic_of(raw: &RawHarmonic, file: &str) -> Result<Analysis, MagneticsError> {
+    if raw.frequencies_hz.is_empty() {
+        return Err(input(format!("{file}: harmonic.frequencies_Hz is empty")));
+    }
+    if let Some(f) = raw.frequencies_hz.iter().find(|f| !(**f >= 0.0 && f.is_finite())) {
+        return Err(input(format!(
+            "{file}: harmonic.frequencies_Hz: {f} Hz must be finite and >= 0"
+        )));
+    }
+    let bias_a = raw.bias.as_ref().map(|b| b.current_a);
+    if let Some(b) = bias_a
+        && !b.is_finite()
+    {
+        return Err(input(format!("{file}: harmonic.bias.current_A = {b} must be finite")));
+    }
+    Ok(Analysis::Harmonic { frequencies_hz: raw.frequencies_hz.clone(), bias_a })
+}
+
+/// An input error of the library gets the problem file's name in front.
+fn named(error: MagneticsError, file: &str) -> MagneticsError {
+    match error {
+        MagneticsError::Input(message) => MagneticsError::Input(format!("{file}: {message}")),
+        other => other,
+    }
+}
+
+/// Runs the transient or harmonic solve of `problem_file` (its problem, options and probes).
+pub(super) fn run(
+    spec: &DynamicsSpec,
+    problem_file: &ProblemFile,
+    path: &Path,
+) -> Result<DynamicsReport, MagneticsError> {
+    let file = path.display().to_string();
+    let start = Instant::now();
+    let solver = Solver::new(problem_file.problem.clone(), problem_file.options)?;
+    let conductors: Vec<Conductor> = spec
+        .conductors
+        .iter()
+        .map(|c| Conductor { tag: c.physical, conductivity_s_per_m: c.conductivity_s_per_m })
+        .collect();
+    let mut dynamics =
+        Dynamics::new(solver, &conductors, spec.coils.clone()).map_err(|e| named(e, &file))?;
+    let probes: Vec<Probe> = problem_file
+        .probes
+        .iter()
+        .map(|p| Probe { name: p.name.clone(), point: p.point })
+        .collect();
+    let mut report = DynamicsReport {
+        conductors: spec.conductors.clone(),
+        transient: None,
+        harmonic: None,
+        harmonic_bias_a: None,
+        dynamics_s: 0.0,
+    };
+    match &spec.analysis {
+        Analysis::Transient(options) => {
+            let options = TransientOptions { probes, ..options.clone() };
+            let result = dynamics.transient(&options).map_err(|e| named(e, &file))?;
+            report.transient = Some(TransientReport { scheme: options.scheme, result });
+        }
+        Analysis::Harmonic { frequencies_hz, bias_a } => {
+            let bias: Option<Vec<f64>> = bias_a.map(|b| vec![b; spec.coils.len()]);
+            let (points, _) = dynamics
+                .harmonic(frequencies_hz, bias.as_deref(), &probes)
+                .map_err(|e| named(e, &file))?;
+            report.harmonic = Some(points);
+            report.harmonic_bias_a = *bias_a;
+        }
+    }
+    report.dynamics_s = start.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+/// The `.vtu` files `fem solve --vtu PATH` writes, with their contents: the static field at
+/// `PATH`, or for a transient the kept instants (`vtu_times`, default the final state): one
+/// instant at `PATH`, several at `STEM_000.vtu`, `STEM_001.vtu`, … beside `PATH` with a ParaView
+/// collection `STEM.pvd` giving their times.
+pub fn vtu_files(
+    report: &SolveReport,
+    solver: &Solver,
+    solution: &Solution,
+    path: &Path,
+) -> Vec<(PathBuf, String)> {
+    let snapshots = match report.dynamics.as_ref().and_then(|d| d.transient.as_ref()) {
+        Some(t) => &t.result.snapshots,
+        None => {
+            return vec![(
+                path.to_path_buf(),
+                solver.field_snapshot(solution).to_vtu(solver.mesh()),
+            )];
+        }
+    };
+    let field = |a: &[f64]| {
+        let state = Solution::from_potential(a.to_vec(), solver.basis().dofs().n_vertices());
+        solver.field_snapshot(&state).to_vtu(solver.mesh())
+    };
+    if let [(_, a)] = snapshots.as_slice() {
+        return vec![(path.to_path_buf(), field(a))];
+    }
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let mut files = Vec::with_capacity(snapshots.len() + 1);
+    let mut pvd = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n",
+    );
+    for (k, (t, a)) in snapshots.iter().enumerate() {
+        let name = format!("{stem}_{k:03}.vtu");
+        let _ = writeln!(pvd, "<DataSet timestep=\"{t:e}\" file=\"{name}\"/>");
+        files.push((path.with_file_name(&name), field(a)));
+    }
+    pvd.push_str("</Collection>\n</VTKFile>\n");
+    files.push((path.with_file_name(format!("{stem}.pvd")), pvd));
+    files
+}
+
+impl DynamicsReport {
+    /// The text of the dynamic part (conductivities, then the transient or harmonic table).
+    pub(super) fn write_text(&self, out: &mut String) {
+        let (conducting, insulating): (Vec<_>, Vec<_>) =
+            self.conductors.iter().partition(|c| c.conductivity_s_per_m > 0.0);
+        for c in conducting {
+            let _ = writeln!(
+                out,
+                "  conductivity, region {:>4}: {:.4e} S/m ({})",
+                c.physical, c.conductivity_s_per_m, c.source
+            );
+        }
+        if !insulating.is_empty() {
+            let tags: Vec<String> = insulating.iter().map(|c| c.physical.to_string()).collect();
+            let _ = writeln!(out, "  not conducting: region(s) {}", tags.join(", "));
+        }
+        if let Some(t) = &self.transient {
+            write_transient(t, self.dynamics_s, out);
+        }
+        if let Some(points) = &self.harmonic {
+            write_harmonic(points, self.harmonic_bias_a, self.dynamics_s, out);
+        }
+    }
+}
+
+/// Up to 11 time levels, evenly spread over the run, first and last included.
+fn sample_levels(n: usize) -> Vec<usize> {
+    let mut levels: Vec<usize> =
+        (0..=10).map(|k| ((k * (n - 1)) as f64 / 10.0).round() as usize).collect();
+    levels.dedup();
+    levels
+}
+
+fn write_transient(t: &TransientReport, seconds: f64, out: &mut String) {
+    let r = &t.result;
+    let scheme = match t.scheme {
+        Scheme::Bdf2 => "BDF2",
+        Scheme::ImplicitEuler => "implicit Euler",
+    };
+    let _ = writeln!(
+        out,
+        "  transient ({scheme}): {} steps to t = {:.4e} s, Newton {} iteration(s) in all, {} \
+         factorisation(s), {} rejected step(s), {seconds:.3} s",
+        r.time_s.len() - 1,
+        r.time_s.last().copied().unwrap_or(0.0),
+        r.newton_iterations.iter().sum::<usize>(),
+        r.factorizations,
+        r.rejected_steps
+    );
+    let mut header = format!("  {:>11}", "t (s)");
+    for c in &r.coils {
+        let _ = write!(
+            header,
+            " {:>11} {:>11} {:>11}",
+            format!("i{} (A)", c.physical),
+            "λ (Wb)",
+            "v (V)"
+        );
+    }
+    for p in &r.probes {
+        let _ = write!(header, " {:>11} {:>11}", format!("{} B_r", p.name), "B_z (T)");
+    }
+    let _ = writeln!(out, "{header} {:>11}", "eddy (W)");
+    for n in sample_levels(r.time_s.len()) {
+        let _ = write!(out, "  {:>11.4e}", r.time_s[n]);
+        for c in &r.coils {
+            let _ = write!(
+                out,
+                " {:>11.4e} {:>11.4e} {:>11.4e}",
+                c.current_a[n], c.flux_linkage_wb[n], c.voltage_v[n]
+            );
+        }
+        for p in &r.probes {
+            let _ = write!(out, " {:>11.4e} {:>11.4e}", p.b_r_t[n], p.b_z_t[n]);
+        }
+        let _ = writeln!(out, " {:>11.4e}", r.eddy_loss_w[n]);
+    }
+    write_energy_balance(r, out);
+}
+
+/// Source energy against the change in stored energy plus the eddy loss over the run.
+fn write_energy_balance(r: &TransientResult, out: &mut String) {
+    let (Some(first), Some(last)) = (r.stored_energy_j.first(), r.stored_energy_j.last()) else {
+        return;
+    };
+    let source = r.source_energy_j.last().copied().unwrap_or(0.0);
+    let eddy = r.eddy_energy_j.last().copied().unwrap_or(0.0);
+    let stored = last - first;
+    let _ = writeln!(
+        out,
+        "  energy over the run: from the coils {source:.5e} J = stored {stored:.5e} J + eddy \
+         losses {eddy:.5e} J (mismatch {:.3e} J)",
+        source - stored - eddy
+    );
+}
+
+fn write_harmonic(points: &[HarmonicPoint], bias: Option<f64>, seconds: f64, out: &mut String) {
+    let about = match bias {
+        Some(b) => format!("small-signal about the DC state at {b} A"),
+        None => "linear about a = 0 (initial permeability)".to_string(),
+    };
+    let _ = writeln!(
+        out,
+        "  harmonic ({about}; peak phasors, time factor exp(+jωt)): {} frequencies, {seconds:.3} s",
+        points.len()
+    );
+    for p in points {
+        let _ = write!(out, "  f = {:>10.4e} Hz", p.frequency_hz);
+        for c in &p.coils {
+            let (re, im) = (c.impedance_ohm[0], c.impedance_ohm[1]);
+            let lambda = c.flux_linkage_wb[0].hypot(c.flux_linkage_wb[1]);
+            let _ = write!(
+                out,
+                "  coil {}: Z = {re:.4e} {im:+.4e}j Ω |λ| = {lambda:.4e} Wb",
+                c.physical
+            );
+        }
+        for probe in &p.probes {
+            let b_z = probe.b_z_t[0].hypot(probe.b_z_t[1]);
+            let _ = write!(out, "  {} |B_z| = {b_z:.4e} T", probe.name);
+        }
+        let _ = writeln!(out, "  eddy loss {:.4e} W", p.eddy_loss_w);
+    }
+}
