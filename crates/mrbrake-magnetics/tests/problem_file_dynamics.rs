@@ -244,7 +244,8 @@ fn newton_failure_at_a_step_is_numerical_with_step_time_and_history() {
         Err(e @ MagneticsError::TimeStep { .. }) => {
             assert!(!e.is_input_error(), "{e}");
             let message = e.to_string();
-            assert!(message.contains("time step 1") && message.contains("t = 1.0"), "{message}");
+            // Fixed steps are uniform (times n·dt): the first step ends at 2 ms.
+            assert!(message.contains("time step 1") && message.contains("t = 2.0"), "{message}");
             let cause = std::error::Error::source(&e).map(|s| s.to_string()).unwrap_or_default();
             assert!(cause.contains("residual history") && cause.contains("#6"), "{cause}");
         }
