@@ -1,5 +1,5 @@
 //! Boundary integrals: bilinear forms on the tagged edges of a mesh, as local matrices to add to an
-//! [`Assembly`](crate::assemble::Assembly) as constant couplings (Robin-type terms such as the
+//! [`Assembly`] as constant couplings (Robin-type terms such as the
 //! asymptotic open boundary of magnetostatics or a convective heat-transfer coefficient).
 //!
 //! On an edge from `x_a` to `x_b` with parameter `t ∈ [0, 1]`, the traces of the Lagrange bases
