@@ -42,7 +42,7 @@ use serde::Serialize;
 use crate::DesignError;
 use crate::analysis::{fluid_of, gap_yield_torque, numerical, problem_of};
 use crate::formula;
-use crate::geometry::{BrakeGeometry, GapInfo, PartKind};
+use crate::geometry::{BrakeGeometry, CoilInfo, GapInfo, PartKind};
 use crate::mesh_build::{self, MeshLevel};
 use crate::spec::BrakeSpec;
 
@@ -300,23 +300,12 @@ impl<'a> Model<'a> {
         let solver_options =
             SolverOptions { order: self.options.order, ..SolverOptions::default() };
         let solver = Solver::new(problem, solver_options).map_err(numerical)?;
-        let wire = CopperWire::from_diameter(self.spec.wire_diameter_m())
-            .map_err(|e| DesignError::Input(e.to_string()))?;
         let mut coils = Vec::new();
         for coil in self.geometry.coils.iter().filter(|c| c.unit == unit) {
-            let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
-            let max = self.spec.coil.max_current.a();
-            let electrics = formula::coil_electrics(
-                coil.turns,
-                mean_radius,
-                &wire,
-                max,
-                self.options.temperature_c,
-            )?;
             coils.push(Coil {
                 tag: coil.tag,
                 turns: f64::from(coil.turns),
-                drive: drive(coil.current_sign, electrics.resistance_ohm),
+                drive: drive(coil.current_sign, self.coil_resistance(coil)?),
                 waveform: waveform.clone(),
             });
         }
@@ -479,7 +468,8 @@ impl Model<'_> {
         Ok((plus - minus) / (2.0 * eps))
     }
 
-    /// `R / (R + Z)`: the coil current per `V/R` of a voltage drive (coils in series).
+    /// `R / (R + Z)`: the coil current per `V/R` of a voltage drive (direction 1's coils in
+    /// series).
     fn voltage_factor(
         &self,
         dynamics: &Dynamics,
@@ -491,35 +481,27 @@ impl Model<'_> {
             .iter()
             .map(|c| Complex64::new(c.impedance_ohm[0], c.impedance_ohm[1]))
             .sum();
-        let resistance: f64 = dynamics
-            .coils()
-            .map(|c| match c.drive {
-                Drive::Voltage { series_resistance_ohm, .. } => series_resistance_ohm,
-                Drive::Current { .. } => 0.0,
-            })
-            .sum();
-        let resistance = if resistance > 0.0 { resistance } else { self.coil_resistance()? };
+        let mut resistance = 0.0;
+        for coil in self.geometry.coils.iter().filter(|c| c.unit == 0) {
+            resistance += self.coil_resistance(coil)?;
+        }
         Ok(Complex64::new(resistance, 0.0) / (resistance + impedance))
     }
 
-    /// The series resistance of direction 1's coils at the options' temperature.
-    fn coil_resistance(&self) -> Result<f64, DesignError> {
+    /// The resistance of one coil at the options' temperature (the thesis's coil formulas).
+    fn coil_resistance(&self, coil: &CoilInfo) -> Result<f64, DesignError> {
         let wire = CopperWire::from_diameter(self.spec.wire_diameter_m())
             .map_err(|e| DesignError::Input(e.to_string()))?;
-        let mut total = 0.0;
-        for coil in self.geometry.coils.iter().filter(|c| c.unit == 0) {
-            let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
-            let max = self.spec.coil.max_current.a();
-            total += formula::coil_electrics(
-                coil.turns,
-                mean_radius,
-                &wire,
-                max,
-                self.options.temperature_c,
-            )?
-            .resistance_ohm;
-        }
-        Ok(total)
+        let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
+        let max = self.spec.coil.max_current.a();
+        let electrics = formula::coil_electrics(
+            coil.turns,
+            mean_radius,
+            &wire,
+            max,
+            self.options.temperature_c,
+        )?;
+        Ok(electrics.resistance_ohm)
     }
 }
 

@@ -43,6 +43,31 @@ impl GmshMesh {
     }
 }
 
+/// The mesh a problem file names (the part every physics' problem-file reader shares): `mesh`
+/// relative to the problem file's folder, coordinates in `length_unit` (a length unit of
+/// `mrbrake-units`, default metres). Returns the mesh and the metres per unit (for probes and
+/// lines). Errors name the problem file and its field: `length_unit`, or `mesh` when the file
+/// cannot be read; a malformed mesh keeps the mesh file's own error (file and line).
+pub fn read_problem_mesh(
+    problem_file: &Path,
+    mesh: &str,
+    length_unit: Option<&str>,
+) -> Result<(GmshMesh, f64), FemError> {
+    let file = problem_file.display();
+    let unit = length_unit.unwrap_or("m");
+    let scale = mrbrake_units::unit_scale(unit, mrbrake_units::Dimension::Length)
+        .map_err(|e| FemError::Input(format!("{file}: length_unit = \"{unit}\": {e}")))?;
+    let mesh_path = problem_file.parent().unwrap_or(Path::new(".")).join(mesh);
+    let gmsh = read_msh(&mesh_path, scale).map_err(|e| match e {
+        FemError::Io { source, .. } => FemError::Input(format!(
+            "{file}: mesh = \"{mesh}\": cannot read {}: {source}",
+            mesh_path.display()
+        )),
+        other => other,
+    })?;
+    Ok((gmsh, scale))
+}
+
 /// Reads a Gmsh MSH 2.2 or 4.1 ASCII file, scaling coordinates by `length_scale` (metres per file unit).
 pub fn read_msh(path: &Path, length_scale: f64) -> Result<GmshMesh, FemError> {
     let text = std::fs::read_to_string(path)

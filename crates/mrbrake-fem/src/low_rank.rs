@@ -50,6 +50,11 @@ impl Woodbury {
         Ok(())
     }
 
+    /// True when there are no terms.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.terms.is_empty()
+    }
+
     /// Recomputes `Z` and `S` after a new factorisation of `K`; `solve` applies `K⁻¹` in place.
     pub(crate) fn refresh(
         &mut self,

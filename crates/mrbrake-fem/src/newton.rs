@@ -290,14 +290,14 @@ impl NewtonSolver {
     ) -> Result<Vec<f64>, FemError> {
         let mut residual = vec![0.0; system.constraints().n_free()];
         system.evaluate(u, &mut residual, Some(&mut self.values));
-        self.factorize_with(system.low_rank())?;
+        self.woodbury.set_terms(system.low_rank())?;
+        self.factorize()?;
         Ok(residual)
     }
 
-    /// Factorises the stored Jacobian values and prepares the low-rank `terms` for it.
-    fn factorize_with(&mut self, terms: &[LowRankTerm]) -> Result<(), FemError> {
+    /// Factorises the stored Jacobian values and refreshes the low-rank terms' data for it.
+    fn factorize(&mut self) -> Result<(), FemError> {
         self.cholesky.factorize(&self.values)?;
-        self.woodbury.set_terms(terms)?;
         let cholesky = &mut self.cholesky;
         self.woodbury.refresh(|v| cholesky.solve_in_place(v))
     }
@@ -373,7 +373,7 @@ impl NewtonSolver {
             return Ok(StepOutcome::IterationLimit);
         }
         it.iterations += 1;
-        let cg_iterations = self.direction(system.low_rank(), it, r_norm, options)?;
+        let cg_iterations = self.direction(it, r_norm, options)?;
         let (alpha, accepted) = self.line_search(system, it, options);
         let a_max = it.u.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         let d_max = it.delta.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * alpha;
@@ -404,13 +404,12 @@ impl NewtonSolver {
     /// too) and the exact step includes them.
     fn direction(
         &mut self,
-        terms: &[LowRankTerm],
         it: &mut Iteration,
         r_norm: f64,
         options: &NewtonOptions,
     ) -> Result<usize, NewtonError> {
         if let Some((previous_norm, true)) = it.previous
-            && terms.is_empty()
+            && self.woodbury.is_empty()
             && it.factorizations > 0
             && r_norm <= options.tail_phase_reduction * previous_norm
         {
@@ -427,7 +426,7 @@ impl NewtonSolver {
             }
         }
         let t = Instant::now();
-        if let Err(e) = self.factorize_with(terms) {
+        if let Err(e) = self.factorize() {
             return Err(it.failure(&format!(
                 "{e} (Jacobian not positive definite: is a material law non-monotone?)"
             )));

@@ -153,27 +153,15 @@ pub fn load(path: &Path) -> Result<HeatFile, HeatError> {
             raw.physics
         )));
     }
-    let scale = mrbrake_units::unit_scale(
-        raw.length_unit.as_deref().unwrap_or("m"),
-        mrbrake_units::Dimension::Length,
-    )
-    .map_err(|e| HeatError::Input(format!("{file}: length_unit: {e}")))?;
     let order = match raw.order {
         None => ElementOrder::P1,
         Some(d) => ElementOrder::from_degree(d).ok_or_else(|| {
             HeatError::Input(format!("{file}: order = {d} is not allowed; allowed: 1 or 2"))
         })?,
     };
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let mesh_path = dir.join(&raw.mesh);
-    let gmsh = mrbrake_fem::gmsh::read_msh(&mesh_path, scale).map_err(|e| match e {
-        mrbrake_fem::FemError::Io { source, .. } => HeatError::Input(format!(
-            "{file}: mesh = \"{}\": cannot read {}: {source}",
-            raw.mesh,
-            mesh_path.display()
-        )),
-        other => other.into(),
-    })?;
+    let mesh_path = path.parent().unwrap_or(Path::new(".")).join(&raw.mesh);
+    let (gmsh, scale) =
+        mrbrake_fem::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
     let mesh = Arc::new(gmsh.mesh);
     let mut errors = Errors { file: &file, text: &text, errors: FieldErrors::new() };
     let regions = regions_of(&raw.region, &mesh, &mut errors);

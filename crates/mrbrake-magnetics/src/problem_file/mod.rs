@@ -100,12 +100,6 @@ pub struct ProblemFile {
     pub dynamics: Option<DynamicsSpec>,
 }
 
-/// Metres per unit for `length_unit` (the unit names of `mrbrake-units`).
-fn unit_scale(unit: &str, file: &str) -> Result<f64, MagneticsError> {
-    mrbrake_units::unit_scale(unit, mrbrake_units::Dimension::Length)
-        .map_err(|e| MagneticsError::Input(format!("{file}: length_unit = \"{unit}\": {e}")))
-}
-
 /// The element order of the `order` key (absent: P1).
 fn order_of(value: Option<&toml::Value>, file: &str) -> Result<ElementOrder, MagneticsError> {
     let Some(value) = value else { return Ok(ElementOrder::P1) };
@@ -125,19 +119,11 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     let raw: RawFile =
         toml::from_str(&text).map_err(|e| MagneticsError::Input(format!("{file}: {e}")))?;
     let dir = path.parent().unwrap_or(Path::new("."));
-    let scale = unit_scale(raw.length_unit.as_deref().unwrap_or("m"), &file)?;
     let order = order_of(raw.order.as_ref(), &file)?;
     let mesh_path = dir.join(&raw.mesh);
     let start = Instant::now();
-    let gmsh = mrbrake_fem::gmsh::read_msh(&mesh_path, scale).map_err(|e| match e {
-        // Name the problem file and its `mesh` field, not only the resolved mesh path.
-        mrbrake_fem::FemError::Io { source, .. } => MagneticsError::Input(format!(
-            "{file}: mesh = \"{}\": cannot read {}: {source}",
-            raw.mesh,
-            mesh_path.display()
-        )),
-        other => other.into(),
-    })?;
+    let (gmsh, scale) =
+        mrbrake_fem::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
     let mesh_read_s = start.elapsed().as_secs_f64();
     let regions = regions_of(&raw.region, dir, &file)?;
     let boundaries = boundaries_of(&raw.boundary, &gmsh.mesh, scale, &file, &mesh_path)?;
