@@ -27,7 +27,7 @@ use mrbrake_fem::basis::{Basis, Element, Weighting};
 use mrbrake_fem::constraints::Constraints;
 use mrbrake_fem::dofs::ElementOrder;
 use mrbrake_fem::element::TriangleBasis;
-use mrbrake_fem::newton::{AssembledSystem, NewtonOptions, NewtonSolver, norm2};
+use mrbrake_fem::newton::{AssembledSystem, EliminationOrder, NewtonOptions, NewtonSolver, norm2};
 use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
 
 fn exact(p: [f64; 2]) -> f64 {
@@ -295,4 +295,53 @@ fn transient_diffusion_by_implicit_euler_converges_at_first_order_in_time() {
     let orders: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
     println!("implicit Euler: L2 errors at t = 0.5 {errors:?}, orders in time {orders:?}");
     assert!(orders.iter().all(|&o| o > 0.85 && o < 1.15), "orders {orders:?}");
+}
+
+/// A sequence of nearby non-linear problems (`c` from 1 to 1.5, each solve starting from the last
+/// solution), solved cold and with the warm start (`NewtonOptions::reuse_factor`): the same
+/// solutions (both meet the stopping rule), fewer factorisations warm; and the two elimination
+/// orders give the same solution.
+#[test]
+fn warm_start_and_elimination_orders_change_the_work_not_the_solution() {
+    let lines = graded_lines(0.0, 1.0, 16, 1.0);
+    let sides = SideTags { r_min: 1, r_max: 2, z_min: 3, z_max: 4 };
+    let mesh = Arc::new(rectangle_mesh(&lines, &lines, |_, _| 1, sides).unwrap());
+    let basis = Basis::new(mesh, ElementOrder::P1, 5, Weighting::Axisymmetric);
+    let constraints = Constraints::builder(basis.dofs())
+        .prescribe(2, exact)
+        .prescribe(3, exact)
+        .prescribe(4, exact)
+        .build();
+    let mut assembly = Assembly::new(basis, constraints).unwrap();
+    let run = |assembly: &mut Assembly, reuse_factor: bool, order: EliminationOrder| {
+        let mut newton = NewtonSolver::for_assembly(assembly, 1).unwrap();
+        newton.set_elimination_order(order).unwrap();
+        let options =
+            NewtonOptions { residual_tolerance: 1e-12, reuse_factor, ..NewtonOptions::default() };
+        let mut u = assembly.constraints().lifting();
+        let (mut solutions, mut factorizations) = (Vec::new(), 0);
+        for k in 0..=10 {
+            let form = DiffusionReaction { c: 1.0 + 0.05 * k as f64, linear: false };
+            assembly.prepare(&form);
+            let mut system = AssembledSystem { assembly: &mut *assembly, form: &form };
+            factorizations +=
+                newton.solve(&mut system, &mut u, 1.0, &options).unwrap().factorizations;
+            solutions.push(u.clone());
+        }
+        (solutions, factorizations)
+    };
+    let (cold, cold_factorizations) = run(&mut assembly, false, EliminationOrder::NestedDissection);
+    let (warm, warm_factorizations) = run(&mut assembly, true, EliminationOrder::NestedDissection);
+    let (amd, _) = run(&mut assembly, false, EliminationOrder::MinimumDegree);
+    let gap = |a: &[Vec<f64>], b: &[Vec<f64>]| {
+        a.iter().flatten().zip(b.iter().flatten()).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+    };
+    println!(
+        "factorisations cold {cold_factorizations}, warm {warm_factorizations}; max |warm − cold| \
+         {:.2e}, max |AMD − ND| {:.2e}",
+        gap(&warm, &cold),
+        gap(&amd, &cold)
+    );
+    assert!(warm_factorizations < cold_factorizations);
+    assert!(gap(&warm, &cold) < 1e-9 && gap(&amd, &cold) < 1e-9);
 }

@@ -168,6 +168,15 @@ impl Dynamics {
         TWO_PI * self.mass_norm2(rate)
     }
 
+    /// `y = Σ_e σ_e M_e x_e` at every DOF (the eddy-current mass matrix times `x`; conducting
+    /// elements only, so its cost is the conductors' share of the mesh).
+    pub(crate) fn mass_mul(&self, x: &[f64]) -> Vec<f64> {
+        match self.solver.order() {
+            mrbrake_fem::dofs::ElementOrder::P1 => mass_product::<3>(self, x),
+            mrbrake_fem::dofs::ElementOrder::P2 => mass_product::<6>(self, x),
+        }
+    }
+
     /// `Σ_e σ_e x_eᵀ M_e x_e` (element order: the sum does not depend on threads).
     pub(crate) fn mass_norm2(&self, x: &[f64]) -> f64 {
         match self.solver.order() {
@@ -310,6 +319,24 @@ fn mass_matrices<E: TriangleBasis<N>, const N: usize>(
             }
         }
     })
+}
+
+fn mass_product<const N: usize>(dynamics: &Dynamics, x: &[f64]) -> Vec<f64> {
+    let dofs = dynamics.solver.basis().dofs().element_dofs();
+    let mut y = vec![0.0; x.len()];
+    for (t, element) in dofs.chunks_exact(N).enumerate() {
+        let sigma = dynamics.sigma[t];
+        if sigma <= 0.0 {
+            continue;
+        }
+        let m = unpack_symmetric::<N>(&dynamics.mass[packed_len(N) * t..packed_len(N) * (t + 1)]);
+        let local: [f64; N] = std::array::from_fn(|i| x[element[i]]);
+        for i in 0..N {
+            let mx: f64 = (0..N).map(|j| m[i][j] * local[j]).sum();
+            y[element[i]] += sigma * mx;
+        }
+    }
+    y
 }
 
 fn mass_quadratic<const N: usize>(dynamics: &Dynamics, x: &[f64]) -> f64 {

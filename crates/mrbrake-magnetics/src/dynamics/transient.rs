@@ -38,7 +38,7 @@ use std::time::Instant;
 
 use mrbrake_fem::assemble::Assembly;
 use mrbrake_fem::low_rank::LowRankTerm;
-use mrbrake_fem::newton::{NewtonSolver, NonlinearSystem};
+use mrbrake_fem::newton::{EliminationOrder, NewtonOptions, NewtonSolver, NonlinearSystem};
 use serde::Serialize;
 
 use super::form::TransientForm;
@@ -376,6 +376,8 @@ struct Run {
     result: TransientResult,
     /// The rate the assembly was prepared and factorised with (linear fast path).
     factor_rate: Option<f64>,
+    /// The static form's residual at the lifting (linear fast path; constant over a run).
+    static_offset: Option<Vec<f64>>,
     scale: f64,
     a_max: f64,
     next_snapshot: usize,
@@ -418,7 +420,15 @@ impl Run {
         };
         let a_max = max_abs(&a);
         let levels = vec![Level { t: 0.0, dt: 0.0, a, lambda }];
-        Ok(Self { levels, result, factor_rate: None, scale, a_max, next_snapshot: 0 })
+        Ok(Self {
+            levels,
+            result,
+            factor_rate: None,
+            static_offset: None,
+            scale,
+            a_max,
+            next_snapshot: 0,
+        })
     }
 }
 
@@ -542,8 +552,44 @@ impl Run {
         let coefficients = coefficients(scheme, &self.levels, dt);
         let drives = step_drives(dynamics, &coefficients, t_next);
         let terms = low_rank_terms(dynamics, &drives);
+        let rate = coefficients.rate;
+        let rate_changed = self.factor_rate.is_none_or(|r| (r - rate).abs() > 1e-12 * rate);
+        if rate_changed {
+            let (assembly, statics, _) = parts(&mut dynamics.solver);
+            assembly.prepare(&TransientForm {
+                statics,
+                sigma: &dynamics.sigma,
+                mass: &dynamics.mass,
+                history: &coefficients.history,
+                rate,
+            });
+            self.factor_rate = None;
+        }
+        let (a, iterations) = if dynamics.solver.assembly.is_linear() {
+            (self.affine_step(dynamics, &coefficients, &drives, terms)?, 1)
+        } else {
+            // Newton starts from the scheme's predictor (the polynomial through the last levels),
+            // closer to the step's solution than the newest level: about one Newton iteration
+            // less per step.
+            let start = predictor(scheme, &self.levels, t_next)
+                .map_or_else(|| self.levels[self.levels.len() - 1].a.clone(), |(p, _)| p);
+            self.newton_step(dynamics, &coefficients, &drives, terms, start)?
+        };
+        Ok(Attempt { t: t_next, dt, a, coefficients, drives, iterations })
+    }
+
+    /// A step of a non-linear problem: Newton from `a`.
+    fn newton_step(
+        &mut self,
+        dynamics: &mut Dynamics,
+        coefficients: &StepCoefficients,
+        drives: &[StepDrive],
+        terms: Vec<LowRankTerm>,
+        mut a: Vec<f64>,
+    ) -> Result<(Vec<f64>, usize), MagneticsError> {
         let Dynamics { solver, sigma, mass, coils } = dynamics;
-        let newton_options = solver.options.newton();
+        // Consecutive steps' Jacobians are close: start from the last step's factor.
+        let newton_options = NewtonOptions { reuse_factor: true, ..solver.options.newton() };
         let (assembly, statics, newton) = parts(solver);
         let form = TransientForm {
             statics,
@@ -552,28 +598,66 @@ impl Run {
             history: &coefficients.history,
             rate: coefficients.rate,
         };
-        let rate = coefficients.rate;
-        if self.factor_rate.is_none_or(|r| (r - rate).abs() > 1e-12 * rate) {
-            assembly.prepare(&form);
-            self.factor_rate = None;
+        let mut system = StepSystem { assembly, form, coils, drives: drives.to_vec(), terms };
+        let report = newton.solve(&mut system, &mut a, self.scale, &newton_options)?;
+        self.result.factorizations += report.factorizations;
+        Ok((a, report.iterations))
+    }
+
+    /// A step of a linear problem with the stored factor (factorised on the first step at this
+    /// rate). The residual is affine, `R(u₀ + δ) = R(u₀) + J δ` with `u₀` the lifting (prescribed
+    /// values, zero elsewhere), and `R(u₀)` splits into the static form's part, constant over the
+    /// run (one quadrature loop per run), the eddy term `ρ σ M (u₀ − h)` (the conductors' mass
+    /// product) and the coils' currents at `λ(u₀)`; so a step costs one mass product and one
+    /// solve instead of a quadrature loop over the mesh.
+    fn affine_step(
+        &mut self,
+        dynamics: &mut Dynamics,
+        coefficients: &StepCoefficients,
+        drives: &[StepDrive],
+        terms: Vec<LowRankTerm>,
+    ) -> Result<Vec<f64>, MagneticsError> {
+        let lifting = dynamics.solver.assembly.constraints().lifting();
+        if self.factor_rate.is_none() {
+            let Dynamics { solver, sigma, mass, coils } = &mut *dynamics;
+            let (assembly, statics, newton) = parts(solver);
+            let form = TransientForm {
+                statics,
+                sigma,
+                mass,
+                history: &coefficients.history,
+                rate: coefficients.rate,
+            };
+            let mut system = StepSystem { assembly, form, coils, drives: drives.to_vec(), terms };
+            // Hundreds of solves per factorisation: the order with the fewest factor entries.
+            newton.set_elimination_order(EliminationOrder::MinimumDegree)?;
+            newton.factorize_at(&mut system, &lifting)?;
+            self.result.factorizations += 1;
+            self.factor_rate = Some(coefficients.rate);
         }
-        let mut system = StepSystem { assembly, form, coils, drives, terms };
-        let mut a = self.levels[self.levels.len() - 1].a.clone();
-        let iterations = if system.is_linear() {
-            if self.factor_rate.is_none() {
-                newton.factorize_at(&mut system, &a)?;
-                self.result.factorizations += 1;
-                self.factor_rate = Some(rate);
+        let offset = match self.static_offset.take() {
+            Some(offset) => offset,
+            None => {
+                let (assembly, statics, _) = parts(&mut dynamics.solver);
+                let mut offset = vec![0.0; assembly.constraints().n_free()];
+                assembly.evaluate(statics, &lifting, &mut offset, None);
+                offset
             }
-            linear_step(newton, &mut system, &mut a)?;
-            1
-        } else {
-            let report = newton.solve(&mut system, &mut a, self.scale, &newton_options)?;
-            self.result.factorizations += report.factorizations;
-            report.iterations
         };
-        let drives = system.drives;
-        Ok(Attempt { t: t_next, dt, a, coefficients, drives, iterations })
+        let eddy_argument: Vec<f64> =
+            lifting.iter().zip(&coefficients.history).map(|(u, h)| u - h).collect();
+        let constraints = dynamics.solver.assembly.constraints();
+        let eddy = constraints.restrict(&dynamics.mass_mul(&eddy_argument));
+        let mut rhs: Vec<f64> =
+            offset.iter().zip(&eddy).map(|(r, m)| -(r + coefficients.rate * m)).collect();
+        for (coil, drive) in dynamics.coils.iter().zip(drives) {
+            let current = drive.current(TWO_PI * dot(&coil.full, &lifting));
+            rhs.iter_mut().zip(&coil.free).for_each(|(r, c)| *r += current * c);
+        }
+        self.static_offset = Some(offset);
+        dynamics.solver.newton.solve_jacobian_in_place(&mut rhs)?;
+        let delta = dynamics.solver.assembly.constraints().extend_with_zeros(&rhs);
+        Ok(lifting.iter().zip(&delta).map(|(u, d)| u + d).collect())
     }
 
     /// The estimated local error over `rtol · max|a|` (0 while the predictor lacks history).
@@ -600,22 +684,6 @@ impl Run {
             self.result.coils.iter().map(|c| c.current_a[c.current_a.len() - 1]).collect();
         observer(&StepView { t: level.t, a: &level.a, currents: &currents, dynamics })
     }
-}
-
-/// One step of a linear system with the stored factor: `a ← a − J⁻¹ R(a)` (exact for an affine
-/// residual).
-fn linear_step(
-    newton: &mut NewtonSolver,
-    system: &mut StepSystem<'_>,
-    a: &mut [f64],
-) -> Result<(), MagneticsError> {
-    let mut residual = vec![0.0; system.constraints().n_free()];
-    system.evaluate(a, &mut residual, None);
-    residual.iter_mut().for_each(|r| *r = -*r);
-    newton.solve_jacobian_in_place(&mut residual)?;
-    let delta = system.assembly.constraints().extend_with_zeros(&residual);
-    a.iter_mut().zip(&delta).for_each(|(a, d)| *a += d);
-    Ok(())
 }
 
 /// The coil terms of a step to `t_next`.
