@@ -186,10 +186,26 @@ pub fn run_sweep(a: SweepArgs) -> CommandResult {
 
 /// Runs `mrbrake merge`.
 pub fn run_merge(a: MergeArgs) -> CommandResult {
+    // Every input is checked (read-only) before the output is created, so a bad input leaves no
+    // empty output store behind.
+    for input in &a.inputs {
+        Store::open_read_only(input)?.close()?;
+    }
+    let created = !a.output.exists();
     let mut store = Store::open_or_create(&a.output, true)?;
     let mut total = 0;
     for input in &a.inputs {
-        let summary = store.merge_from(input)?;
+        let summary = match store.merge_from(input) {
+            Ok(summary) => summary,
+            Err(error) => {
+                // A store this command created and could not fill is removed again.
+                if created && total == 0 && store.is_empty().unwrap_or(false) {
+                    store.close()?;
+                    let _ = std::fs::remove_file(&a.output);
+                }
+                return Err(error.into());
+            }
+        };
         total += summary.inserted;
         crate::out!("{}", study_report::merge_text(input, &summary));
     }
