@@ -51,7 +51,8 @@ pub fn write_atomic_with(
     let target = resolve_symlinks(path).map_err(io_err)?;
     let special = is_special_file(&target);
     let tmp = if special {
-        let name = target.file_name().map_or_else(|| "output".into(), |n| n.to_string_lossy());
+        // Named after the path given (its extension tells an image backend the format).
+        let name = path.file_name().map_or_else(|| "output".into(), |n| n.to_string_lossy());
         temp_path_for(&std::env::temp_dir().join(name.as_ref()))?
     } else {
         temp_path_for(&target)?
