@@ -55,10 +55,13 @@ impl CommandError {
     }
 }
 
-/// The message: the error and its causes, `outer: inner: …`.
+/// The message: the error and its causes, `outer: inner: …`, each cause once (an error that prints
+/// its source and also returns it would repeat it), with echoed source lines cut to a readable width.
 impl Display for CommandError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{:#}", self.error)
+        use mrbrake_error::message::{clip_excerpts, join_causes};
+        let message = join_causes(self.error.chain().map(|cause| cause.to_string()));
+        f.write_str(&clip_excerpts(&message))
     }
 }
 

@@ -8,6 +8,7 @@ mod commands;
 mod error;
 mod output;
 mod progress;
+mod signals;
 
 use clap::Parser;
 
@@ -32,6 +33,7 @@ fn main() {
             e.exit();
         }
     };
+    signals::install();
     match commands::run(cli.command) {
         Ok(()) => {}
         Err(err) => {

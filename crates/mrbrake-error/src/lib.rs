@@ -138,6 +138,8 @@ impl Kind for std::io::Error {
 #[cfg(feature = "std")]
 mod field;
 #[cfg(feature = "std")]
+pub mod message;
+#[cfg(feature = "std")]
 pub use field::{FieldError, FieldErrors};
 
 #[cfg(test)]

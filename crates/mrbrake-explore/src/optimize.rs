@@ -78,30 +78,7 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         jobs: usize,
         on_progress: &'p mut dyn FnMut(&Progress),
     ) -> Result<Self, ExploreError> {
-        let spec_text = std::fs::read_to_string(&problem.spec_path).map_err(|e| {
-            ExploreError::Input(format!(
-                "{}: spec = '{}': cannot read it: {e}",
-                problem.path.display(),
-                problem.spec_path.display()
-            ))
-        })?;
-        let names: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
-        let space = DesignSpace::new(
-            &spec_text,
-            &problem.spec_path.display().to_string(),
-            &problem.overrides,
-            &names,
-            problem.settings,
-        )?;
-        let bounds = space
-            .variables()
-            .iter()
-            .zip(&problem.variables)
-            .map(|(v, b)| match v.field.quantity {
-                Quantity::Integer => Bounds::integer(b.min, b.max),
-                _ => Bounds::continuous(b.min, b.max),
-            })
-            .collect();
+        let (space, bounds) = space_and_bounds(problem)?;
         Ok(Self {
             problem,
             space,
@@ -229,6 +206,54 @@ impl Problem for StudyProblem<'_, '_> {
         }
         Ok(evaluations)
     }
+}
+
+/// Checks everything about `problem` that can be checked without evaluating a design: the base
+/// spec reads, every variable names a field of it once, and the bounds are valid. Call it before
+/// creating a results store, so that a bad problem file leaves nothing behind.
+pub fn check(problem: &OptimizationProblem) -> Result<(), ExploreError> {
+    let (_, bounds) = space_and_bounds(problem)?;
+    mrbrake_optim::space::validate_bounds(&bounds).map_err(ExploreError::Optim)
+}
+
+/// The design space of `problem` (base spec and resolved variables) and the optimiser's bounds.
+fn space_and_bounds(
+    problem: &OptimizationProblem,
+) -> Result<(DesignSpace, Vec<Bounds>), ExploreError> {
+    let spec_text = std::fs::read_to_string(&problem.spec_path).map_err(|e| {
+        ExploreError::Input(format!(
+            "{}: spec = '{}': cannot read it: {e}",
+            problem.path.display(),
+            problem.spec_path.display()
+        ))
+    })?;
+    let names: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
+    let space = DesignSpace::new(
+        &spec_text,
+        &problem.spec_path.display().to_string(),
+        &problem.overrides,
+        &names,
+        problem.settings,
+    )
+    .map_err(|e| match e {
+        // A variable the spec cannot take (unknown, given twice) is the problem file's fault.
+        ExploreError::Input(message)
+            if !message.starts_with(&*problem.spec_path.to_string_lossy()) =>
+        {
+            ExploreError::Input(format!("{}: {message}", problem.path.display()))
+        }
+        other => other,
+    })?;
+    let bounds: Vec<Bounds> = space
+        .variables()
+        .iter()
+        .zip(&problem.variables)
+        .map(|(v, b)| match v.field.quantity {
+            Quantity::Integer => Bounds::integer(b.min, b.max),
+            _ => Bounds::continuous(b.min, b.max),
+        })
+        .collect();
+    Ok((space, bounds))
 }
 
 fn run_error(e: RunError<ExploreError>) -> ExploreError {

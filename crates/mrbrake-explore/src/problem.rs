@@ -418,12 +418,11 @@ fn pattern_search_of(a: &RawAlgorithm, objectives: usize, seed: u64) -> Result<A
             return Err(format!("algorithm.start: '{other}' is not allowed; use centre or base"));
         }
     };
-    Ok(Algorithm::PatternSearch {
-        max_evaluations: a.max_evaluations.unwrap_or(200),
-        seed,
-        random_poll,
-        start_at_base,
-    })
+    let max_evaluations = a.max_evaluations.unwrap_or(200);
+    if max_evaluations == 0 {
+        return Err("algorithm.max_evaluations: 0 is not allowed; use at least 1".into());
+    }
+    Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base })
 }
 
 fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
@@ -521,6 +520,11 @@ generations = 2
         let cubic = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\norder = 3");
         let text = OptimizationProblem::from_toml_str(&cubic, Path::new("p.toml")).unwrap_err();
         assert!(text.to_string().contains("order: 3 is not allowed; use 1 or 2"), "{text}");
+        let ps_zero = ps
+            .replace("[[objective]]\nmetric = \"volume_m3\"\n", "")
+            .replace("kind = \"pattern-search\"", "kind = \"pattern-search\"\nmax_evaluations = 0");
+        let text = OptimizationProblem::from_toml_str(&ps_zero, Path::new("p.toml")).unwrap_err();
+        assert!(text.to_string().contains("algorithm.max_evaluations: 0"), "{text}");
         let quadratic = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\norder = 2");
         let p = OptimizationProblem::from_toml_str(&quadratic, Path::new("p.toml")).unwrap();
         assert_eq!(p.settings.order, ElementOrder::P2);

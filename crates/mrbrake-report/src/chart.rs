@@ -360,22 +360,24 @@ pub(crate) fn save_picture(picture: &impl Picture, path: &Path) -> Result<(), Re
     if !is_png {
         return crate::write_atomic(path, render_svg(picture)?.as_bytes());
     }
-    // The bitmap backend encodes by file name, so render to a temporary .png beside the target
-    // and rename it into place (same directory, so the rename is atomic).
-    let tmp = crate::atomic::temp_path_for(path)?.with_extension("png");
-    let drawn = (|| {
-        let root = BitMapBackend::new(&tmp, picture.size()).into_drawing_area();
-        picture.draw(&root)?;
-        root.present().map_err(|e| ReportError::Backend(e.to_string()))
-    })();
-    if let Err(e) = drawn {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
+    // The bitmap backend encodes by file name, so it renders into the temporary .png that
+    // `write_atomic_with` puts in place (renamed beside the target, or copied into a FIFO/device).
+    let mut drawing_error = None;
+    let written = crate::atomic::write_atomic_with(path, |tmp| {
+        let root = BitMapBackend::new(tmp, picture.size()).into_drawing_area();
+        let drawn = picture
+            .draw(&root)
+            .and_then(|()| root.present().map_err(|e| ReportError::Backend(e.to_string())));
+        drawn.map_err(|e| {
+            let message = e.to_string();
+            drawing_error = Some(e);
+            std::io::Error::other(message)
+        })
+    });
+    match drawing_error {
+        Some(e) => Err(e),
+        None => written,
     }
-    std::fs::rename(&tmp, path).map_err(|source| {
-        let _ = std::fs::remove_file(&tmp);
-        ReportError::Io { path: path.to_path_buf(), source }
-    })
 }
 
 /// Palette: distinguishable colours (Okabe–Ito, colour-blind safe) then plotters' Palette99.

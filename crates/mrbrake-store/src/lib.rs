@@ -38,7 +38,7 @@
 //! # }
 //! ```
 //!
-//! # Schema (version 1)
+//! # Schema (version 2)
 //!
 //! Researchers may query a store directly with the `sqlite3` shell (read-only is safest while a
 //! run is writing: `sqlite3 -readonly study.mrbrake`).
@@ -54,7 +54,8 @@
 //!     spec_toml      TEXT NOT NULL,         -- the full design, ready for `mrbrake analyze`
 //!     eval_seconds   REAL,                  -- wall-clock time of the evaluation
 //!     solver_version TEXT,
-//!     created_unix_s REAL                   -- when the record was first stored (kept by merges)
+//!     created_unix_s REAL,                  -- when the record was first stored (kept by merges)
+//!     checksum       INTEGER                -- FNV-1a 64 of the row (version 2; NULL: unverified)
 //! );
 //! CREATE TABLE meta (name TEXT PRIMARY KEY, value TEXT);  -- study description, its hash, ...
 //! -- One row per variable / metric: (seq, key, status, position, name, value), where position
@@ -66,7 +67,7 @@
 //! Values are JSON numbers, except non-finite ones, stored as the strings `"NaN"`, `"inf"`,
 //! `"-inf"` (JSON has no such numbers). Pairs rather than a JSON object keep the caller's order.
 //! The file is marked with `PRAGMA application_id = 0x4D524252` ("MRBR") and
-//! `PRAGMA user_version = 1`. Sample queries:
+//! `PRAGMA user_version = 2`. Sample queries:
 //!
 //! ```sql
 //! -- The ten designs with the highest torque, with their gap:
@@ -107,12 +108,18 @@
 //! [`Store::create`] refuses any existing path ([`StoreError::Exists`]): only `--resume` reuses a
 //! store. [`Store::insert`] refuses a record whose key is not 64 lowercase hexadecimal digits or
 //! whose variable or metric names are empty or repeated ([`StoreError::InvalidRecord`]).
+//! Every read of a record ([`Store::get`], [`Store::records`], exports, merges) checks its
+//! [`checksum`]: a record changed on disk is refused with [`StoreError::Decode`] naming the store
+//! file and the record's key, never returned altered. Records written before checksums (schema
+//! version 1) are read unverified; [`Store::unverified_len`] counts them.
 
+pub mod checksum;
 mod error;
 mod export;
 mod merge;
 mod named_values;
 mod record;
+mod row;
 pub mod schema;
 mod store;
 

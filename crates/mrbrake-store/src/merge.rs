@@ -11,7 +11,7 @@ use std::path::Path;
 use rusqlite::{OptionalExtension, TransactionBehavior};
 
 use crate::named_values;
-use crate::store::{RECORD_COLUMNS_SQL, insert_new, read_row};
+use crate::row::{insert_new, read_row};
 use crate::{Status, Store, StoreError};
 
 /// Relative tolerance under which two values of the same metric count as equal in a merge:
@@ -61,7 +61,7 @@ impl Store {
         {
             let mut rows = source
                 .connection()
-                .prepare(&format!("SELECT {RECORD_COLUMNS_SQL} FROM evaluations ORDER BY seq"))
+                .prepare(&format!("{} ORDER BY seq", source.select_records_sql()))
                 .map_err(|error| source.sqlite_error(error))?;
             let rows = rows.query_map([], read_row).map_err(|error| source.sqlite_error(error))?;
             for row in rows {
@@ -71,8 +71,13 @@ impl Store {
                     existing_outcome(&transaction, &incoming.record.key).map_err(write_error)?;
                 match existing {
                     None => {
-                        insert_new(&transaction, &incoming.record, incoming.created_unix_s)
-                            .map_err(write_error)?;
+                        insert_new(
+                            &transaction,
+                            &incoming.record,
+                            incoming.created_unix_s,
+                            incoming.verified,
+                        )
+                        .map_err(write_error)?;
                         summary.inserted += 1;
                     }
                     Some((status, metrics)) => {

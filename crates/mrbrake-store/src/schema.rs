@@ -22,7 +22,9 @@ use crate::StoreError;
 pub const APPLICATION_ID: i32 = 0x4d52_4252;
 
 /// Schema version written to `PRAGMA user_version` and the newest this build understands.
-pub const SCHEMA_VERSION: i64 = 1;
+/// Version 2 added the per-record `checksum` column (see [`crate::checksum`]); a version-1 store is
+/// read with its records unverified and migrated (the column added) when opened for writing.
+pub const SCHEMA_VERSION: i64 = 2;
 
 /// How long a writer waits for another process's write transaction before giving up.
 pub const BUSY_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(10);
@@ -71,7 +73,8 @@ CREATE TABLE evaluations (
     spec_toml      TEXT NOT NULL,
     eval_seconds   REAL,
     solver_version TEXT,
-    created_unix_s REAL
+    created_unix_s REAL,
+    checksum       INTEGER
 );
 CREATE TABLE meta (
     name  TEXT PRIMARY KEY,
@@ -268,6 +271,16 @@ pub(crate) fn check_store(connection: &Connection, path: &Path) -> Result<(), St
         });
     }
 
+    if version >= 2
+        && !has_checksum_column(connection).map_err(|error| sqlite_error(path, error))?
+    {
+        return Err(StoreError::Corrupt {
+            path: path.to_owned(),
+            detail: format!(
+                "schema version {version} but the table evaluations has no checksum column"
+            ),
+        });
+    }
     for (table, columns) in REQUIRED_COLUMNS {
         let present =
             table_columns(connection, table).map_err(|error| sqlite_error(path, error))?;
@@ -288,6 +301,35 @@ pub(crate) fn check_store(connection: &Connection, path: &Path) -> Result<(), St
         }
     }
     Ok(())
+}
+
+/// True when `evaluations` has the `checksum` column (schema version 2 and later).
+pub(crate) fn has_checksum_column(connection: &Connection) -> rusqlite::Result<bool> {
+    Ok(table_columns(connection, "evaluations")?.iter().any(|name| name == "checksum"))
+}
+
+/// Brings a store opened for writing to [`SCHEMA_VERSION`]: version 1 gains the `checksum` column
+/// (its existing records keep `NULL`, "unverified"). One write transaction, so concurrent writers
+/// migrate once; adding a column does not rewrite the table.
+pub(crate) fn migrate(connection: &Connection) -> rusqlite::Result<()> {
+    let read_version = |connection: &Connection| -> rusqlite::Result<i64> {
+        connection.pragma_query_value(None, "user_version", |row| row.get(0))
+    };
+    if read_version(connection)? >= SCHEMA_VERSION {
+        return Ok(());
+    }
+    connection.execute_batch("BEGIN IMMEDIATE")?;
+    let migrated = (|| {
+        if read_version(connection)? < 2 && !has_checksum_column(connection)? {
+            connection.execute_batch("ALTER TABLE evaluations ADD COLUMN checksum INTEGER")?;
+        }
+        connection.pragma_update(None, "user_version", SCHEMA_VERSION)?;
+        connection.execute_batch("COMMIT")
+    })();
+    if migrated.is_err() {
+        let _ = connection.execute_batch("ROLLBACK");
+    }
+    migrated
 }
 
 /// At most a few findings of `PRAGMA quick_check` (`["ok"]` for a sound file).

@@ -11,14 +11,11 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::time::{SystemTime, UNIX_EPOCH};
 
-use rusqlite::{Connection, OpenFlags, OptionalExtension, TransactionBehavior, params};
+use rusqlite::{Connection, OpenFlags, OptionalExtension, TransactionBehavior};
 
-use crate::named_values;
+use crate::row::{RECORD_COLUMNS_SQL, RawRow, StoredRecord, insert_new, read_row};
 use crate::schema::{self, APPLICATION_ID, BUSY_TIMEOUT, SCHEMA_VERSION};
-use crate::{Record, Status, StoreError};
-
-/// Columns read back into a [`Record`], in the order [`read_row`] expects.
-pub(crate) const RECORD_COLUMNS_SQL: &str = "key, status, reason, variables, metrics, spec_toml, eval_seconds, solver_version, created_unix_s";
+use crate::{Record, StoreError};
 
 /// A results store: the evaluations of a study, keyed by design hash, in one SQLite file.
 ///
@@ -29,12 +26,8 @@ pub struct Store {
     path: PathBuf,
     connection: Connection,
     read_only: bool,
-}
-
-/// One row of `evaluations` as read back: the record and when it was first stored.
-pub(crate) struct StoredRecord {
-    pub(crate) record: Record,
-    pub(crate) created_unix_s: Option<f64>,
+    /// False for a store of schema version 1 opened read-only (no `checksum` column yet).
+    has_checksums: bool,
 }
 
 impl Store {
@@ -70,9 +63,9 @@ impl Store {
 
     /// Opens an existing store read-only, with the same checks as [`Store::open`]. Inserts and
     /// [`Store::set_meta`] then fail with [`StoreError::ReadOnly`]. Useful to inspect a store
-    /// (for instance compare its meta data) before merging it. Like any read-only SQLite
-    /// connection to a WAL database, it may leave empty `-wal` and `-shm` files beside the store;
-    /// they are harmless and the next writer to close removes them.
+    /// (for instance compare its meta data) before merging it. Once closed it leaves no `-wal` or
+    /// `-shm` file beside the store that was not there before (unless the store file is
+    /// write-protected: SQLite then needs a read-only connection, which cannot remove them).
     pub fn open_read_only(path: &Path) -> Result<Store, StoreError> {
         Store::open_checked(path, true)
     }
@@ -119,7 +112,7 @@ impl Store {
     pub fn get(&self, key: &str) -> Result<Option<Record>, StoreError> {
         let row = self
             .connection
-            .prepare_cached(&format!("SELECT {RECORD_COLUMNS_SQL} FROM evaluations WHERE key = ?1"))
+            .prepare_cached(&format!("{} WHERE key = ?1", self.select_records_sql()))
             .and_then(|mut statement| statement.query_row([key], read_row).optional())
             .map_err(|error| self.sqlite_error(error))?;
         row.map(|row| self.decode(row).map(|stored| stored.record)).transpose()
@@ -153,7 +146,7 @@ impl Store {
             .map_err(|error| schema::sqlite_error(&self.path, error))?;
         let inserted = records
             .iter()
-            .map(|record| insert_new(&transaction, record, Some(created_unix_s)))
+            .map(|record| insert_new(&transaction, record, Some(created_unix_s), true))
             .collect::<rusqlite::Result<Vec<bool>>>()
             .and_then(|inserted| transaction.commit().map(|()| inserted))
             .map_err(|error| schema::sqlite_error(&self.path, error))?;
@@ -240,10 +233,30 @@ impl Store {
     pub(crate) fn stored_records(&self) -> Result<Vec<StoredRecord>, StoreError> {
         let rows: Vec<RawRow> = self
             .connection
-            .prepare_cached(&format!("SELECT {RECORD_COLUMNS_SQL} FROM evaluations ORDER BY seq"))
+            .prepare_cached(&format!("{} ORDER BY seq", self.select_records_sql()))
             .and_then(|mut statement| statement.query_map([], read_row)?.collect())
             .map_err(|error| self.sqlite_error(error))?;
         rows.into_iter().map(|row| self.decode(row)).collect()
+    }
+
+    /// `SELECT` of every record column and the checksum (`NULL` where the store has none).
+    pub(crate) fn select_records_sql(&self) -> String {
+        let checksum = if self.has_checksums { "checksum" } else { "NULL" };
+        format!("SELECT {RECORD_COLUMNS_SQL}, {checksum} FROM evaluations")
+    }
+
+    /// Number of records without a checksum (written before schema version 2, or merged from such
+    /// a store): they are read back unverified.
+    pub fn unverified_len(&self) -> Result<usize, StoreError> {
+        if !self.has_checksums {
+            return self.len();
+        }
+        let count: i64 = self
+            .connection
+            .prepare_cached("SELECT count(*) FROM evaluations WHERE checksum IS NULL")
+            .and_then(|mut statement| statement.query_row([], |row| row.get(0)))
+            .map_err(|error| self.sqlite_error(error))?;
+        Ok(usize::try_from(count).unwrap_or(0))
     }
 
     pub(crate) fn refuse_if_read_only(&self) -> Result<(), StoreError> {
@@ -275,10 +288,13 @@ impl Store {
                 side_files.remove_new_empty_ones();
             }
         })?;
-        if read_only {
-            return Ok(Store { path: path.to_owned(), connection: checked, read_only });
-        }
         drop(checked);
+        if read_only {
+            let connection = open_for_reading(path)?;
+            let has_checksums = schema::has_checksum_column(&connection)
+                .map_err(|error| schema::sqlite_error(path, error))?;
+            return Ok(Store { path: path.to_owned(), connection, read_only, has_checksums });
+        }
 
         // No CREATE flag: if the file vanished since the checks, fail instead of making a new one.
         let connection = Connection::open_with_flags(
@@ -287,7 +303,8 @@ impl Store {
         )
         .map_err(|error| schema::sqlite_error(path, error))?;
         configure_for_writing(&connection).map_err(|error| schema::sqlite_error(path, error))?;
-        Ok(Store { path: path.to_owned(), connection, read_only })
+        schema::migrate(&connection).map_err(|error| schema::sqlite_error(path, error))?;
+        Ok(Store { path: path.to_owned(), connection, read_only, has_checksums: true })
     }
 }
 
@@ -300,6 +317,24 @@ fn open_read_only_and_check(path: &Path) -> Result<Connection, StoreError> {
     .map_err(|error| schema::sqlite_error(path, error))?;
     connection.busy_timeout(BUSY_TIMEOUT).map_err(|error| schema::sqlite_error(path, error))?;
     schema::check_store(&connection, path)?;
+    Ok(connection)
+}
+
+/// A connection that reads `path` and, once closed, leaves no `-wal` or `-shm` file it created.
+///
+/// A read-only SQLite connection to a WAL-mode database creates those side files and cannot remove
+/// them; so, where the file is writable, the reader opens it read-write with `PRAGMA query_only`
+/// (SQLite then refuses any write) and the last connection to close removes the side files as
+/// SQLite always does. A write-protected file falls back to read-only (SQLite's own fallback).
+fn open_for_reading(path: &Path) -> Result<Connection, StoreError> {
+    let sqlite = |error| schema::sqlite_error(path, error);
+    let connection = Connection::open_with_flags(
+        path,
+        OpenFlags::SQLITE_OPEN_READ_WRITE | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+    )
+    .map_err(sqlite)?;
+    connection.busy_timeout(BUSY_TIMEOUT).map_err(sqlite)?;
+    connection.pragma_update(None, "query_only", true).map_err(sqlite)?;
     Ok(connection)
 }
 
@@ -358,100 +393,6 @@ fn configure_for_writing(connection: &Connection) -> rusqlite::Result<()> {
     }
     connection.pragma_update(None, "synchronous", "FULL")?;
     Ok(())
-}
-
-/// Inserts `record` unless its key is present, inside an open write transaction. The explicit
-/// look-up (rather than relying on `ON CONFLICT DO NOTHING` alone) keeps `seq` free of gaps:
-/// SQLite allocates an AUTOINCREMENT value even for a row the conflict clause then drops.
-pub(crate) fn insert_new(
-    transaction: &rusqlite::Transaction<'_>,
-    record: &Record,
-    created_unix_s: Option<f64>,
-) -> rusqlite::Result<bool> {
-    let present: bool = transaction
-        .prepare_cached("SELECT EXISTS (SELECT 1 FROM evaluations WHERE key = ?1)")?
-        .query_row([&record.key], |row| row.get(0))?;
-    if present {
-        return Ok(false);
-    }
-    let changed = transaction
-        .prepare_cached(
-            "INSERT INTO evaluations (key, status, reason, variables, metrics, spec_toml, \
-             eval_seconds, solver_version, created_unix_s) \
-             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9) ON CONFLICT (key) DO NOTHING",
-        )?
-        .execute(params![
-            record.key,
-            record.status.as_str(),
-            record.reason,
-            named_values::encode(&record.variables),
-            named_values::encode(&record.metrics),
-            record.spec_toml,
-            record.eval_seconds,
-            record.solver_version,
-            created_unix_s,
-        ])?;
-    Ok(changed == 1)
-}
-
-/// A row as SQLite returns it, before the JSON columns and status are decoded.
-pub(crate) struct RawRow {
-    key: String,
-    status: String,
-    reason: Option<String>,
-    variables: String,
-    metrics: String,
-    spec_toml: String,
-    eval_seconds: Option<f64>,
-    solver_version: Option<String>,
-    created_unix_s: Option<f64>,
-}
-
-pub(crate) fn read_row(row: &rusqlite::Row<'_>) -> rusqlite::Result<RawRow> {
-    Ok(RawRow {
-        key: row.get(0)?,
-        status: row.get(1)?,
-        reason: row.get(2)?,
-        variables: row.get(3)?,
-        metrics: row.get(4)?,
-        spec_toml: row.get(5)?,
-        eval_seconds: row.get(6)?,
-        solver_version: row.get(7)?,
-        created_unix_s: row.get(8)?,
-    })
-}
-
-impl RawRow {
-    /// Decodes the row; on failure returns `(key, what is wrong)`.
-    fn decode(self) -> Result<StoredRecord, (String, String)> {
-        let key = self.key;
-        let status: Status = match self.status.parse() {
-            Ok(status) => status,
-            Err(error) => return Err((key, error.to_string())),
-        };
-        let variables = match named_values::decode(&self.variables) {
-            Ok(values) => values,
-            Err(detail) => return Err((key, format!("variables: {detail}"))),
-        };
-        let metrics = match named_values::decode(&self.metrics) {
-            Ok(values) => values,
-            Err(detail) => return Err((key, format!("metrics: {detail}"))),
-        };
-        Ok(StoredRecord {
-            record: Record {
-                key,
-                status,
-                reason: self.reason,
-                variables,
-                metrics,
-                spec_toml: self.spec_toml,
-                // SQLite stores a NaN REAL as NULL; read it back as the NaN it was.
-                eval_seconds: self.eval_seconds.unwrap_or(f64::NAN),
-                solver_version: self.solver_version.unwrap_or_default(),
-            },
-            created_unix_s: self.created_unix_s,
-        })
-    }
 }
 
 /// Fails unless nothing exists at `path` and its parent is an existing directory.
@@ -586,6 +527,7 @@ impl Drop for StagingFile {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Status;
     use mrbrake_error::Kind as _;
 
     fn record(index: u32, status: Status) -> Record {

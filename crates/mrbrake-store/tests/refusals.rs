@@ -189,7 +189,10 @@ fn a_newer_schema_is_refused_with_both_versions() {
         connection.pragma_update(None, "user_version", 99).expect("pretend a newer schema");
     }
     assert_refused(&path, |error| {
-        matches!(error, StoreError::Version { found: 99, supported: 1, .. })
+        matches!(
+            error,
+            StoreError::Version { found: 99, supported: mrbrake_store::schema::SCHEMA_VERSION, .. }
+        )
     });
 }
 

@@ -52,6 +52,9 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     }
     let path = a.problem.as_ref().ok_or_else(|| InputError("give a PROBLEM.toml".into()))?;
     let problem = OptimizationProblem::from_path(path)?;
+    // Everything checkable without an evaluation, before the store is created: a bad problem
+    // file must leave no store behind (the corrected command would need --resume).
+    optimize::check(&problem)?;
     let store_path = a.store.clone().unwrap_or_else(|| {
         let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("optimize");
         PathBuf::from(format!("{stem}.sqlite"))

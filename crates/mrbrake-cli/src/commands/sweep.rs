@@ -186,10 +186,28 @@ pub fn run_sweep(a: SweepArgs) -> CommandResult {
 
 /// Runs `mrbrake merge`.
 pub fn run_merge(a: MergeArgs) -> CommandResult {
+    // Every input is checked (read-only) before the output is created, so a bad input leaves no
+    // empty output store behind.
+    for input in &a.inputs {
+        let store = Store::open_read_only(input)?;
+        warn_unverified(&store)?;
+        store.close()?;
+    }
+    let created = !a.output.exists();
     let mut store = Store::open_or_create(&a.output, true)?;
     let mut total = 0;
     for input in &a.inputs {
-        let summary = store.merge_from(input)?;
+        let summary = match store.merge_from(input) {
+            Ok(summary) => summary,
+            Err(error) => {
+                // A store this command created and could not fill is removed again.
+                if created && total == 0 && store.is_empty().unwrap_or(false) {
+                    store.close()?;
+                    let _ = std::fs::remove_file(&a.output);
+                }
+                return Err(error.into());
+            }
+        };
         total += summary.inserted;
         crate::out!("{}", study_report::merge_text(input, &summary));
     }
@@ -199,7 +217,9 @@ pub fn run_merge(a: MergeArgs) -> CommandResult {
 
 /// Runs `mrbrake export`.
 pub fn run_export(a: ExportArgs) -> CommandResult {
-    let store = Store::open(&a.store)?;
+    // Read-only: an export never changes the store (nor migrates an old one).
+    let store = Store::open_read_only(&a.store)?;
+    warn_unverified(&store)?;
     let records = store.records()?;
     if let Some(path) = &a.csv {
         mrbrake_report::write_atomic(path, &mrbrake_store::to_csv(&records)?)?;
@@ -209,6 +229,20 @@ pub fn run_export(a: ExportArgs) -> CommandResult {
     }
     if a.csv.is_none() {
         crate::out!("{}", study_report::store_summary_text(&a.store, &records));
+    }
+    Ok(())
+}
+
+/// Says once, on stderr, that a store holds records written before checksums (read unverified).
+fn warn_unverified(store: &Store) -> CommandResult {
+    let unverified = store.unverified_len()?;
+    if unverified > 0 {
+        eprintln!(
+            "warning: {}: {unverified} of {} records were written before per-record checksums \
+             (mrbrake store schema 1) and are read unverified",
+            store.path().display(),
+            store.len()?
+        );
     }
     Ok(())
 }
