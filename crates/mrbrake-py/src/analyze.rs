@@ -4,11 +4,11 @@
 use mrbrake::design::analysis::{self, Analysis, AnalysisOptions, ElementOrder, FieldAtMaxCurrent};
 use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::units::Dimension;
-use numpy::{IntoPyArray, PyArray1, PyArray2};
+use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{SpecInput, json_to_py, quantity};
+use crate::convert::{SpecInput, json_to_py, mesh_arrays, quantity};
 use crate::error;
 
 /// Default number of currents of the sweep (the CLI's `--points`).
@@ -196,13 +196,7 @@ impl PyAnalysis {
     /// triangle)`.
     fn field<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
         let f = &self.field;
-        let nodes: Vec<Vec<f64>> = f.nodes.iter().map(|n| n.to_vec()).collect();
-        let triangles: Vec<Vec<i64>> =
-            f.triangles.iter().map(|t| t.iter().map(|&i| i as i64).collect()).collect();
-        let nodes = PyArray2::from_vec2(py, &nodes).map_err(error::internal)?;
-        let triangles = PyArray2::from_vec2(py, &triangles).map_err(error::internal)?;
-        let b_abs = f.b_abs_t.clone().into_pyarray(py);
-        PyTuple::new(py, [nodes.into_any(), triangles.into_any(), b_abs.into_any()])
+        mesh_arrays(py, &f.nodes, &f.triangles, f.b_abs_t.clone().into_pyarray(py).into_any())
     }
 
     /// The flux function ψ = r·A_phi at the nodes (Wb/rad, float64, shape (N,)): its level lines

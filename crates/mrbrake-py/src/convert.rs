@@ -6,8 +6,9 @@ use std::path::PathBuf;
 
 use mrbrake::design::spec::{BrakeSpec, default_spec};
 use mrbrake::units::{Dimension, parse};
+use numpy::PyArray2;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString};
+use pyo3::types::{PyDict, PyString, PyTuple};
 use serde::Serialize;
 
 use crate::error;
@@ -99,4 +100,20 @@ pub fn quantity(
         },
     };
     parse(&text, dimension).map_err(|e| error::input(format!("{name}: {e}")))
+}
+
+/// `(nodes (N, 2) float64, triangles (M, 3) int64, values)`: a mesh for matplotlib's `tripcolor`
+/// with the values drawn on it.
+pub fn mesh_arrays<'py>(
+    py: Python<'py>,
+    nodes: &[[f64; 2]],
+    triangles: &[[usize; 3]],
+    values: Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let nodes: Vec<Vec<f64>> = nodes.iter().map(|n| n.to_vec()).collect();
+    let triangles: Vec<Vec<i64>> =
+        triangles.iter().map(|t| t.iter().map(|&i| i as i64).collect()).collect();
+    let nodes = PyArray2::from_vec2(py, &nodes).map_err(error::internal)?;
+    let triangles = PyArray2::from_vec2(py, &triangles).map_err(error::internal)?;
+    PyTuple::new(py, [nodes.into_any(), triangles.into_any(), values])
 }

@@ -18,6 +18,7 @@ use pyo3::prelude::*;
 mod analyze;
 mod convert;
 mod error;
+mod fem;
 mod materials;
 mod store;
 mod sysid;
@@ -32,5 +33,6 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     materials::register(m)?;
     sysid::register(m)?;
     store::register(m)?;
+    fem::register(m)?;
     Ok(())
 }

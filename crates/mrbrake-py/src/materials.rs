@@ -43,7 +43,7 @@ pub struct PyMaterial {
 /// Values of a non-negative float64 array (a `ValueError` names `name` otherwise).
 fn non_negative(values: &PyReadonlyArray1<'_, f64>, name: &str) -> PyResult<Vec<f64>> {
     let values = values.as_array().to_vec();
-    if let Some(v) = values.iter().find(|v| !(**v >= 0.0)) {
+    if let Some(v) = values.iter().find(|v| v.is_nan() || **v < 0.0) {
         return Err(error::input(format!("{name}: {v} must be >= 0")));
     }
     Ok(values)

@@ -38,9 +38,10 @@ class Cli:
     def fail(self, *args, cwd=None):
         done = self.run(*args, cwd=cwd)
         assert done.returncode != 0, done.stdout
-        message = done.stderr.strip().splitlines()[-1]
-        assert message.startswith("error: "), done.stderr
-        return done.returncode, message[len("error: "):]
+        # The message runs from `error: ` to the end (invalid fields take one line each).
+        start = done.stderr.find("error: ")
+        assert start >= 0, done.stderr
+        return done.returncode, done.stderr[start + len("error: "):].rstrip("\n")
 
 
 @pytest.fixture(scope="session")

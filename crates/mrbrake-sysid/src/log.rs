@@ -254,6 +254,28 @@ mod tests {
         )
     }
 
+    /// Columns in memory are checked as a file's are: lengths, finite values, increasing time,
+    /// sample count; every failure is an input error naming the column.
+    #[test]
+    fn columns_in_memory_are_checked_like_a_file() {
+        let check = |t: &[f64], i: &[f64], min| {
+            check_columns(Path::new("<arrays>"), ("time", t), &[("current", i)], min)
+        };
+        assert!(check(&[0.0, 0.1, 0.2], &[0.0, 1.0, 2.0], 3).is_ok());
+        for (t, i, min, expected) in [
+            (&[0.0, 0.1, 0.2][..], &[0.0, 1.0][..], 1, "column 'current' has 2 samples"),
+            (&[0.0, 0.1, 0.2], &[0.0, f64::NAN, 2.0], 1, "column 'current': NaN at index 1"),
+            (&[0.0, 0.2, 0.1], &[0.0, 1.0, 2.0], 1, "0.1 at index 2 follows 0.2"),
+            (&[0.0, 0.1, 0.2], &[0.0, 1.0, 2.0], 4, "only 3 samples; at least 4"),
+        ] {
+            let err = check(t, i, min).unwrap_err();
+            assert!(err.is_input_error(), "{err}");
+            assert!(err.to_string().contains(expected), "{err}");
+        }
+        assert!((mean_sample_rate_hz(&[0.0, 0.1, 0.2]) - 10.0).abs() < 1e-12);
+        assert!(mean_sample_rate_hz(&[1.0]).abs() < 1e-300);
+    }
+
     #[test]
     fn columns_are_found_by_name_in_any_order() {
         let log = read("torque_Nm, time_s ,current_A\n0.1,0.0,0\n0.2,0.001,0.5\n", 2).unwrap();

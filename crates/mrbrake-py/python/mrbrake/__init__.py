@@ -8,6 +8,8 @@ Main entry points:
 
 - :func:`analyze`: field, torque-current curve, gaps, coil and mechanics of a brake design.
 - :mod:`mrbrake.materials`: the built-in material library (curves as NumPy arrays, provenance).
+- :mod:`mrbrake.fem`: general problem files (magnetostatics, heat), as ``mrbrake fem solve``.
+- :mod:`mrbrake.store`: the results store of design studies (``load``: a table).
 - :mod:`mrbrake.sysid`: hysteresis characterisation, frequency response, transfer-function fits.
 
 Errors: ``ValueError`` for bad input (the CLI's message), ``OSError`` for I/O failures,
@@ -18,7 +20,7 @@ Long computations release the GIL, so threads run analyses in parallel.
 from . import _native
 from ._native import Analysis, SolverError, __version__
 
-__all__ = ["Analysis", "SolverError", "analyze", "materials", "store", "sysid", "__version__"]
+__all__ = ["Analysis", "SolverError", "analyze", "fem", "materials", "store", "sysid", "__version__"]
 
 
 def analyze(spec=None, mesh="default", order=1, currents=None, *, speed=None,
@@ -62,4 +64,4 @@ def analyze(spec=None, mesh="default", order=1, currents=None, *, speed=None,
                            seal_friction=seal_friction, temperature=temperature)
 
 
-from . import materials, store, sysid  # noqa: E402  (submodules use the names above)
+from . import fem, materials, store, sysid  # noqa: E402  (submodules use the names above)

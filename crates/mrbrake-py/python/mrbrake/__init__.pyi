@@ -6,6 +6,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 import numpy as np
 import numpy.typing as npt
 
+from . import fem as fem
 from . import materials as materials
 from . import store as store
 from . import sysid as sysid
