@@ -5,7 +5,7 @@
 //! with the GIL released (`Python::detach`), and returns what the library (or the report
 //! composition of `mrbrake-report`, for the JSON documents the CLI prints) produced: NumPy arrays
 //! for columns of numbers, dictionaries with the CLI's `--json` keys for the rest. There are no
-//! numerics here. Errors are mapped by their [`mrbrake::ErrorKind`] alone ([`error`]): input →
+//! numerics here. Errors are mapped by their [`mrbrake::ErrorKind`] alone (module `error`): input →
 //! `ValueError` with the CLI's message, I/O → `OSError`, numerical → `mrbrake.SolverError`,
 //! internal → `RuntimeError`.
 //!
