@@ -87,3 +87,16 @@ def test_an_unfittable_characterisation_is_a_solver_or_value_error():
     t = [i * 1e-3 for i in range(100)]
     with pytest.raises(ValueError):
         mrbrake.sysid.characterize(t, [1.0] * 100, [0.5] * 100)
+
+
+def test_a_numerical_failure_is_a_solver_error_with_the_cli_message(cli, tmp_path):
+    # A response that is zero everywhere leaves the least-squares problem without a solution.
+    omega = [10 ** (k / 10) for k in range(20)]
+    (tmp_path / "frd.csv").write_text(
+        "omega_rad_s,re,im\n" + "".join(f"{w!r},0,0\n" for w in omega))
+    code, message = cli.fail("tfest", tmp_path / "frd.csv", "--poles", "2")
+    assert code == 1
+    with pytest.raises(mrbrake.SolverError) as e:
+        mrbrake.sysid.tfest(omega, [0j] * len(omega), poles=2)
+    assert str(e.value) == message
+    assert "least squares" in message
