@@ -4,9 +4,10 @@
 
 use std::path::PathBuf;
 
-use mrbrake::design::spec::{BrakeSpec, default_spec};
+use mrbrake::design::spec::{BrakeSpec, DEFAULT_SPEC_TOML, default_spec};
 use mrbrake::units::{Dimension, parse};
 use numpy::PyArray2;
+use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use serde::Serialize;
@@ -69,6 +70,23 @@ impl SpecInput {
             "spec must be None, a path, TOML text or a dict, got {}",
             spec.get_type().name()?
         )))
+    }
+
+    /// The spec's TOML text and the name it goes by in messages (a study plans from the text).
+    /// A file that cannot be read is an `OSError` naming it.
+    pub fn text(self) -> PyResult<(String, String)> {
+        Ok(match self {
+            Self::Default => {
+                (DEFAULT_SPEC_TOML.to_string(), "thesis-bidirectional.toml (embedded)".into())
+            }
+            Self::Path(path) => (
+                std::fs::read_to_string(&path).map_err(|e| {
+                    PyOSError::new_err(format!("cannot read the spec {}: {e}", path.display()))
+                })?,
+                path.display().to_string(),
+            ),
+            Self::Text(text, origin) => (text, origin.to_string()),
+        })
     }
 
     /// The parsed spec (file reading and parsing happen here, without the GIL).

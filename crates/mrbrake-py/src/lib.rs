@@ -19,8 +19,10 @@ mod analyze;
 mod convert;
 mod error;
 mod fem;
+mod formula;
 mod materials;
 mod store;
+mod study;
 mod sysid;
 
 /// The extension module `mrbrake._native`.
@@ -34,5 +36,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     sysid::register(m)?;
     store::register(m)?;
     fem::register(m)?;
+    formula::register(m)?;
+    study::register(m)?;
     Ok(())
 }

@@ -7,6 +7,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import fem as fem
+from . import formula as formula
 from . import materials as materials
 from . import store as store
 from . import sysid as sysid
@@ -88,3 +89,32 @@ def analyze(
     temperature: Optional[Quantity] = None,
 ) -> Analysis:
     """Analyse a brake design (``mrbrake analyze``); see the docstring for units."""
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+def sweep(
+    spec: Spec = ...,
+    vary: Union[Dict[str, Union[Quantity, List[Quantity]]], List[str], str, None] = ...,
+    *,
+    store: PathLike,
+    set: Union[Dict[str, Any], List[str], None] = ...,
+    sample: Optional[str] = ...,
+    seed: int = ...,
+    resume: bool = ...,
+    jobs: int = ...,
+    shard: Optional[str] = ...,
+    mesh: str = ...,
+    order: int = ...,
+    speed: Optional[Quantity] = ...,
+) -> Dict[str, Any]:
+    """A parameter sweep into a results store (``mrbrake sweep --json``); SI units."""
+
+def optimize(
+    problem: PathLike,
+    store: Optional[PathLike] = ...,
+    *,
+    resume: bool = ...,
+    jobs: int = ...,
+    out: Optional[PathLike] = ...,
+) -> Dict[str, Any]:
+    """An optimisation study from a problem file (``mrbrake optimize --json``)."""
