@@ -309,6 +309,12 @@ pub struct CoilElectrics {
     pub voltage_v: f64,
 }
 
+/// Mean radius of a winding (m) that fills a window of radial width `window_width_m` from
+/// `inner_radius_m`: the radius of the mean turn, whose length sets the wire length (4.1)–(4.3).
+pub fn coil_mean_radius(inner_radius_m: f64, window_width_m: f64) -> f64 {
+    inner_radius_m + window_width_m / 2.0
+}
+
 /// Wire length, resistance, current density and power of a coil (thesis 4.2.2, (4.1)).
 ///
 /// `mean_radius_m` is the mean radius of the winding (each turn is a circle about the axis); the

@@ -263,6 +263,28 @@ fn run_error(e: RunError<ExploreError>) -> ExploreError {
     }
 }
 
+/// The store of a problem file when none is given: `<problem file stem>.sqlite` in the current
+/// folder.
+pub fn default_store_path(problem_path: &std::path::Path) -> std::path::PathBuf {
+    let stem = problem_path.file_stem().and_then(|s| s.to_str()).unwrap_or("optimize");
+    std::path::PathBuf::from(format!("{stem}.sqlite"))
+}
+
+/// Opens the results store of an optimisation (created if missing; an existing store only with
+/// `resume`) and records the problem file's text in a new one.
+pub fn open_problem_store(
+    problem_path: &std::path::Path,
+    store_path: &std::path::Path,
+    resume: bool,
+) -> Result<Store, ExploreError> {
+    let mut store = Store::open_or_create(store_path, resume)?;
+    if store.meta("problem")?.is_none() {
+        let text = std::fs::read_to_string(problem_path).unwrap_or_default();
+        store.set_meta("problem", &text)?;
+    }
+    Ok(store)
+}
+
 /// Runs the optimisation of `problem` with results in `store`, `jobs` analyses at a time.
 pub fn run(
     problem: &OptimizationProblem,

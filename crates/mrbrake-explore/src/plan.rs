@@ -12,8 +12,8 @@ use mrbrake_optim::rng::Rng;
 use mrbrake_optim::sampling;
 use mrbrake_optim::space::Bounds;
 
-use crate::ExploreError;
 use crate::variable::{Quantity, Variable};
+use crate::{Design, DesignSpace, EvaluationSettings, ExploreError};
 
 /// The values of one `--vary` argument.
 #[derive(Debug, Clone, PartialEq)]
@@ -254,6 +254,66 @@ impl Shard {
     pub fn owns(&self, position: usize) -> bool {
         position % self.count == self.index
     }
+}
+
+/// A sweep as the `mrbrake sweep` flags describe it: the base spec, fixed changes, the `--vary`
+/// arguments (`NAME=VALUES`), the sampling, the shard and the evaluation settings.
+#[derive(Debug, Clone)]
+pub struct SweepRequest<'a> {
+    /// The base spec's TOML text.
+    pub spec_text: &'a str,
+    /// Where it came from (for messages and the design keys' provenance).
+    pub origin: &'a str,
+    /// Fixed changes to the base spec, `(path, value)` (the CLI's `--set`).
+    pub overrides: &'a [(String, String)],
+    /// The `NAME=VALUES` arguments (the CLI's `--vary`), one per variable.
+    pub vary: &'a [String],
+    /// Full factorial, Latin hypercube or Sobol'.
+    pub sampling: Sampling,
+    /// The share of the plan to evaluate.
+    pub shard: Shard,
+    /// Mesh, order and speed of every analysis.
+    pub settings: EvaluationSettings,
+}
+
+/// The designs of a sweep: its design space, the number of points of the whole plan, and this
+/// shard's designs in plan order.
+#[derive(Debug)]
+pub struct SweepPlan {
+    /// The base spec, the variables and the settings.
+    pub space: DesignSpace,
+    /// Points in the whole plan (every shard).
+    pub plan_points: usize,
+    /// This shard's designs.
+    pub designs: Vec<Design>,
+}
+
+/// The plan of a sweep (shared by the CLI's `sweep` and the Python package's `mrbrake.sweep`).
+pub fn sweep_plan(request: &SweepRequest<'_>) -> Result<SweepPlan, ExploreError> {
+    let pairs: Vec<(String, String)> =
+        request.vary.iter().map(|v| VarySpec::split(v)).collect::<Result<_, _>>()?;
+    let names: Vec<String> = pairs.iter().map(|(n, _)| n.clone()).collect();
+    let space = DesignSpace::new(
+        request.spec_text,
+        request.origin,
+        request.overrides,
+        &names,
+        request.settings,
+    )?;
+    let specs: Vec<VarySpec> = space
+        .variables()
+        .iter()
+        .zip(&pairs)
+        .map(|(v, (_, text))| VarySpec::parse(v, text))
+        .collect::<Result<_, _>>()?;
+    let points = points(space.variables(), &specs, request.sampling)?;
+    let designs = points
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| request.shard.owns(*i))
+        .map(|(_, p)| space.design(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(SweepPlan { space, plan_points: points.len(), designs })
 }
 
 #[cfg(test)]

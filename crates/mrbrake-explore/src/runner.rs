@@ -55,6 +55,20 @@ pub struct Runner<'a> {
     jobs: usize,
 }
 
+/// Opens the results store of a sweep at `path` (created if missing; an existing store only with
+/// `resume`) and records `created_by` (e.g. `mrbrake 0.1.0`) in a new one.
+pub fn open_sweep_store(
+    path: &std::path::Path,
+    resume: bool,
+    created_by: &str,
+) -> Result<Store, ExploreError> {
+    let mut store = Store::open_or_create(path, resume)?;
+    if store.meta("created_by")?.is_none() {
+        store.set_meta("created_by", created_by)?;
+    }
+    Ok(store)
+}
+
 impl<'a> Runner<'a> {
     /// A runner writing to `store`, analysing with `settings` on `jobs` threads (0: one per core).
     pub fn new(store: &'a mut Store, settings: EvaluationSettings, jobs: usize) -> Self {

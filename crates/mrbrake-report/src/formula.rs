@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 
 use mrbrake_design::formula::{BrakeTorque, CoilElectrics, Viscous, WindowTurns};
-use mrbrake_materials::CopperWire;
+use mrbrake_materials::{CopperWire, MrFluid};
 use serde_json::{Value, json};
 
 /// Where the yield stress (and the viscosity of the viscous term) of a closed-form torque came
@@ -22,6 +22,41 @@ pub struct FluidSource {
     pub fluid: String,
     /// Origin of the viscosity: `"given"` or the fluid's off-state viscosity.
     pub eta_source: String,
+}
+
+/// Where a closed-form torque's yield stress comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum YieldStress {
+    /// τ_y given directly (Pa).
+    Given(f64),
+    /// τ_y read from the fluid's τ_y(B) curve at this mean flux density (T).
+    AtFluxDensity(f64),
+}
+
+impl FluidSource {
+    /// The yield stress of `fluid` (given, or from its τ_y(B) curve) and its source, with the
+    /// viscosity of the viscous term (Pa·s): `eta_pa_s` when given, else the fluid's off-state
+    /// viscosity. Shared by the CLI's `formula` commands and the Python binding; the callers
+    /// check the ranges of the values (with their own argument names).
+    pub fn resolve(
+        fluid: &MrFluid,
+        yield_stress: YieldStress,
+        eta_pa_s: Option<f64>,
+    ) -> (Self, f64) {
+        let (tau_y_pa, tau_y_source, b_t) = match yield_stress {
+            YieldStress::Given(tau) => (tau, "given".to_string(), None),
+            YieldStress::AtFluxDensity(b) => {
+                (fluid.tau_y_of_b(b), format!("{} tau_y(B) at {b} T", fluid.name()), Some(b))
+            }
+        };
+        let (eta, eta_source) = match eta_pa_s {
+            Some(eta) => (eta, "given".to_string()),
+            None => (fluid.viscosity_pa_s(), format!("{} off-state viscosity", fluid.name())),
+        };
+        let source =
+            Self { tau_y_pa, tau_y_source, b_t, fluid: fluid.name().to_string(), eta_source };
+        (source, eta)
+    }
 }
 
 /// The torque of one brake configuration by a closed-form model.

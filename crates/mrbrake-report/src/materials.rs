@@ -6,6 +6,14 @@ use std::fmt::Write as _;
 use mrbrake_materials::{BhCurve, Magnetic, Material, MrFluid, library};
 use serde_json::{Value, json};
 
+/// Field strengths (A/m) at which `materials show` reports B for a non-linear material, unless
+/// asked for others (the CLI and the Python package share them).
+pub const DEFAULT_H_A_PER_M: [f64; 3] = [1e3, 5e3, 20e3];
+
+/// Flux densities (T) at which `materials show` reports τ_y for an MR fluid, unless asked for others
+/// (0.46 and 0.49 T are thesis points).
+pub const DEFAULT_B_T: [f64; 8] = [0.1, 0.2, 0.3, 0.46, 0.49, 0.6, 0.8, 1.0];
+
 /// The JSON list of `materials` (name, kind, trust, description) with the default fluid.
 pub fn list_json(materials: &[&Material]) -> Value {
     let materials: Vec<Value> = materials

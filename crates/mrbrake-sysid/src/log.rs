@@ -33,12 +33,63 @@ impl Log {
 
     /// Mean sample rate in Hz, (n − 1)/(t_last − t_first).
     pub fn mean_sample_rate_hz(&self) -> f64 {
-        let n = self.time_s.len();
-        if n < 2 {
-            return 0.0;
-        }
-        (n - 1) as f64 / (self.time_s[n - 1] - self.time_s[0])
+        mean_sample_rate_hz(&self.time_s)
     }
+}
+
+/// Mean sample rate in Hz of the sample times `time_s`, (n − 1)/(t_last − t_first); 0 for fewer
+/// than two samples.
+pub fn mean_sample_rate_hz(time_s: &[f64]) -> f64 {
+    let n = time_s.len();
+    if n < 2 {
+        return 0.0;
+    }
+    (n - 1) as f64 / (time_s[n - 1] - time_s[0])
+}
+
+/// Checks columns given in memory (a Python caller's arrays) as [`read_log`] checks a file's: every
+/// channel as long as the time column, every value finite, time strictly increasing, at least
+/// `min_samples` samples. `source` names the data in messages; nothing is copied.
+pub fn check_columns(
+    source: &Path,
+    time: (&str, &[f64]),
+    channels: &[(&str, &[f64])],
+    min_samples: usize,
+) -> Result<(), SysidError> {
+    let file_err =
+        |message: String| SysidError::File { file: source.to_path_buf(), line: None, message };
+    for (name, values) in std::iter::once(&time).chain(channels) {
+        if values.len() != time.1.len() {
+            return Err(file_err(format!(
+                "column '{name}' has {} samples, column '{}' {}",
+                values.len(),
+                time.0,
+                time.1.len()
+            )));
+        }
+        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            return Err(file_err(format!(
+                "column '{name}': {} at index {i} is not a finite number",
+                values[i]
+            )));
+        }
+    }
+    if let Some(i) = time.1.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(file_err(format!(
+            "column '{}' must strictly increase: {} at index {} follows {}",
+            time.0,
+            time.1[i + 1],
+            i + 1,
+            time.1[i]
+        )));
+    }
+    if time.1.len() < min_samples {
+        return Err(file_err(format!(
+            "only {} samples; at least {min_samples} are needed",
+            time.1.len()
+        )));
+    }
+    Ok(())
 }
 
 /// Reads `time_col` and `channel_cols` from the CSV file at `path`; at least `min_samples` rows.
@@ -201,6 +252,28 @@ mod tests {
             &["current_A", "torque_Nm"],
             min,
         )
+    }
+
+    /// Columns in memory are checked as a file's are: lengths, finite values, increasing time,
+    /// sample count; every failure is an input error naming the column.
+    #[test]
+    fn columns_in_memory_are_checked_like_a_file() {
+        let check = |t: &[f64], i: &[f64], min| {
+            check_columns(Path::new("<arrays>"), ("time", t), &[("current", i)], min)
+        };
+        assert!(check(&[0.0, 0.1, 0.2], &[0.0, 1.0, 2.0], 3).is_ok());
+        for (t, i, min, expected) in [
+            (&[0.0, 0.1, 0.2][..], &[0.0, 1.0][..], 1, "column 'current' has 2 samples"),
+            (&[0.0, 0.1, 0.2], &[0.0, f64::NAN, 2.0], 1, "column 'current': NaN at index 1"),
+            (&[0.0, 0.2, 0.1], &[0.0, 1.0, 2.0], 1, "0.1 at index 2 follows 0.2"),
+            (&[0.0, 0.1, 0.2], &[0.0, 1.0, 2.0], 4, "only 3 samples; at least 4"),
+        ] {
+            let err = check(t, i, min).unwrap_err();
+            assert!(err.is_input_error(), "{err}");
+            assert!(err.to_string().contains(expected), "{err}");
+        }
+        assert!((mean_sample_rate_hz(&[0.0, 0.1, 0.2]) - 10.0).abs() < 1e-12);
+        assert!(mean_sample_rate_hz(&[1.0]).abs() < 1e-300);
     }
 
     #[test]

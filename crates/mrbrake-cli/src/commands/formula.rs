@@ -6,9 +6,9 @@
 
 use clap::{Args, Subcommand};
 use mrbrake_design::formula::{self, BrakeTorque, Viscous};
-use mrbrake_materials::{CopperWire, MrFluid, library};
+use mrbrake_materials::{CopperWire, library};
 use mrbrake_report::formula::{
-    self as formula_report, BrakeFormulaReport, CoilReport, FluidSource,
+    self as formula_report, BrakeFormulaReport, CoilReport, FluidSource, YieldStress,
 };
 use mrbrake_units::{Dimension, parse};
 use serde_json::{Value, json};
@@ -232,8 +232,8 @@ impl ResolvedFluid {
     }
 }
 
-/// The yield stress from `--tau-y` or from the fluid's curve at `--b`: value, source, B.
-fn resolve_tau_y(a: &FluidArgs, fluid: &MrFluid) -> CommandResult<(f64, String, Option<f64>)> {
+/// The yield stress from `--tau-y` or from the fluid's curve at `--b`, range-checked.
+fn yield_stress(a: &FluidArgs) -> CommandResult<YieldStress> {
     match (&a.tau_y, &a.b) {
         (Some(t), _) => {
             let tau =
@@ -241,7 +241,7 @@ fn resolve_tau_y(a: &FluidArgs, fluid: &MrFluid) -> CommandResult<(f64, String, 
             if tau < 0.0 {
                 return Err(InputError(format!("--tau-y must be >= 0, got {t}")).into());
             }
-            Ok((tau, "given".to_string(), None))
+            Ok(YieldStress::Given(tau))
         }
         (None, Some(b)) => {
             let b_t =
@@ -249,7 +249,7 @@ fn resolve_tau_y(a: &FluidArgs, fluid: &MrFluid) -> CommandResult<(f64, String, 
             if !(0.0..=3.0).contains(&b_t) {
                 return Err(InputError(format!("--b must be between 0 T and 3 T, got {b}")).into());
             }
-            Ok((fluid.tau_y_of_b(b_t), format!("{} tau_y(B) at {b_t} T", fluid.name()), Some(b_t)))
+            Ok(YieldStress::AtFluxDensity(b_t))
         }
         (None, None) => Err(InputError("give --tau-y or --b".into()).into()),
     }
@@ -257,7 +257,7 @@ fn resolve_tau_y(a: &FluidArgs, fluid: &MrFluid) -> CommandResult<(f64, String, 
 
 fn resolve_fluid(a: &FluidArgs) -> CommandResult<ResolvedFluid> {
     let fluid = library::fluid(&a.fluid)?;
-    let (tau_y_pa, tau_y_source, b_t) = resolve_tau_y(a, fluid)?;
+    let yield_stress = yield_stress(a)?;
     let speed = match &a.speed {
         Some(s) => Some(
             parse(s, Dimension::AngularVelocity)
@@ -265,19 +265,18 @@ fn resolve_fluid(a: &FluidArgs) -> CommandResult<ResolvedFluid> {
         ),
         None => None,
     };
-    let (eta_pa_s, eta_source) = match &a.eta {
+    let eta = match &a.eta {
         Some(e) => {
             let eta = parse(e, Dimension::Viscosity)
                 .map_err(|err| InputError(format!("--eta: {err}")))?;
             if eta < 0.0 {
                 return Err(InputError(format!("--eta must be >= 0, got {e}")).into());
             }
-            (eta, "given".to_string())
+            Some(eta)
         }
-        None => (fluid.viscosity_pa_s(), format!("{} off-state viscosity", fluid.name())),
+        None => None,
     };
-    let source =
-        FluidSource { tau_y_pa, tau_y_source, b_t, fluid: fluid.name().to_string(), eta_source };
+    let (source, eta_pa_s) = FluidSource::resolve(fluid, yield_stress, eta);
     Ok(ResolvedFluid { source, eta_pa_s, speed })
 }
 
@@ -323,7 +322,7 @@ fn coil(a: CoilArgs) -> CommandResult {
     if let Some(warning) = formula_report::turns_warning(turns, &window) {
         eprintln!("warning: {warning}");
     }
-    let mean_radius = inner + cw / 2.0;
+    let mean_radius = formula::coil_mean_radius(inner, cw);
     let electrics = formula::coil_electrics(turns, mean_radius, &wire, current, temperature)?;
     if let Some(warning) = formula_report::rating_warning(&wire, current) {
         eprintln!("warning: {warning}");

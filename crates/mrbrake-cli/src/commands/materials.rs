@@ -2,18 +2,12 @@
 
 use clap::{Args, Subcommand};
 use mrbrake_materials::library;
-use mrbrake_report::materials as report;
+use mrbrake_report::materials::{self as report, DEFAULT_B_T, DEFAULT_H_A_PER_M};
 use mrbrake_units::{Dimension, parse};
 
 use crate::error::CommandResult;
 use crate::error::InputError;
 use crate::output::print_json;
-
-/// Field strengths [A/m] at which `show` reports B for a non-linear material.
-const DEFAULT_H_A_PER_M: [f64; 3] = [1e3, 5e3, 20e3];
-
-/// Flux densities (T) at which `show` reports τ_y for an MR fluid (0.46 and 0.49 T are thesis points).
-const DEFAULT_B_T: [f64; 8] = [0.1, 0.2, 0.3, 0.46, 0.49, 0.6, 0.8, 1.0];
 
 /// `mrbrake materials` subcommands.
 #[derive(Debug, Subcommand)]

@@ -8,7 +8,6 @@ use clap::Args;
 use mrbrake_explore::optimize;
 use mrbrake_explore::problem::OptimizationProblem;
 use mrbrake_report::study::{self as study_report, OptimizationReport};
-use mrbrake_store::Store;
 
 use crate::error::CommandResult;
 use crate::error::InputError;
@@ -55,15 +54,8 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     // Everything checkable without an evaluation, before the store is created: a bad problem
     // file must leave no store behind (the corrected command would need --resume).
     optimize::check(&problem)?;
-    let store_path = a.store.clone().unwrap_or_else(|| {
-        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("optimize");
-        PathBuf::from(format!("{stem}.sqlite"))
-    });
-    let mut store = Store::open_or_create(&store_path, a.resume)?;
-    if store.meta("problem")?.is_none() {
-        let text = std::fs::read_to_string(path).unwrap_or_default();
-        store.set_meta("problem", &text)?;
-    }
+    let store_path = a.store.clone().unwrap_or_else(|| optimize::default_store_path(path));
+    let mut store = optimize::open_problem_store(path, &store_path, a.resume)?;
     let mut display = ProgressDisplay::new("optimize", a.json);
     let result = optimize::run(&problem, &mut store, a.jobs, &mut |p| display.update(p))?;
     display.finish();

@@ -8,8 +8,8 @@ use clap::Args;
 use mrbrake_design::analysis::ElementOrder;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::DEFAULT_SPEC_TOML;
-use mrbrake_explore::plan::{self, Sampling, Shard, VarySpec};
-use mrbrake_explore::{Design, DesignSpace, EvaluationSettings, Runner};
+use mrbrake_explore::plan::{self, Sampling, Shard, SweepPlan, SweepRequest};
+use mrbrake_explore::{EvaluationSettings, Runner, runner};
 use mrbrake_report::study::{self as study_report, SweepReport};
 use mrbrake_store::Store;
 use mrbrake_units::{Dimension, parse};
@@ -121,22 +121,11 @@ fn base_spec(spec: Option<&PathBuf>) -> CommandResult<(String, String)> {
     })
 }
 
-/// The design space, the whole plan's points and this shard's designs, from the arguments.
-fn plan_from(a: &SweepArgs) -> CommandResult<(DesignSpace, usize, Shard, Vec<Design>)> {
+/// The sweep's plan and shard, from the arguments.
+fn plan_from(a: &SweepArgs) -> CommandResult<(SweepPlan, Shard)> {
     let (spec_text, origin) = base_spec(a.spec.as_ref())?;
     let overrides: Vec<(String, String)> =
         a.set.iter().map(|s| split_pair(s, "--set")).collect::<Result<_, _>>()?;
-    let pairs: Vec<(String, String)> =
-        a.vary.iter().map(|v| VarySpec::split(v)).collect::<Result<_, _>>()?;
-    let names: Vec<String> = pairs.iter().map(|(n, _)| n.clone()).collect();
-    let settings = settings_from(&a.mesh, &a.speed, a.order)?;
-    let space = DesignSpace::new(&spec_text, &origin, &overrides, &names, settings)?;
-    let specs: Vec<VarySpec> = space
-        .variables()
-        .iter()
-        .zip(&pairs)
-        .map(|(v, (_, text))| VarySpec::parse(v, text))
-        .collect::<Result<_, _>>()?;
     let sampling = match &a.sample {
         Some(text) => Sampling::parse(text, a.seed)?,
         None => Sampling::FullFactorial,
@@ -145,20 +134,23 @@ fn plan_from(a: &SweepArgs) -> CommandResult<(DesignSpace, usize, Shard, Vec<Des
         Some(text) => Shard::parse(text)?,
         None => Shard::ALL,
     };
-    let points = plan::points(space.variables(), &specs, sampling)?;
-    let mine: Vec<Vec<f64>> =
-        points.iter().enumerate().filter(|(i, _)| shard.owns(*i)).map(|(_, p)| p.clone()).collect();
-    let designs = mine.iter().map(|p| space.design(p)).collect::<Result<Vec<_>, _>>()?;
-    Ok((space, points.len(), shard, designs))
+    let request = SweepRequest {
+        spec_text: &spec_text,
+        origin: &origin,
+        overrides: &overrides,
+        vary: &a.vary,
+        sampling,
+        shard,
+        settings: settings_from(&a.mesh, &a.speed, a.order)?,
+    };
+    Ok((plan::sweep_plan(&request)?, shard))
 }
 
 /// Runs `mrbrake sweep`.
 pub fn run_sweep(a: SweepArgs) -> CommandResult {
-    let (space, plan_points, shard, designs) = plan_from(&a)?;
-    let mut store = Store::open_or_create(&a.store, a.resume)?;
-    if store.meta("created_by")?.is_none() {
-        store.set_meta("created_by", &format!("mrbrake {}", env!("CARGO_PKG_VERSION")))?;
-    }
+    let (SweepPlan { space, plan_points, designs }, shard) = plan_from(&a)?;
+    let created_by = format!("mrbrake {}", env!("CARGO_PKG_VERSION"));
+    let mut store = runner::open_sweep_store(&a.store, a.resume, &created_by)?;
     let mut display = ProgressDisplay::new("sweep", a.json);
     let mut runner = Runner::new(&mut store, *space.settings(), a.jobs);
     let (records, summary) = runner.run(&designs, &mut |p| display.update(p))?;

@@ -1,0 +1,172 @@
+"""mrbrake: design, simulate and characterise MR-fluid brakes for haptic devices.
+
+The Python face of the mrbrake Rust crates (a thin PyO3 binding; the numerics are the library's,
+the same as the ``mrbrake`` command-line program's). SI units throughout: metres, amperes,
+newton-metres, tesla, seconds; quantities may also be given as strings with a unit ("60rpm").
+
+Main entry points:
+
+- :func:`analyze`: field, torque-current curve, gaps, coil and mechanics of a brake design.
+- :mod:`mrbrake.materials`: the built-in material library (curves as NumPy arrays, provenance).
+- :mod:`mrbrake.formula`: the thesis's closed-form torque and coil models.
+- :mod:`mrbrake.fem`: general problem files (magnetostatics, heat), as ``mrbrake fem solve``.
+- :func:`sweep`, :func:`optimize`: design studies into a results store (``mrbrake sweep``,
+  ``mrbrake optimize``).
+- :mod:`mrbrake.store`: the results store of design studies (``load``: a table).
+- :mod:`mrbrake.sysid`: hysteresis characterisation, frequency response, transfer-function fits.
+
+Errors: ``ValueError`` for bad input (the CLI's message), ``OSError`` for I/O failures,
+:class:`SolverError` for numerical failures, ``RuntimeError`` for internal ones.
+Long computations release the GIL, so threads run analyses in parallel.
+"""
+
+from . import _native
+from ._native import Analysis, SolverError, __version__
+
+__all__ = ["Analysis", "SolverError", "analyze", "fem", "formula", "materials", "optimize", "store",
+           "sweep", "sysid", "__version__"]
+
+
+def analyze(spec=None, mesh="default", order=1, currents=None, *, speed=None,
+            seal_friction=None, temperature=None):
+    """Analyse a brake design: the non-linear axisymmetric field at each current of a sweep, the
+    torque-current curve, per-gap results, coil and mechanics (``mrbrake analyze``).
+
+    Parameters
+    ----------
+    spec : None, str, os.PathLike or dict
+        ``None``: the embedded thesis bidirectional brake. A path to a TOML spec, TOML text (a
+        string containing ``=`` or a newline), or a dict with the TOML file's keys and tables.
+    mesh : {"coarse", "default", "fine"}
+        Mesh density.
+    order : {1, 2}
+        Element order of the field solution (2: quadratic triangles, about 4x the unknowns).
+    currents : int, optional
+        Number of currents of the sweep, evenly spaced from 0 to the maximum current (>= 2;
+        default 21, the CLI's ``--points``).
+    speed : float (rad/s) or str, optional
+        Relative speed for the viscous torque; default ``"1rad/s"``.
+    seal_friction : float (N*m) or str, optional
+        Seal and bearing friction added to every torque; default ``"0Nm"``.
+    temperature : float (degC) or str, optional
+        Copper temperature for the coil resistance; default ``"20C"``.
+
+    Returns
+    -------
+    Analysis
+        Attributes (``torque_nm``, ``current_a``, ``coil``, ``gaps``, ...), ``to_dict()`` with the
+        keys of ``mrbrake analyze --json``, ``field()`` for matplotlib's ``tripcolor``.
+
+    Raises
+    ------
+    ValueError
+        Invalid spec or argument (message as the CLI's).
+    SolverError
+        The field solution failed numerically.
+    """
+    return _native.analyze(spec, mesh, order, currents, speed=speed,
+                           seal_friction=seal_friction, temperature=temperature)
+
+
+def _pairs(values, what):
+    """``NAME=VALUES`` strings from a dict (values: a string with units, a number in SI or a
+    list of them) or a list of strings."""
+    if values is None:
+        return []
+    if isinstance(values, str):
+        values = [values]
+    if isinstance(values, dict):
+        out = []
+        for name, v in values.items():
+            if isinstance(v, (list, tuple)):
+                v = ",".join(x if isinstance(x, str) else repr(float(x)) for x in v)
+            elif not isinstance(v, str):
+                v = repr(v)
+            out.append(f"{name}={v}")
+        return out
+    out = [str(v) for v in values]
+    for v in out:
+        if "=" not in v:
+            raise ValueError(f"{what} '{v}': expected NAME=VALUE")
+    return out
+
+
+def sweep(spec=None, vary=None, *, store, set=None, sample=None, seed=1, resume=False, jobs=0,
+          shard=None, mesh="default", order=1, speed=None):
+    """A parameter sweep over brake-spec fields into a results store (``mrbrake sweep``): every
+    design is a full analysis, stored the moment it completes; stored designs are not recomputed.
+
+    Parameters
+    ----------
+    spec : None, str, os.PathLike or dict
+        The base spec, as for :func:`analyze` (``None``: the embedded thesis brake).
+    vary : dict or list of str
+        The variables and their values: ``{"g": "0.5mm,0.75mm", "h": [0.007, 0.009]}`` (numbers
+        in SI: m, A) or the CLI's ``--vary`` strings ``["g=0.5mm,0.75mm", "h=5mm..10mm:6",
+        "R0=20mm..30mm"]`` (bounds need ``sample``). Names: spec fields (``drum.gap``) or thesis
+        symbols (g, h, d, R0, R1, R2, n, N, I, AWG).
+    store : str or os.PathLike
+        The SQLite results store; created if missing, an existing one needs ``resume=True``.
+    set : dict or list of str, optional
+        Fixed changes to the base spec (``{"coil.turns": "fill"}``), the CLI's ``--set``.
+    sample : str, optional
+        ``"lhs:N"`` (Latin hypercube, seeded by ``seed``) or ``"sobol:N"`` instead of the full
+        factorial grid.
+    resume : bool
+        Continue an existing store.
+    jobs : int
+        Analyses run at the same time (0: one per core).
+    shard : str, optional
+        ``"K/N"``: evaluate only shard K of N of the plan.
+    mesh, order : str, int
+        Mesh density and element order of every analysis.
+    speed : float (rad/s) or str, optional
+        Relative speed for the off-state torque; default ``"1rad/s"``.
+
+    Returns
+    -------
+    dict
+        The document of ``mrbrake sweep --json``: the designs (key, status, variables, metrics in
+        SI) and the run's summary. :func:`mrbrake.store.load` reads the store back as a table.
+
+    Raises ``ValueError`` for bad input (the CLI's message), ``OSError`` for an unreadable spec
+    or an unwritable store. Runs without the GIL.
+    """
+    overrides = [tuple(p.split("=", 1)) for p in _pairs(set, "set")]
+    overrides = [(k.strip(), v.strip()) for k, v in overrides]
+    return _native.sweep(spec, _pairs(vary, "vary"), str(store), overrides, sample=sample,
+                         seed=seed, resume=resume, jobs=jobs, shard=shard, mesh=mesh, order=order,
+                         speed=speed)
+
+
+def optimize(problem, store=None, *, resume=False, jobs=0, out=None):
+    """A constrained single- or multi-objective optimisation of a brake design (``mrbrake
+    optimize``): NSGA-II or pattern search as the problem file says, every evaluation a full
+    analysis through the results store.
+
+    Parameters
+    ----------
+    problem : str or os.PathLike
+        The problem file (TOML: base spec, variables with bounds, constraints, objectives,
+        algorithm; see ``mrbrake optimize --help``).
+    store : str or os.PathLike, optional
+        The SQLite results store; default ``<problem stem>.sqlite`` in the current folder. An
+        existing store needs ``resume=True``.
+    jobs : int
+        Analyses run at the same time (0: one per core).
+    out : str or os.PathLike, optional
+        Also write the CLI's ``--out`` folder (evaluations.csv, pareto.csv, plots, front designs).
+
+    Returns
+    -------
+    dict
+        The document of ``mrbrake optimize --json`` (the front, the reference design, counts).
+
+    Raises ``ValueError`` for a bad problem file (the CLI's message). Runs without the GIL.
+    """
+    return _native.optimize_problem(str(problem), None if store is None else str(store),
+                                    resume=resume, jobs=jobs,
+                                    out=None if out is None else str(out))
+
+
+from . import fem, formula, materials, store, sysid  # noqa: E402  (submodules use the names above)
