@@ -6,7 +6,8 @@
 //! Model (stated so its limits are visible):
 //! - the device only: the air box of the magnetic mesh is dropped; every outer surface of the
 //!   device (not the axis) loses heat by convection `h (T − T_∞)` with one coefficient `h` (the
-//!   shaft ends included); internal contacts are perfect;
+//!   shaft ends included), and optionally by radiation `ε σ (T⁴ − T_∞⁴)` to surroundings at the
+//!   ambient; internal contacts are perfect;
 //! - the winding is homogenised (`mrbrake_materials::thermal::Winding`, copper in impregnating
 //!   resin) with the fill factor `N π d²/4 / (C_w C_h)` of the spec's wire and turns;
 //! - the Joule loss of the energised unit's coil(s) at the local temperature (`R20 = ρ20 N 2π r̄ /
@@ -16,7 +17,17 @@
 //!   mean radius: `q = η (ω r_m / g)²`, η the fluid's off-state viscosity of the library (30 °C);
 //! - a duty cycle `d` at current `I` is its mean power: the warm-up uses `I √d` (valid when the
 //!   period is much shorter than the thermal time constant, minutes here; the ripple is not
-//!   resolved), and the largest duty at the maximum current is `(I_cont / I_max)²`.
+//!   resolved), and the largest duty at the maximum current is `(I_cont / I_max)²`;
+//! - the housing's `h` is given, or from natural convection to still air ([`Cooling::Natural`]:
+//!   Churchill–Chu correlations of `mrbrake_heat::convection` for a horizontal axis, the device's
+//!   outer diameter and length, iterated with the housing's mean surface temperature until `h`
+//!   changes by less than 1e-6 relative); the warm-up keeps the steady state's `h` (a cooler surface
+//!   convects less, so early in the warm-up the model cools slightly too well);
+//! - what heat does to the brake ([`behaviour`]): the fluid's off-state viscosity at its temperature
+//!   (`mrbrake_materials::thermal::fluid_viscosity_at`, low trust), the coil's hot resistance and
+//!   power, and the torque from a voltage drive sized for the current at the ambient.
+
+pub mod behaviour;
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -25,7 +36,7 @@ use std::time::Instant;
 use mrbrake_fem::mesh::Mesh;
 use mrbrake_heat::{
     Boundary, BoundaryCondition, HeatError, HeatProblem, HeatSolver, Region, SolverOptions, Source,
-    TimeScheme, TransientSettings, celsius, kelvin,
+    TimeScheme, TransientSettings, celsius, convection, kelvin,
 };
 use mrbrake_materials::thermal::{Winding, thermal};
 use mrbrake_materials::wire::{COPPER_RESISTIVITY_20C_OHM_M, COPPER_TEMPERATURE_COEFFICIENT_PER_K};
@@ -49,9 +60,20 @@ pub enum ThermalError {
     /// The heat solver.
     #[error(transparent)]
     Heat(#[from] HeatError),
-    /// A material without thermal data, or a bad option.
+    /// A material without thermal data, or a design the model cannot take.
     #[error("{0}")]
     Input(String),
+    /// An option outside its range, by its name (the CLI's flag without the dashes).
+    #[error("{name}: {message}")]
+    Option {
+        /// The option, e.g. `duty`.
+        name: &'static str,
+        /// The value and the allowed range.
+        message: String,
+    },
+    /// A material's data (e.g. a viscosity outside its temperature range).
+    #[error(transparent)]
+    Material(#[from] mrbrake_materials::MaterialError),
 }
 
 impl mrbrake_error::Kind for ThermalError {
@@ -59,7 +81,8 @@ impl mrbrake_error::Kind for ThermalError {
         match self {
             Self::Design(e) => e.kind(),
             Self::Heat(e) => e.kind(),
-            Self::Input(_) => mrbrake_error::ErrorKind::Input,
+            Self::Input(_) | Self::Option { .. } => mrbrake_error::ErrorKind::Input,
+            Self::Material(e) => e.kind(),
         }
     }
 }
@@ -71,10 +94,15 @@ pub struct ThermalOptions {
     pub current_a: f64,
     /// Duty cycle in (0, 1].
     pub duty: f64,
+    /// Period of the duty cycle \[s\], if known (checked against the thermal time constant).
+    pub period_s: Option<f64>,
     /// Ambient \[°C\].
     pub ambient_c: f64,
-    /// Housing heat-transfer coefficient \[W/(m² K)\].
-    pub h_w_per_m2k: f64,
+    /// Cooling of the housing.
+    pub cooling: Cooling,
+    /// Emissivity of the housing for radiation to surroundings at the ambient, in [0, 1] (0: no
+    /// radiation).
+    pub emissivity: f64,
     /// Insulation limit (hot-spot) \[°C\].
     pub limit_c: f64,
     /// Warm-up duration \[s\].
@@ -85,6 +113,20 @@ pub struct ThermalOptions {
     pub speed_rad_s: f64,
     /// Mesh level.
     pub mesh: MeshLevel,
+    /// Also compute what heat does to the brake ([`behaviour`]: a magnetic analysis more).
+    pub behaviour: bool,
+}
+
+/// How the housing loses heat.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Cooling {
+    /// A given heat-transfer coefficient.
+    Fixed {
+        /// \[W/(m² K)\]
+        h_w_per_m2k: f64,
+    },
+    /// Natural convection to still air, axis horizontal (module docs).
+    Natural,
 }
 
 impl Default for ThermalOptions {
@@ -92,13 +134,16 @@ impl Default for ThermalOptions {
         Self {
             current_a: 2.0,
             duty: 1.0,
+            period_s: None,
             ambient_c: 25.0,
-            h_w_per_m2k: 10.0,
+            cooling: Cooling::Fixed { h_w_per_m2k: 10.0 },
+            emissivity: 0.0,
             limit_c: 155.0,
             time_s: 7200.0,
             dt_s: 10.0,
             speed_rad_s: 0.0,
             mesh: MeshLevel::Default,
+            behaviour: false,
         }
     }
 }
@@ -231,13 +276,25 @@ pub fn thermal_problem(
         }
         regions.push(region);
     }
-    let boundaries = vec![Boundary {
+    let mut boundaries = vec![Boundary {
         tag: HOUSING_TAG,
         condition: BoundaryCondition::Convection {
-            h_w_per_m2k: options.h_w_per_m2k,
+            h_w_per_m2k: match options.cooling {
+                Cooling::Fixed { h_w_per_m2k } => h_w_per_m2k,
+                Cooling::Natural => NATURAL_START_H,
+            },
             ambient_k: kelvin(options.ambient_c),
         },
     }];
+    if options.emissivity > 0.0 {
+        boundaries.push(Boundary {
+            tag: HOUSING_TAG,
+            condition: BoundaryCondition::Radiation {
+                emissivity: options.emissivity,
+                ambient_k: kelvin(options.ambient_c),
+            },
+        });
+    }
     Ok((HeatProblem { mesh: Arc::new(device), regions, boundaries }, parts))
 }
 
@@ -268,6 +325,12 @@ pub struct SteadyTemperatures {
     /// Coil resistance at its mean temperature \[Ω\].
     #[serde(rename = "coil_resistance_ohm")]
     pub coil_resistance_ohm: f64,
+    /// Area-weighted mean of the outer surface \[°C\].
+    #[serde(rename = "housing_mean_T_C")]
+    pub housing_mean_t_c: f64,
+    /// The housing's heat-transfer coefficient of this state \[W/(m² K)\].
+    #[serde(rename = "h_W_per_m2K")]
+    pub h_w_per_m2k: f64,
 }
 
 /// The warm-up curve.
@@ -310,10 +373,64 @@ pub struct ThermalResult {
     pub time_to_limit_s: Option<f64>,
     /// Warm-up from the ambient.
     pub warmup: Warmup,
+    /// Ambient \[°C\].
+    #[serde(rename = "ambient_C")]
+    pub ambient_c: f64,
+    /// How the housing was cooled.
+    pub cooling: CoolingSummary,
+    /// What heat does to the brake (with [`ThermalOptions::behaviour`]).
+    pub behaviour: Option<behaviour::HotBehaviour>,
+    /// Time constant of the warm-up: when the hot spot has risen by 63 % of its steady rise
+    /// (`None`: no steady state, or not within the run) \[s\].
+    pub time_constant_s: Option<f64>,
+    /// What the model's assumptions do not cover for these options.
+    pub warnings: Vec<String>,
     /// Mesh nodes of the device.
     pub nodes: usize,
     /// Seconds.
     pub timings_s: ThermalTimings,
+}
+
+/// The housing's cooling at the steady state of the run's current.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CoolingSummary {
+    /// `fixed` or `natural` (still air, axis horizontal).
+    pub kind: &'static str,
+    /// Heat-transfer coefficient \[W/(m² K)\].
+    #[serde(rename = "h_W_per_m2K")]
+    pub h_w_per_m2k: f64,
+    /// Natural convection: the lateral surface's coefficient \[W/(m² K)\].
+    #[serde(rename = "h_side_W_per_m2K")]
+    pub h_side_w_per_m2k: Option<f64>,
+    /// Natural convection: the end faces' coefficient \[W/(m² K)\].
+    #[serde(rename = "h_ends_W_per_m2K")]
+    pub h_ends_w_per_m2k: Option<f64>,
+    /// Natural convection: Rayleigh number on the outer diameter.
+    pub rayleigh_d: Option<f64>,
+    /// Emissivity of the housing (0: no radiation).
+    pub emissivity: f64,
+    /// Outer diameter and axial length used by the correlations \[m\].
+    pub diameter_m: f64,
+    /// Axial length \[m\].
+    pub length_m: f64,
+}
+
+/// The steady temperature field at the run's current (or the warm-up's last state when there is
+/// no steady state), as plain data for a map: the device's nodes, triangles and region tags, one
+/// temperature per node.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TemperatureField {
+    /// What the field is (`steady` or `end of warm-up`).
+    pub state: &'static str,
+    /// Node coordinates `[r, z]` \[m\].
+    pub nodes: Vec<[f64; 2]>,
+    /// Triangles (node indices).
+    pub triangles: Vec<[usize; 3]>,
+    /// Region tag per triangle.
+    pub region_tags: Vec<u32>,
+    /// Temperature per node \[°C\].
+    #[serde(rename = "T_C")]
+    pub t_c: Vec<f64>,
 }
 
 /// Timings of the thermal analysis.
@@ -330,40 +447,141 @@ fn tags_max_mean(stats: &[mrbrake_heat::post::RegionStats], tags: &[u32]) -> (f6
     (chosen.iter().map(|s| s.max_k).fold(f64::NEG_INFINITY, f64::max), mean)
 }
 
-fn steady_of(
+/// First `h` of a natural-convection iteration \[W/(m² K)\] (a typical value for still air; the
+/// iteration forgets it).
+const NATURAL_START_H: f64 = 5.0;
+
+/// Relative change of `h` below which the natural-convection iteration stops.
+const NATURAL_TOLERANCE: f64 = 1e-6;
+
+/// The housing's cooling during a run: the option, the device's outer size for the
+/// correlations, and the `h` the solver holds now.
+#[derive(Debug, Clone, Copy)]
+struct Housing {
+    cooling: Cooling,
+    /// Outer diameter and axial length \[m\].
+    diameter_m: f64,
+    length_m: f64,
+    ambient_k: f64,
+    h: f64,
+}
+
+impl Housing {
+    fn new(mesh: &Mesh, options: &ThermalOptions) -> Self {
+        let (mut r_max, mut z_lo, mut z_hi) = (0.0f64, f64::INFINITY, f64::NEG_INFINITY);
+        for p in &mesh.nodes {
+            r_max = r_max.max(p[0]);
+            z_lo = z_lo.min(p[1]);
+            z_hi = z_hi.max(p[1]);
+        }
+        let h = match options.cooling {
+            Cooling::Fixed { h_w_per_m2k } => h_w_per_m2k,
+            Cooling::Natural => NATURAL_START_H,
+        };
+        Self {
+            cooling: options.cooling,
+            diameter_m: 2.0 * r_max,
+            length_m: z_hi - z_lo,
+            ambient_k: kelvin(options.ambient_c),
+            h,
+        }
+    }
+
+    /// The natural-convection coefficients at the mean surface temperature `t_s` (kelvin), the
+    /// film temperature held inside the air table; `true` when it had to be held (the surface is
+    /// far beyond any insulation limit then).
+    fn natural(&self, t_s: f64) -> Result<(convection::NaturalConvection, bool), ThermalError> {
+        let [lo, hi] = convection::AIR_TABLE_RANGE_K;
+        let held = (2.0 * lo - self.ambient_k).max(t_s.min(2.0 * hi - self.ambient_k));
+        let c = convection::horizontal_brake(self.diameter_m, self.length_m, held, self.ambient_k)?;
+        Ok((c, held < t_s))
+    }
+}
+
+/// A steady state: the temperature per DOF (kelvin), and whether natural convection left its
+/// air table.
+struct SteadyField {
+    t: Vec<f64>,
+    beyond_air_table: bool,
+}
+
+/// The steady temperature at the solver's sources; with natural convection `h` is iterated with
+/// the housing's mean surface temperature (fixed point, warm-started from the last `h`). `None`:
+/// thermal runaway.
+fn solve_steady(
     solver: &mut HeatSolver,
+    housing: &mut Housing,
+) -> Result<Option<SteadyField>, ThermalError> {
+    for _ in 0..100 {
+        let t = match solver.steady(None) {
+            Ok((t, _)) => t,
+            Err(HeatError::Runaway(_)) => return Ok(None),
+            Err(e) => return Err(e.into()),
+        };
+        if housing.cooling != Cooling::Natural {
+            return Ok(Some(SteadyField { t, beyond_air_table: false }));
+        }
+        let (_, t_s) = solver.boundary_mean(HOUSING_TAG, &t);
+        let (c, beyond) = housing.natural(t_s)?;
+        let h = c.h_mean_w_per_m2k;
+        if (h - housing.h).abs() <= NATURAL_TOLERANCE * h {
+            return Ok(Some(SteadyField { t, beyond_air_table: beyond }));
+        }
+        housing.h = h;
+        solver.set_convection(HOUSING_TAG, h, housing.ambient_k)?;
+    }
+    Err(HeatError::LimitCrossed(
+        "natural convection: h did not settle in 100 iterations with the surface temperature"
+            .into(),
+    )
+    .into())
+}
+
+fn steady_summary(
+    solver: &HeatSolver,
     parts: &ThermalParts,
-) -> Result<Option<SteadyTemperatures>, ThermalError> {
-    let t = match solver.steady(None) {
-        Ok((t, _)) => t,
-        Err(HeatError::Runaway(_)) => return Ok(None),
-        Err(e) => return Err(e.into()),
-    };
-    let stats = solver.region_stats(&t);
+    housing: &Housing,
+    t: &[f64],
+) -> SteadyTemperatures {
+    let stats = solver.region_stats(t);
     let coil_tags: Vec<u32> = parts.coils.iter().map(|c| c.0).collect();
     let gap_tags: Vec<u32> = parts.gaps.iter().map(|g| g.0).collect();
     let (coil_max, coil_mean) = tags_max_mean(&stats, &coil_tags);
     let (fluid_max, fluid_mean) = tags_max_mean(&stats, &gap_tags);
-    let housing = solver
+    let housing_max = solver
         .basis()
         .dofs()
         .boundary_dofs(HOUSING_TAG)
         .iter()
         .map(|&d| t[d])
         .fold(f64::NEG_INFINITY, f64::max);
-    let balance = solver.energy_balance(&t);
+    let balance = solver.energy_balance(t);
     let r20: f64 = parts.coils.iter().map(|c| c.1).sum();
-    Ok(Some(SteadyTemperatures {
+    SteadyTemperatures {
         coil_max_t_c: celsius(coil_max),
         coil_mean_t_c: celsius(coil_mean),
         fluid_mean_t_c: celsius(fluid_mean),
         fluid_max_t_c: celsius(fluid_max),
-        housing_max_t_c: celsius(housing),
+        housing_max_t_c: celsius(housing_max),
         heat_w: balance.generated_w,
         energy_balance_w: balance.imbalance_w,
         coil_resistance_ohm: r20
             * (1.0 + COPPER_TEMPERATURE_COEFFICIENT_PER_K * (celsius(coil_mean) - 20.0)),
-    }))
+        housing_mean_t_c: celsius(solver.boundary_mean(HOUSING_TAG, t).1),
+        h_w_per_m2k: housing.h,
+    }
+}
+
+/// The steady summary at the solver's sources (`None`: runaway, or a natural-convection state
+/// beyond the air table).
+fn steady_of(
+    solver: &mut HeatSolver,
+    parts: &ThermalParts,
+    housing: &mut Housing,
+) -> Result<Option<(SteadyTemperatures, Vec<f64>)>, ThermalError> {
+    Ok(solve_steady(solver, housing)?
+        .filter(|f| !f.beyond_air_table)
+        .map(|f| (steady_summary(solver, parts, housing, &f.t), f.t)))
 }
 
 fn set_current(
@@ -387,12 +605,13 @@ fn set_current(
 fn continuous_current(
     solver: &mut HeatSolver,
     parts: &ThermalParts,
+    housing: &mut Housing,
     limit_c: f64,
     start: f64,
 ) -> Result<f64, ThermalError> {
-    let above = |solver: &mut HeatSolver, current: f64| -> Result<bool, ThermalError> {
+    let mut above = |solver: &mut HeatSolver, current: f64| -> Result<bool, ThermalError> {
         set_current(solver, parts, current)?;
-        Ok(steady_of(solver, parts)?.is_none_or(|s| s.coil_max_t_c > limit_c))
+        Ok(steady_of(solver, parts, housing)?.is_none_or(|s| s.0.coil_max_t_c > limit_c))
     };
     let (mut lo, mut hi) = (0.0, start.max(0.1));
     while !above(solver, hi)? {
@@ -409,24 +628,25 @@ fn continuous_current(
     Ok(0.5 * (lo + hi))
 }
 
+/// The warm-up from the ambient at the mean current `I √d` (with the housing's `h` as it is).
 fn warmup(
     solver: &mut HeatSolver,
     parts: &ThermalParts,
     options: &ThermalOptions,
-) -> Result<Warmup, ThermalError> {
+) -> Result<(Warmup, Vec<f64>), ThermalError> {
     set_current(solver, parts, options.current_a * options.duty.sqrt())?;
     let coil_tags: Vec<u32> = parts.coils.iter().map(|c| c.0).collect();
     let start = solver.uniform(kelvin(options.ambient_c));
     let mut curve = Warmup { time_s: vec![0.0], coil_max_t_c: vec![options.ambient_c] };
     let settings =
         TransientSettings { dt_s: options.dt_s, t_end_s: options.time_s, scheme: TimeScheme::Bdf2 };
-    solver.transient(&start, &settings, |time, t, s| {
+    let (end, _) = solver.transient(&start, &settings, |time, t, s| {
         let stats = s.region_stats(t);
         curve.time_s.push(time);
         curve.coil_max_t_c.push(celsius(tags_max_mean(&stats, &coil_tags).0));
         Ok(())
     })?;
-    Ok(curve)
+    Ok((curve, end))
 }
 
 /// The first time the curve crosses `limit` (linear interpolation), if it does.
@@ -439,44 +659,183 @@ fn crossing(curve: &Warmup, limit: f64) -> Option<f64> {
     Some(curve.time_s[k - 1] + (limit - t0) / (t1 - t0) * (curve.time_s[k] - curve.time_s[k - 1]))
 }
 
+/// Checks the options, naming the option and its allowed range.
+pub fn validate_options(o: &ThermalOptions) -> Result<(), ThermalError> {
+    let bad = |name: &'static str, message: String| Err(ThermalError::Option { name, message });
+    let absolute_zero = -mrbrake_heat::ZERO_CELSIUS_K;
+    if !(o.current_a.is_finite() && o.current_a > 0.0 && o.current_a <= 100.0) {
+        return bad("current", format!("{} A must be in (0, 100] A", o.current_a));
+    }
+    if !(o.duty > 0.0 && o.duty <= 1.0) {
+        return bad("duty", format!("{} must be in (0, 1]", o.duty));
+    }
+    if !(o.ambient_c.is_finite() && o.ambient_c > absolute_zero && o.ambient_c <= 200.0) {
+        return bad("ambient", format!("{} °C must be in (-273.15, 200] °C", o.ambient_c));
+    }
+    if let Cooling::Fixed { h_w_per_m2k: h } = o.cooling {
+        if !(h.is_finite() && h > 0.0 && h <= 1e5) {
+            return bad("h", format!("{h} W/(m² K) must be in (0, 1e5] W/(m² K)"));
+        }
+    }
+    if !(0.0..=1.0).contains(&o.emissivity) {
+        return bad("emissivity", format!("{} must be in [0, 1]", o.emissivity));
+    }
+    if !(o.limit_c.is_finite() && o.limit_c > o.ambient_c && o.limit_c <= 1000.0) {
+        return bad(
+            "insulation-class",
+            format!(
+                "{} °C must be above the ambient ({} °C) and <= 1000 °C",
+                o.limit_c, o.ambient_c
+            ),
+        );
+    }
+    if !(o.dt_s.is_finite() && o.dt_s > 0.0) {
+        return bad("dt", format!("{} s must be > 0", o.dt_s));
+    }
+    if !(o.time_s.is_finite() && o.time_s >= o.dt_s && o.time_s / o.dt_s <= 1e6) {
+        return bad(
+            "time",
+            format!("{} s must be >= the step ({} s) and at most 1e6 steps", o.time_s, o.dt_s),
+        );
+    }
+    if let Some(p) = o.period_s {
+        if !(p.is_finite() && p > 0.0) {
+            return bad("period", format!("{p} s must be > 0"));
+        }
+    }
+    if !(o.speed_rad_s.is_finite() && o.speed_rad_s >= 0.0 && o.speed_rad_s <= 1e4) {
+        return bad("speed", format!("{} rad/s must be in [0, 1e4] rad/s", o.speed_rad_s));
+    }
+    Ok(())
+}
+
+/// The assumptions a run's options stretch: a duty period that is not short against the thermal
+/// time constant (the mean-power model misses the ripple of the hot spot).
+fn warnings(
+    o: &ThermalOptions,
+    time_constant_s: Option<f64>,
+    behaviour: Option<&behaviour::HotBehaviour>,
+) -> Vec<String> {
+    let mut out = Vec::new();
+    if let Some(v) = behaviour.map(|b| &b.viscosity_hot).filter(|v| v.extrapolated_k > 20.0) {
+        out.push(format!(
+            "the fluid's viscosity at {:.0} °C is extrapolated {:.0} K beyond its data by Andrade's \
+             law (low trust): the hot off-state torque is an estimate",
+            v.temperature_c, v.extrapolated_k
+        ));
+    }
+    if let (Some(period), Some(tau)) = (o.period_s, time_constant_s) {
+        if o.duty < 1.0 && period > 0.1 * tau {
+            out.push(format!(
+                "the duty period {period} s is not short against the time constant {tau:.0} s: the \
+                 mean-power model underestimates the hot spot's peak (ripple not resolved)"
+            ));
+        }
+    }
+    out
+}
+
+/// The cooling summary of the housing at the mean surface temperature `t_s` (kelvin).
+fn cooling_summary(
+    housing: &Housing,
+    emissivity: f64,
+    t_s: Option<f64>,
+) -> Result<CoolingSummary, ThermalError> {
+    let mut summary = CoolingSummary {
+        kind: "fixed",
+        h_w_per_m2k: housing.h,
+        h_side_w_per_m2k: None,
+        h_ends_w_per_m2k: None,
+        rayleigh_d: None,
+        emissivity,
+        diameter_m: housing.diameter_m,
+        length_m: housing.length_m,
+    };
+    if housing.cooling == Cooling::Natural {
+        summary.kind = "natural";
+        if let Some(t_s) = t_s {
+            let (c, _) = housing.natural(t_s)?;
+            summary.h_side_w_per_m2k = Some(c.h_side_w_per_m2k);
+            summary.h_ends_w_per_m2k = Some(c.h_ends_w_per_m2k);
+            summary.rayleigh_d = Some(c.rayleigh_d);
+        }
+    }
+    Ok(summary)
+}
+
 /// The thermal analysis of `spec` (module docs).
 pub fn analyze_thermal(
     spec: &BrakeSpec,
     options: &ThermalOptions,
 ) -> Result<ThermalResult, ThermalError> {
+    analyze_thermal_with_field(spec, options).map(|(r, _)| r)
+}
+
+/// [`analyze_thermal`] and the temperature field for a map.
+pub fn analyze_thermal_with_field(
+    spec: &BrakeSpec,
+    options: &ThermalOptions,
+) -> Result<(ThermalResult, TemperatureField), ThermalError> {
     let start = Instant::now();
-    if !(options.duty > 0.0 && options.duty <= 1.0) {
-        return Err(ThermalError::Input(format!("duty = {} must be in (0, 1]", options.duty)));
-    }
-    if !(options.dt_s > 0.0 && options.time_s >= options.dt_s) {
-        return Err(ThermalError::Input(format!(
-            "time step {} s and duration {} s must be > 0 (step <= duration)",
-            options.dt_s, options.time_s
-        )));
-    }
+    validate_options(options)?;
     let (problem, parts) = thermal_problem(spec, options)?;
-    let nodes = problem.mesh.nodes.len();
+    let mesh = Arc::clone(&problem.mesh);
+    let mut housing = Housing::new(&mesh, options);
     let mut solver = HeatSolver::new(problem, SolverOptions::default())?;
-    let steady = steady_of(&mut solver, &parts)?;
+    let steady = steady_of(&mut solver, &parts, &mut housing)?;
+    let steady_h = housing.h;
+    let t_s = steady.as_ref().map(|s| kelvin(s.0.housing_mean_t_c));
+    let cooling = cooling_summary(&housing, options.emissivity, t_s)?;
     let max_current_a = spec.coil.max_current.a();
     let continuous_current_a =
-        continuous_current(&mut solver, &parts, options.limit_c, max_current_a)?;
-    let warmup = warmup(&mut solver, &parts, options)?;
-    Ok(ThermalResult {
+        continuous_current(&mut solver, &parts, &mut housing, options.limit_c, max_current_a)?;
+    housing.h = steady_h;
+    solver.set_convection(HOUSING_TAG, steady_h, housing.ambient_k)?;
+    let behaviour = match (&steady, options.behaviour) {
+        (Some((s, _)), true) => {
+            Some(behaviour::hot_behaviour(spec, options, &mut solver, &parts, &mut housing, s)?)
+        }
+        _ => None,
+    };
+    housing.h = steady_h;
+    solver.set_convection(HOUSING_TAG, steady_h, housing.ambient_k)?;
+    let (warmup, end) = warmup(&mut solver, &parts, options)?;
+    let (state, t) = match &steady {
+        Some((_, t)) => ("steady", t.as_slice()),
+        None => ("end of warm-up", end.as_slice()),
+    };
+    let field = TemperatureField {
+        state,
+        nodes: mesh.nodes.clone(),
+        triangles: mesh.triangles.clone(),
+        region_tags: mesh.triangle_tags.clone(),
+        t_c: t[..mesh.nodes.len()].iter().map(|&v| celsius(v)).collect(),
+    };
+    let time_constant_s = steady
+        .as_ref()
+        .and_then(|(st, _)| crossing(&warmup, 0.63 * st.coil_max_t_c + 0.37 * options.ambient_c));
+    let notes = warnings(options, time_constant_s, behaviour.as_ref());
+    let result = ThermalResult {
         current_a: options.current_a,
         duty: options.duty,
         limit_c: options.limit_c,
         coil_resistance_20c_ohm: parts.coils.iter().map(|c| c.1).sum(),
         fill_factor: parts.fill_factor,
-        steady,
+        steady: steady.map(|s| s.0),
         continuous_current_a,
         max_duty_at_max_current: (continuous_current_a / max_current_a).powi(2).min(1.0),
         max_current_a,
         time_to_limit_s: crossing(&warmup, options.limit_c),
         warmup,
-        nodes,
+        ambient_c: options.ambient_c,
+        cooling,
+        behaviour,
+        warnings: notes,
+        time_constant_s,
+        nodes: mesh.nodes.len(),
         timings_s: ThermalTimings { total: start.elapsed().as_secs_f64() },
-    })
+    };
+    Ok((result, field))
 }
 
 #[cfg(test)]
@@ -520,6 +879,43 @@ mod tests {
         let curve = &result.warmup.coil_max_t_c;
         assert!(curve.windows(2).all(|w| w[1] >= w[0] - 1e-9));
         assert!(*curve.last().unwrap() <= steady.coil_max_t_c + 1e-6);
+    }
+
+    /// Natural convection: the converged h is the correlation's at the housing's mean surface
+    /// temperature, the energy balance closes with it; the voltage-driven hot state is
+    /// self-consistent (`I = V / R(T̄)` to 1e-9) and cooler and weaker than the current-driven one.
+    #[test]
+    fn natural_convection_and_voltage_drive_are_self_consistent() {
+        let spec = crate::spec::default_spec();
+        let options = ThermalOptions {
+            mesh: MeshLevel::Coarse,
+            cooling: Cooling::Natural,
+            time_s: 600.0,
+            dt_s: 60.0,
+            behaviour: true,
+            ..ThermalOptions::default()
+        };
+        let result = analyze_thermal(&spec, &options).unwrap();
+        let steady = result.steady.expect("a steady state");
+        let c = result.cooling;
+        let expected = convection::horizontal_brake(
+            c.diameter_m,
+            c.length_m,
+            kelvin(steady.housing_mean_t_c),
+            kelvin(25.0),
+        )
+        .unwrap();
+        assert!((c.h_w_per_m2k / expected.h_mean_w_per_m2k - 1.0).abs() < 1e-5, "{c:?}");
+        assert!(steady.energy_balance_w.abs() < 1e-9 * steady.heat_w);
+        let b = result.behaviour.expect("behaviour");
+        let v = b.voltage_drive;
+        let r_hot = result.coil_resistance_20c_ohm
+            * (1.0 + COPPER_TEMPERATURE_COEFFICIENT_PER_K * (v.coil_mean_t_c - 20.0));
+        assert!((v.current_hot_a - v.voltage_v / r_hot).abs() < 1e-8 * v.current_hot_a);
+        assert!(v.current_hot_a < 2.0 && v.coil_mean_t_c < steady.coil_mean_t_c);
+        assert!(v.torque_hot_nm < b.torque_cold_nm);
+        assert!(b.off_state_torque_hot_nm < b.off_state_torque_cold_nm);
+        println!("natural convection (coarse): {c:?}; steady {steady:?}; behaviour {b:?}");
     }
 
     #[test]
