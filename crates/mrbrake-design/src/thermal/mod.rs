@@ -451,6 +451,11 @@ fn tags_max_mean(stats: &[mrbrake_heat::post::RegionStats], tags: &[u32]) -> (f6
 /// iteration forgets it).
 const NATURAL_START_H: f64 = 5.0;
 
+/// Newton's relative residual tolerance with radiation (a linear problem converges in one step
+/// anyway): on the brake's default mesh the radiating residual's round-off floor is about 1e-10 of
+/// the first residual, the heat solver's default tolerance.
+const NEWTON_TOLERANCE: f64 = 1e-9;
+
 /// Relative change of `h` below which the natural-convection iteration stops.
 const NATURAL_TOLERANCE: f64 = 1e-6;
 
@@ -628,7 +633,20 @@ fn continuous_current(
     Ok(0.5 * (lo + hi))
 }
 
-/// The warm-up from the ambient at the mean current `I √d` (with the housing's `h` as it is).
+/// The DOFs of the elements of the regions `tags` (sorted, once each).
+fn region_dofs(solver: &HeatSolver, tags: &[u32]) -> Vec<usize> {
+    let mesh = &solver.problem().mesh;
+    let mut dofs: Vec<usize> = (0..mesh.triangles.len())
+        .filter(|&t| tags.contains(&mesh.triangle_tags[t]))
+        .flat_map(|t| solver.basis().dofs().element(t).to_vec())
+        .collect();
+    dofs.sort_unstable();
+    dofs.dedup();
+    dofs
+}
+
+/// The warm-up from the ambient at the mean current `I √d` (with the housing's `h` as it is); the
+/// hot spot of every step is the largest coil DOF temperature (as in the region statistics).
 fn warmup(
     solver: &mut HeatSolver,
     parts: &ThermalParts,
@@ -636,14 +654,14 @@ fn warmup(
 ) -> Result<(Warmup, Vec<f64>), ThermalError> {
     set_current(solver, parts, options.current_a * options.duty.sqrt())?;
     let coil_tags: Vec<u32> = parts.coils.iter().map(|c| c.0).collect();
+    let coil_dofs = region_dofs(solver, &coil_tags);
     let start = solver.uniform(kelvin(options.ambient_c));
     let mut curve = Warmup { time_s: vec![0.0], coil_max_t_c: vec![options.ambient_c] };
     let settings =
         TransientSettings { dt_s: options.dt_s, t_end_s: options.time_s, scheme: TimeScheme::Bdf2 };
-    let (end, _) = solver.transient(&start, &settings, |time, t, s| {
-        let stats = s.region_stats(t);
+    let (end, _) = solver.transient(&start, &settings, |time, t, _| {
         curve.time_s.push(time);
-        curve.coil_max_t_c.push(celsius(tags_max_mean(&stats, &coil_tags).0));
+        curve.coil_max_t_c.push(celsius(coil_dofs.iter().map(|&d| t[d]).fold(f64::MIN, f64::max)));
         Ok(())
     })?;
     Ok((curve, end))
@@ -781,7 +799,8 @@ pub fn analyze_thermal_with_field(
     let (problem, parts) = thermal_problem(spec, options)?;
     let mesh = Arc::clone(&problem.mesh);
     let mut housing = Housing::new(&mesh, options);
-    let mut solver = HeatSolver::new(problem, SolverOptions::default())?;
+    let solver_options = SolverOptions { tolerance: NEWTON_TOLERANCE, ..SolverOptions::default() };
+    let mut solver = HeatSolver::new(problem, solver_options)?;
     let steady = steady_of(&mut solver, &parts, &mut housing)?;
     let steady_h = housing.h;
     let t_s = steady.as_ref().map(|s| kelvin(s.0.housing_mean_t_c));
