@@ -18,6 +18,7 @@
 //!   core's `EdgeFlux` seam;
 //! - [`post`]: probes, region mean/max/heat, boundary heat out and the energy balance;
 //! - [`problem_file`]: the `physics = "heat"` TOML problem files of `mrbrake fem solve`;
+//! - [`convection`]: natural-convection correlations (Churchill–Chu) for `h(T_s)`;
 //! - [`exact`]: closed-form solutions the validation tests compare with.
 //!
 //! The Joule source is applied locally: with the same current in every turn, the loss per volume is
@@ -27,6 +28,7 @@
 //! Joule feedback outruns the cooling there is no steady state (thermal runaway): the system matrix
 //! stops being positive definite and the solve fails with a numerical error saying so.
 
+pub mod convection;
 pub mod exact;
 pub mod form;
 pub mod post;

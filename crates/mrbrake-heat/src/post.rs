@@ -137,6 +137,14 @@ impl HeatSolver {
             .collect()
     }
 
+    /// The area `2π ∫ r dl` \[m²\] of the edges tagged `tag` and the area-weighted mean of `t` on
+    /// them (e.g. a housing's mean surface temperature); `(0, NaN)` for a tag without edges.
+    pub fn boundary_mean(&self, tag: u32, t: &[f64]) -> (f64, f64) {
+        let area = TWO_PI * self.edges.total(tag, t, |_, _, _| (1.0, 0.0));
+        let integral = TWO_PI * self.edges.total(tag, t, |_, _, v| (v, 0.0));
+        (area, integral / area)
+    }
+
     /// The heat out of every boundary tag of the problem (each tag once, in order of appearance).
     pub fn boundary_heat(&self, t: &[f64]) -> Vec<BoundaryHeat> {
         self.boundary_heat_with(t, &self.totals(t).residual)

@@ -295,6 +295,31 @@ impl HeatSolver {
         Ok(())
     }
 
+    /// Replaces the heat-transfer coefficient and ambient of the convection boundary `tag` (e.g. a
+    /// natural-convection `h` iterated with the surface temperature) without a new set-up.
+    pub fn set_convection(
+        &mut self,
+        tag: u32,
+        h_w_per_m2k: f64,
+        ambient_k: f64,
+    ) -> Result<(), HeatError> {
+        if !(h_w_per_m2k.is_finite() && h_w_per_m2k >= 0.0 && ambient_k.is_finite()) {
+            return Err(HeatError::Input(format!(
+                "convection on boundary {tag}: h = {h_w_per_m2k} W/(m² K) must be >= 0"
+            )));
+        }
+        let boundary = self
+            .problem
+            .boundaries
+            .iter_mut()
+            .find(|b| b.tag == tag && matches!(b.condition, BoundaryCondition::Convection { .. }))
+            .ok_or_else(|| HeatError::Input(format!("no convection boundary with tag {tag}")))?;
+        boundary.condition = BoundaryCondition::Convection { h_w_per_m2k, ambient_k };
+        self.laws = flux_laws(&self.problem);
+        self.prepared = None;
+        Ok(())
+    }
+
     /// A uniform start at `t_k` with the fixed temperatures imposed.
     pub fn uniform(&self, t_k: f64) -> Vec<f64> {
         let mut u = vec![t_k; self.assembly.basis().dofs().len()];

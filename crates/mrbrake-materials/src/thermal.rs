@@ -5,6 +5,8 @@
 //!   plus `impregnation-resin`), vendored in `data/thermal_properties.csv` with source and trust
 //!   per row (`data/SOURCES.md`, section 5). Values are at room temperature (300 K); mrbrake uses
 //!   them as constants.
+//! * [`fluid_viscosity_at`] — the off-state viscosity of an MR fluid at a temperature (module
+//!   section "Viscosity and temperature" below).
 //! * [`Winding`] — a coil of round copper wire with an insulating matrix (enamel and impregnating
 //!   resin, or air) as one homogeneous, anisotropic material:
 //!   - across the wires (the r–z plane of an axisymmetric coil, whose wires run azimuthally), the
@@ -21,12 +23,30 @@
 //!   - along the wires (azimuthal: no conduction in an axisymmetric model, reported for
 //!     completeness), the rule of mixtures `k∥ = λ k_c + (1 − λ) k_m`;
 //!   - heat capacity per volume by the rule of mixtures, `ρc = λ ρ_c c_c + (1 − λ) ρ_m c_m`.
+//!
+//! # Viscosity and temperature
+//!
+//! The off-state viscosity of an MR fluid follows its carrier liquid; the particles' magnetic
+//! properties, and so the yield stress, change little over the working range (the review in
+//! J. Mater. Sci. 57 (2022), doi:10.1007/s10853-022-08044-4, introduction and its eq. (1)). The
+//! carrier is modelled by Andrade's (Arrhenius-type) law `η(T) = η_ref exp[B (1/T − 1/T_ref)]`
+//! (E. N. da C. Andrade, Nature 125 (1930) 309; T in kelvin), with the activation temperature
+//! `B = E_a/R`:
+//! - from the fluid's own two viscosities when the library has them at two temperatures (MRF-132DG:
+//!   0.156 Pa·s at 30 °C and 0.112 Pa·s at 40 °C give `B` ≈ 3150 K, i.e. `E_a` ≈ 26 kJ/mol, in the
+//!   usual range of light hydrocarbon oils);
+//! - otherwise from the reference fluid [`VISCOSITY_REFERENCE_FLUID`] (same hydrocarbon carrier
+//!   family, the suspension's relative viscosity taken independent of temperature).
+//!
+//! Trust is **low**: the two MRF-132DG values come from different sources with no shear rate
+//! stated, and a two-point fit extrapolated to 100 °C or more is an estimate, not data. Replace it
+//! with a datasheet curve when one is available.
 
 use std::sync::OnceLock;
 
 use serde::Serialize;
 
-use crate::{MaterialError, Provenance, Trust};
+use crate::{MaterialError, MrFluid, Provenance, Trust};
 
 const THERMAL_CSV: &str = include_str!("../data/thermal_properties.csv");
 const THERMAL_FILE: &str = "data/thermal_properties.csv";
@@ -219,6 +239,100 @@ impl Winding {
     }
 }
 
+/// The library fluid whose two viscosities give the carrier's activation temperature for fluids
+/// known at one temperature only (module docs, "Viscosity and temperature").
+pub const VISCOSITY_REFERENCE_FLUID: &str = "mrf-132dg";
+
+/// 0 °C in kelvin.
+const ZERO_CELSIUS_K: f64 = 273.15;
+
+/// An off-state viscosity at a temperature, with the law's constant and where it comes from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ViscosityAtTemperature {
+    /// Viscosity \[Pa·s\].
+    #[serde(rename = "viscosity_Pa_s")]
+    pub pa_s: f64,
+    /// Temperature \[°C\].
+    #[serde(rename = "temperature_C")]
+    pub temperature_c: f64,
+    /// Activation temperature `B = E_a/R` of Andrade's law \[K\].
+    #[serde(rename = "activation_temperature_K")]
+    pub activation_temperature_k: f64,
+    /// How far the temperature lies outside the temperatures of the viscosities the law was
+    /// fitted to \[K\] (0 inside them): the law is an extrapolation there.
+    #[serde(rename = "extrapolated_K")]
+    pub extrapolated_k: f64,
+    /// Where `B` and the reference viscosity come from.
+    pub provenance: Provenance,
+}
+
+/// `B = ln(η1/η2) / (1/T1 − 1/T2)` through the first two viscosities of `fluid` at distinct
+/// temperatures, if it has them.
+fn two_point_activation(fluid: &MrFluid) -> Option<f64> {
+    let v = &fluid.viscosities;
+    let first = v.first()?;
+    let second = v.iter().find(|w| (w.temperature_c - first.temperature_c).abs() > 1e-6)?;
+    let (t1, t2) = (first.temperature_c + ZERO_CELSIUS_K, second.temperature_c + ZERO_CELSIUS_K);
+    let b = (first.pa_s / second.pa_s).ln() / (1.0 / t1 - 1.0 / t2);
+    (b.is_finite() && b > 0.0).then_some(b)
+}
+
+/// The off-state viscosity of `fluid` at `temperature_c` by Andrade's law through its first
+/// (30 °C) viscosity (module docs, "Viscosity and temperature"). The law is evaluated wherever it
+/// is defined (above absolute zero, up to 1000 °C); how far it is extrapolated is in the result.
+pub fn fluid_viscosity_at(
+    fluid: &MrFluid,
+    temperature_c: f64,
+) -> Result<ViscosityAtTemperature, MaterialError> {
+    if !(temperature_c > -ZERO_CELSIUS_K && temperature_c <= 1000.0) {
+        return Err(MaterialError::OutOfRange {
+            quantity: "fluid temperature (°C)".into(),
+            value: temperature_c,
+            allowed: "above -273.15 °C, at most 1000 °C".into(),
+        });
+    }
+    let reference = fluid.viscosities.first().ok_or_else(|| MaterialError::OutOfRange {
+        quantity: format!("viscosities listed for {}", fluid.name()),
+        value: 0.0,
+        allowed: "at least one".into(),
+    })?;
+    let (b, source, data) = match two_point_activation(fluid) {
+        Some(b) => {
+            (b, format!("two-point Andrade fit through {}'s own viscosities", fluid.name()), fluid)
+        }
+        None => {
+            let donor = crate::library::fluid(VISCOSITY_REFERENCE_FLUID)?;
+            let b = two_point_activation(donor).ok_or_else(|| MaterialError::MissingRow {
+                file: "data/mrf_properties.csv".into(),
+                row: format!("{VISCOSITY_REFERENCE_FLUID} at a second temperature"),
+            })?;
+            let source = format!(
+                "Andrade's law with the activation temperature of {VISCOSITY_REFERENCE_FLUID}'s two \
+                 viscosities (same hydrocarbon carrier family) through {}'s {} °C value",
+                fluid.name(),
+                reference.temperature_c
+            );
+            (b, source, donor)
+        }
+    };
+    let temperatures = data.viscosities.iter().chain(&fluid.viscosities).map(|v| v.temperature_c);
+    let (lo, hi) =
+        temperatures.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), t| (a.min(t), b.max(t)));
+    let extrapolated_k = (lo - temperature_c).max(temperature_c - hi).max(0.0);
+    let (t, t_ref) = (temperature_c + ZERO_CELSIUS_K, reference.temperature_c + ZERO_CELSIUS_K);
+    Ok(ViscosityAtTemperature {
+        pa_s: reference.pa_s * (b * (1.0 / t - 1.0 / t_ref)).exp(),
+        temperature_c,
+        activation_temperature_k: b,
+        extrapolated_k,
+        provenance: Provenance::new(
+            "E. N. da C. Andrade, Nature 125 (1930) 309; viscosities of data/mrf_properties.csv",
+            source,
+            Trust::Low,
+        ),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -263,5 +377,25 @@ mod tests {
         let layered = sheets.properties().unwrap();
         assert!(layered.k_radial_w_per_mk < plain.k_radial_w_per_mk);
         assert!(Winding::impregnated(0.99).unwrap().properties().is_err());
+    }
+
+    /// MRF-132DG's law passes through both of its library viscosities; MRF-122EG's through its
+    /// 30 °C value with the same activation temperature; viscosity falls with temperature.
+    #[test]
+    fn andrade_law_through_the_library_viscosities() {
+        let f132 = crate::library::fluid("mrf-132dg").unwrap();
+        let at30 = fluid_viscosity_at(f132, 30.0).unwrap();
+        let at40 = fluid_viscosity_at(f132, 40.0).unwrap();
+        assert!((at30.pa_s - 0.156).abs() < 1e-12 && (at40.pa_s - 0.112).abs() < 1e-12);
+        assert!((at30.activation_temperature_k - 3146.0).abs() < 5.0, "{at30:?}");
+        let f122 = crate::library::fluid("mrf-122eg").unwrap();
+        let cold = fluid_viscosity_at(f122, 30.0).unwrap();
+        let hot = fluid_viscosity_at(f122, 100.0).unwrap();
+        assert!((cold.pa_s - f122.viscosity_pa_s()).abs() < 1e-12);
+        assert!((hot.activation_temperature_k - at30.activation_temperature_k).abs() < 1e-9);
+        assert!(hot.pa_s < 0.2 * cold.pa_s && hot.pa_s > 0.05 * cold.pa_s, "{hot:?}");
+        assert_eq!(hot.provenance.trust, Trust::Low);
+        assert!((hot.extrapolated_k - 60.0).abs() < 1e-12 && cold.extrapolated_k.abs() < 1e-12);
+        assert!(fluid_viscosity_at(f122, -300.0).is_err());
     }
 }

@@ -1,5 +1,6 @@
 //! Field map of an axisymmetric magnetostatic solution: |B| as colour on the (r, z) triangles, flux
-//! lines as contours of the flux function `ψ = r A_phi`, and region outlines.
+//! lines as contours of the flux function `ψ = r A_phi`, and region outlines; and the same drawing
+//! for any nodal scalar ([`ScalarMap`], e.g. a temperature with its isotherms).
 //!
 //! In axisymmetry the flux through the disc of radius r at height z is `Φ = 2π r A_phi`, so B is
 //! tangent to the level lines of `ψ = r A_phi` and equally spaced levels of ψ give flux lines that
@@ -37,8 +38,8 @@ pub struct FieldMap<'a> {
 
 /// Image size in pixels for a map: width fixed, height from the aspect ratio of the mesh (plus the
 /// colour bar and margins).
-fn size_for(map: &FieldMap<'_>) -> (u32, u32) {
-    let (lo, hi) = bounds(map.nodes);
+fn size_for(nodes: &[[f64; 2]]) -> (u32, u32) {
+    let (lo, hi) = bounds(nodes);
     let aspect = ((hi[1] - lo[1]) / (hi[0] - lo[0]).max(1e-300)).clamp(0.2, 5.0);
     let plot_w = 640.0;
     (plot_w as u32 + 170, (plot_w * aspect) as u32 + 110)
@@ -127,23 +128,23 @@ pub fn contour_segments(
 
 /// Edges shared by triangles of different regions (in triangle order), then the boundary edges
 /// (sorted).
-fn outline_edges(map: &FieldMap<'_>) -> Vec<[usize; 2]> {
+fn outline_edges(triangles: &[[usize; 3]], region_tags: &[u32]) -> Vec<[usize; 2]> {
     let mut seen: HashMap<(usize, usize), (u32, bool)> =
-        HashMap::with_capacity(3 * map.triangles.len() / 2);
+        HashMap::with_capacity(3 * triangles.len() / 2);
     let mut outline = Vec::new();
-    for (t, tri) in map.triangles.iter().enumerate() {
+    for (t, tri) in triangles.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
             let key = (a.min(b), a.max(b));
             match seen.get_mut(&key) {
                 Some(entry) => {
                     entry.1 = true;
-                    if entry.0 != map.region_tags[t] {
+                    if entry.0 != region_tags[t] {
                         outline.push([a, b]);
                     }
                 }
                 None => {
-                    seen.insert(key, (map.region_tags[t], false));
+                    seen.insert(key, (region_tags[t], false));
                 }
             }
         }
@@ -159,20 +160,54 @@ fn outline_edges(map: &FieldMap<'_>) -> Vec<[usize; 2]> {
 
 impl Picture for FieldMap<'_> {
     fn size(&self) -> (u32, u32) {
-        size_for(self)
+        size_for(self.nodes)
     }
 
     /// The map on the left (|B| colours, flux lines, region outlines), its colour bar on the right.
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ReportError> {
-        crate::chart::ensure_font();
-        root.fill(&WHITE).map_err(backend)?;
-        let (width, _) = root.dim_in_pixel();
-        let (plot_area, bar_area) = root.split_horizontally(width.saturating_sub(150));
         let b_max =
             self.b_abs_t.iter().cloned().filter(|b| b.is_finite()).fold(0.0, f64::max).max(1e-12);
-        draw_map(self, &plot_area, b_max)?;
-        draw_colour_bar(&bar_area, b_max)
+        let layers = Layers {
+            title: self.title,
+            nodes: self.nodes,
+            triangles: self.triangles,
+            region_tags: self.region_tags,
+            fraction: &|t| self.b_abs_t[t] / b_max,
+            contour_values: self.flux_function,
+            contour_levels: flux_levels(self.flux_function, self.flux_lines),
+        };
+        draw_with_bar(root, &layers, (0.0, b_max), "|B| [T]")
     }
+}
+
+/// What one coloured triangle map draws: triangles coloured by a fraction in [0, 1], contour lines
+/// of a nodal function at given levels, region outlines.
+struct Layers<'a> {
+    title: &'a str,
+    nodes: &'a [[f64; 2]],
+    triangles: &'a [[usize; 3]],
+    region_tags: &'a [u32],
+    /// The colour-bar fraction of triangle `t`.
+    fraction: &'a dyn Fn(usize) -> f64,
+    /// Nodal values whose level lines are drawn.
+    contour_values: &'a [f64],
+    contour_levels: Vec<f64>,
+}
+
+/// The map on the left, its colour bar (from `range.0` to `range.1`, captioned `label`) on the
+/// right.
+fn draw_with_bar<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    layers: &Layers<'_>,
+    range: (f64, f64),
+    label: &str,
+) -> Result<(), ReportError> {
+    crate::chart::ensure_font();
+    root.fill(&WHITE).map_err(backend)?;
+    let (width, _) = root.dim_in_pixel();
+    let (plot_area, bar_area) = root.split_horizontally(width.saturating_sub(150));
+    draw_map(layers, &plot_area)?;
+    draw_colour_bar(&bar_area, range, label)
 }
 
 /// A plotters drawing error as a [`ReportError`].
@@ -183,12 +218,11 @@ fn backend<E: std::error::Error + Send + Sync>(e: DrawingAreaErrorKind<E>) -> Re
 /// Millimetres per metre: the map's axes are in mm.
 const MM: f64 = 1e3;
 
-/// The (r, z) map in mm: every triangle in the colour of its |B| / `b_max`, the flux lines in white
+/// The (r, z) map in mm: every triangle in the colour of its fraction, the contour lines in white
 /// and the region outlines in black.
 fn draw_map<DB: DrawingBackend>(
-    map: &FieldMap<'_>,
+    map: &Layers<'_>,
     area: &DrawingArea<DB, Shift>,
-    b_max: f64,
 ) -> Result<(), ReportError> {
     let (lo, hi) = bounds(map.nodes);
     let mut chart = ChartBuilder::on(area)
@@ -208,15 +242,15 @@ fn draw_map<DB: DrawingBackend>(
         .map_err(backend)?;
     let in_mm = |v: usize| (map.nodes[v][0] * MM, map.nodes[v][1] * MM);
     chart
-        .draw_series(map.triangles.iter().zip(map.b_abs_t).map(|(tri, b)| {
+        .draw_series(map.triangles.iter().enumerate().map(|(t, tri)| {
             let points: Vec<(f64, f64)> = tri.iter().map(|&v| in_mm(v)).collect();
-            let c = colour(b / b_max);
+            let c = colour((map.fraction)(t));
             // Stroke with the fill colour so no hairline gaps show between triangles.
             Polygon::new(points, c.filled().stroke_width(1))
         }))
         .map_err(backend)?;
-    for level in flux_levels(map.flux_function, map.flux_lines) {
-        let segments = contour_segments(map.nodes, map.triangles, map.flux_function, level);
+    for &level in &map.contour_levels {
+        let segments = contour_segments(map.nodes, map.triangles, map.contour_values, level);
         chart
             .draw_series(segments.iter().map(|s| {
                 PathElement::new(
@@ -228,7 +262,7 @@ fn draw_map<DB: DrawingBackend>(
     }
     chart
         .draw_series(
-            outline_edges(map)
+            outline_edges(map.triangles, map.region_tags)
                 .iter()
                 .map(|e| PathElement::new(vec![in_mm(e[0]), in_mm(e[1])], BLACK.stroke_width(1))),
         )
@@ -248,19 +282,21 @@ fn flux_levels(psi: &[f64], count: usize) -> Vec<f64> {
     }
 }
 
-/// The colour bar from 0 to `b_max` tesla, in 64 steps.
+/// The colour bar from `range.0` to `range.1`, in 64 steps, captioned `label`.
 fn draw_colour_bar<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    b_max: f64,
+    range: (f64, f64),
+    label: &str,
 ) -> Result<(), ReportError> {
+    let (lo, hi) = range;
     let mut bar = ChartBuilder::on(area)
         .margin_top(40)
         .margin_bottom(50)
         .margin_right(60)
         .y_label_area_size(0)
         .right_y_label_area_size(50)
-        .caption("|B| [T]", ("sans-serif", 14))
-        .build_cartesian_2d(0.0..1.0, 0.0..b_max)
+        .caption(label, ("sans-serif", 14))
+        .build_cartesian_2d(0.0..1.0, lo..hi)
         .map_err(backend)?;
     bar.configure_mesh()
         .disable_mesh()
@@ -270,9 +306,12 @@ fn draw_colour_bar<DB: DrawingBackend>(
         .draw()
         .map_err(backend)?;
     let steps = 64;
+    let at = |i: usize| lo + (hi - lo) * i as f64 / steps as f64;
     bar.draw_series((0..steps).map(|i| {
-        let (y0, y1) = (b_max * i as f64 / steps as f64, b_max * (i + 1) as f64 / steps as f64);
-        Rectangle::new([(0.0, y0), (1.0, y1)], colour((i as f64 + 0.5) / steps as f64).filled())
+        Rectangle::new(
+            [(0.0, at(i)), (1.0, at(i + 1))],
+            colour((i as f64 + 0.5) / steps as f64).filled(),
+        )
     }))
     .map_err(backend)?;
     Ok(())
@@ -293,6 +332,95 @@ pub fn field_map_png(map: &FieldMap<'_>) -> Result<(Vec<u8>, (u32, u32)), Report
 /// Writes the map to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
 pub fn save_field_map(map: &FieldMap<'_>, path: &Path) -> Result<(), ReportError> {
     check(map)?;
+    save_picture(map, path)
+}
+
+/// A nodal scalar field on the (r, z) triangles (e.g. a temperature): triangles coloured by the
+/// mean of their nodes' values over the field's range, level lines (isotherms) equally spaced in
+/// that range, region outlines, and a colour bar captioned `label`.
+#[derive(Debug, Clone, Copy)]
+pub struct ScalarMap<'a> {
+    /// Title drawn above the map.
+    pub title: &'a str,
+    /// Node coordinates `[r, z]` (m).
+    pub nodes: &'a [[f64; 2]],
+    /// Triangles (node indices).
+    pub triangles: &'a [[usize; 3]],
+    /// Region tag per triangle.
+    pub region_tags: &'a [u32],
+    /// One value per node.
+    pub values: &'a [f64],
+    /// Caption of the colour bar, with the unit (e.g. `T [°C]`).
+    pub label: &'a str,
+    /// Number of level lines.
+    pub levels: usize,
+}
+
+impl ScalarMap<'_> {
+    fn range(&self) -> (f64, f64) {
+        let (lo, hi) = self
+            .values
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        if hi > lo { (lo, hi) } else { (lo - 0.5, lo + 0.5) }
+    }
+
+    fn check(&self) -> Result<(), ReportError> {
+        let n = self.nodes.len();
+        if self.triangles.is_empty() || n == 0 {
+            return Err(ReportError::Data("scalar map: empty mesh".into()));
+        }
+        if self.values.len() != n || self.region_tags.len() != self.triangles.len() {
+            return Err(ReportError::Data(format!(
+                "scalar map: {n} nodes but {} values; {} triangles but {} tags",
+                self.values.len(),
+                self.triangles.len(),
+                self.region_tags.len()
+            )));
+        }
+        if self.triangles.iter().any(|t| t.iter().any(|&v| v >= n)) {
+            return Err(ReportError::Data(
+                "scalar map: a triangle references a missing node".into(),
+            ));
+        }
+        if !self.values.iter().any(|v| v.is_finite()) {
+            return Err(ReportError::Data("scalar map: no finite value".into()));
+        }
+        Ok(())
+    }
+}
+
+impl Picture for ScalarMap<'_> {
+    fn size(&self) -> (u32, u32) {
+        size_for(self.nodes)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ReportError> {
+        let (lo, hi) = self.range();
+        let mean = |t: usize| self.triangles[t].iter().map(|&v| self.values[v]).sum::<f64>() / 3.0;
+        let layers = Layers {
+            title: self.title,
+            nodes: self.nodes,
+            triangles: self.triangles,
+            region_tags: self.region_tags,
+            fraction: &|t| (mean(t) - lo) / (hi - lo),
+            contour_values: self.values,
+            contour_levels: flux_levels(self.values, self.levels),
+        };
+        draw_with_bar(root, &layers, (lo, hi), self.label)
+    }
+}
+
+/// Renders a scalar map as an SVG document.
+pub fn scalar_map_svg(map: &ScalarMap<'_>) -> Result<String, ReportError> {
+    map.check()?;
+    render_svg(map)
+}
+
+/// Writes a scalar map to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
+pub fn save_scalar_map(map: &ScalarMap<'_>, path: &Path) -> Result<(), ReportError> {
+    map.check()?;
     save_picture(map, path)
 }
 
@@ -360,12 +488,31 @@ mod tests {
             flux_function: &psi,
             flux_lines: 4,
         };
-        let outline = outline_edges(&map);
+        let outline = outline_edges(map.triangles, map.region_tags);
         let boundary = &outline[outline.len() - 4 * n..];
         assert!(boundary.windows(2).all(|w| w[0] < w[1]), "{boundary:?}");
         let first = field_map_svg(&map).unwrap();
         for _ in 0..3 {
             assert!(field_map_svg(&map).unwrap() == first);
         }
+    }
+
+    #[test]
+    fn scalar_map_renders_its_range_and_rejects_mismatched_data() {
+        let (nodes, tris) = square();
+        let values = [20.0, 40.0, 60.0, 40.0];
+        let map = ScalarMap {
+            title: "temperature",
+            nodes: &nodes,
+            triangles: &tris,
+            region_tags: &[1, 2],
+            values: &values,
+            label: "T [°C]",
+            levels: 3,
+        };
+        assert_eq!(map.range(), (20.0, 60.0));
+        let svg = scalar_map_svg(&map).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("T [°C]"));
+        assert!(scalar_map_svg(&ScalarMap { values: &values[..3], ..map }).is_err());
     }
 }

@@ -16,6 +16,7 @@
 //! * [`haptic`]: the haptic simulation (wall runs, Z-width map);
 //! * [`heat`]: heat solves (`fem solve` with `physics = "heat"`);
 //! * [`response`]: a brake's predicted step and frequency response (`mrbrake response`);
+//! * [`thermal`]: a brake's temperatures, warm-up and current rating (`mrbrake thermal`);
 //! * [`html`]: self-contained HTML reports of a design, a study and a characterisation.
 //!
 //! The command-line program only parses, calls and prints or writes what these compose (as
@@ -39,6 +40,7 @@ pub mod pareto;
 pub mod response;
 pub mod rig;
 pub mod study;
+pub mod thermal;
 
 pub use atomic::write_atomic;
 

@@ -98,7 +98,9 @@ impl Dimension {
             ],
             Dimension::Torque => &[("Nm", 1.0), ("N.m", 1.0), ("N·m", 1.0), ("mNm", 1e-3)],
             Dimension::TemperatureCelsius => &[("C", 1.0), ("°C", 1.0), ("degC", 1.0)],
-            Dimension::Time => &[("s", 1.0), ("ms", 1e-3), ("us", 1e-6), ("min", 60.0)],
+            Dimension::Time => {
+                &[("s", 1.0), ("ms", 1e-3), ("us", 1e-6), ("min", 60.0), ("h", 3600.0)]
+            }
             Dimension::Dimensionless => &[],
         }
     }

@@ -20,6 +20,7 @@ mod rig;
 mod study;
 mod sweep;
 mod tfest;
+mod thermal;
 
 /// The subcommands of `mrbrake`.
 #[derive(Debug, Subcommand)]
@@ -45,6 +46,9 @@ pub enum Command {
     /// Predicted dynamics of a brake design: torque step response and small-signal frequency
     /// response (eddy currents in the flux path, the coil circuit, the fluid's lag).
     Response(response::ResponseArgs),
+    /// Temperatures of a brake design: steady hot spot, warm-up, time to the insulation limit,
+    /// continuous current rating and duty cycle, and what heat does to the brake.
+    Thermal(thermal::ThermalArgs),
     /// Axisymmetric non-linear magnetostatic finite elements (problem files, Gmsh meshes).
     #[command(subcommand)]
     Fem(fem::FemCommand),
@@ -83,6 +87,7 @@ pub fn run(command: Command) -> CommandResult {
         Command::Tfest(a) => tfest::run(a),
         Command::Rig(c) => rig::run(c),
         Command::Response(a) => response::run(a),
+        Command::Thermal(a) => thermal::run(a),
         Command::Fem(c) => fem::run(c),
         Command::Study(c) => study::run(c),
         Command::ExportGeo(a) => export_geo::run(a),

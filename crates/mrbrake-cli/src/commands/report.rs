@@ -67,6 +67,10 @@ pub struct ReportArgs {
     /// defaults; about half a minute more on the default mesh).
     #[arg(long, conflicts_with_all = ["store", "log"])]
     response: bool,
+    /// Add the heat section (temperature map, warm-up curve, continuous current rating, hot
+    /// behaviour: `mrbrake thermal` with its defaults).
+    #[arg(long, conflicts_with_all = ["store", "log"])]
+    thermal: bool,
 }
 
 /// Runs `mrbrake report`.
@@ -257,6 +261,16 @@ fn extra_sections(
         };
         let r = mrbrake_design::response::response(spec, &options)?;
         sections.push(mrbrake_report::html::response::section(&r, a.spec.is_none())?);
+    }
+    if a.thermal {
+        let options = mrbrake_design::thermal::ThermalOptions {
+            mesh: mrbrake_design::mesh_build::MeshLevel::parse(&a.mesh)?,
+            current_a: spec.coil.max_current.a(),
+            behaviour: true,
+            ..Default::default()
+        };
+        let (r, field) = mrbrake_design::thermal::analyze_thermal_with_field(spec, &options)?;
+        sections.push(mrbrake_report::html::thermal::section(&r, &field)?);
     }
     Ok(sections)
 }

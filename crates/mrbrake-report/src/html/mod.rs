@@ -34,6 +34,7 @@ pub mod design;
 pub mod response;
 pub mod spec_notes;
 pub mod study;
+pub mod thermal;
 pub mod writer;
 
 mod style;
