@@ -1,5 +1,7 @@
 """mrbrake.haptic.wall agrees with `mrbrake haptic wall --json` / `--csv` for the same inputs."""
 
+import csv
+
 import numpy as np
 import pytest
 
@@ -9,12 +11,12 @@ import mrbrake
 @pytest.mark.parametrize("device,scenario", [("bidirectional", "press-withdraw"),
                                              ("conventional", "slide-hold")])
 def test_wall_metrics_and_trace_equal_the_cli(cli, tmp_path, device, scenario):
-    csv = tmp_path / "trace.csv"
+    trace_csv = tmp_path / "trace.csv"
     expected = cli.json("haptic", "wall", "--device", device, "--scenario", scenario,
-                        "--stiffness-nm-per-rad", "40", "--duration", "2s", "--csv", csv)
+                        "--stiffness-nm-per-rad", "40", "--duration", "2s", "--csv", trace_csv)
     run = mrbrake.haptic.wall(device, scenario=scenario, stiffness=40.0, duration="2s")
     assert run.metrics == expected
-    table = np.genfromtxt(csv, delimiter=",", names=True)
+    table = np.genfromtxt(trace_csv, delimiter=",", names=True)
     trace = run.trace
     n = len(table)
     assert n > 1000
@@ -50,3 +52,19 @@ def test_rig_characterize_equals_the_cli_log(cli, tmp_path):
         # The CSV has 7 decimals.
         np.testing.assert_allclose(got[name], table[column], rtol=0, atol=1e-7)
     assert got["current_a"].max() > 0.5
+
+
+def test_rig_freqresp_equals_the_cli_logs(cli, tmp_path):
+    cli.json("rig", "freqresp", "--out", tmp_path, "--seed", "3")
+    with open(tmp_path / "manifest.csv", newline="") as f:
+        manifest = [(float(r["frequency_rad_s"]), r["file"]) for r in csv.DictReader(f)]
+    runs = mrbrake.rig.freqresp(seed=3)
+    assert len(runs) == len(manifest) > 1
+    for run, row in zip(runs, manifest):
+        omega, name = row
+        assert abs(run["frequency_rad_s"] - omega) <= 1e-12 * omega
+        table = np.genfromtxt(tmp_path / name, delimiter=",", names=True)
+        for name, column in [("time_s", "time_s"), ("input_nm", "input"),
+                             ("output_nm", "output"), ("current_a", "current_A")]:
+            assert run[name].dtype == np.float64 and run[name].shape == (len(table),)
+            np.testing.assert_allclose(run[name], table[column], rtol=0, atol=1e-7)

@@ -1,9 +1,10 @@
-"""The virtual test rig: the thesis's characterisation experiment (section 5.3.1) simulated on a
-brake model with sensor noise and quantisation, as ``mrbrake rig characterize`` logs it."""
+"""The virtual test rig: the thesis's characterisation (5.3.1) and frequency-response (5.3.2)
+experiments simulated on a brake model with sensor noise and quantisation, as ``mrbrake rig
+characterize`` and ``mrbrake rig freqresp`` log them (here as NumPy arrays)."""
 
 from . import _native
 
-__all__ = ["characterize"]
+__all__ = ["characterize", "freqresp"]
 
 
 def characterize(config=None, seed=None):
@@ -26,3 +27,29 @@ def characterize(config=None, seed=None):
         d["torque_nm"])`` fits them. Runs without the GIL.
     """
     return _native.rig_characterize(None if config is None else str(config), seed)
+
+
+def freqresp(config=None, seed=None, model=None):
+    """The frequency-response runs (section 5.3.2): sinusoidal torque demands through the inverse
+    model, one run per test frequency.
+
+    Parameters
+    ----------
+    config : str or os.PathLike, optional
+        A rig configuration (TOML); default the thesis rig.
+    seed : int, optional
+        Noise seed (overrides the configuration's; run k uses seed + 1 + k, as the CLI).
+    model : str or os.PathLike, optional
+        The inverse model (JSON from ``mrbrake characterize --save-model``) that shapes the
+        current; default the configured branches.
+
+    Returns
+    -------
+    list of dict
+        One per frequency, in increasing order: ``frequency_rad_s`` (float, rad/s) and float64
+        arrays ``time_s`` (s), ``input_nm`` (demanded torque, N*m), ``output_nm`` (measured
+        torque, N*m), ``current_a`` (A): the CLI's ``sine_NN.csv`` logs at full precision.
+        ``mrbrake.sysid`` estimates the frequency response from them. Runs without the GIL.
+    """
+    return _native.rig_freqresp(None if config is None else str(config), seed,
+                                None if model is None else str(model))
