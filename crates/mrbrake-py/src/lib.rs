@@ -20,7 +20,9 @@ mod convert;
 mod error;
 mod fem;
 mod formula;
+mod haptic;
 mod materials;
+mod rig;
 mod store;
 mod study;
 mod sysid;
@@ -38,5 +40,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fem::register(m)?;
     formula::register(m)?;
     study::register(m)?;
+    haptic::register(m)?;
+    rig::register(m)?;
     Ok(())
 }

@@ -154,10 +154,7 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> CommandResult<HapticConfi
         config.duration_s = parse(text, Dimension::Time).context("--duration")?;
     }
     if let Some(path) = &args.model {
-        let model = read_inverse_model(path)?;
-        config.brakes[0].branches = model;
-        config.brakes[1].branches = model;
-        config.controller_models = [model, model];
+        config.use_inverse_model(read_inverse_model(path)?);
     }
     Ok(config)
 }

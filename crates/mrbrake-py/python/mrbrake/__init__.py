@@ -9,6 +9,8 @@ Main entry points:
 - :func:`analyze`: field, torque-current curve, gaps, coil and mechanics of a brake design.
 - :mod:`mrbrake.materials`: the built-in material library (curves as NumPy arrays, provenance).
 - :mod:`mrbrake.formula`: the thesis's closed-form torque and coil models.
+- :mod:`mrbrake.haptic`: the 1-DOF haptic wall simulation (metrics, time histories as arrays).
+- :mod:`mrbrake.rig`: the virtual test rig's characterisation log as arrays.
 - :mod:`mrbrake.fem`: general problem files (magnetostatics, heat), as ``mrbrake fem solve``.
 - :func:`sweep`, :func:`optimize`: design studies into a results store (``mrbrake sweep``,
   ``mrbrake optimize``).
@@ -23,8 +25,8 @@ Long computations release the GIL, so threads run analyses in parallel.
 from . import _native
 from ._native import Analysis, SolverError, __version__
 
-__all__ = ["Analysis", "SolverError", "analyze", "fem", "formula", "materials", "optimize", "store",
-           "sweep", "sysid", "__version__"]
+__all__ = ["Analysis", "SolverError", "analyze", "fem", "formula", "haptic", "materials", "optimize",
+           "rig", "store", "sweep", "sysid", "__version__"]
 
 
 def analyze(spec=None, mesh="default", order=1, currents=None, *, speed=None,
@@ -169,4 +171,4 @@ def optimize(problem, store=None, *, resume=False, jobs=0, out=None):
                                     out=None if out is None else str(out))
 
 
-from . import fem, formula, materials, store, sysid  # noqa: E402  (submodules use the names above)
+from . import fem, formula, haptic, materials, rig, store, sysid  # noqa: E402  (submodules use the names above)

@@ -8,7 +8,9 @@ import numpy.typing as npt
 
 from . import fem as fem
 from . import formula as formula
+from . import haptic as haptic
 from . import materials as materials
+from . import rig as rig
 from . import store as store
 from . import sysid as sysid
 

@@ -23,6 +23,14 @@ pub enum DeviceKind {
 }
 
 impl DeviceKind {
+    /// Every device, in the order the CLI lists them.
+    pub const ALL: [Self; 3] = [Self::Conventional, Self::Bidirectional, Self::Motor];
+
+    /// The device called `name` (as [`DeviceKind::name`] gives it), if there is one.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|d| d.name() == name)
+    }
+
     /// The name used on the command line and in JSON.
     pub fn name(self) -> &'static str {
         match self {

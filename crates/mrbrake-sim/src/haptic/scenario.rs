@@ -38,6 +38,14 @@ fn minimum_jerk(t: f64, t0: f64, t1: f64, from: f64, to: f64) -> (f64, f64) {
 }
 
 impl Scenario {
+    /// Every scenario, in the order the CLI lists them.
+    pub const ALL: [Self; 3] = [Self::PressWithdraw, Self::SlideHold, Self::MovingWall];
+
+    /// The scenario called `name` (as [`Scenario::name`] gives it), if there is one.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+
     /// The name used on the command line.
     pub fn name(self) -> &'static str {
         match self {

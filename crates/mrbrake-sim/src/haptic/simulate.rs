@@ -84,6 +84,14 @@ impl HapticConfig {
         }
     }
 
+    /// Uses `model` (a characterisation's inverse model) for both brakes, in the plant and in the
+    /// controller, instead of the built-in prototype-like branches.
+    pub fn use_inverse_model(&mut self, model: InverseModel) {
+        self.brakes[0].branches = model;
+        self.brakes[1].branches = model;
+        self.controller_models = [model, model];
+    }
+
     /// Checks every number; the error names the field and the allowed range.
     pub fn validate(&self) -> Result<(), SimError> {
         let check = |field: &str, value, min, max| check_range("haptic", field, value, min, max);

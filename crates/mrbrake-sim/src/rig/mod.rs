@@ -274,13 +274,16 @@ pub fn configured_model(config: &RigConfig) -> Result<InverseModel, SimError> {
         .map_err(|source| SimError::Control { what: "brake branches (rig configuration)", source })
 }
 
-/// The frequency-response protocol: one log per test frequency (`time_s, input, output, current_A`)
-/// and the manifest `frequency_rad_s,file`. `model` is the inverse model that shapes the current
-/// (default: the configured branches).
-pub fn frequency_response_logs(
+/// One sinusoidal test's frequency (rad/s) and samples (see [`sine_test_samples`]).
+pub type SineRun = (f64, Vec<[f64; 4]>);
+
+/// The frequency-response protocol's runs: for each test frequency (rad/s), its samples (time s,
+/// demanded torque N·m, measured torque N·m, current A). `model` is the inverse model that shapes
+/// the current (default: the configured branches).
+pub fn frequency_response_runs(
     config: &RigConfig,
     model: Option<&InverseModel>,
-) -> Result<Vec<RigFile>, SimError> {
+) -> Result<Vec<SineRun>, SimError> {
     config.validate("rig configuration")?;
     let inverse = match model {
         Some(model) => *model,
@@ -304,11 +307,25 @@ pub fn frequency_response_logs(
             lo.1.min(hi.1)
         )));
     }
+    test_frequencies(config)
+        .into_iter()
+        .enumerate()
+        .map(|(k, w)| {
+            let seed = config.seed.wrapping_add(1 + k as u64);
+            Ok((w, sine_test_samples(config, w, &inverse, seed)?))
+        })
+        .collect()
+}
+
+/// The frequency-response protocol: one log per test frequency (`time_s, input, output, current_A`)
+/// and the manifest `frequency_rad_s,file` (the runs of [`frequency_response_runs`]).
+pub fn frequency_response_logs(
+    config: &RigConfig,
+    model: Option<&InverseModel>,
+) -> Result<Vec<RigFile>, SimError> {
     let mut files = Vec::new();
     let mut manifest = String::from("frequency_rad_s,file\n");
-    for (k, w) in test_frequencies(config).into_iter().enumerate() {
-        let samples =
-            sine_test_samples(config, w, &inverse, config.seed.wrapping_add(1 + k as u64))?;
+    for (k, (w, samples)) in frequency_response_runs(config, model)?.into_iter().enumerate() {
         let mut csv = String::with_capacity(samples.len() * 40);
         csv.push_str("time_s,input,output,current_A\n");
         for row in samples {
