@@ -270,13 +270,17 @@ pub fn default_store_path(problem_path: &std::path::Path) -> std::path::PathBuf 
     std::path::PathBuf::from(format!("{stem}.sqlite"))
 }
 
-/// Opens the results store of an optimisation (created if missing; an existing store only with
-/// `resume`) and records the problem file's text in a new one.
+/// Opens the results store of `problem` (created if missing; an existing store only with
+/// `resume`) and records the problem file's text in a new one. The problem is checked first
+/// ([`check`]): a bad problem file leaves no store behind (the corrected command would otherwise
+/// need `--resume`).
 pub fn open_problem_store(
-    problem_path: &std::path::Path,
+    problem: &OptimizationProblem,
     store_path: &std::path::Path,
     resume: bool,
 ) -> Result<Store, ExploreError> {
+    check(problem)?;
+    let problem_path = problem.path.as_path();
     let mut store = Store::open_or_create(store_path, resume)?;
     if store.meta("problem")?.is_none() {
         let text = std::fs::read_to_string(problem_path).unwrap_or_default();

@@ -137,7 +137,7 @@ fn optimize_problem(
         let parsed = OptimizationProblem::from_path(&problem).map_err(error::to_py)?;
         let store_path = store.unwrap_or_else(|| optimize::default_store_path(&problem));
         let mut store =
-            optimize::open_problem_store(&problem, &store_path, resume).map_err(error::to_py)?;
+            optimize::open_problem_store(&parsed, &store_path, resume).map_err(error::to_py)?;
         let result = optimize::run(&parsed, &mut store, jobs, &mut |_| {}).map_err(error::to_py)?;
         let report = OptimizationReport {
             problem: &parsed,

@@ -51,11 +51,8 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     }
     let path = a.problem.as_ref().ok_or_else(|| InputError("give a PROBLEM.toml".into()))?;
     let problem = OptimizationProblem::from_path(path)?;
-    // Everything checkable without an evaluation, before the store is created: a bad problem
-    // file must leave no store behind (the corrected command would need --resume).
-    optimize::check(&problem)?;
     let store_path = a.store.clone().unwrap_or_else(|| optimize::default_store_path(path));
-    let mut store = optimize::open_problem_store(path, &store_path, a.resume)?;
+    let mut store = optimize::open_problem_store(&problem, &store_path, a.resume)?;
     let mut display = ProgressDisplay::new("optimize", a.json);
     let result = optimize::run(&problem, &mut store, a.jobs, &mut |p| display.update(p))?;
     display.finish();
