@@ -166,7 +166,7 @@ mod tests {
         assert!((nu / 122.6 - 1.0).abs() < 2e-3, "{nu}");
         assert!((nusselt_horizontal_cylinder(0.0, 0.7) - 0.36).abs() < 1e-12);
         assert!((nusselt_vertical_plate(0.0, 0.7) - 0.825f64.powi(2)).abs() < 1e-12);
-        assert!(air(600.0).is_err());
+        assert!(air(1200.0).is_err() && air(150.0).is_err());
         assert!(horizontal_brake(0.0, 0.05, 350.0, 300.0).is_err());
     }
 }
