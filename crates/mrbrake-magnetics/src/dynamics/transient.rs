@@ -453,6 +453,28 @@ fn max_abs(x: &[f64]) -> f64 {
     x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
 }
 
+/// Calls `f` with the Newton solver and the step's system (the transient form of `coefficients`
+/// with the coil terms).
+fn with_step_system<R>(
+    dynamics: &mut Dynamics,
+    coefficients: &StepCoefficients,
+    drives: &[StepDrive],
+    terms: Vec<LowRankTerm>,
+    f: impl FnOnce(&mut NewtonSolver, &mut StepSystem<'_>) -> R,
+) -> R {
+    let Dynamics { solver, sigma, mass, coils } = dynamics;
+    let (assembly, statics, newton) = parts(solver);
+    let form = TransientForm {
+        statics,
+        sigma,
+        mass,
+        history: &coefficients.history,
+        rate: coefficients.rate,
+    };
+    let mut system = StepSystem { assembly, form, coils, drives: drives.to_vec(), terms };
+    f(newton, &mut system)
+}
+
 /// The solver parts a step borrows.
 fn parts(solver: &mut Solver) -> (&mut Assembly, &crate::form::AphiForm, &mut NewtonSolver) {
     (&mut solver.assembly, &solver.form, &mut solver.newton)
@@ -587,19 +609,12 @@ impl Run {
         terms: Vec<LowRankTerm>,
         mut a: Vec<f64>,
     ) -> Result<(Vec<f64>, usize), MagneticsError> {
-        let Dynamics { solver, sigma, mass, coils } = dynamics;
         // Consecutive steps' Jacobians are close: start from the last step's factor.
-        let newton_options = NewtonOptions { reuse_factor: true, ..solver.options.newton() };
-        let (assembly, statics, newton) = parts(solver);
-        let form = TransientForm {
-            statics,
-            sigma,
-            mass,
-            history: &coefficients.history,
-            rate: coefficients.rate,
-        };
-        let mut system = StepSystem { assembly, form, coils, drives: drives.to_vec(), terms };
-        let report = newton.solve(&mut system, &mut a, self.scale, &newton_options)?;
+        let options = NewtonOptions { reuse_factor: true, ..dynamics.solver.options.newton() };
+        let scale = self.scale;
+        let report = with_step_system(dynamics, coefficients, drives, terms, |newton, system| {
+            newton.solve(system, &mut a, scale, &options)
+        })?;
         self.result.factorizations += report.factorizations;
         Ok((a, report.iterations))
     }
@@ -619,19 +634,11 @@ impl Run {
     ) -> Result<Vec<f64>, MagneticsError> {
         let lifting = dynamics.solver.assembly.constraints().lifting();
         if self.factor_rate.is_none() {
-            let Dynamics { solver, sigma, mass, coils } = &mut *dynamics;
-            let (assembly, statics, newton) = parts(solver);
-            let form = TransientForm {
-                statics,
-                sigma,
-                mass,
-                history: &coefficients.history,
-                rate: coefficients.rate,
-            };
-            let mut system = StepSystem { assembly, form, coils, drives: drives.to_vec(), terms };
-            // Hundreds of solves per factorisation: the order with the fewest factor entries.
-            newton.set_elimination_order(EliminationOrder::MinimumDegree)?;
-            newton.factorize_at(&mut system, &lifting)?;
+            with_step_system(dynamics, coefficients, drives, terms, |newton, system| {
+                // Hundreds of solves per factorisation: the order with the fewest factor entries.
+                newton.set_elimination_order(EliminationOrder::MinimumDegree)?;
+                newton.factorize_at(system, &lifting)
+            })?;
             self.result.factorizations += 1;
             self.factor_rate = Some(coefficients.rate);
         }
