@@ -321,9 +321,13 @@ fn mass_matrices<E: TriangleBasis<N>, const N: usize>(
     })
 }
 
-fn mass_product<const N: usize>(dynamics: &Dynamics, x: &[f64]) -> Vec<f64> {
+/// Calls `f(σ_e, element DOFs, M_e, x_e)` for every conducting element, in element order.
+fn for_conductors<const N: usize>(
+    dynamics: &Dynamics,
+    x: &[f64],
+    mut f: impl FnMut(f64, &[usize], [[f64; N]; N], [f64; N]),
+) {
     let dofs = dynamics.solver.basis().dofs().element_dofs();
-    let mut y = vec![0.0; x.len()];
     for (t, element) in dofs.chunks_exact(N).enumerate() {
         let sigma = dynamics.sigma[t];
         if sigma <= 0.0 {
@@ -331,24 +335,24 @@ fn mass_product<const N: usize>(dynamics: &Dynamics, x: &[f64]) -> Vec<f64> {
         }
         let m = unpack_symmetric::<N>(&dynamics.mass[packed_len(N) * t..packed_len(N) * (t + 1)]);
         let local: [f64; N] = std::array::from_fn(|i| x[element[i]]);
+        f(sigma, element, m, local);
+    }
+}
+
+fn mass_product<const N: usize>(dynamics: &Dynamics, x: &[f64]) -> Vec<f64> {
+    let mut y = vec![0.0; x.len()];
+    for_conductors::<N>(dynamics, x, |sigma, element, m, local| {
         for i in 0..N {
             let mx: f64 = (0..N).map(|j| m[i][j] * local[j]).sum();
             y[element[i]] += sigma * mx;
         }
-    }
+    });
     y
 }
 
 fn mass_quadratic<const N: usize>(dynamics: &Dynamics, x: &[f64]) -> f64 {
-    let dofs = dynamics.solver.basis().dofs().element_dofs();
     let mut sum = 0.0;
-    for (t, element) in dofs.chunks_exact(N).enumerate() {
-        let sigma = dynamics.sigma[t];
-        if sigma <= 0.0 {
-            continue;
-        }
-        let m = unpack_symmetric::<N>(&dynamics.mass[packed_len(N) * t..packed_len(N) * (t + 1)]);
-        let local: [f64; N] = std::array::from_fn(|i| x[element[i]]);
+    for_conductors::<N>(dynamics, x, |sigma, _, m, local| {
         let mut q = 0.0;
         for i in 0..N {
             for j in 0..N {
@@ -356,7 +360,7 @@ fn mass_quadratic<const N: usize>(dynamics: &Dynamics, x: &[f64]) -> f64 {
             }
         }
         sum += sigma * q;
-    }
+    });
     sum
 }
 
