@@ -8,7 +8,7 @@
 //! - `warmup/2h_10s`: a 2 h warm-up at 10 s steps (720 BDF2 steps) on the same mesh, set-up
 //!   excluded. Target ≤ 1 s.
 //! - `command/thesis`: the whole `mrbrake thermal` analysis of the thesis brake with its defaults
-//!   (steady state, continuous-current bisection, 2 h warm-up, the hot behaviour with its magnetic
+//!   (steady state, continuous-current search, 2 h warm-up, the hot behaviour with its magnetic
 //!   analysis). Target ≤ 5 s.
 
 use criterion::{Criterion, criterion_group, criterion_main};

@@ -398,6 +398,37 @@ pub fn analyze_with_field(
     run_analysis(spec, options, FieldAtMaxCurrent::new)
 }
 
+/// Direction 1's curve points (unit 1 energised) at the given `currents` (A, each in
+/// `[0, max_current]`), solved in the order given, each Newton solve started from the previous
+/// one: the torques at a few chosen currents without the whole sweep and direction 2 (e.g. the
+/// hot current of [`crate::thermal`]), exactly where a sweep's curve would be interpolated.
+/// `options.points` is not used.
+pub fn direction1_points(
+    spec: &BrakeSpec,
+    options: &AnalysisOptions,
+    currents: &[f64],
+) -> Result<Vec<CurvePoint>, DesignError> {
+    formula::non_negative("speed", options.speed_rad_s.abs())?;
+    formula::non_negative("seal friction", options.seal_friction_nm)?;
+    let geometry = spec.validate()?.geometry;
+    let mesh = Arc::new(mesh_build::mesh(&geometry, options.mesh)?);
+    let mut model = Model::new(spec, geometry, mesh, options)?;
+    let mut previous: Option<Solution> = None;
+    let mut points = Vec::with_capacity(currents.len().min(1024));
+    for &current in currents {
+        if !(current.is_finite() && (0.0..=model.max_current).contains(&current)) {
+            return Err(DesignError::Input(format!(
+                "current {current} A is outside [0, {}] A (the coil's maximum current)",
+                model.max_current
+            )));
+        }
+        let (point, _, solution) = model.direction1_point(current, previous.as_ref(), options)?;
+        points.push(point);
+        previous = Some(solution);
+    }
+    Ok(points)
+}
+
 /// The analysis; `keep_field` takes what the caller wants of the field at the maximum current
 /// (unit 1 energised) before the solver is dropped.
 fn run_analysis<F>(
@@ -550,21 +581,8 @@ impl Model {
         let mut gaps_at_max = Vec::new();
         for k in 0..options.points {
             let current = self.max_current * k as f64 / (options.points - 1) as f64;
-            self.energise(current, 0.0)?;
-            let solution =
-                self.solver.solve(previous.as_ref().map(|s| s.a_phi())).map_err(numerical)?;
-            let dir1_gaps = self.unit_gaps(0);
-            let speed = options.speed_rad_s;
-            let gaps = gap_results(&self.solver, &solution, &dir1_gaps, &self.fluid, speed)?;
-            let point = curve_point(
-                &self.solver,
-                &solution,
-                &gaps,
-                &dir1_gaps,
-                &self.fluid,
-                current,
-                options,
-            )?;
+            let (point, gaps, solution) =
+                self.direction1_point(current, previous.as_ref(), options)?;
             curve.push(point);
             if k + 1 == options.points {
                 gaps_at_max = gaps;
@@ -573,6 +591,24 @@ impl Model {
         }
         let solution_at_max = previous.expect("the sweep has at least two points");
         Ok(Sweep { curve, gaps_at_max, solution_at_max })
+    }
+
+    /// Direction 1 (unit 1 energised) at `current`, Newton started from `previous`: the curve
+    /// point, unit 1's gaps and the solution.
+    fn direction1_point(
+        &mut self,
+        current: f64,
+        previous: Option<&Solution>,
+        options: &AnalysisOptions,
+    ) -> Result<(CurvePoint, Vec<GapResult>, Solution), DesignError> {
+        self.energise(current, 0.0)?;
+        let solution = self.solver.solve(previous.map(|s| s.a_phi())).map_err(numerical)?;
+        let dir1_gaps = self.unit_gaps(0);
+        let speed = options.speed_rad_s;
+        let gaps = gap_results(&self.solver, &solution, &dir1_gaps, &self.fluid, speed)?;
+        let point =
+            curve_point(&self.solver, &solution, &gaps, &dir1_gaps, &self.fluid, current, options)?;
+        Ok((point, gaps, solution))
     }
 
     /// Cross-coupling into the idle unit, and direction 2 with its own coil (bidirectional brakes);

@@ -77,6 +77,9 @@ pub enum HeatError {
     /// A transient that crossed a limit it was given.
     #[error("{0}")]
     LimitCrossed(String),
+    /// A broken invariant of the solver (a bug: please report it).
+    #[error("internal error of the heat solver: {0}")]
+    Internal(String),
 }
 
 impl mrbrake_error::Kind for HeatError {
@@ -89,6 +92,7 @@ impl mrbrake_error::Kind for HeatError {
             Self::Material(e) => e.kind(),
             Self::NotConverged(e) => e.kind(),
             Self::Runaway(_) | Self::LimitCrossed(_) => ErrorKind::Numerical,
+            Self::Internal(_) => ErrorKind::Internal,
         }
     }
 }

@@ -12,9 +12,10 @@
 //! - **voltage drive**: a supply set to give the current at the ambient, `V = I R(T_amb)`, drives
 //!   `I_hot = V / R(T̄_hot)` once the coil is warm. The hot state is self-consistent: the coil's
 //!   temperature follows its power `V²/R` (secant iteration on `I = V/R(T̄(I))`, to 1e-9
-//!   relative). The torque at the hot current is the yield torque of the analysis's
-//!   torque–current curve (local Bingham, linear interpolation between its points) plus the
-//!   viscous torque at the hot fluid temperature.
+//!   relative). The torque at the hot current is the yield torque of a magnetic analysis at that
+//!   very current (local Bingham, direction 1; [`crate::analysis::direction1_points`] solves only
+//!   the currents needed: 0, the run's current and the hot current) plus the viscous torque at
+//!   the hot fluid temperature.
 
 use mrbrake_materials::thermal::{ViscosityAtTemperature, fluid_viscosity_at};
 use mrbrake_materials::wire::COPPER_TEMPERATURE_COEFFICIENT_PER_K;
@@ -23,7 +24,7 @@ use serde::Serialize;
 use super::{
     Housing, SteadyTemperatures, ThermalError, ThermalOptions, ThermalParts, set_current, steady_of,
 };
-use crate::analysis::{AnalysisOptions, CurvePoint, analyze};
+use crate::analysis::{AnalysisOptions, direction1_points};
 use crate::spec::{BrakeSpec, Current};
 use mrbrake_heat::{HeatError, HeatSolver};
 
@@ -91,14 +92,6 @@ pub struct VoltageDrive {
     pub torque_change_percent: f64,
 }
 
-/// The yield torque of the curve at `current` (linear between points; clamped to its ends).
-fn yield_torque_at(curve: &[CurvePoint], current: f64) -> f64 {
-    let k = curve.windows(2).position(|w| current <= w[1].current_a).unwrap_or(curve.len() - 2);
-    let (a, b) = (curve[k], curve[k + 1]);
-    let f = ((current - a.current_a) / (b.current_a - a.current_a)).clamp(0.0, 1.0);
-    a.yield_torque_nm + f * (b.yield_torque_nm - a.yield_torque_nm)
-}
-
 /// The coil's resistance at `t_c` from its 20 °C value.
 fn resistance(r20: f64, t_c: f64) -> f64 {
     r20 * (1.0 + COPPER_TEMPERATURE_COEFFICIENT_PER_K * (t_c - 20.0))
@@ -164,18 +157,25 @@ pub(super) fn hot_behaviour(
     } else {
         AnalysisOptions::default().speed_rad_s
     };
+    let r20: f64 = parts.coils.iter().map(|c| c.1).sum();
+    let r_cold = resistance(r20, options.ambient_c);
+    let current = options.current_a;
+    let v = current * r_cold;
+    let (i_hot, hot) =
+        voltage_hot_state(solver, parts, housing, v, options.duty, (current, steady))?;
+    let start = std::time::Instant::now();
     let mut swept = spec.clone();
-    swept.coil.max_current = Current(spec.coil.max_current.a().max(options.current_a));
-    let analysis = analyze(
-        &swept,
-        &AnalysisOptions {
-            mesh: options.mesh,
-            speed_rad_s: speed,
-            temperature_c: options.ambient_c,
-            ..AnalysisOptions::default()
-        },
-    )?;
-    let viscous_30 = analysis.torque.off_state_nm;
+    swept.coil.max_current = Current(spec.coil.max_current.a().max(current).max(i_hot));
+    let analysis_options = AnalysisOptions {
+        mesh: options.mesh,
+        speed_rad_s: speed,
+        temperature_c: options.ambient_c,
+        ..AnalysisOptions::default()
+    };
+    let points = direction1_points(&swept, &analysis_options, &[0.0, current, i_hot])?;
+    let analysis_s = start.elapsed().as_secs_f64();
+    let [off, at_current, at_hot] = [points[0], points[1], points[2]];
+    let viscous_30 = off.torque_nm;
     let eta_30 = fluid.viscosity_pa_s();
     let viscous_at = |t_c: f64| -> Result<(f64, ViscosityAtTemperature), ThermalError> {
         let eta = fluid_viscosity_at(fluid, t_c)?;
@@ -183,15 +183,8 @@ pub(super) fn hot_behaviour(
     };
     let (off_cold, viscosity_cold) = viscous_at(options.ambient_c)?;
     let (off_hot, viscosity_hot) = viscous_at(steady.fluid_mean_t_c)?;
-    let r20: f64 = parts.coils.iter().map(|c| c.1).sum();
-    let r_cold = resistance(r20, options.ambient_c);
-    let current = options.current_a;
-    let yield_at = |i: f64| yield_torque_at(&analysis.torque_current_curve, i);
-    let torque_cold = yield_at(current) + off_cold;
-    let v = current * r_cold;
-    let (i_hot, hot) =
-        voltage_hot_state(solver, parts, housing, v, options.duty, (current, steady))?;
-    let torque_hot = yield_at(i_hot) + viscous_at(hot.fluid_mean_t_c)?.0;
+    let torque_cold = at_current.yield_torque_nm + off_cold;
+    let torque_hot = at_hot.yield_torque_nm + viscous_at(hot.fluid_mean_t_c)?.0;
     Ok(HotBehaviour {
         speed_rad_s: speed,
         viscosity_cold,
@@ -203,7 +196,7 @@ pub(super) fn hot_behaviour(
         coil_power_cold_w: current * current * r_cold,
         coil_power_hot_w: current * current * steady.coil_resistance_ohm,
         torque_cold_nm: torque_cold,
-        torque_hot_current_drive_nm: yield_at(current) + off_hot,
+        torque_hot_current_drive_nm: at_current.yield_torque_nm + off_hot,
         voltage_drive: VoltageDrive {
             voltage_v: v,
             current_hot_a: i_hot,
@@ -213,7 +206,7 @@ pub(super) fn hot_behaviour(
             torque_hot_nm: torque_hot,
             torque_change_percent: 100.0 * (torque_hot - torque_cold) / torque_cold,
         },
-        analysis_s: analysis.timings_s.total,
+        analysis_s,
     })
 }
 
@@ -222,21 +215,32 @@ mod tests {
     use super::*;
 
     #[test]
-    fn curve_interpolation() {
-        let p = |current_a: f64, yield_torque_nm: f64| CurvePoint {
-            current_a,
-            torque_nm: yield_torque_nm + 0.01,
-            yield_torque_nm,
-            thesis_formula_nm: 0.0,
-            mean_b_t: 0.0,
-            flux_linkage_wb: 0.0,
-            newton_iterations: 1,
-        };
-        let curve = [p(0.0, 0.0), p(1.0, 1.0), p(2.0, 1.5)];
-        assert!((yield_torque_at(&curve, 0.5) - 0.5).abs() < 1e-12);
-        assert!((yield_torque_at(&curve, 1.5) - 1.25).abs() < 1e-12);
-        assert!((yield_torque_at(&curve, 2.0) - 1.5).abs() < 1e-12);
-        assert!((yield_torque_at(&curve, 3.0) - 1.5).abs() < 1e-12);
+    fn resistance_follows_copper() {
         assert!((resistance(10.0, 20.0) - 10.0).abs() < 1e-12);
+        let expected = 10.0 * (1.0 + COPPER_TEMPERATURE_COEFFICIENT_PER_K * 100.0);
+        assert!((resistance(10.0, 120.0) - expected).abs() < 1e-12);
+    }
+
+    /// The points solved on their own equal the sweep's at the same currents (same mesh and
+    /// model; Newton from another start, so to its tolerance).
+    #[test]
+    fn direction1_points_match_the_sweep() {
+        use crate::analysis::analyze;
+        let spec = crate::spec::default_spec();
+        let options = AnalysisOptions {
+            mesh: crate::mesh_build::MeshLevel::Coarse,
+            points: 3,
+            ..AnalysisOptions::default()
+        };
+        let sweep = analyze(&spec, &options).unwrap().torque_current_curve;
+        let currents: Vec<f64> = sweep.iter().rev().map(|p| p.current_a).collect();
+        let points = direction1_points(&spec, &options, &currents).unwrap();
+        for (p, s) in points.iter().zip(sweep.iter().rev()) {
+            let scale = s.torque_nm.abs().max(1e-3);
+            assert!((p.torque_nm - s.torque_nm).abs() < 1e-6 * scale, "{p:?} vs {s:?}");
+            assert!((p.yield_torque_nm - s.yield_torque_nm).abs() < 1e-6 * scale);
+        }
+        let too_high = direction1_points(&spec, &options, &[3.0]).unwrap_err();
+        assert_eq!(mrbrake_error::Kind::kind(&too_high), mrbrake_error::ErrorKind::Input);
     }
 }

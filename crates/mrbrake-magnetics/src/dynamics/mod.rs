@@ -36,7 +36,9 @@ pub mod harmonic;
 pub mod transient;
 pub mod waveform;
 
-use mrbrake_fem::assemble::{element_matrices, packed_len, unpack_symmetric};
+use mrbrake_fem::assemble::{
+    element_matrices, element_matrix_product, packed_len, unpack_symmetric,
+};
 use mrbrake_fem::by_order;
 use mrbrake_fem::element::TriangleBasis;
 
@@ -341,12 +343,8 @@ fn for_conductors<const N: usize>(
 
 fn mass_product<const N: usize>(dynamics: &Dynamics, x: &[f64]) -> Vec<f64> {
     let mut y = vec![0.0; x.len()];
-    for_conductors::<N>(dynamics, x, |sigma, element, m, local| {
-        for i in 0..N {
-            let mx: f64 = (0..N).map(|j| m[i][j] * local[j]).sum();
-            y[element[i]] += sigma * mx;
-        }
-    });
+    let dofs = dynamics.solver.basis().dofs().element_dofs();
+    element_matrix_product::<N>(dofs, &dynamics.mass, |t| dynamics.sigma[t].max(0.0), x, &mut y);
     y
 }
 
