@@ -9,7 +9,10 @@
 //!
 //! 1. evaluate `R(u)` and `K(u)`;
 //! 2. stop when `‖R‖₂ <= rtol · s`, with the residual scale `s` given by the caller (a norm of the
-//!    loads that does not depend on the iterate: the physics knows what it is);
+//!    loads that does not depend on the iterate: the physics knows what it is), or when a full
+//!    step solved with a fresh factor moved the iterate by round-off only
+//!    (`‖δ‖∞ <= `[`ROUND_OFF_UPDATE`]` ‖u‖∞`: the residual left is the round-off of evaluating it,
+//!    as for a start that already is the answer; PETSc's step-length test with a tiny `stol`);
 //! 3. factorise `K` (numeric Cholesky on the stored symbolic analysis) and solve `K δ = −R`;
 //! 4. line search along `δ` on the energy `W(u)` whose gradient is `R`: for a convex `W`,
 //!    `g(α) = δ · R(u + αδ) = dW/dα` is increasing, with `g(0) = −δᵀKδ < 0`. The full step is
@@ -114,6 +117,10 @@ impl<F: ElementForm> NonlinearSystem for AssembledSystem<'_, F> {
         self.assembly.is_linear()
     }
 }
+
+/// Relative update `‖δ‖∞/‖u‖∞` of a full, directly solved Newton step below which the iterate is
+/// converged to round-off (about 450 ulp).
+pub const ROUND_OFF_UPDATE: f64 = 1e-13;
 
 /// Forcing tolerance of the first step of a warm start ([`NewtonOptions::reuse_factor`]): the
 /// step solves the Newton system to 1 %, as accurate as the tail phase's first steps.
@@ -439,11 +446,12 @@ impl NewtonSolver {
         let (alpha, accepted) = self.line_search(system, it, options);
         let a_max = it.u.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         let d_max = it.delta.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * alpha;
+        let relative_update = d_max / a_max.max(f64::MIN_POSITIVE);
         it.history.push(NewtonStep {
             residual: r_norm,
             relative_residual: r_norm / it.scale,
             step_length: if accepted { alpha } else { 0.0 },
-            relative_update: d_max / a_max.max(f64::MIN_POSITIVE),
+            relative_update,
             cg_iterations,
         });
         if !accepted {
@@ -455,6 +463,14 @@ impl NewtonSolver {
         // A linear system's first solve is exact up to the round-off of the direct solver: accept
         // it unless that round-off is abnormal (ill-conditioning).
         if system.is_linear() && norm2(&it.residual) <= 1e-6 * it.scale {
+            return Ok(StepOutcome::Converged);
+        }
+        // A full step from a fresh factorisation that moves the iterate by round-off only: what
+        // residual is left is the round-off of evaluating it (e.g. a start that is already the
+        // answer, whose residual no tolerance relative to it can meet). PETSc's step-length
+        // test `‖δ‖ ≤ stol ‖u‖` (default stol 1e-8), here at a few hundred ulp.
+        let full_direct_step = cg_iterations == 0 && (alpha - 1.0).abs() <= f64::EPSILON;
+        if full_direct_step && relative_update <= ROUND_OFF_UPDATE {
             return Ok(StepOutcome::Converged);
         }
         Ok(StepOutcome::Continue)
