@@ -1,0 +1,212 @@
+//! The brake model predicted from a design: [`from_analysis`] turns a finite-element
+//! [`Analysis`] into the simulators' [`BrakeModel`] file (schema in [`mrbrake_sim::brake_model`]).
+//!
+//! It lives here, not in `mrbrake-design`, because the provenance needs the design key and the
+//! model revision of `mrbrake-explore` (which depends on the design crate), and the model type lives
+//! in `mrbrake-sim`; this crate already depends on all three.
+//!
+//! What is predicted and what is assumed, per unit:
+//! - the static curve of unit 1 is the analysis's sweep of the local Bingham yield torque (FEA);
+//! - the viscous coefficient is the sum of the unit's gaps' viscous torques at the analysis speed
+//!   divided by that speed (the Bingham viscous term is linear in the shear rate, thesis (3.3));
+//! - the seal/bearing friction is the analysis option (`--seal-friction`, default 0 N·m): assumed,
+//!   the FEA has no seals;
+//! - unit 2 of a bidirectional brake is solved only at the maximum current, so its curve is unit 1's
+//!   scaled by the ratio of the two yield torques there (assumed shape, predicted end point);
+//! - no hysteresis (anhysteretic B–H curves), no dynamics, no thermal data: stated as such;
+//!   `response --save-model` and `thermal --save-model` add the last two.
+
+use mrbrake_design::analysis::{Analysis, AnalysisOptions};
+use mrbrake_design::response::Response;
+use mrbrake_design::spec::BrakeSpec;
+use mrbrake_explore::design::{MODEL_REVISION, design_key};
+use mrbrake_explore::evaluate::EvaluationSettings;
+use mrbrake_sim::brake_model::{
+    BrakeModel, Dynamics, Hysteresis, OffState, Provenance, SCHEMA, SCHEMA_VERSION, StaticCurve,
+    UnitModel,
+};
+
+use mrbrake_sim::SimError;
+use mrbrake_sysid::frd::Frd;
+use mrbrake_sysid::tfest::{TfestOptions, tfest};
+use num_complex::Complex64;
+
+use crate::ReportError;
+
+/// Why a predicted model has no hysteresis.
+pub const NO_HYSTERESIS_NOTE: &str = "the finite-element analysis uses anhysteretic B–H curves: it predicts no loop; identify one on a rig (mrbrake characterize --save-model)";
+
+/// The viscous coefficient (N·m·s/rad) of unit `unit` (0-based) from the gaps at the analysis speed.
+fn viscous_coefficient(analysis: &Analysis, unit: usize) -> f64 {
+    let sum: f64 =
+        analysis.gaps.iter().filter(|g| g.unit == unit).map(|g| g.viscous_torque_nm).sum();
+    if analysis.speed_rad_s > 0.0 { sum / analysis.speed_rad_s } else { 0.0 }
+}
+
+/// The brake model of `analysis` (of `spec` under `options`); `source` says how it was produced
+/// (e.g. the command line and the spec file).
+pub fn from_analysis(
+    analysis: &Analysis,
+    spec: &BrakeSpec,
+    options: &AnalysisOptions,
+    source: &str,
+) -> Result<BrakeModel, ReportError> {
+    let settings = EvaluationSettings {
+        mesh: options.mesh,
+        speed_rad_s: options.speed_rad_s,
+        seal_friction_nm: options.seal_friction_nm,
+        temperature_c: options.temperature_c,
+        order: options.order,
+        ..EvaluationSettings::default()
+    };
+    let key = design_key(spec, &settings)?;
+    let curve = &analysis.torque_current_curve;
+    let unit1_yield: Vec<f64> = curve.iter().map(|p| p.yield_torque_nm).collect();
+    let mut units = vec![unit_model(analysis, options, 1, unit1_yield.clone(), "FEA")];
+    let mut assumed = vec![
+        format!(
+            "seal/bearing friction {} N·m (analyze --seal-friction; the FEA does not model seals or bearings)",
+            options.seal_friction_nm
+        ),
+        "no hysteresis: anhysteretic B–H curves".to_string(),
+        "no dynamics (mrbrake response --save-model adds them)".to_string(),
+        "no thermal data".to_string(),
+    ];
+    if let Some(total2) = analysis.torque.direction2_at_max_current_nm {
+        let yield2 = total2
+            - viscous_coefficient(analysis, 1) * analysis.speed_rad_s
+            - options.seal_friction_nm;
+        let yield1 = unit1_yield.last().copied().unwrap_or(0.0);
+        let ratio = if yield1 > 0.0 { yield2 / yield1 } else { 1.0 };
+        let scaled = unit1_yield.iter().map(|t| t * ratio).collect();
+        units.push(unit_model(analysis, options, 2, scaled, "unit 1's FEA curve scaled"));
+        assumed.push(format!(
+            "unit 2's curve: unit 1's shape scaled by {ratio:.6} (unit 2 is solved at the maximum current only)"
+        ));
+    }
+    let model = BrakeModel {
+        schema: SCHEMA.into(),
+        schema_version: SCHEMA_VERSION,
+        name: analysis.name.clone(),
+        provenance: Provenance {
+            mrbrake_version: env!("CARGO_PKG_VERSION").to_string(),
+            source: source.to_string(),
+            spec_sha256: Some(key),
+            model_revision: Some(MODEL_REVISION),
+            predicted: vec![
+                format!(
+                    "static torque–current curve of unit 1: local Bingham yield torque over the gaps, {} currents 0–{} A (FEA, {} mesh, P{})",
+                    curve.len(),
+                    analysis.max_current_a,
+                    format!("{:?}", options.mesh).to_lowercase(),
+                    analysis.mesh.order
+                ),
+                format!(
+                    "viscous off-state coefficient: gaps' viscous torque at {} rad/s ÷ speed",
+                    analysis.speed_rad_s
+                ),
+            ],
+            assumed,
+            amended: Vec::new(),
+        },
+        units,
+    };
+    // A curve the reader would refuse (e.g. a torque that drops with the current) is not written.
+    model.validate().map_err(|(field, message)| SimError::BrakeModel {
+        file: "(predicted from the analysis)".into(),
+        field,
+        message,
+    })?;
+    Ok(model)
+}
+
+/// One unit: its yield curve, off-state, no hysteresis, no dynamics.
+fn unit_model(
+    analysis: &Analysis,
+    options: &AnalysisOptions,
+    unit: u32,
+    yield_nm: Vec<f64>,
+    how: &str,
+) -> UnitModel {
+    let current_a = analysis.torque_current_curve.iter().map(|p| p.current_a).collect();
+    UnitModel {
+        unit,
+        current_max_a: analysis.max_current_a,
+        static_curve: StaticCurve {
+            current_a,
+            torque_nm: yield_nm,
+            source: format!("{how}: local Bingham yield torque (mrbrake analyze)"),
+        },
+        off_state: OffState {
+            viscous_nm_s_per_rad: viscous_coefficient(analysis, unit as usize - 1),
+            reference_speed_rad_s: analysis.speed_rad_s,
+            seal_friction_nm: options.seal_friction_nm,
+            seal_friction_source:
+                "assumed: the analysis option --seal-friction (default 0 N·m); not predicted".into(),
+        },
+        hysteresis: Hysteresis::None { note: NO_HYSTERESIS_NOTE.into() },
+        dynamics: None,
+        thermal: None,
+    }
+}
+
+/// Poles of the transfer function fitted to a predicted frequency response: two, like the thesis's
+/// identified lags (5.5)/(5.6), and the form the haptic simulation runs (`k / (a s² + b s + 1)`).
+pub const DYNAMICS_POLES: usize = 2;
+
+/// Adds the predicted dynamics of `response` (the same design) to every unit of `model`: a
+/// two-pole, no-zero transfer function fitted by sysid's `tfest` (Sanathanan–Koerner iterations,
+/// then Levenberg–Marquardt) to the predicted small-signal frequency response normalised by its DC
+/// gain (torque per current ÷ dT/dI at 0 Hz: static torque → brake torque), then scaled to a DC
+/// gain of exactly 1. Unit 2 gets unit 1's (only direction 1's frequency response is predicted;
+/// stated in the model). Returns the fit's `fit_percent`.
+pub fn add_dynamics(
+    model: &mut BrakeModel,
+    response: &Response,
+    source: &str,
+) -> Result<f64, ReportError> {
+    if model.name != response.name {
+        return Err(SimError::Input(format!(
+            "the brake model is of '{}', the response of '{}': analyse and respond the same design",
+            model.name, response.name
+        ))
+        .into());
+    }
+    let frd = Frd {
+        omega_rad_s: response.frequency_response.iter().map(|p| p.omega_rad_s).collect(),
+        response: response.frequency_response.iter().map(|p| Complex64::new(p.re, p.im)).collect(),
+        weight: None,
+    };
+    let fit = tfest(&frd, &TfestOptions::new(DYNAMICS_POLES, 0))
+        .map_err(|source| SimError::Model { what: "predicted dynamics (tfest)", source })?;
+    let gain = fit.model.dc_gain();
+    let numerator: Vec<f64> = fit.model.numerator.iter().map(|c| c / gain).collect();
+    for unit in &mut model.units {
+        unit.dynamics = Some(Dynamics {
+            numerator: numerator.clone(),
+            denominator: fit.model.denominator.clone(),
+            source: format!(
+                "predicted: {DYNAMICS_POLES}-pole tfest fit ({:.2} % fit) to the small-signal frequency response of direction 1 at {} A bias, {} drive, {} points {:.3}–{:.1} rad/s ({source})",
+                fit.fit_percent,
+                response.bias_a,
+                format!("{:?}", response.drive).to_lowercase(),
+                frd.omega_rad_s.len(),
+                frd.omega_rad_s.first().copied().unwrap_or(0.0),
+                frd.omega_rad_s.last().copied().unwrap_or(0.0),
+            ),
+        });
+    }
+    let p = &mut model.provenance;
+    p.amended.push(format!("dynamics: {source}"));
+    if model.units.len() > 1 {
+        p.assumed
+            .push("unit 2's dynamics: unit 1's (direction 1's frequency response only)".into());
+    }
+    p.assumed.retain(|a| !a.starts_with("no dynamics"));
+    model.validate().map_err(|(field, message)| SimError::BrakeModel {
+        file: "(amended with dynamics)".into(),
+        field,
+        message,
+    })?;
+    Ok(fit.fit_percent)
+}
