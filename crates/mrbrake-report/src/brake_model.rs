@@ -19,14 +19,14 @@
 use mrbrake_design::analysis::{Analysis, AnalysisOptions};
 use mrbrake_design::response::Response;
 use mrbrake_design::spec::BrakeSpec;
+use mrbrake_design::thermal::ThermalResult;
 use mrbrake_explore::design::{MODEL_REVISION, design_key};
 use mrbrake_explore::evaluate::EvaluationSettings;
+use mrbrake_sim::SimError;
 use mrbrake_sim::brake_model::{
     BrakeModel, Dynamics, Hysteresis, OffState, Provenance, SCHEMA, SCHEMA_VERSION, StaticCurve,
-    UnitModel,
+    Thermal, UnitModel,
 };
-
-use mrbrake_sim::SimError;
 use mrbrake_sysid::frd::Frd;
 use mrbrake_sysid::tfest::{TfestOptions, tfest};
 use num_complex::Complex64;
@@ -209,4 +209,60 @@ pub fn add_dynamics(
         message,
     })?;
     Ok(fit.fit_percent)
+}
+
+/// Adds the hot coil of `thermal` (a thermal analysis of the design called `spec_name`) to every
+/// unit of `model`: the coil's mean steady temperature and its resistance there, and the
+/// continuous current (steady hot spot at the insulation limit). The simulators are
+/// current-driven, so these are recorded for the user, not used by them.
+pub fn add_thermal(
+    model: &mut BrakeModel,
+    thermal: &ThermalResult,
+    spec_name: &str,
+    source: &str,
+) -> Result<(), ReportError> {
+    if model.name != spec_name {
+        return Err(SimError::Input(format!(
+            "the brake model is of '{}', the thermal analysis of '{spec_name}': use the same design",
+            model.name
+        ))
+        .into());
+    }
+    let Some(steady) = thermal.steady else {
+        return Err(SimError::Input(format!(
+            "no steady state at {} A (thermal runaway): no hot resistance to save",
+            thermal.current_a
+        ))
+        .into());
+    };
+    let data = Thermal {
+        hot_temperature_c: steady.coil_mean_t_c,
+        hot_resistance_ohm: steady.coil_resistance_ohm,
+        continuous_current_a: thermal.continuous_current_a,
+        source: format!(
+            "predicted: steady coil mean temperature and resistance at {} A, duty {}, ambient {} °C, {} cooling; continuous current at the {} °C limit ({source})",
+            thermal.current_a,
+            thermal.duty,
+            thermal.ambient_c,
+            thermal.cooling.kind,
+            thermal.limit_c
+        ),
+    };
+    for unit in &mut model.units {
+        unit.thermal = Some(data.clone());
+    }
+    model.provenance.amended.push(format!("thermal: {source}"));
+    model.provenance.assumed.retain(|a| !a.starts_with("no thermal"));
+    if model.units.len() > 1 {
+        model
+            .provenance
+            .assumed
+            .push("unit 2's thermal data: unit 1's (one coil energised)".into());
+    }
+    model.validate().map_err(|(field, message)| SimError::BrakeModel {
+        file: "(amended with thermal data)".into(),
+        field,
+        message,
+    })?;
+    Ok(())
 }
