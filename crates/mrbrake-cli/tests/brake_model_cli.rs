@@ -86,6 +86,27 @@ fn predicted_model_is_recovered_by_the_rig_and_drives_the_haptic_wall() {
         100.0 * worst / span
     );
     assert!(worst < 0.02 * span, "worst {worst} N·m of a {span} N·m span");
+    // The identified branches go into a copy of the model as its unit-1 hysteresis.
+    let identified = dir.path().join("identified.json");
+    std::fs::copy(&model, &identified).unwrap();
+    let args =
+        ["characterize", path_str(&log), "--order", "7", "--brake-model", path_str(&identified)];
+    assert!(mrbrake(&args).status.success());
+    let saved: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&identified).unwrap()).unwrap();
+    assert_eq!(saved["units"][0]["hysteresis"]["kind"], "polynomial_branches");
+    assert_eq!(saved["units"][0]["hysteresis"]["rising"], v["rising"]["coefficients"]);
+    assert_eq!(saved["units"][1]["hysteresis"]["kind"], "none");
+    let m = json(&[
+        "haptic",
+        "wall",
+        "--device",
+        "conventional",
+        "--brake-model",
+        path_str(&identified),
+        "--json",
+    ]);
+    assert!(number(&m, "max_penetration_rad").is_finite());
 
     // The predicted dynamics, then the frequency-response session through the model's branches.
     let out = mrbrake(&["response", "--save-model", path_str(&model)]);

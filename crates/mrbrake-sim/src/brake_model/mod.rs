@@ -4,7 +4,10 @@
 //! One type, [`BrakeModel`], serialised as JSON with a versioned schema ([`SCHEMA`],
 //! [`SCHEMA_VERSION`]). `mrbrake analyze --save-model` writes it from a design's finite-element
 //! analysis (the builder is `mrbrake_report::brake_model`, which can reach the design key and the
-//! model revision); `mrbrake rig … --brake-model` and `mrbrake haptic … --brake-model` read it.
+//! model revision); `mrbrake response --save-model` and `mrbrake thermal --save-model` add the
+//! predicted dynamics and hot coil, `mrbrake characterize LOG --brake-model` a unit's identified
+//! branches ([`BrakeModel::set_identified_branches`]); `mrbrake rig … --brake-model` and
+//! `mrbrake haptic … --brake-model` read it.
 //! The built-in prototype-like brakes are shipped as model files in `examples/brake-models/`.
 //!
 //! # Schema (version 1)
@@ -322,6 +325,41 @@ impl BrakeModel {
     }
 }
 
+impl BrakeModel {
+    /// Replaces unit `unit`'s hysteresis by identified branches (e.g. `mrbrake characterize` of
+    /// a rig log of this brake); `source` names the log. The branches must be non-decreasing on
+    /// the unit's `[0, current_max_A]`.
+    pub fn set_identified_branches(
+        &mut self,
+        unit: u32,
+        branches: &InverseModel,
+        source: &str,
+    ) -> Result<(), SimError> {
+        let name = self.name.clone();
+        let target = self
+            .units
+            .iter_mut()
+            .find(|u| u.unit == unit)
+            .ok_or_else(|| SimError::Input(format!("brake model '{name}': no unit {unit}")))?;
+        let trimmed = |branch| {
+            let c = branches.branch(branch).coefficients();
+            let used = c.iter().rposition(|v| v.abs() > 0.0).map_or(1, |p| p + 1);
+            c[..used].to_vec()
+        };
+        target.hysteresis = Hysteresis::PolynomialBranches {
+            rising: trimmed(mrbrake_control::Branch::Rising),
+            falling: trimmed(mrbrake_control::Branch::Falling),
+            source: format!("identified: {source}"),
+        };
+        self.provenance.amended.push(format!("hysteresis of unit {unit}: identified, {source}"));
+        self.validate().map_err(|(field, message)| SimError::BrakeModel {
+            file: "(with identified branches)".into(),
+            field,
+            message,
+        })
+    }
+}
+
 /// `Ok` for a finite `value` in `[min, max]`, else `(field, message)`.
 fn in_range(field: &str, value: f64, min: f64, max: f64) -> Result<(), (String, String)> {
     if value.is_finite() && value >= min && value <= max {
@@ -554,6 +592,22 @@ mod tests {
                 .to_string()
                 .contains("units[0].dynamics")
         );
+    }
+
+    #[test]
+    fn identified_branches_replace_the_hysteresis_and_are_used_as_measured() {
+        let mut m = haptic_prototype();
+        m.units[0].hysteresis = Hysteresis::None { note: "test".into() };
+        let identified = InverseModel::new(&[0.1, 1.5, 0.2], &[0.2, 1.6, 0.1], 0.0, 2.0).unwrap();
+        m.set_identified_branches(1, &identified, "log.csv").unwrap();
+        let b = m.units[0].branches().unwrap();
+        assert_eq!(b.model, identified);
+        assert!(b.fit.is_none() && !m.units[0].adds_off_state());
+        // Non-decreasing on the log's 0–1 A, decreasing beyond 1.25 A: refused for a 2 A unit.
+        let falling = InverseModel::new(&[0.1, 1.5], &[0.2, 2.0, -0.8], 0.0, 1.0).unwrap();
+        let e = m.set_identified_branches(2, &falling, "bad.csv").unwrap_err().to_string();
+        assert!(e.contains("units[1].hysteresis"), "{e}");
+        assert!(m.set_identified_branches(3, &identified, "x").is_err());
     }
 
     #[test]
