@@ -28,7 +28,8 @@ use mrbrake_sim::brake_model::{
     Thermal, UnitModel,
 };
 use mrbrake_sysid::frd::Frd;
-use mrbrake_sysid::tfest::{TfestOptions, tfest};
+use mrbrake_sysid::tfest::{TfestOptions, complex_fit_percent, tfest};
+use mrbrake_sysid::transfer_function::TransferFunction;
 use num_complex::Complex64;
 
 use crate::ReportError;
@@ -177,8 +178,20 @@ pub fn add_dynamics(
         response: response.frequency_response.iter().map(|p| Complex64::new(p.re, p.im)).collect(),
         weight: None,
     };
-    let fit = tfest(&frd, &TfestOptions::new(DYNAMICS_POLES, 0))
+    let mut fit = tfest(&frd, &TfestOptions::new(DYNAMICS_POLES, 0))
         .map_err(|source| SimError::Model { what: "predicted dynamics (tfest)", source })?;
+    let reflected = reflect_unstable_poles(&mut fit.model)?;
+    let mut note = String::new();
+    if !reflected.is_empty() {
+        let fitted: Vec<Complex64> =
+            frd.omega_rad_s.iter().map(|w| fit.model.response(*w)).collect();
+        fit.fit_percent = complex_fit_percent(&frd.response, &fitted);
+        let at: Vec<String> = reflected.iter().map(|re| format!("+{re:.4e}")).collect();
+        note = format!(
+            "; the fit's unstable pole(s) at {} rad/s (real part), beyond the band, reflected into the left half-plane (same magnitude response; Gustavsen & Semlyen 1999), fit after reflection",
+            at.join(", ")
+        );
+    }
     let gain = fit.model.dc_gain();
     let numerator: Vec<f64> = fit.model.numerator.iter().map(|c| c / gain).collect();
     for unit in &mut model.units {
@@ -186,7 +199,7 @@ pub fn add_dynamics(
             numerator: numerator.clone(),
             denominator: fit.model.denominator.clone(),
             source: format!(
-                "predicted: {DYNAMICS_POLES}-pole tfest fit ({:.2} % fit) to the small-signal frequency response of direction 1 at {} A bias, {} drive, {} points {:.3}–{:.1} rad/s ({source})",
+                "predicted: {DYNAMICS_POLES}-pole tfest fit ({:.2} % fit{note}) to the small-signal frequency response of direction 1 at {} A bias, {} drive, {} points {:.3}–{:.1} rad/s ({source})",
                 fit.fit_percent,
                 response.bias_a,
                 format!("{:?}", response.drive).to_lowercase(),
@@ -209,6 +222,38 @@ pub fn add_dynamics(
         message,
     })?;
     Ok(fit.fit_percent)
+}
+
+/// Moves every pole of `tf` with a non-negative real part to the left half-plane (`p → −p̄`),
+/// keeping `D(0) = 1`, and returns the real parts of the poles moved. An unconstrained rational fit
+/// to a band that ends below a fast pole can put that pole on the wrong side (a two-pole fit with a
+/// negative s² coefficient); reflecting it leaves |G(jω)| unchanged at every ω and the phase nearly
+/// so in the band, the pole flipping of vector fitting (Gustavsen & Semlyen 1999, IEEE Trans. Power
+/// Delivery 14(3), 1052–1061, §III-B).
+fn reflect_unstable_poles(tf: &mut TransferFunction) -> Result<Vec<f64>, ReportError> {
+    let poles = tf
+        .poles()
+        .map_err(|source| SimError::Model { what: "predicted dynamics (poles)", source })?;
+    let moved: Vec<f64> = poles.iter().filter(|p| p.re >= 0.0).map(|p| p.re).collect();
+    if moved.is_empty() {
+        return Ok(moved);
+    }
+    // Π (s − p), descending powers, from the reflected poles.
+    let mut coefficients = vec![Complex64::new(1.0, 0.0)];
+    for p in &poles {
+        let p = if p.re >= 0.0 { Complex64::new(-p.re, p.im) } else { *p };
+        let mut next = coefficients.clone();
+        next.push(Complex64::new(0.0, 0.0));
+        for (k, c) in coefficients.iter().enumerate() {
+            next[k + 1] -= p * c;
+        }
+        coefficients = next;
+    }
+    let constant = coefficients.last().map_or(1.0, |c| c.re);
+    let denominator: Vec<f64> = coefficients.iter().map(|c| c.re / constant).collect();
+    *tf = TransferFunction::new(tf.numerator.clone(), denominator)
+        .map_err(|source| SimError::Model { what: "predicted dynamics (reflected)", source })?;
+    Ok(moved)
 }
 
 /// Adds the hot coil of `thermal` (a thermal analysis of the design called `spec_name`) to every
@@ -265,4 +310,30 @@ pub fn add_thermal(
         message,
     })?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_unstable_fast_pole_is_reflected_keeping_the_magnitude_and_dc_gain() {
+        // The front design's fit: −6.2968e-8 s² + 0.0095125 s + 1, poles ≈ −107 and +1.51e5 rad/s.
+        let mut tf = TransferFunction::new(vec![0.64], vec![-6.2968e-8, 0.0095125, 1.0]).unwrap();
+        let before = tf.clone();
+        let moved = reflect_unstable_poles(&mut tf).unwrap();
+        assert_eq!(moved.len(), 1);
+        assert!((moved[0] - 1.5117e5).abs() < 1e2, "{moved:?}");
+        assert!(tf.poles().unwrap().iter().all(|p| p.re < 0.0));
+        assert!(tf.denominator.iter().all(|c| *c > 0.0), "{:?}", tf.denominator);
+        assert!((tf.dc_gain() - 0.64).abs() < 1e-12);
+        for w in [0.1, 10.0, 100.0, 1e3, 1e5] {
+            let (a, b) = (before.response(w).norm(), tf.response(w).norm());
+            assert!((a - b).abs() <= 1e-9 * a, "{w} rad/s: {a} vs {b}");
+        }
+        // A stable model is left as it is.
+        let mut stable = TransferFunction::new(vec![1.0], vec![1.0157e-6, 0.0075757, 1.0]).unwrap();
+        assert!(reflect_unstable_poles(&mut stable).unwrap().is_empty());
+        assert_eq!(stable.denominator, vec![1.0157e-6, 0.0075757, 1.0]);
+    }
 }

@@ -426,7 +426,8 @@ impl UnitModel {
 }
 
 impl Dynamics {
-    /// The transfer function (checked: proper, finite, positive DC gain).
+    /// The transfer function (checked: proper, finite, positive DC gain, stable: every pole in
+    /// the open left half-plane, since a brake's torque settles after a current step).
     pub fn transfer_function(&self) -> Result<TransferFunction, SimError> {
         let tf = TransferFunction::new(self.numerator.clone(), self.denominator.clone())
             .map_err(|source| SimError::Model { what: "brake model dynamics", source })?;
@@ -434,6 +435,15 @@ impl Dynamics {
         if !(gain.is_finite() && gain > 0.0) {
             return Err(SimError::Input(format!(
                 "brake model dynamics: DC gain {gain} must be a finite number > 0"
+            )));
+        }
+        let poles = tf
+            .poles()
+            .map_err(|source| SimError::Model { what: "brake model dynamics", source })?;
+        if let Some(p) = poles.iter().find(|p| p.re >= 0.0 || p.re.is_nan()) {
+            return Err(SimError::Input(format!(
+                "brake model dynamics: pole {:.6e}{:+.6e}j rad/s is not in the left half-plane (an unstable brake); the denominator {:?} must have its poles at negative real parts",
+                p.re, p.im, self.denominator
             )));
         }
         Ok(tf)
@@ -592,6 +602,14 @@ mod tests {
                 .to_string()
                 .contains("units[0].dynamics")
         );
+        // An unstable lag (a two-pole fit with a negative s² coefficient: one pole at +1.5e5
+        // rad/s, as an unconstrained fit beyond its band can return) is refused, naming the field.
+        let mut m = haptic_prototype();
+        m.units[0].dynamics.as_mut().unwrap().denominator = vec![-6.3e-8, 0.0095, 1.0];
+        let e = BrakeModel::from_json("m.json", &m.to_json()).unwrap_err();
+        assert!(e.to_string().contains("units[0].dynamics"), "{e}");
+        assert!(e.to_string().contains("left half-plane"), "{e}");
+        assert!(mrbrake_error::Kind::is_input_error(&e));
     }
 
     #[test]
