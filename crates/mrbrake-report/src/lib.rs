@@ -26,6 +26,7 @@
 pub mod analysis;
 pub mod atomic;
 pub mod bode;
+pub mod brake_model;
 pub mod chart;
 pub mod field_map;
 pub mod formula;
@@ -76,6 +77,12 @@ pub enum ReportError {
     /// Records of a results store could not be written as CSV.
     #[error(transparent)]
     Store(#[from] mrbrake_store::StoreError),
+    /// A design could not be keyed (brake model provenance).
+    #[error(transparent)]
+    Explore(#[from] mrbrake_explore::ExploreError),
+    /// A brake model could not be built or checked.
+    #[error(transparent)]
+    Sim(#[from] mrbrake_sim::SimError),
 }
 
 impl mrbrake_error::Kind for ReportError {
@@ -89,6 +96,8 @@ impl mrbrake_error::Kind for ReportError {
             Self::Data(_) => ErrorKind::Input,
             Self::Backend(_) | Self::Json(_) => ErrorKind::Internal,
             Self::Store(e) => e.kind(),
+            Self::Explore(e) => e.kind(),
+            Self::Sim(e) => e.kind(),
         }
     }
 }

@@ -6,8 +6,11 @@
 //! virtual test rig that writes the logs of the thesis's experiments; [`haptic`] closes the 1 kHz
 //! loop around the `no_std` controller of `mrbrake-control`. The brake model every stage shares is
 //! the controller's [`mrbrake_control::InverseModel`] (read from a file by
-//! [`mrbrake_sysid::model_file`]).
+//! [`mrbrake_sysid::model_file`]). [`brake_model`] is the brake model file (a design's predicted
+//! static curve, off-state, dynamics, thermal limits and hysteresis description) that the rig and
+//! the haptic simulation can run instead of their built-in prototype-like brakes.
 
+pub mod brake_model;
 pub mod haptic;
 pub mod lti;
 pub mod rig;
@@ -48,6 +51,17 @@ pub enum SimError {
         /// Why it was refused.
         source: mrbrake_sysid::SysidError,
     },
+    /// A brake model file is not JSON, has a foreign schema or version, or a missing, unknown or
+    /// invalid field: names the file and the field.
+    #[error("brake model '{file}', field {field}: {message}")]
+    BrakeModel {
+        /// The file (or in-memory source name).
+        file: String,
+        /// The dotted path of the field, e.g. `units[0].static_curve.torque_Nm[3]`.
+        field: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
     /// The controller refused its configuration or a brake model, with where.
     #[error("{what}")]
     Control {
@@ -62,7 +76,9 @@ impl mrbrake_error::Kind for SimError {
     /// Input for bad configurations; wrapped identification and controller errors keep their kind.
     fn kind(&self) -> mrbrake_error::ErrorKind {
         match self {
-            Self::Input(_) | Self::Toml { .. } => mrbrake_error::ErrorKind::Input,
+            Self::Input(_) | Self::Toml { .. } | Self::BrakeModel { .. } => {
+                mrbrake_error::ErrorKind::Input
+            }
             Self::Io { source, .. } => mrbrake_error::Kind::kind(source),
             Self::Sysid(e) | Self::Model { source: e, .. } => e.kind(),
             Self::Control { source, .. } => source.kind(),

@@ -48,6 +48,10 @@ pub struct AnalyzeArgs {
     /// Print a JSON object instead of text.
     #[arg(long)]
     json: bool,
+    /// Also write the brake model (JSON: static torque–current curve per unit, off-state torque,
+    /// maximum current, provenance) that `rig … --brake-model` and `haptic … --brake-model` run.
+    #[arg(long, value_name = "FILE.json")]
+    save_model: Option<PathBuf>,
 }
 
 /// Runs `mrbrake analyze`.
@@ -85,11 +89,19 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         })?;
         report::write_plots(&analysis, field, dir, a.png)?;
     }
+    let source =
+        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
+    if let Some(path) = &a.save_model {
+        let how = format!(
+            "mrbrake analyze {source} (--mesh {} --order {} --points {})",
+            a.mesh, a.order, a.points
+        );
+        let model = mrbrake_report::brake_model::from_analysis(&analysis, &spec, &options, &how)?;
+        mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
+    }
     if a.json {
         return print_json(&analysis);
     }
-    let source =
-        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     crate::out!("{}", report::text(&analysis, &source));
     Ok(())
 }

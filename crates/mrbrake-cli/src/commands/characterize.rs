@@ -35,6 +35,13 @@ pub struct CharacterizeArgs {
     /// Write the model (branches and current range; the controller's inverse-model file) as JSON here.
     #[arg(long, value_name = "FILE.json")]
     save_model: Option<PathBuf>,
+    /// Also put the identified branches into this brake model file (from `mrbrake analyze
+    /// --save-model`) as the hysteresis of `--unit`; the file is rewritten atomically.
+    #[arg(long, value_name = "FILE.json")]
+    brake_model: Option<PathBuf>,
+    /// The unit of `--brake-model` the log is of: 1 or 2.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=2), requires = "brake_model")]
+    unit: u32,
     /// Draw the hysteresis loop (SVG, or PNG for a .png name).
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
@@ -67,6 +74,17 @@ pub fn run(args: CharacterizeArgs) -> CommandResult {
         // The characterisation's JSON is the inverse-model file (mrbrake_sysid::model_file).
         let text = crate::output::json_text(&c)?;
         mrbrake_report::write_atomic(path, text.as_bytes())?;
+    }
+    if let Some(path) = &args.brake_model {
+        let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
+        let source = format!(
+            "mrbrake characterize {} (order {}, {} repetitions)",
+            args.log.display(),
+            args.order,
+            c.repetitions
+        );
+        model.set_identified_branches(args.unit, &c.model()?, &source)?;
+        mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if let Some(path) = &args.plot {
         report.save_plot(path, current, torque)?;

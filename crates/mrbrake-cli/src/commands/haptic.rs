@@ -9,6 +9,8 @@ use mrbrake_report::haptic::{
     save_zwidth_plot, trace_csv, wall_metrics_text, wall_plot_title, wall_runs_figure,
     zwidth_summary,
 };
+use mrbrake_sim::brake_model::BrakeModel;
+use mrbrake_sim::brake_model::apply::apply_to_haptic;
 use mrbrake_sim::haptic::zwidth::{ZWidthConfig, sweep};
 use mrbrake_sim::haptic::{DeviceKind, HapticConfig, HapticRun, Scenario, simulate};
 use mrbrake_sysid::model_file::read_inverse_model;
@@ -91,6 +93,12 @@ pub struct WallArgs {
     /// brakes, in the plant and in the controller; default: built-in prototype-like branches.
     #[arg(long, value_name = "FILE")]
     model: Option<PathBuf>,
+    /// Brake model (JSON from `mrbrake analyze --save-model`): brake 1 runs unit 1, brake 2 unit 2
+    /// (a single-unit model drives both), in the plant and in the controller, with the model's
+    /// dynamics where it has them (see `mrbrake_sim::brake_model`); default: the built-in
+    /// prototype-like brakes (examples/brake-models/prototype.json).
+    #[arg(long, value_name = "FILE.json", conflicts_with = "model")]
+    brake_model: Option<PathBuf>,
     /// Print the metrics as JSON.
     #[arg(long)]
     json: bool,
@@ -155,6 +163,15 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> CommandResult<HapticConfi
     }
     if let Some(path) = &args.model {
         config.use_inverse_model(read_inverse_model(path)?);
+    }
+    if let Some(path) = &args.brake_model {
+        let notes = apply_to_haptic(&BrakeModel::read(path)?, &mut config)?;
+        // Said once, for the device the user named (--compare builds three configurations).
+        if device == DeviceKind::from(args.device) {
+            for note in notes {
+                eprintln!("note: {note}");
+            }
+        }
     }
     Ok(config)
 }

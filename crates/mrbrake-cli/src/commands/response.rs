@@ -50,6 +50,11 @@ pub struct ResponseArgs {
     /// Print a JSON object instead of text.
     #[arg(long)]
     json: bool,
+    /// Add the predicted dynamics (a two-pole transfer function fitted to the frequency response)
+    /// to this brake model file, written before by `mrbrake analyze --save-model` for the same
+    /// design; the file is rewritten atomically.
+    #[arg(long, value_name = "FILE.json")]
+    save_model: Option<PathBuf>,
 }
 
 fn quantity(flag: &str, text: &str, dimension: Dimension) -> Result<f64, InputError> {
@@ -103,11 +108,17 @@ pub fn run(a: ResponseArgs) -> CommandResult {
         })?;
         report::write_plots(&r, dir, a.spec.is_none())?;
     }
+    let source =
+        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
+    if let Some(path) = &a.save_model {
+        let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
+        let how = format!("mrbrake response {source} (--mesh {} --drive {})", a.mesh, a.drive);
+        mrbrake_report::brake_model::add_dynamics(&mut model, &r, &how)?;
+        mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
+    }
     if a.json {
         return print_json(&r);
     }
-    let source =
-        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     crate::out!("{}", report::text(&r, &source));
     Ok(())
 }

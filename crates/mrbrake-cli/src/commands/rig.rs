@@ -4,6 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
 use mrbrake_report::rig::{rig_json, rig_text, write_rig_folder};
+use mrbrake_sim::brake_model::BrakeModel;
+use mrbrake_sim::brake_model::apply::apply_to_rig;
 use mrbrake_sim::rig::{self, RigConfig};
 use mrbrake_sysid::model_file::read_inverse_model;
 
@@ -34,6 +36,14 @@ pub struct RigArgs {
     /// Noise seed (overrides the configuration's).
     #[arg(long)]
     seed: Option<u64>,
+    /// Brake model (JSON from `mrbrake analyze --save-model`) replacing the configuration's
+    /// `[brake]`: its branches, maximum current, dynamics and viscous term (see
+    /// `mrbrake_sim::brake_model`); default: the configured (built-in prototype-like) brake.
+    #[arg(long, value_name = "FILE.json")]
+    brake_model: Option<PathBuf>,
+    /// Which unit of the brake model is on the rig: 1 or 2.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=2), requires = "brake_model")]
+    unit: u32,
     /// Print a JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -57,6 +67,12 @@ fn load_config(args: &RigArgs) -> CommandResult<RigConfig> {
     };
     if let Some(seed) = args.seed {
         config.seed = seed;
+    }
+    if let Some(path) = &args.brake_model {
+        let model = BrakeModel::read(path)?;
+        for note in apply_to_rig(&model, args.unit, &mut config)? {
+            eprintln!("note: {note}");
+        }
     }
     Ok(config)
 }

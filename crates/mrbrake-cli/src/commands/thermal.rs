@@ -68,6 +68,11 @@ pub struct ThermalArgs {
     /// Print a JSON object instead of text.
     #[arg(long)]
     json: bool,
+    /// Add the hot coil (steady mean temperature, its resistance, the continuous current) to this
+    /// brake model file, written before by `mrbrake analyze --save-model` for the same design; the
+    /// file is rewritten atomically.
+    #[arg(long, value_name = "FILE.json")]
+    save_model: Option<PathBuf>,
 }
 
 fn quantity(flag: &str, text: &str, dimension: Dimension) -> Result<f64, InputError> {
@@ -151,11 +156,17 @@ pub fn run(a: ThermalArgs) -> CommandResult {
         })?;
         report::write_plots(&result, &field, dir, a.png)?;
     }
+    let source =
+        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
+    if let Some(path) = &a.save_model {
+        let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
+        let how = format!("mrbrake thermal {source} (--mesh {} --h {})", a.mesh, a.h);
+        mrbrake_report::brake_model::add_thermal(&mut model, &result, &spec.name, &how)?;
+        mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
+    }
     if a.json {
         return print_json(&result);
     }
-    let source =
-        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     crate::out!("{}", report::text(&result, &source));
     Ok(())
 }
