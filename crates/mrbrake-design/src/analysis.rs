@@ -418,7 +418,7 @@ fn run_analysis<F>(
     let warnings: Vec<String> =
         validated.warnings.iter().map(|w| format!("{}: {}", w.field, w.message)).collect();
     let geometry = validated.geometry;
-    let mesh = Arc::new(mesh_build::mesh(&geometry, options.mesh)?);
+    let mesh = Arc::new(mesh_build::mesh_spec(spec, &geometry, options.mesh)?);
     let t_mesh = t_start.elapsed().as_secs_f64();
 
     let t0 = Instant::now();
