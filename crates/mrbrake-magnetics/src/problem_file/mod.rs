@@ -451,7 +451,7 @@ pub fn solve_file_with_order(
     let mut coils = Vec::new();
     for c in linkages {
         let incremental = solver.incremental_inductance(&solution, c.physical)?;
-        let inductance_h = secant_inductance(&c, incremental, &file)?;
+        let inductance_h = secant_inductance(&c, incremental, &path.display().to_string())?;
         coils.push(CoilReport {
             physical: c.physical,
             flux_linkage_wb: c.flux_linkage_wb,
