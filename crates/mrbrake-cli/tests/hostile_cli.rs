@@ -6,13 +6,14 @@ mod common;
 
 use std::path::Path;
 
-use common::{expect_input_error, json, mrbrake, path_str};
+use common::{expect_input_error, json, path_str};
 
 const SPEC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/specs/single-disc.toml");
 
-/// A sweep whose plan holds a 1 µm coil window (too thin for any mesh) next to the example's own
-/// 10 mm: the thin design is stored as infeasible with its reason, the other is computed, and a
-/// resumed run computes nothing again.
+/// A sweep whose plan holds a 1 µm end plate (too thin for any mesh; it used to exhaust memory)
+/// next to the example's own 5 mm: the thin design is stored as infeasible with its reason, the
+/// other is computed, and a resumed run computes nothing again. A 1 µm coil window (issue 18's
+/// optimisation) is stored the same way (the wire no longer fits it).
 #[test]
 fn one_unmeshable_design_is_stored_with_its_reason_and_the_study_goes_on() {
     let dir = tempfile::tempdir().unwrap();
@@ -21,7 +22,7 @@ fn one_unmeshable_design_is_stored_with_its_reason_and_the_study_goes_on() {
         "sweep",
         SPEC,
         "--vary",
-        "coil.window_height=0.001mm,10mm",
+        "housing.end_plate_thickness=0.001mm,5mm",
         "--mesh",
         "coarse",
         "--store",
@@ -34,12 +35,32 @@ fn one_unmeshable_design_is_stored_with_its_reason_and_the_study_goes_on() {
     assert_eq!(designs.len(), 2, "{designs:?}");
     let thin = designs.iter().find(|d| d["status"] != "ok").expect("the thin design is stored");
     let reason = thin["reason"].as_str().unwrap_or_default();
-    assert!(reason.contains("coil.window_height") && reason.contains("too thin"), "{thin}");
+    assert!(
+        reason.contains("housing.end_plate_thickness") && reason.contains("too thin"),
+        "{thin}"
+    );
     assert!(designs.iter().any(|d| d["status"] == "ok"), "{designs:?}");
     let mut resume = args.to_vec();
     resume.push("--resume");
     let again = json(&resume);
-    assert_eq!(again["computed"].as_u64(), Some(0), "{again}");
+    assert_eq!(again["summary"]["computed"].as_u64(), Some(0), "{again}");
+    assert_eq!(again["summary"]["reused"].as_u64(), Some(2), "{again}");
+
+    let window = dir.path().join("w.sqlite");
+    json(&[
+        "sweep",
+        SPEC,
+        "--vary",
+        "coil.window_height=0.001mm",
+        "--mesh",
+        "coarse",
+        "--store",
+        path_str(&window),
+        "--json",
+    ]);
+    let designs = json(&["export", path_str(&window), "--json"]);
+    let reason = designs[0]["reason"].as_str().unwrap_or_default();
+    assert!(designs[0]["status"] == "infeasible" && reason.contains("coil"), "{designs}");
 }
 
 fn write(dir: &Path, name: &str, text: &str) -> String {
