@@ -499,12 +499,12 @@ fn read_elements_v2(reader: &mut Reader<'_>, elements: &mut RawElements) -> Resu
         let n_tags = v[2];
         let n_nodes = nodes_of_type(element_type)
             .ok_or_else(|| reader.err(ln, format!("unsupported element type {element_type}")))?;
-        if v.len() != 3 + n_tags + n_nodes {
+        if v.len() - 3 != n_tags.saturating_add(n_nodes) {
             return Err(reader.err(
                 ln,
                 format!(
                     "element of type {element_type} with {n_tags} tags needs {} numbers, found {}",
-                    3 + n_tags + n_nodes,
+                    n_tags.saturating_add(n_nodes).saturating_add(3),
                     v.len()
                 ),
             ));
@@ -546,8 +546,9 @@ fn read_entities(reader: &mut Reader<'_>) -> Result<Entities, FemError> {
             if v.len() <= phys_at {
                 return Err(reader.err(ln, format!("entity line too short for dimension {dim}")));
             }
+            // A count read as a float: `as` saturates, so a hostile 1e300 cannot overflow below.
             let n_phys = v[phys_at] as usize;
-            if v.len() < phys_at + 1 + n_phys {
+            if v.len() - phys_at - 1 < n_phys {
                 return Err(reader.err(
                     ln,
                     format!("entity line lists {n_phys} physical tags but has too few numbers"),

@@ -195,3 +195,20 @@ fn huge_header_counts_are_refused_without_allocating() {
     let (_, message) = parse_error(&elements);
     assert!(message.contains("number of entity blocks"), "{message}");
 }
+
+/// Found by the fuzzer (mrbrake-fuzz, target msh41): a physical-tag count of 1e300 on an entity
+/// line overflowed the length check (a panic in debug builds); an element line with a huge tag
+/// count did the same in MSH 2.2. Both are parse errors now.
+#[test]
+fn huge_counts_inside_lines_are_parse_errors() {
+    let text = std::fs::read_to_string(fixture("two_regions_v41.msh")).unwrap();
+    let entity = text.replacen("4 0 5 0 0 \n", "4 0 5 0 1e300 \n", 1);
+    assert_ne!(entity, text);
+    let (_, message) = parse_error(&entity);
+    assert!(message.contains("physical tags"), "{message}");
+    let v2 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 0\n$EndNodes\n\
+              $Elements\n1\n1 2 18446744073709551615 1 1 1\n$EndElements\n";
+    let (line, message) = parse_error(v2);
+    assert_eq!(line, 10);
+    assert!(message.contains("needs"), "{message}");
+}

@@ -70,7 +70,8 @@ fn check_polar_agrees(source: &Path, text: &str, response: &[Complex64]) -> Resu
     let cols = read_columns_from(source, text.as_bytes(), &["magnitude_dB", "phase_deg"])?;
     for (k, ((db, deg), g)) in cols[0].iter().zip(&cols[1]).zip(response).enumerate() {
         let polar = Complex64::from_polar(10f64.powf(db / 20.0), deg.to_radians());
-        if !((polar - g).norm() <= 1e-3 * g.norm().max(polar.norm())) {
+        let distance = (polar - g).norm();
+        if distance.is_nan() || distance > 1e-3 * g.norm().max(polar.norm()) {
             return Err(crate::log::file_error(source)(
                 Some(k as u64 + 2),
                 format!(

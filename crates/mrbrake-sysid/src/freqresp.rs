@@ -129,7 +129,7 @@ fn check_test_data(
         return Err(format!("{n} samples are too few for a sine fit"));
     }
     let nyquist = std::f64::consts::PI * (n - 1) as f64 / (time_s[n - 1] - time_s[0]);
-    if !(omega_rad_s < nyquist) {
+    if nyquist.is_nan() || omega_rad_s >= nyquist {
         return Err(format!(
             "test frequency {omega_rad_s} rad/s is not below the log's Nyquist frequency \
              {nyquist:.4} rad/s (π / mean sample step): check the manifest's frequency_rad_s"
@@ -188,7 +188,7 @@ pub fn analyse_test(
     if fu.phasor.norm().is_nan() || fu.phasor.norm() <= 0.0 {
         return Err(file_err(format!("the input has no component at {omega_rad_s} rad/s")));
     }
-    if !(fy.fit_percent >= options.min_quality_percent) {
+    if fy.fit_percent.is_nan() || fy.fit_percent < options.min_quality_percent {
         return Err(file_err(format!(
             "the output sine fit at {omega_rad_s} rad/s explains only {:.2} % of the output (minimum \
              {} %): the manifest frequency may not match the log, or the output is noise; check \

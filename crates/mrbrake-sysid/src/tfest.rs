@@ -336,7 +336,8 @@ fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
     let w_min = frd.omega_rad_s.iter().copied().fold(f64::INFINITY, f64::min);
     let w_max = frd.omega_rad_s.iter().copied().fold(0.0, f64::max);
     let decades = (w_max / w_min).log10();
-    if !(decades * m.max(n) as f64 <= MAX_DECADES_TIMES_DEGREE) {
+    let span = decades * m.max(n) as f64;
+    if span.is_nan() || span > MAX_DECADES_TIMES_DEGREE {
         return Err(SysidError::Input(format!(
             "tfest: the frequencies span {decades:.1} decades ({w_min:e} to {w_max:e} rad/s); a \
              degree-{} model can be fitted over at most {:.1} decades: remove the extreme points",

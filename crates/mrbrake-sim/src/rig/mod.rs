@@ -197,7 +197,7 @@ fn check_run_size(config: &RigConfig) -> Result<(), (&'static str, String)> {
             .map_err(|e| (field, e))?;
     }
     let steps = characterization_duration_s(config) * rate;
-    if !(steps <= MAX_RUN_STEPS) {
+    if steps.is_nan() || steps > MAX_RUN_STEPS {
         return Err((
             "characterization",
             format!(
@@ -210,7 +210,7 @@ fn check_run_size(config: &RigConfig) -> Result<(), (&'static str, String)> {
     }
     let f = &config.frequency_response;
     let count = (f.omega_max_rad_s / f.omega_min_rad_s).log10() * f.points_per_decade as f64 + 1.0;
-    if !(count <= MAX_TEST_FREQUENCIES) {
+    if count.is_nan() || count > MAX_TEST_FREQUENCIES {
         return Err((
             "frequency_response.points_per_decade",
             format!(
@@ -221,7 +221,7 @@ fn check_run_size(config: &RigConfig) -> Result<(), (&'static str, String)> {
     }
     let total: f64 =
         test_frequencies(config).iter().map(|&w| sine_test_duration_s(config, w)).sum();
-    if !(total * rate <= MAX_RUN_STEPS) {
+    if (total * rate).is_nan() || total * rate > MAX_RUN_STEPS {
         return Err((
             "frequency_response",
             format!(
