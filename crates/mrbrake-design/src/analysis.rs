@@ -411,7 +411,7 @@ pub fn direction1_points(
     formula::non_negative("speed", options.speed_rad_s.abs())?;
     formula::non_negative("seal friction", options.seal_friction_nm)?;
     let geometry = spec.validate()?.geometry;
-    let mesh = Arc::new(mesh_build::mesh(&geometry, options.mesh)?);
+    let mesh = Arc::new(mesh_build::mesh_spec(spec, &geometry, options.mesh)?);
     let mut model = Model::new(spec, geometry, mesh, options)?;
     let mut previous: Option<Solution> = None;
     let mut points = Vec::with_capacity(currents.len().min(1024));
@@ -449,7 +449,7 @@ fn run_analysis<F>(
     let warnings: Vec<String> =
         validated.warnings.iter().map(|w| format!("{}: {}", w.field, w.message)).collect();
     let geometry = validated.geometry;
-    let mesh = Arc::new(mesh_build::mesh(&geometry, options.mesh)?);
+    let mesh = Arc::new(mesh_build::mesh_spec(spec, &geometry, options.mesh)?);
     let t_mesh = t_start.elapsed().as_secs_f64();
 
     let t0 = Instant::now();

@@ -4,12 +4,43 @@
 //! The gap regions get a target edge length g / c, where c is the number of cells across a gap of
 //! the chosen [`MeshLevel`] (coarse 3, default 4, fine 6); the size grows away from the gaps at
 //! `growth` (m/m) up to the global maximum (a fraction of the device radius).
+//!
+//! Resources are bounded before and while meshing (issue 18): the smallest edge a level resolves
+//! is its maximum edge / [`MAX_EDGE_RATIO`] ([`MeshSettings::smallest_edge_m`]); a spec part
+//! thinner than that, or a gap narrower than its cells across at that size, is an input error
+//! naming the spec field and the smallest size resolvable at that `--mesh` level
+//! ([`check_resolvable`]). The mesher itself stops at a budget of [`DEFAULT_MAX_ELEMENTS`]
+//! triangles (overridable with the environment variable `MRBRAKE_MAX_ELEMENTS`), also an input
+//! error.
 
 use mrbrake_fem::mesh::Mesh;
 use mrbrake_fem::mesher::{MeshOptions, Pslg, SizeField, quality, triangulate};
 
 use crate::DesignError;
 use crate::geometry::{BrakeGeometry, GapInfo, GapOrientation};
+use crate::spec::{BrakeSpec, Configuration, WorkingSurfaces, fmt_mm};
+
+/// The smallest edge a level resolves is its largest edge divided by this: at the default level and
+/// a 40 mm device radius, 4 mm / 400 = 10 µm, so a gap of 4 cells must be ≥ 40 µm. The thesis
+/// designs' smallest parts (0.5 mm bobbin walls and gaps) sit 20–50 times above it.
+pub const MAX_EDGE_RATIO: f64 = 400.0;
+
+/// The mesher's default budget, in triangles (about 1 GB of mesher memory; the finest thesis
+/// meshes have under 100 000).
+pub const DEFAULT_MAX_ELEMENTS: usize = 2_000_000;
+
+/// The environment variable that overrides [`DEFAULT_MAX_ELEMENTS`] (a whole number of triangles).
+pub const MAX_ELEMENTS_ENV: &str = "MRBRAKE_MAX_ELEMENTS";
+
+/// The element budget: `MRBRAKE_MAX_ELEMENTS` when set to a whole number ≥ 1000, else
+/// [`DEFAULT_MAX_ELEMENTS`].
+pub fn max_elements() -> usize {
+    std::env::var(MAX_ELEMENTS_ENV)
+        .ok()
+        .and_then(|v| v.trim().parse::<usize>().ok())
+        .filter(|&n| n >= 1000)
+        .unwrap_or(DEFAULT_MAX_ELEMENTS)
+}
 
 /// Mesh density levels (`--mesh coarse|default|fine`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -52,6 +83,17 @@ impl MeshLevel {
     }
 }
 
+impl MeshLevel {
+    /// The name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Coarse => "coarse",
+            Self::Default => "default",
+            Self::Fine => "fine",
+        }
+    }
+}
+
 /// Explicit size-field settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MeshSettings {
@@ -63,6 +105,101 @@ pub struct MeshSettings {
     pub growth: f64,
     /// Minimum triangle angle (degrees).
     pub min_angle_deg: f64,
+}
+
+impl MeshSettings {
+    /// The smallest edge these settings resolve: the largest edge / [`MAX_EDGE_RATIO`] (m).
+    pub fn smallest_edge_m(&self) -> f64 {
+        self.max_edge_m / MAX_EDGE_RATIO
+    }
+}
+
+/// The spec's thickness-like fields (the sizes of thin parts and gaps) with their values in metres
+/// and whether the field is a fluid gap (meshed with `gap_cells_across` cells).
+fn thin_fields(spec: &BrakeSpec) -> Vec<(&'static str, f64, bool)> {
+    let h = &spec.housing;
+    let c = &spec.coil;
+    let mut out = vec![
+        ("housing.case_thickness", h.case_thickness.m(), false),
+        ("housing.end_plate_thickness", h.end_plate_thickness.m(), false),
+        ("housing.inner_case_thickness", h.inner_case_thickness.m(), false),
+        ("coil.window_width", c.window_width.m(), false),
+        ("coil.window_height", c.window_height.m(), false),
+        ("coil.bobbin_wall", c.bobbin_wall.m(), false),
+    ];
+    if let Some(t) = h.cover_thickness {
+        out.push(("housing.cover_thickness", t.m(), false));
+    }
+    if let Some(t) = h.rotor_disc_thickness {
+        out.push(("housing.rotor_disc_thickness", t.m(), false));
+    }
+    match spec.configuration.surfaces() {
+        WorkingSurfaces::Drums(d) => {
+            out.push(("drum.cylinder_thickness", d.cylinder_thickness.m(), false));
+            out.push(("drum.gap", d.gap.m(), true));
+        }
+        WorkingSurfaces::Discs(d) => {
+            out.push(("disc.thickness", d.thickness.m(), false));
+            out.push(("disc.gap", d.gap.m(), true));
+        }
+    }
+    if let Configuration::Bidirectional { spacer, .. } = &spec.configuration {
+        out.push(("spacer.thickness", spacer.thickness.m(), false));
+    }
+    out
+}
+
+/// Refuses a spec with a part too thin for the mesh at `level` before meshing: each thin field
+/// below the smallest resolvable size (gaps: their cells across times it) is a field error of the
+/// spec (file and line), naming that size; a thinner part of the assembled geometry (a difference
+/// of fields) is an input error naming the part.
+pub fn check_resolvable(
+    spec: &BrakeSpec,
+    geometry: &BrakeGeometry,
+    level: MeshLevel,
+) -> Result<(), DesignError> {
+    let settings = level.settings(geometry.device.r1);
+    let h = settings.smallest_edge_m();
+    let mut errors = mrbrake_error::FieldErrors::new();
+    for (field, value, is_gap) in thin_fields(spec) {
+        let needed = if is_gap { h * settings.gap_cells_across } else { h };
+        if value < needed {
+            errors.add(
+                field,
+                format!(
+                    "{} is too thin for the mesh: at --mesh {} this brake resolves sizes ≥ {}{} \
+                     (the largest edge {} / {MAX_EDGE_RATIO})",
+                    fmt_mm(value),
+                    level.name(),
+                    fmt_mm(needed),
+                    if is_gap { " for a gap (its cells across)" } else { "" },
+                    fmt_mm(settings.max_edge_m),
+                ),
+            );
+        }
+    }
+    if !errors.is_empty() {
+        return Err(spec.invalid(errors));
+    }
+    for region in &geometry.regions {
+        for rc in &region.rects {
+            let thin = (rc.r1 - rc.r0).min(rc.z1 - rc.z0);
+            if thin < h {
+                return Err(DesignError::Input(format!(
+                    "{}: part {} is {} thick, too thin for the mesh: at --mesh {} this brake \
+                     resolves sizes ≥ {}; change the fields that size it",
+                    spec.source
+                        .origin()
+                        .map_or_else(|| format!("spec '{}'", spec.name), str::to_string),
+                    region.name,
+                    fmt_mm(thin),
+                    level.name(),
+                    fmt_mm(h)
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The planar graph of the geometry: every rectangle of every region, one seed per rectangle, the
@@ -113,6 +250,18 @@ pub fn size_field(geometry: &BrakeGeometry, settings: &MeshSettings) -> SizeFiel
     field
 }
 
+/// Meshes the validated `geometry` of `spec` at a level, after [`check_resolvable`]: the entry
+/// point of every analysis (a too-thin part is then a field error of the spec, not a mesher
+/// failure or a run out of memory).
+pub fn mesh_spec(
+    spec: &BrakeSpec,
+    geometry: &BrakeGeometry,
+    level: MeshLevel,
+) -> Result<Mesh, DesignError> {
+    check_resolvable(spec, geometry, level)?;
+    mesh(geometry, level)
+}
+
 /// Meshes the geometry at a level.
 pub fn mesh(geometry: &BrakeGeometry, level: MeshLevel) -> Result<Mesh, DesignError> {
     mesh_with(geometry, &level.settings(geometry.device.r1))
@@ -122,7 +271,12 @@ pub fn mesh(geometry: &BrakeGeometry, level: MeshLevel) -> Result<Mesh, DesignEr
 pub fn mesh_with(geometry: &BrakeGeometry, settings: &MeshSettings) -> Result<Mesh, DesignError> {
     let graph = pslg(geometry)?;
     let size = size_field(geometry, settings);
-    let options = MeshOptions { min_angle_deg: settings.min_angle_deg, ..MeshOptions::default() };
+    let options = MeshOptions {
+        min_angle_deg: settings.min_angle_deg,
+        // About two triangles per vertex.
+        max_vertices: max_elements() / 2,
+        ..MeshOptions::default()
+    };
     // The mesher's error keeps its kind: a size it cannot reach is input, a failure numerical.
     Ok(triangulate(&graph, &size, &options)?)
 }

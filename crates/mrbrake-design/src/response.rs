@@ -201,7 +201,7 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
     let start = Instant::now();
     check_options(options)?;
     let geometry = spec.validate()?.geometry;
-    let mesh = Arc::new(mesh_build::mesh(&geometry, options.mesh)?);
+    let mesh = Arc::new(mesh_build::mesh_spec(spec, &geometry, options.mesh)?);
     let model = Model::new(spec, geometry, mesh, options)?;
     let max_current = spec.coil.max_current.a();
     let to = options.step_to_a.unwrap_or(max_current);

@@ -158,14 +158,32 @@ impl Outcome {
     }
 }
 
-/// Analyses one valid spec and reduces it to metrics.
+/// Analyses one valid spec and reduces it to metrics. Whatever happens to one design — an input
+/// error, a budget, a numerical failure, a NaN metric, even a panic (a defect, reported
+/// as such) — is its outcome with the reason, so one bad design never stops a study.
 pub fn evaluate(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
+    let run = std::panic::AssertUnwindSafe(|| evaluate_unguarded(spec, settings));
+    std::panic::catch_unwind(run).unwrap_or_else(|payload| {
+        let message = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_default();
+        let reason = format!("internal error (a panic, please report this design): {message}");
+        Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] }
+    })
+}
+
+fn evaluate_unguarded(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
     match analyze(spec, &settings.analysis_options()) {
-        Ok(analysis) => Outcome {
-            status: Status::Ok,
-            reason: None,
-            metrics: metrics_of(spec, &analysis, settings),
-        },
+        Ok(analysis) => {
+            let metrics = metrics_of(spec, &analysis, settings);
+            if let Some((name, value)) = metrics.iter().find(|(_, v)| v.is_nan()) {
+                let reason = format!("the analysis gave {name} = {value}: not a result");
+                return Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] };
+            }
+            Outcome { status: Status::Ok, reason: None, metrics }
+        }
         // An input error raised during the analysis (a material that does not suit its part, a
         // mesh the geometry cannot have) is a property of the design: infeasible, not a crash.
         Err(e) if e.is_input_error() => Outcome::infeasible(with_causes(&e)),

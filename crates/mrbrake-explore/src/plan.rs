@@ -81,6 +81,11 @@ impl VarySpec {
             }
             match count {
                 Some(0) => return Err(bad("the count after ':' must be ≥ 1")),
+                Some(count) if count > MAX_PLAN_POINTS => {
+                    return Err(bad(&format!(
+                        "the count after ':' must be at most {MAX_PLAN_POINTS} (a sweep's limit)"
+                    )));
+                }
                 Some(count) => {
                     if variable.field.quantity == Quantity::Integer
                         && count > 1
@@ -170,6 +175,21 @@ fn bounds_of(variable: &Variable, lower: f64, upper: f64) -> Bounds {
     }
 }
 
+/// The most points one sweep plan may have (full factorial product or samples): the plan is
+/// held in memory and each point is a finite-element analysis, so this is far beyond a sweep that
+/// can finish; a larger plan is an input error before anything is allocated.
+pub const MAX_PLAN_POINTS: usize = 10_000_000;
+
+/// The number of points of a plan as a checked count, or an input error above [`MAX_PLAN_POINTS`].
+fn check_plan_size(count: Option<usize>, what: &str) -> Result<(), ExploreError> {
+    match count {
+        Some(n) if n <= MAX_PLAN_POINTS => Ok(()),
+        _ => Err(ExploreError::Input(format!(
+            "{what}: the plan would have more than {MAX_PLAN_POINTS} points; sweep fewer"
+        ))),
+    }
+}
+
 /// The points (SI values, one per variable) of a sweep.
 pub fn points(
     variables: &[Variable],
@@ -188,9 +208,12 @@ pub fn points(
                     ))
                 })?);
             }
+            let count = levels.iter().try_fold(1usize, |n, l| n.checked_mul(l.len()));
+            check_plan_size(count, "--vary")?;
             Ok(sampling::full_factorial(&levels))
         }
         Sampling::LatinHypercube { n, .. } | Sampling::Sobol { n } => {
+            check_plan_size(Some(n), "--sample")?;
             let mut bounds = Vec::with_capacity(specs.len());
             for (variable, spec) in variables.iter().zip(specs) {
                 match spec.values {
@@ -334,6 +357,25 @@ mod tests {
         assert!(VarySpec::parse(&g, "0.5mm..1mm:0").is_err());
         let n = resolve("n", true).unwrap();
         assert!(VarySpec::parse(&n, "1..4:3").is_err(), "1..4 in 3 steps is not whole");
+    }
+
+    /// Issue 18: plan sizes come from the command line; they are bounded before the levels or
+    /// samples are allocated.
+    #[test]
+    fn oversized_plans_are_refused_before_allocating() {
+        let g = resolve("g", true).unwrap();
+        let h = resolve("h", true).unwrap();
+        let e = VarySpec::parse(&g, "0.5mm..1mm:1000000000000").unwrap_err();
+        assert!(e.to_string().contains("at most"), "{e}");
+        let specs = vec![
+            VarySpec::parse(&g, "0.5mm..1mm:10000").unwrap(),
+            VarySpec::parse(&h, "5mm..10mm:10000").unwrap(),
+        ];
+        let vars = [g.clone(), h.clone()];
+        let e = points(&vars, &specs, Sampling::FullFactorial).unwrap_err();
+        assert!(e.to_string().contains("more than"), "{e}");
+        let sobol = Sampling::parse("sobol:1000000000000", 1).unwrap();
+        assert!(points(&vars, &specs, sobol).unwrap_err().to_string().contains("--sample"));
     }
 
     #[test]

@@ -27,7 +27,8 @@
 //! ```
 //!
 //! Every field is checked when the file is read; an error names the file, the table and the field
-//! and what is allowed.
+//! and what is allowed. Counts are bounded before anything is sized by them: `population` ≤
+//! [`MAX_POPULATION`], `generations` and `max_evaluations` ≤ [`MAX_EVALUATIONS`] designs.
 
 use std::path::{Path, PathBuf};
 
@@ -377,18 +378,35 @@ fn objectives_of(raw: &[RawObjective]) -> Result<Vec<Objective>, String> {
     Ok(objectives)
 }
 
+/// The largest NSGA-II population (each generation holds and sorts it in memory).
+pub const MAX_POPULATION: usize = 100_000;
+
+/// The most designs one optimisation may evaluate (`population × (generations + 1)` or
+/// `max_evaluations`); every design is a finite-element analysis, so this is far beyond any
+/// study that can finish, and it keeps every count the optimisers allocate from sane.
+pub const MAX_EVALUATIONS: usize = 10_000_000;
+
 /// The `[algorithm]` table, for a problem with `objectives` objectives.
 fn algorithm_of(a: &RawAlgorithm, objectives: usize) -> Result<Algorithm, String> {
     let seed = a.seed.unwrap_or(1);
     match a.kind.trim().to_ascii_lowercase().as_str() {
         "nsga2" | "nsga-ii" => {
             let population = a.population.unwrap_or(24);
-            if population < 4 || population % 2 == 1 {
+            if population < 4 || population % 2 == 1 || population > MAX_POPULATION {
                 return Err(format!(
-                    "algorithm.population: {population} is not allowed; use an even number ≥ 4"
+                    "algorithm.population: {population} is not allowed; use an even number from 4 \
+                     to {MAX_POPULATION}"
                 ));
             }
-            Ok(Algorithm::Nsga2 { population, generations: a.generations.unwrap_or(10), seed })
+            let generations = a.generations.unwrap_or(10);
+            let designs = generations.checked_add(1).and_then(|g| g.checked_mul(population));
+            if designs.is_none_or(|d| d > MAX_EVALUATIONS) {
+                return Err(format!(
+                    "algorithm.generations: {generations} generations of {population} is more than \
+                     {MAX_EVALUATIONS} designs; use fewer"
+                ));
+            }
+            Ok(Algorithm::Nsga2 { population, generations, seed })
         }
         "pattern-search" | "pattern_search" => pattern_search_of(a, objectives, seed),
         other => {
@@ -419,8 +437,10 @@ fn pattern_search_of(a: &RawAlgorithm, objectives: usize, seed: u64) -> Result<A
         }
     };
     let max_evaluations = a.max_evaluations.unwrap_or(200);
-    if max_evaluations == 0 {
-        return Err("algorithm.max_evaluations: 0 is not allowed; use at least 1".into());
+    if max_evaluations == 0 || max_evaluations > MAX_EVALUATIONS {
+        return Err(format!(
+            "algorithm.max_evaluations: {max_evaluations} is not allowed; use 1 to {MAX_EVALUATIONS}"
+        ));
     }
     Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base })
 }
@@ -528,6 +548,27 @@ generations = 2
         let quadratic = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\norder = 2");
         let p = OptimizationProblem::from_toml_str(&quadratic, Path::new("p.toml")).unwrap();
         assert_eq!(p.settings.order, ElementOrder::P2);
+    }
+
+    /// Issue 18: a population of 10¹² aborted on its allocation; counts are bounded first.
+    #[test]
+    fn huge_counts_are_refused_before_allocating() {
+        let p = |text: String| OptimizationProblem::from_toml_str(&text, Path::new("p.toml"));
+        let huge = GOOD.replace("population = 8", "population = 1000000000000");
+        let e = p(huge).unwrap_err();
+        assert!(e.is_input_error() && e.to_string().contains("algorithm.population"), "{e}");
+        let long = GOOD.replace("generations = 2", "generations = 9223372036854775807");
+        let e = p(long).unwrap_err();
+        assert!(e.to_string().contains("algorithm.generations"), "{e}");
+        let ps = GOOD.replace("[[objective]]\nmetric = \"volume_m3\"\n", "").replace(
+            "kind = \"nsga2\"",
+            "kind = \"pattern-search\"\nmax_evaluations = 99999999999",
+        );
+        let e = p(ps).unwrap_err();
+        assert!(e.to_string().contains("algorithm.max_evaluations"), "{e}");
+        assert!(
+            p(GOOD.replace("population = 8", &format!("population = {MAX_POPULATION}"))).is_ok()
+        );
     }
 
     #[test]

@@ -77,7 +77,12 @@ pub fn read_msh(path: &Path, length_scale: f64) -> Result<GmshMesh, FemError> {
 
 /// Parses the text of a Gmsh MSH 2.2 or 4.1 ASCII file; `file` names it in errors.
 pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, FemError> {
-    let mut reader = Reader { lines: text.lines().enumerate(), file, last_line: 0 };
+    let mut reader = Reader {
+        lines: text.lines().enumerate(),
+        file,
+        last_line: 0,
+        max_items: max_items_of(text),
+    };
     let mut sections = Sections::default();
     while let Some((line_no, line)) = reader.next_raw() {
         let line = line.trim();
@@ -298,6 +303,16 @@ struct Reader<'a> {
     lines: std::iter::Enumerate<std::str::Lines<'a>>,
     file: &'a str,
     last_line: usize,
+    /// The most nodes or elements the whole file can hold ([`max_items_of`]): a count in a
+    /// section header above it is refused before anything is allocated for it.
+    max_items: usize,
+}
+
+/// The most items (nodes, elements) a file of this text can list: each takes a line of at least
+/// two characters (a tag and a line break), so a header count above it cannot be true. Counts in
+/// headers are untrusted; they bound nothing that is allocated before this check.
+fn max_items_of(text: &str) -> usize {
+    text.len() / 2
 }
 
 impl<'a> Reader<'a> {
@@ -325,7 +340,22 @@ impl<'a> Reader<'a> {
 
     fn count(&mut self, what: &str) -> Result<usize, FemError> {
         let (ln, l) = self.next_line(what)?;
-        parse_num::<usize>(self, ln, l.split_whitespace().next(), what)
+        let count = parse_num::<usize>(self, ln, l.split_whitespace().next(), what)?;
+        self.check_count(ln, count, what)
+    }
+
+    /// `count` when the file can hold that many items, else a parse error at `line`.
+    fn check_count(&self, line: usize, count: usize, what: &str) -> Result<usize, FemError> {
+        if count > self.max_items {
+            return Err(self.err(
+                line,
+                format!(
+                    "{what} is {count}, but a file of this size holds at most {} (truncated file or wrong header?)",
+                    self.max_items
+                ),
+            ));
+        }
+        Ok(count)
     }
 
     fn expect_end(&mut self, end: &str) -> Result<(), FemError> {
@@ -469,12 +499,12 @@ fn read_elements_v2(reader: &mut Reader<'_>, elements: &mut RawElements) -> Resu
         let n_tags = v[2];
         let n_nodes = nodes_of_type(element_type)
             .ok_or_else(|| reader.err(ln, format!("unsupported element type {element_type}")))?;
-        if v.len() != 3 + n_tags + n_nodes {
+        if v.len() - 3 != n_tags.saturating_add(n_nodes) {
             return Err(reader.err(
                 ln,
                 format!(
                     "element of type {element_type} with {n_tags} tags needs {} numbers, found {}",
-                    3 + n_tags + n_nodes,
+                    n_tags.saturating_add(n_nodes).saturating_add(3),
                     v.len()
                 ),
             ));
@@ -516,8 +546,9 @@ fn read_entities(reader: &mut Reader<'_>) -> Result<Entities, FemError> {
             if v.len() <= phys_at {
                 return Err(reader.err(ln, format!("entity line too short for dimension {dim}")));
             }
+            // A count read as a float: `as` saturates, so a hostile 1e300 cannot overflow below.
             let n_phys = v[phys_at] as usize;
-            if v.len() < phys_at + 1 + n_phys {
+            if v.len() - phys_at - 1 < n_phys {
                 return Err(reader.err(
                     ln,
                     format!("entity line lists {n_phys} physical tags but has too few numbers"),
@@ -540,8 +571,10 @@ fn read_nodes_v4(reader: &mut Reader<'_>) -> Result<Nodes, FemError> {
             reader.err(ln, "expected `numEntityBlocks numNodes minNodeTag maxNodeTag`".into())
         );
     }
+    let count = reader.check_count(ln, head[1], "the number of nodes")?;
+    reader.check_count(ln, head[0], "the number of entity blocks")?;
     let mut nodes =
-        Nodes { coords: Vec::with_capacity(head[1]), index: HashMap::with_capacity(head[1]) };
+        Nodes { coords: Vec::with_capacity(count), index: HashMap::with_capacity(count) };
     for _ in 0..head[0] {
         let (ln, l) =
             reader.next_line("an entity block `entityDim entityTag parametric numNodesInBlock`")?;
@@ -554,7 +587,8 @@ fn read_nodes_v4(reader: &mut Reader<'_>) -> Result<Nodes, FemError> {
         if block[2] != 0 {
             return Err(reader.err(ln, "parametric node coordinates are not supported".into()));
         }
-        let n = block[3].max(0) as usize;
+        let n =
+            reader.check_count(ln, block[3].max(0) as usize, "the number of nodes in the block")?;
         let mut tags = Vec::with_capacity(n);
         for _ in 0..n {
             let (ln, l) = reader.next_line("a node tag")?;
@@ -587,6 +621,8 @@ fn read_elements_v4(
         return Err(reader
             .err(ln, "expected `numEntityBlocks numElements minElementTag maxElementTag`".into()));
     }
+    reader.check_count(ln, head[1], "the number of elements")?;
+    reader.check_count(ln, head[0], "the number of entity blocks")?;
     for _ in 0..head[0] {
         let (ln, l) = reader
             .next_line("an element block `entityDim entityTag elementType numElementsInBlock`")?;

@@ -168,3 +168,47 @@ fn missing_and_misplaced_sections_are_named() {
     assert_eq!(read.mesh.triangles.len(), 1);
     assert!((read.mesh.nodes[1][0] - 1e-3).abs() < 1e-18, "coordinates are scaled");
 }
+
+/// Counts in section headers are untrusted: a count the file cannot hold is refused (an input
+/// error naming the line) before anything is allocated for it, in both formats.
+#[test]
+fn huge_header_counts_are_refused_without_allocating() {
+    let v2 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n999999999999\n1 0 0 0\n$EndNodes\n";
+    let (line, message) = parse_error(v2);
+    assert_eq!(line, 5);
+    assert!(message.contains("999999999999") && message.contains("at most"), "{message}");
+    let v2 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 0\n$EndNodes\n\
+              $Elements\n18446744073709551615\n$EndElements\n";
+    let (line, message) = parse_error(v2);
+    assert_eq!(line, 9);
+    assert!(message.contains("number of elements"), "{message}");
+
+    let text = std::fs::read_to_string(fixture("two_regions_v41.msh")).unwrap();
+    let nodes = text.replace("$Nodes\n15 41 1 41", "$Nodes\n15 999999999999 1 41");
+    let (_, message) = parse_error(&nodes);
+    assert!(message.contains("number of nodes"), "{message}");
+    let block =
+        text.replace("$Nodes\n15 41 1 41\n0 1 0 1", "$Nodes\n15 41 1 41\n0 1 0 99999999999");
+    let (_, message) = parse_error(&block);
+    assert!(message.contains("nodes in the block"), "{message}");
+    let elements = text.replace("$Elements\n8 80 1 80", "$Elements\n999999999999 80 1 80");
+    let (_, message) = parse_error(&elements);
+    assert!(message.contains("number of entity blocks"), "{message}");
+}
+
+/// Found by the fuzzer (mrbrake-fuzz, target msh41): a physical-tag count of 1e300 on an entity
+/// line overflowed the length check (a panic in debug builds); an element line with a huge tag
+/// count did the same in MSH 2.2. Both are parse errors now.
+#[test]
+fn huge_counts_inside_lines_are_parse_errors() {
+    let text = std::fs::read_to_string(fixture("two_regions_v41.msh")).unwrap();
+    let entity = text.replacen("4 0 5 0 0 \n", "4 0 5 0 1e300 \n", 1);
+    assert_ne!(entity, text);
+    let (_, message) = parse_error(&entity);
+    assert!(message.contains("physical tags"), "{message}");
+    let v2 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 0\n$EndNodes\n\
+              $Elements\n1\n1 2 18446744073709551615 1 1 1\n$EndElements\n";
+    let (line, message) = parse_error(v2);
+    assert_eq!(line, 10);
+    assert!(message.contains("needs"), "{message}");
+}

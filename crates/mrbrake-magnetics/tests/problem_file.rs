@@ -224,3 +224,54 @@ fn newton_failure_is_numerical_with_history() {
         other => panic!("expected NotConverged, got {:?}", other.map(|r| r.0.newton_iterations)),
     }
 }
+
+/// Issue 18: `samples = 1000000000` on a `[[line]]` hung the solve; it is an input error naming
+/// the line, before the mesh is solved.
+#[test]
+fn line_samples_are_bounded() {
+    let mesh = fixture_mesh();
+    let text = format!(
+        "mesh = {mesh:?}\nlength_unit = \"mm\"\n[[region]]\nphysical = 1\nmaterial = {{ mu_r = 100.0 }}\n\
+         [[region]]\nphysical = 2\nmaterial = \"air\"\n[[line]]\nname = \"cut\"\nfrom = [1.0, 1.0]\n\
+         to = [2.0, 2.0]\nsamples = 1000000000\n"
+    );
+    let e = input_error(&text, &[]);
+    assert!(e.contains("p.toml") && e.contains("'cut'") && e.contains("samples"), "{e}");
+}
+
+/// Issue 18: `current_A = 0.0` gave an inductance of NaN (null in JSON). With no other source the
+/// secant inductance is its limit, the incremental inductance at zero current; with flux from
+/// another coil it has no value, and the input is refused naming the coil.
+#[test]
+fn zero_current_coil_has_a_finite_inductance_or_an_input_error() {
+    let mesh = fixture_mesh();
+    let head = format!("mesh = {mesh:?}\nlength_unit = \"mm\"\n");
+    let alone = format!(
+        "{head}[[region]]\nphysical = 1\nmaterial = {{ mu_r = 100.0 }}\nsource = {{ turns = 100, current_A = 0.0 }}\n\
+         [[region]]\nphysical = 2\nmaterial = \"air\"\n"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let (report, _, _) = solve_file(&write(dir.path(), "p.toml", &alone)).unwrap();
+    let c = &report.coils[0];
+    assert!(c.inductance_h.is_finite() && c.inductance_h > 0.0, "{c:?}");
+    assert!((c.inductance_h - c.incremental_inductance_h).abs() <= 1e-12 * c.inductance_h);
+
+    let mutual = format!(
+        "{head}[[region]]\nphysical = 1\nmaterial = {{ mu_r = 100.0 }}\nsource = {{ turns = 100, current_A = 0.0 }}\n\
+         [[region]]\nphysical = 2\nmaterial = \"air\"\nsource = {{ turns = 50, current_A = 1.0 }}\n"
+    );
+    let e = input_error(&mutual, &[]);
+    assert!(e.contains("physical = 1") && e.contains("undefined"), "{e}");
+}
+
+/// Issue 18, class 5: "unknown material `x`" named neither the file nor the region.
+#[test]
+fn unknown_material_names_file_and_region() {
+    let mesh = fixture_mesh();
+    let text = format!(
+        "mesh = {mesh:?}\nlength_unit = \"mm\"\n[[region]]\nphysical = 1\nmaterial = \"unobtainium\"\n\
+         [[region]]\nphysical = 2\nmaterial = \"air\"\n"
+    );
+    let e = input_error(&text, &[]);
+    assert!(e.contains("p.toml") && e.contains("physical = 1") && e.contains("unobtainium"), "{e}");
+}

@@ -96,6 +96,7 @@ fn sysid_freqresp<'py>(
         output_col: "output".into(),
         discard_periods,
         settle_s: settle,
+        ..FreqRespOptions::default()
     };
     let source = Path::new(ARRAYS);
     let point = py

@@ -180,11 +180,18 @@ impl DiscreteStateSpace {
 /// so 20 terms reach machine precision (the series stops once a term's largest entry is below
 /// 1e-18, at most 30 terms), then squared s times. The one matrix exponential of mrbrake: the
 /// transfer-function discretisation here and the haptic brakes' torque lag
-/// ([`crate::haptic::TorqueLag::discretise`]) both use it.
+/// ([`crate::haptic::TorqueLag::discretise`]) both use it. A matrix with a non-finite entry or
+/// norm gives a matrix of NaN (no finite answer exists), never an endless squaring loop.
 pub fn expm(m: &[f64], size: usize) -> Vec<f64> {
     let norm = (0..size)
         .map(|j| (0..size).map(|i| m[i * size + j].abs()).sum::<f64>())
         .fold(0.0, f64::max);
+    if !norm.is_finite() {
+        // An overflowed (or NaN) matrix: no finite exponential; callers refuse non-finite
+        // results. Without this the squaring count below would saturate at i32::MAX.
+        return vec![f64::NAN; size * size];
+    }
+    // At most ~1026 squarings for a finite norm (≤ 1.8e308 = 2^1024).
     let squarings = if norm > 0.5 { (norm / 0.5).log2().ceil() as i32 } else { 0 };
     let scale = 0.5f64.powi(squarings);
     let a: Vec<f64> = m.iter().map(|v| v * scale).collect();
@@ -286,6 +293,18 @@ mod tests {
     fn bad_time_step_is_an_input_error() {
         let g = TransferFunction::new(vec![1.0], vec![1.0, 1.0]).unwrap();
         assert!(DiscreteStateSpace::zoh(&g, 0.0).unwrap_err().is_input_error());
+    }
+
+    /// Hostile coefficients (a subnormal leading coefficient, a huge constant term) overflow the
+    /// scaled matrix: refused as input at once, where the squaring count used to saturate and spin.
+    #[test]
+    fn degenerate_denominators_are_refused_not_spun_on() {
+        for den in [vec![5e-324, 0.01702, 1.0], vec![2e-5, 0.000368, 1e307], vec![1e-300, 1e300]] {
+            let g = TransferFunction::new(vec![1.0], den.clone()).unwrap();
+            let e = DiscreteStateSpace::zoh(&g, 1e-3).unwrap_err();
+            assert!(e.is_input_error(), "{den:?}: {e}");
+        }
+        assert!(expm(&[f64::INFINITY, 0.0, 0.0, 1.0], 2).iter().all(|v| v.is_nan()));
     }
 
     #[test]

@@ -191,6 +191,12 @@ pub fn characterize(
     let p_down = Polynomial::new(falling.coefficients.clone());
     let off_state_torque_nm = samples.off_state_torque_nm().unwrap_or_else(|| p_up.eval(lo));
     let extremes = loop_extremes(&p_up, &p_down, lo, hi);
+    if ![extremes.max_torque_nm, rising.fit_percent, falling.fit_percent]
+        .iter()
+        .all(|v| v.is_finite())
+    {
+        return Err(SysidError::Input(non_finite_fit(torque_nm)));
+    }
     Ok(Characterization {
         rising,
         falling,
@@ -204,6 +210,20 @@ pub fn characterize(
         rising_mean,
         falling_mean,
     })
+}
+
+/// Why a fit came out non-finite: the largest torque sample (issue 18: one 1e308 sample).
+fn non_finite_fit(torque_nm: &[f64]) -> String {
+    let (k, v) = torque_nm
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .map_or((0, f64::NAN), |(k, v)| (k, *v));
+    format!(
+        "characterize: the branch fit is not finite; the torque's largest sample is {v} N·m \
+         (sample {}): remove the corrupted samples",
+        k + 1
+    )
 }
 
 /// Checks that the signals match and the order and bin count are usable.

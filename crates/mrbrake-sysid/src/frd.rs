@@ -49,6 +49,45 @@ pub fn unwrap_deg(phase_deg: &[f64]) -> Vec<f64> {
     out
 }
 
+/// Positive, finite, strictly increasing frequencies; `Err((line, message))` for the first bad one.
+fn check_frequencies(omega: &[f64]) -> Result<(), (u64, String)> {
+    for (k, w) in omega.iter().enumerate() {
+        let line = k as u64 + 2;
+        if !(w.is_finite() && *w > 0.0) {
+            return Err((line, format!("omega_rad_s must be a positive finite number, got {w}")));
+        }
+        if k > 0 && omega[k] <= omega[k - 1] {
+            return Err((line, "omega_rad_s must strictly increase".into()));
+        }
+    }
+    Ok(())
+}
+
+/// A file with both `re, im` and `magnitude_dB, phase_deg` must say the same thing in both
+/// (within 0.1 % of |G|, room for a spreadsheet's rounding): the estimator reads re/im, so a
+/// disagreement would otherwise go unnoticed.
+fn check_polar_agrees(source: &Path, text: &str, response: &[Complex64]) -> Result<(), SysidError> {
+    let cols = read_columns_from(source, text.as_bytes(), &["magnitude_dB", "phase_deg"])?;
+    for (k, ((db, deg), g)) in cols[0].iter().zip(&cols[1]).zip(response).enumerate() {
+        let polar = Complex64::from_polar(10f64.powf(db / 20.0), deg.to_radians());
+        let distance = (polar - g).norm();
+        if distance.is_nan() || distance > 1e-3 * g.norm().max(polar.norm()) {
+            return Err(crate::log::file_error(source)(
+                Some(k as u64 + 2),
+                format!(
+                    "re, im = {}, {} and magnitude_dB, phase_deg = {db}, {deg} disagree ({:.4} dB, \
+                     {:.2}° from re/im): fix or delete one pair",
+                    g.re,
+                    g.im,
+                    20.0 * g.norm().log10(),
+                    g.arg().to_degrees()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Reads an FRD CSV file; `weight_col` names an optional weight column.
 pub fn read_frd(path: &Path, weight_col: Option<&str>) -> Result<Frd, SysidError> {
     let text = std::fs::read_to_string(path)
@@ -71,6 +110,7 @@ pub fn read_frd_from(
         .map(str::to_string)
         .collect();
     let has = |n: &str| header.iter().any(|h| h == n);
+    let both = has("re") && has("im") && has("magnitude_dB") && has("phase_deg");
     let polar = if has("re") && has("im") {
         false
     } else if has("magnitude_dB") && has("phase_deg") {
@@ -94,17 +134,7 @@ pub fn read_frd_from(
     }
     let cols = read_columns_from(source, text.as_bytes(), &names)?;
     let omega = cols[0].clone();
-    for (k, w) in omega.iter().enumerate() {
-        if w.is_nan() || *w <= 0.0 {
-            return Err(file_err(
-                Some(k as u64 + 2),
-                format!("omega_rad_s must be positive, got {w}"),
-            ));
-        }
-        if k > 0 && omega[k] <= omega[k - 1] {
-            return Err(file_err(Some(k as u64 + 2), "omega_rad_s must strictly increase".into()));
-        }
-    }
+    check_frequencies(&omega).map_err(|(line, message)| file_err(Some(line), message))?;
     let response: Vec<Complex64> = if polar {
         cols[1]
             .iter()
@@ -114,6 +144,15 @@ pub fn read_frd_from(
     } else {
         cols[1].iter().zip(&cols[2]).map(|(re, im)| Complex64::new(*re, *im)).collect()
     };
+    if let Some(k) = response.iter().position(|g| !(g.re.is_finite() && g.im.is_finite())) {
+        return Err(file_err(
+            Some(k as u64 + 2),
+            format!("the response {} is not a finite number", response[k]),
+        ));
+    }
+    if both {
+        check_polar_agrees(source, text, &response)?;
+    }
     let weight = match weight_col {
         Some(w) => {
             let ws = cols[3].clone();
@@ -136,6 +175,22 @@ pub fn read_frd_from(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 18: an FRD whose two forms disagree was fitted from re/im without a word.
+    #[test]
+    fn disagreeing_forms_and_non_finite_values_are_refused() {
+        let same = "omega_rad_s,magnitude_dB,phase_deg,re,im\n1,0,-90,0,-1\n10,-20,-180,-0.1,0\n";
+        assert!(read_frd_from(Path::new("f.csv"), same, None).is_ok());
+        let differ = "omega_rad_s,magnitude_dB,phase_deg,re,im\n1,0,-90,0,-1\n10,-20,-90,-0.1,0\n";
+        let e = read_frd_from(Path::new("f.csv"), differ, None).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.contains("f.csv") && text.contains("disagree") && text.contains('3'),
+            "{text}"
+        );
+        let inf = "omega_rad_s,re,im\n1,0,-1\ninf,1,0\n";
+        assert!(read_frd_from(Path::new("f.csv"), inf, None).is_err());
+    }
 
     #[test]
     fn polar_and_cartesian_forms_agree() {

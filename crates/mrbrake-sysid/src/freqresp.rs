@@ -20,6 +20,11 @@ use crate::linalg::{Matrix, least_squares};
 use crate::log::read_log;
 use crate::tracking::{TrackingError, tracking_error};
 
+/// The default lowest accepted point quality, %: a sine at the stated frequency explains at
+/// least a fifth of the output's variance-like spread. The thesis rig's points are above 90 %; a
+/// frequency 1.6 times off gives under 1 %.
+pub const DEFAULT_MIN_QUALITY_PERCENT: f64 = 20.0;
+
 /// Settings of the frequency-response analysis.
 #[derive(Debug, Clone)]
 pub struct FreqRespOptions {
@@ -33,6 +38,10 @@ pub struct FreqRespOptions {
     pub discard_periods: f64,
     /// Seconds discarded at the start (the larger of the two discards applies).
     pub settle_s: f64,
+    /// Lowest accepted quality (output sine-fit percentage) of a point: below it the analysis
+    /// stops with an error naming the log (a manifest frequency that does not match the log's sine
+    /// gives ~0 %); 0 accepts every point.
+    pub min_quality_percent: f64,
 }
 
 impl Default for FreqRespOptions {
@@ -43,6 +52,7 @@ impl Default for FreqRespOptions {
             output_col: "output".into(),
             discard_periods: 1.0,
             settle_s: 0.5,
+            min_quality_percent: DEFAULT_MIN_QUALITY_PERCENT,
         }
     }
 }
@@ -104,6 +114,37 @@ pub struct FrequencyPoint {
     pub file: PathBuf,
 }
 
+/// The properties of a test's data without which a sine fit has no answer: four samples, the
+/// frequency below the samples' Nyquist frequency (above it a fit aliases), and input and output
+/// that vary; `Err(message)` names the first one missing.
+fn check_test_data(
+    omega_rad_s: f64,
+    time_s: &[f64],
+    input: &[f64],
+    output: &[f64],
+    options: &FreqRespOptions,
+) -> Result<(), String> {
+    let n = time_s.len();
+    if n < 4 {
+        return Err(format!("{n} samples are too few for a sine fit"));
+    }
+    let nyquist = std::f64::consts::PI * (n - 1) as f64 / (time_s[n - 1] - time_s[0]);
+    if nyquist.is_nan() || omega_rad_s >= nyquist {
+        return Err(format!(
+            "test frequency {omega_rad_s} rad/s is not below the log's Nyquist frequency \
+             {nyquist:.4} rad/s (π / mean sample step): check the manifest's frequency_rad_s"
+        ));
+    }
+    for (column, values) in [(&options.input_col, input), (&options.output_col, output)] {
+        if let Some(v) = constant_value(values) {
+            return Err(format!(
+                "column `{column}` is constant ({v}): it has no sine at {omega_rad_s} rad/s to fit"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Analyses one sinusoidal test from its samples.
 pub fn analyse_test(
     source: &Path,
@@ -119,9 +160,7 @@ pub fn analyse_test(
         return Err(file_err(format!("test frequency {omega_rad_s} rad/s must be positive")));
     }
     let n = time_s.len();
-    if n < 4 {
-        return Err(file_err(format!("{n} samples are too few for a sine fit")));
-    }
+    check_test_data(omega_rad_s, time_s, input, output, options).map_err(file_err)?;
     let period = 2.0 * std::f64::consts::PI / omega_rad_s;
     let (t0, t_end) = (time_s[0], time_s[n - 1]);
     let start = t0 + (options.discard_periods * period).max(options.settle_s);
@@ -149,7 +188,20 @@ pub fn analyse_test(
     if fu.phasor.norm().is_nan() || fu.phasor.norm() <= 0.0 {
         return Err(file_err(format!("the input has no component at {omega_rad_s} rad/s")));
     }
+    if fy.fit_percent.is_nan() || fy.fit_percent < options.min_quality_percent {
+        return Err(file_err(format!(
+            "the output sine fit at {omega_rad_s} rad/s explains only {:.2} % of the output (minimum \
+             {} %): the manifest frequency may not match the log, or the output is noise; check \
+             the frequency, or lower the minimum quality (--min-quality 0) to proceed",
+            fy.fit_percent, options.min_quality_percent
+        )));
+    }
     let g = div(fy.phasor, fu.phasor);
+    if !(g.re.is_finite() && g.im.is_finite()) || g.norm() <= 0.0 {
+        return Err(file_err(format!(
+            "the output has no component at {omega_rad_s} rad/s: gain and phase are undefined"
+        )));
+    }
     Ok(FrequencyPoint {
         omega_rad_s,
         magnitude_db: 20.0 * g.norm().log10(),
@@ -162,6 +214,12 @@ pub fn analyse_test(
         periods: whole as usize,
         file: source.to_path_buf(),
     })
+}
+
+/// The value of a column whose samples are all equal (`None` when they vary).
+fn constant_value(values: &[f64]) -> Option<f64> {
+    let first = *values.first()?;
+    values.iter().all(|v| v.to_bits() == first.to_bits()).then_some(first)
 }
 
 /// One manifest row: a test frequency and its log file (resolved against the manifest's folder).
@@ -206,6 +264,18 @@ pub fn read_manifest(path: &Path) -> Result<Vec<ManifestEntry>, SysidError> {
             .get(pi)
             .filter(|f| !f.is_empty())
             .ok_or_else(|| file_err(line, "file is empty".into()))?;
+        if let Some(twin) =
+            entries.iter().position(|e: &ManifestEntry| (e.omega_rad_s - w).abs() <= 1e-12 * w)
+        {
+            return Err(file_err(
+                line,
+                format!(
+                    "frequency_rad_s {w} repeats test {} of the manifest: each frequency appears \
+                     once (the FRD cannot hold two points at one frequency)",
+                    twin + 1
+                ),
+            ));
+        }
         entries.push(ManifestEntry { omega_rad_s: w, file: base.join(f) });
     }
     if entries.is_empty() {
@@ -305,5 +375,54 @@ mod tests {
             analyse_test(Path::new("short.csv"), 1.0, &t, &t, &t, &FreqRespOptions::default())
                 .unwrap_err();
         assert!(err.to_string().contains("short.csv") && err.is_input_error());
+    }
+
+    fn sine_test(w: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let t: Vec<f64> = (0..5000).map(|i| i as f64 * 1e-3).collect();
+        let u: Vec<f64> = t.iter().map(|t| 2.0 + (w * t).sin()).collect();
+        let y: Vec<f64> = t.iter().map(|t| 1.0 + 0.5 * (w * t - 0.5).sin()).collect();
+        (t, u, y)
+    }
+
+    fn refused(w: f64, t: &[f64], u: &[f64], y: &[f64]) -> String {
+        let e = analyse_test(Path::new("sine.csv"), w, t, u, y, &FreqRespOptions::default())
+            .unwrap_err();
+        assert!(e.is_input_error(), "{e}");
+        let text = e.to_string();
+        assert!(text.contains("sine.csv"), "{text}");
+        text
+    }
+
+    /// Issue 18, class 4: inputs that used to give −inf dB, NaN quality or a 0.1 % point without a
+    /// word are errors naming the log and the property.
+    #[test]
+    fn degenerate_logs_are_refused_not_answered() {
+        let (t, u, y) = sine_test(7.0);
+        let zeros = vec![0.0; t.len()];
+        let e = refused(7.0, &t, &u, &zeros);
+        assert!(e.contains("`output` is constant"), "{e}");
+        let e = refused(7.0, &t, &zeros, &zeros);
+        assert!(e.contains("`input` is constant"), "{e}");
+        // The stated frequency does not match the log's sine (50 rad/s for a 31.6 rad/s test).
+        let (t, u, y2) = sine_test(31.6);
+        let e = refused(50.0, &t, &u, &y2);
+        assert!(e.contains("--min-quality"), "{e}");
+        // With the threshold off the point is computed (the explicit way to proceed).
+        let lenient = FreqRespOptions { min_quality_percent: 0.0, ..FreqRespOptions::default() };
+        assert!(analyse_test(Path::new("sine.csv"), 50.0, &t, &u, &y2, &lenient).is_ok());
+        let e = refused(1e300, &t, &u, &y);
+        assert!(e.contains("Nyquist"), "{e}");
+    }
+
+    #[test]
+    fn duplicated_manifest_rows_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let manifest = dir.path().join("manifest.csv");
+        std::fs::write(&manifest, "frequency_rad_s,file\n1.0,a.csv\n2.0,b.csv\n1.0,a.csv\n")
+            .unwrap();
+        let e = read_manifest(&manifest).unwrap_err();
+        assert!(e.is_input_error());
+        let text = e.to_string();
+        assert!(text.contains("manifest.csv") && text.contains("repeats test 1"), "{text}");
     }
 }

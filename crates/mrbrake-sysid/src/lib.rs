@@ -7,6 +7,7 @@
 //! - [`model_file`] reads the inverse-model file those branches are saved as, into the one model type
 //!   every later stage runs: the controller's [`mrbrake_control::InverseModel`]
 //!   ([`characterize::Characterization::model`] converts a fit directly).
+//! - [`outliers`] screens a logged channel for corrupted samples before a fit.
 //! - [`tracking`] computes the torque-tracking RMSE (5.2).
 //! - [`freqresp`] turns sinusoidal tests (a manifest of logs) into frequency-response points by sine
 //!   fits (5.3), (5.4); [`frd`] reads and writes such data.
@@ -32,6 +33,7 @@ pub mod freqresp;
 pub mod linalg;
 pub mod log;
 pub mod model_file;
+pub mod outliers;
 pub mod polynomial;
 pub mod tfest;
 pub mod tracking;

@@ -242,10 +242,13 @@ pub fn tfest(frd: &Frd, options: &TfestOptions) -> Result<TfestResult, SysidErro
     check_request(frd, options)?;
     let (problem, omega_scale) = Problem::new(frd, options);
     // 1. Levy, then Sanathanan–Koerner.
-    let (theta, sk_history) = problem.linear_initialisation(options.max_sk_iterations)?;
+    let (theta, sk_history) = problem
+        .linear_initialisation(options.max_sk_iterations)
+        .map_err(|e| with_data_summary(e, frd))?;
     // 2. Levenberg–Marquardt.
-    let (theta, lm_history) =
-        problem.levenberg_marquardt(theta, options.max_lm_iterations, &sk_history)?;
+    let (theta, lm_history) = problem
+        .levenberg_marquardt(theta, options.max_lm_iterations, &sk_history)
+        .map_err(|e| with_data_summary(e, frd))?;
 
     // Unscale: coefficient of sⁱ = coefficient of pⁱ / ω_sⁱ; descending order.
     let (m, n) = (problem.m, problem.n);
@@ -270,6 +273,34 @@ pub fn tfest(frd: &Frd, options: &TfestOptions) -> Result<TfestResult, SysidErro
     Ok(result)
 }
 
+/// A numerical failure with what the data look like appended (how many points, the frequency
+/// range, the magnitude range), so the message says which property of the data defeated the fit.
+fn with_data_summary(error: SysidError, frd: &Frd) -> SysidError {
+    match error {
+        SysidError::Numerical { message, history } => {
+            let range = |v: &mut dyn Iterator<Item = f64>| {
+                v.fold((f64::INFINITY, 0.0f64), |(lo, hi), x| (lo.min(x), hi.max(x)))
+            };
+            let (w_lo, w_hi) = range(&mut frd.omega_rad_s.iter().copied());
+            let (g_lo, g_hi) = range(&mut frd.response.iter().map(|g| g.norm()));
+            SysidError::Numerical {
+                message: format!(
+                    "{message}; the data: {} points from {w_lo:e} to {w_hi:e} rad/s, |G| from \
+                     {g_lo:e} to {g_hi:e}",
+                    frd.omega_rad_s.len()
+                ),
+                history,
+            }
+        }
+        other => other,
+    }
+}
+
+/// The widest frequency span (decades × model degree) the scaled design matrix can hold: its
+/// columns are powers (ω/ω_s)ⁱ, so their magnitudes span 10^(decades·degree/2) either way; beyond
+/// 10^20 the least-squares problem is beyond double precision (the thesis data: 4 decades, degree 2).
+const MAX_DECADES_TIMES_DEGREE: f64 = 40.0;
+
 /// Checks the model orders, the number of points, the delay and the data.
 fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
     let (m, n) = (options.zeros, options.poles);
@@ -293,11 +324,26 @@ fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
         )));
     }
     if frd.response.iter().any(|g| !g.is_finite())
-        || frd.omega_rad_s.iter().any(|w| w.is_nan() || *w <= 0.0)
+        || frd.omega_rad_s.iter().any(|w| !(w.is_finite() && *w > 0.0))
     {
         return Err(SysidError::Input(
             "tfest: frequencies must be positive and responses finite".into(),
         ));
+    }
+    if frd.response.iter().all(|g| g.norm() <= 0.0) {
+        return Err(SysidError::Input("tfest: every response is zero: nothing to fit".into()));
+    }
+    let w_min = frd.omega_rad_s.iter().copied().fold(f64::INFINITY, f64::min);
+    let w_max = frd.omega_rad_s.iter().copied().fold(0.0, f64::max);
+    let decades = (w_max / w_min).log10();
+    let span = decades * m.max(n) as f64;
+    if span.is_nan() || span > MAX_DECADES_TIMES_DEGREE {
+        return Err(SysidError::Input(format!(
+            "tfest: the frequencies span {decades:.1} decades ({w_min:e} to {w_max:e} rad/s); a \
+             degree-{} model can be fitted over at most {:.1} decades: remove the extreme points",
+            m.max(n),
+            MAX_DECADES_TIMES_DEGREE / m.max(n) as f64
+        )));
     }
     Ok(())
 }
@@ -570,5 +616,30 @@ mod tests {
         };
         assert!(tfest(&frd, &TfestOptions::new(1, 2)).unwrap_err().is_input_error());
         assert!(tfest(&frd, &TfestOptions::new(3, 1)).unwrap_err().is_input_error());
+    }
+
+    /// Issue 18, class 5: data that make the fit impossible are named as such (a 5e-324 rad/s
+    /// point, an all-zero response) instead of "column 2 of the design matrix is zero".
+    #[test]
+    fn impossible_data_are_named() {
+        let g = TransferFunction::new(vec![1.0], vec![1.791e-5, 0.01702, 1.0]).unwrap();
+        let mut omega = logspace(1.0, 100.0, 10);
+        omega[0] = 5e-324;
+        let frd = Frd {
+            response: omega.iter().map(|w| g.response(*w)).collect(),
+            omega_rad_s: omega.clone(),
+            weight: None,
+        };
+        let e = tfest(&frd, &TfestOptions::new(2, 0)).unwrap_err();
+        assert!(e.is_input_error() && e.to_string().contains("decades"), "{e}");
+        let zero = Frd {
+            response: vec![Complex64::new(0.0, 0.0); 10],
+            omega_rad_s: logspace(1.0, 100.0, 10),
+            weight: None,
+        };
+        let e = tfest(&zero, &TfestOptions::new(2, 0)).unwrap_err();
+        assert!(e.to_string().contains("every response is zero"), "{e}");
+        let summary = with_data_summary(SysidError::numerical("tfest: x", vec![1.0]), &zero);
+        assert!(summary.to_string().contains("10 points from 1e0 to 1e2 rad/s"), "{summary}");
     }
 }

@@ -7,9 +7,10 @@ use clap::Args;
 use mrbrake_report::identification::CharacterizationReport;
 use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
 use mrbrake_sysid::log::read_log;
+use mrbrake_sysid::outliers::check_outliers;
 
-use crate::error::CommandResult;
 use crate::error::InputError;
+use crate::error::{CommandResult, Context as _};
 use crate::output::print_json;
 
 /// Arguments of `mrbrake characterize`.
@@ -42,6 +43,10 @@ pub struct CharacterizeArgs {
     /// The unit of `--brake-model` the log is of: 1 or 2.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=2), requires = "brake_model")]
     unit: u32,
+    /// Fit samples the outlier screen refuses (mrbrake_sysid::outliers: a sample more than ten
+    /// times the channel's 1st–99th percentile spread beyond them).
+    #[arg(long)]
+    keep_outliers: bool,
     /// Draw the hysteresis loop (SVG, or PNG for a .png name).
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
@@ -62,8 +67,13 @@ pub fn run(args: CharacterizeArgs) -> CommandResult {
         2 * (args.order + 1),
     )?;
     let (current, torque) = (&log.channels[0], &log.channels[1]);
+    if !args.keep_outliers {
+        check_outliers(&args.log, &args.current_col, &log.time_s, current)?;
+        check_outliers(&args.log, &args.torque_col, &log.time_s, torque)?;
+    }
     let c =
-        characterize(current, torque, CharacterizeOptions { order: args.order, bins: args.bins })?;
+        characterize(current, torque, CharacterizeOptions { order: args.order, bins: args.bins })
+            .with_context(|| args.log.display().to_string())?;
     let report = CharacterizationReport {
         characterization: &c,
         log: &args.log,

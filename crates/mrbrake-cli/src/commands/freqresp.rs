@@ -37,6 +37,10 @@ pub struct FreqRespArgs {
     /// Time discarded at the start of each test (the larger discard applies), e.g. 0.5s.
     #[arg(long, default_value = "0.5s")]
     settle: String,
+    /// Lowest accepted output sine-fit quality of a point, %: a point below it stops the analysis
+    /// with an error naming its log (a frequency that does not match the log); 0 accepts all.
+    #[arg(long, value_name = "PERCENT", default_value_t = mrbrake_sysid::freqresp::DEFAULT_MIN_QUALITY_PERCENT)]
+    min_quality: f64,
     /// Draw the measured Bode diagram (SVG, or PNG for a .png name).
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
@@ -52,12 +56,16 @@ pub fn run(args: FreqRespArgs) -> CommandResult {
     if !non_negative(settle_s) || !non_negative(args.discard_periods) {
         return Err(InputError("--settle and --discard-periods must be non-negative".into()).into());
     }
+    if !(0.0..=100.0).contains(&args.min_quality) {
+        return Err(InputError("--min-quality must be a percentage from 0 to 100".into()).into());
+    }
     let options = FreqRespOptions {
         time_col: args.time_col.clone(),
         input_col: args.input_col.clone(),
         output_col: args.output_col.clone(),
         discard_periods: args.discard_periods,
         settle_s,
+        min_quality_percent: args.min_quality,
     };
     let points = frequency_response(&args.manifest, &options)?;
     let out = args.out.clone().unwrap_or_else(|| args.manifest.with_file_name("frd.csv"));

@@ -9,8 +9,8 @@ use mrbrake_sysid::frd::read_frd;
 use mrbrake_sysid::tfest::{TfestOptions, Weighting, tfest};
 use mrbrake_units::{Dimension, parse};
 
-use crate::error::CommandResult;
 use crate::error::InputError;
+use crate::error::{CommandResult, Context as _};
 use crate::output::print_json;
 
 /// Weighting of the complex fitting error.
@@ -70,7 +70,7 @@ pub fn run(args: TfestArgs) -> CommandResult {
         WeightingArg::Uniform => Weighting::Uniform,
         WeightingArg::Relative => Weighting::InverseMagnitude,
     };
-    let fit = tfest(&frd, &options)?;
+    let fit = tfest(&frd, &options).with_context(|| args.frd.display().to_string())?;
     let summary = fit.summary()?;
     if let Some(path) = &args.save {
         mrbrake_report::write_atomic(path, crate::output::json_text(&summary)?.as_bytes())?;

@@ -620,7 +620,7 @@ pub struct BrakeSpec {
     /// Model settings.
     pub model: Model,
     /// Where it was read from, so that validation errors name the file and line.
-    source: SpecSource,
+    pub(crate) source: SpecSource,
 }
 
 impl PartialEq for BrakeSpec {

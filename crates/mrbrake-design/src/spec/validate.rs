@@ -75,7 +75,7 @@ impl BrakeSpec {
         }
     }
 
-    fn invalid(&self, errors: FieldErrors) -> DesignError {
+    pub(crate) fn invalid(&self, errors: FieldErrors) -> DesignError {
         DesignError::Spec { name: self.name.clone(), errors: self.source.locate(errors) }
     }
 }

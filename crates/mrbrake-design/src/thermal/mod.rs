@@ -44,7 +44,7 @@ use serde::Serialize;
 
 use crate::DesignError;
 use crate::geometry::{BrakeGeometry, PartKind};
-use crate::mesh_build::{MeshLevel, mesh};
+use crate::mesh_build::{MeshLevel, mesh_spec};
 use crate::spec::BrakeSpec;
 
 /// Edge tag of the device's outer surface in the thermal mesh.
@@ -239,7 +239,7 @@ pub fn thermal_problem(
 ) -> Result<(HeatProblem, ThermalParts), ThermalError> {
     let validated = spec.validate()?;
     let geometry = validated.geometry;
-    let full = mesh(&geometry, options.mesh)?;
+    let full = mesh_spec(spec, &geometry, options.mesh)?;
     let device = device_mesh(&geometry, &full);
     let d = spec.wire_diameter_m();
     let mut regions = Vec::new();

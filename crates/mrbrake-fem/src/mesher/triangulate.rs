@@ -38,7 +38,8 @@ pub struct MeshOptions {
     /// Maximum number of size-refinement passes before giving up.
     pub max_passes: usize,
     /// Maximum number of mesh vertices before giving up (protects against a size field that asks
-    /// for an absurd mesh).
+    /// for an absurd mesh): reaching it is an input error naming the budget, checked while the
+    /// segments are subdivided and while refining, so memory stays bounded by it.
     pub max_vertices: usize,
     /// Tag given to enclosed areas that no seed reaches (`None`: such an area is an input error).
     pub default_tag: Option<u32>,
@@ -68,7 +69,8 @@ pub fn triangulate(pslg: &Pslg, size: &SizeField, options: &MeshOptions) -> Resu
     let resolved = resolve_size_field(&cdt_a, &tags_a, &graph, size);
 
     // Stage B: subdivide each segment at the local size, then triangulate again.
-    let (vertices_b, edges_b, tagged_b) = subdivide_segments(&cdt_a, &tags_a, &graph, &resolved);
+    let (vertices_b, edges_b, tagged_b) =
+        subdivide_segments(&cdt_a, &tags_a, &graph, &resolved, options.max_vertices)?;
     let mut cdt = load(&vertices_b, &edges_b)?;
     let tags = refine(&mut cdt, &graph, &resolved, options)?;
     Ok(extract(&cdt, &tags, &vertices_b, &tagged_b))
@@ -108,20 +110,20 @@ fn refine(
             .with_max_additional_vertices(options.max_vertices.saturating_sub(cdt.num_vertices()));
         let result = cdt.refine(params);
         if !result.refinement_complete {
-            return Err(FemError::Numerical(format!(
-                "Delaunay refinement reached the vertex budget ({} vertices, pass {passes}); \
-                 coarsen the size field or lower the angle limit",
-                cdt.num_vertices()
-            )));
+            return Err(over_budget(
+                options.max_vertices,
+                &format!("refining for quality (pass {passes})"),
+            ));
         }
         let tags = flood_fill(cdt, graph, options.default_tag)?;
         let centroids = oversized_centroids(cdt, &tags, resolved);
         if centroids.is_empty() {
             return Ok(tags);
         }
-        if passes >= options.max_passes
-            || cdt.num_vertices() + centroids.len() > options.max_vertices
-        {
+        if cdt.num_vertices() + centroids.len() > options.max_vertices {
+            return Err(over_budget(options.max_vertices, "refining to the size field"));
+        }
+        if passes >= options.max_passes {
             return Err(FemError::Numerical(format!(
                 "size refinement did not converge: {} triangles still larger than the size field after \
                  {passes} passes ({} vertices)",
@@ -407,13 +409,15 @@ fn side_tags(cdt: &Cdt, tags: &[FaceRegion], a: usize, b: usize) -> [Option<u32>
 
 /// Subdivides each input segment by walking along it with the local target size; returns the new
 /// vertex list, the constraint edges, and each tagged input segment as (first, last vertex, tag).
+/// More than `max_vertices` points on the segments alone is the vertex budget's input error.
 #[allow(clippy::type_complexity)]
 fn subdivide_segments(
     cdt: &Cdt,
     tags: &[FaceRegion],
     graph: &NormalizedPslg,
     resolved: &ResolvedSizeField,
-) -> (Vec<[f64; 2]>, Vec<[usize; 2]>, Vec<(usize, usize, u32)>) {
+    max_vertices: usize,
+) -> Result<(Vec<[f64; 2]>, Vec<[usize; 2]>, Vec<(usize, usize, u32)>), FemError> {
     let mut vertices = graph.vertices.clone();
     let mut edges = Vec::new();
     let mut tagged = Vec::new();
@@ -431,8 +435,8 @@ fn subdivide_segments(
             let step = h_at(x) / len;
             t += step.max(1e-6);
             ts.push(t.min(1.0));
-            if ts.len() > 1_000_000 {
-                break;
+            if vertices.len() + ts.len() > max_vertices {
+                return Err(over_budget(max_vertices, "subdividing the boundary segments"));
             }
         }
         // ts ends at 1.0; the last step may be a tiny remainder: merge it with the previous one.
@@ -454,7 +458,18 @@ fn subdivide_segments(
             tagged.push((seg.a, seg.b, tag));
         }
     }
-    (vertices, edges, tagged)
+    Ok((vertices, edges, tagged))
+}
+
+/// The vertex budget's error: an input error (the geometry and size field ask for a mesh larger
+/// than allowed), naming the budget and the stage that reached it.
+fn over_budget(max_vertices: usize, stage: &str) -> FemError {
+    FemError::Input(format!(
+        "mesher: the mesh would exceed its budget of {max_vertices} vertices (~{} triangles) while \
+         {stage}: a feature is too thin for the size field, or the size field too fine; coarsen \
+         it, thicken the feature, or raise the budget",
+        2 * max_vertices
+    ))
 }
 
 fn extract(

@@ -128,7 +128,7 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     let regions = regions_of(&raw.region, dir, &file)?;
     let boundaries = boundaries_of(&raw.boundary, &gmsh.mesh, scale, &file, &mesh_path)?;
     let options = options_of(raw.solver.as_ref(), order, &file)?;
-    let (probes, lines) = probes_of(&raw, scale);
+    let (probes, lines) = probes_of(&raw, scale, &file)?;
     let problem = Problem { mesh: Arc::new(gmsh.mesh), regions, boundaries };
     // Region/mesh consistency (unknown groups, missing materials) is checked here so the error
     // names the file.
@@ -227,8 +227,48 @@ fn options_of(
     Ok(options)
 }
 
-/// The `[[probe]]` and `[[line]]` tables, in metres.
-fn probes_of(raw: &RawFile, scale: f64) -> (Vec<Probe>, Vec<LineProbe>) {
+/// The secant inductance λ/I of a coil, finite: at zero current with no linked flux (no other
+/// source) it is its limit I → 0, the incremental inductance dλ/dI at zero (λ = L_inc(0)·I + O(I²));
+/// at zero current with flux from other sources λ/I has no value, an input error naming the coil.
+fn secant_inductance(
+    coil: &CoilLinkage,
+    incremental_h: f64,
+    file: &str,
+) -> Result<f64, MagneticsError> {
+    if coil.inductance_h.is_finite() {
+        return Ok(coil.inductance_h);
+    }
+    if coil.flux_linkage_wb.abs() <= f64::MIN_POSITIVE && incremental_h.is_finite() {
+        return Ok(incremental_h);
+    }
+    Err(MagneticsError::Input(format!(
+        "{file}: region physical = {}: source current_A = {} links {:.4e} Wb from other sources, so \
+         its secant inductance λ/I is undefined; give the coil a non-zero current",
+        coil.physical, coil.current_a, coil.flux_linkage_wb
+    )))
+}
+
+/// The most intervals of one `[[line]]` (each is a point location and a field evaluation; the
+/// report holds them all).
+pub const MAX_LINE_SAMPLES: usize = 100_000;
+
+/// The `[[probe]]` and `[[line]]` tables, in metres; `samples` beyond [`MAX_LINE_SAMPLES`] is an
+/// input error naming the line.
+fn probes_of(
+    raw: &RawFile,
+    scale: f64,
+    file: &str,
+) -> Result<(Vec<Probe>, Vec<LineProbe>), MagneticsError> {
+    if let Some((i, l)) =
+        raw.line.iter().enumerate().find(|(_, l)| l.samples.is_some_and(|n| n > MAX_LINE_SAMPLES))
+    {
+        return Err(MagneticsError::Input(format!(
+            "{file}: line {} ('{}'): samples = {} is too many; allowed 1 to {MAX_LINE_SAMPLES}",
+            i + 1,
+            l.name,
+            l.samples.unwrap_or_default()
+        )));
+    }
     let probes = raw
         .probe
         .iter()
@@ -244,7 +284,7 @@ fn probes_of(raw: &RawFile, scale: f64) -> (Vec<Probe>, Vec<LineProbe>) {
             samples: l.samples.unwrap_or(20).max(1),
         })
         .collect();
-    (probes, lines)
+    Ok((probes, lines))
 }
 
 fn check_regions(problem: &Problem, file: &str, mesh_path: &Path) -> Result<(), MagneticsError> {
@@ -271,7 +311,10 @@ fn check_regions(problem: &Problem, file: &str, mesh_path: &Path) -> Result<(), 
 fn material_of(value: &toml::Value, dir: &Path, field: &str) -> Result<Magnetic, MagneticsError> {
     match value {
         toml::Value::String(name) => {
-            let material = mrbrake_materials::library::get(name)?;
+            // The library's error names the material; the region (file and physical tag) is ours.
+            let material = mrbrake_materials::library::get(name).map_err(|e| {
+                MagneticsError::Input(format!("{field}: material = \"{name}\": {e}"))
+            })?;
             Ok(material.magnetic.clone())
         }
         toml::Value::Table(table) => {
@@ -408,10 +451,11 @@ pub fn solve_file_with_order(
     let mut coils = Vec::new();
     for c in linkages {
         let incremental = solver.incremental_inductance(&solution, c.physical)?;
+        let inductance_h = secant_inductance(&c, incremental, &path.display().to_string())?;
         coils.push(CoilReport {
             physical: c.physical,
             flux_linkage_wb: c.flux_linkage_wb,
-            inductance_h: c.inductance_h,
+            inductance_h,
             incremental_inductance_h: incremental,
         });
     }

@@ -246,6 +246,7 @@ impl RigConfig {
     pub fn validate(&self, source: &str) -> Result<(), SimError> {
         self.check_plant()
             .and_then(|()| self.check_protocols())
+            .and_then(|()| super::check_run_size(self))
             .map_err(|(field, msg)| SimError::Input(format!("{source}: {field}: {msg}")))
     }
 
@@ -276,6 +277,11 @@ impl RigConfig {
                 "sensor",
                 "stiffness_Nm_per_rad, full_scale_Nm and full_scale_V must be > 0",
             );
+        }
+        if self.sensor.full_scale_v > super::MAX_FULL_SCALE_V {
+            let msg =
+                format!("{} must be ≤ {} V", self.sensor.full_scale_v, super::MAX_FULL_SCALE_V);
+            return Err(("sensor.full_scale_V", msg));
         }
         if !non_negative(self.sensor.noise_std_v) || !(1..=32).contains(&self.sensor.adc_bits) {
             return bad("sensor", "noise_std_V must be ≥ 0 and adc_bits within 1..=32");

@@ -163,6 +163,87 @@ fn protocol_current(config: &RigConfig, t_s: f64) -> Option<f64> {
     Some((level as f64 * c.step_a).min(config.brake.current_max_a))
 }
 
+/// The most output steps one protocol may simulate (characterisation, or all the sine tests
+/// together): 10 million, 22 times the thesis characterisation (450 s at 1 kHz). Each step is
+/// kept as a logged sample, so this bounds the memory of a run (~32 bytes a sample plus its
+/// CSV text) as well as its time; a configuration asking for more is an input error naming the
+/// fields to change.
+pub const MAX_RUN_STEPS: f64 = 1e7;
+
+/// The most test frequencies of the frequency-response protocol.
+pub const MAX_TEST_FREQUENCIES: f64 = 10_000.0;
+
+/// The largest accepted full-scale sensor voltage, V (the thesis amplifier gives ±10 V; a larger
+/// value overflows the ADC step).
+pub const MAX_FULL_SCALE_V: f64 = 1e3;
+
+/// Checks that the brake and motor models discretise at the output rate (degenerate
+/// coefficients overflow) and that both protocols fit [`MAX_RUN_STEPS`] (and the sine tests
+/// [`MAX_TEST_FREQUENCIES`]) before anything is allocated; `Err((field, message))` otherwise.
+fn check_run_size(config: &RigConfig) -> Result<(), (&'static str, String)> {
+    let rate = config.daq.output_rate_hz;
+    let models = [
+        (
+            "brake.dynamics_denominator",
+            &config.brake.dynamics_numerator,
+            &config.brake.dynamics_denominator,
+        ),
+        ("motor.denominator", &config.motor.numerator, &config.motor.denominator),
+    ];
+    for (field, num, den) in models {
+        TransferFunction::new(num.clone(), den.clone())
+            .map_err(|e| e.to_string())
+            .and_then(|g| DiscreteStateSpace::zoh(&g, 1.0 / rate).map_err(|e| e.to_string()))
+            .map_err(|e| (field, e))?;
+    }
+    let steps = characterization_duration_s(config) * rate;
+    if steps.is_nan() || steps > MAX_RUN_STEPS {
+        return Err((
+            "characterization",
+            format!(
+                "the protocol would simulate {steps:.3e} output steps ({:.3e} s at {rate} Hz), more \
+                 than the limit of {MAX_RUN_STEPS:.0e}: reduce repetitions, pause_s, step_s or \
+                 current_max_A / step_A",
+                characterization_duration_s(config)
+            ),
+        ));
+    }
+    let f = &config.frequency_response;
+    let count = (f.omega_max_rad_s / f.omega_min_rad_s).log10() * f.points_per_decade as f64 + 1.0;
+    if count.is_nan() || count > MAX_TEST_FREQUENCIES {
+        return Err((
+            "frequency_response.points_per_decade",
+            format!(
+                "{count:.3e} test frequencies, more than the limit of {MAX_TEST_FREQUENCIES}: reduce \
+                 points_per_decade or the range omega_min_rad_s..omega_max_rad_s"
+            ),
+        ));
+    }
+    let total: f64 =
+        test_frequencies(config).iter().map(|&w| sine_test_duration_s(config, w)).sum();
+    if (total * rate).is_nan() || total * rate > MAX_RUN_STEPS {
+        return Err((
+            "frequency_response",
+            format!(
+                "the sine tests would simulate {:.3e} output steps ({total:.3e} s at {rate} Hz), more \
+                 than the limit of {MAX_RUN_STEPS:.0e}: raise omega_min_rad_s or reduce the periods \
+                 and durations",
+                total * rate
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Recorded duration of one sine test at `omega_rad_s`, s: the discarded start-up and the
+/// measured part.
+fn sine_test_duration_s(config: &RigConfig, omega_rad_s: f64) -> f64 {
+    let f = &config.frequency_response;
+    let period = 2.0 * std::f64::consts::PI / omega_rad_s;
+    (f.periods_discarded * period).max(f.settle_s)
+        + (f.periods_measured * period).max(f.min_measure_s)
+}
+
 /// Duration of the characterisation protocol, s.
 pub fn characterization_duration_s(config: &RigConfig) -> f64 {
     let c = &config.characterization;
@@ -240,9 +321,6 @@ pub fn sine_test_samples(
 ) -> Result<Vec<[f64; 4]>, SimError> {
     let f = &config.frequency_response;
     let (dt, sub) = rates(config);
-    let period = 2.0 * std::f64::consts::PI / omega_rad_s;
-    let discard = (f.periods_discarded * period).max(f.settle_s);
-    let measure = (f.periods_measured * period).max(f.min_measure_s);
     let mid = 0.5 * (f.torque_min_nm + f.torque_max_nm);
     let amp = 0.5 * (f.torque_max_nm - f.torque_min_nm);
     let mut plant = Plant::new(config, dt, seed)?;
@@ -251,7 +329,7 @@ pub fn sine_test_samples(
     let mut compensation = CompensationState::default();
     let i0 = inverse.compensate(&mut compensation, mid, limit_a, 0.0);
     plant.settle(i0);
-    let n = ((discard + measure) / dt).ceil() as usize;
+    let n = (sine_test_duration_s(config, omega_rad_s) / dt).ceil() as usize;
     let mut out = Vec::with_capacity(n / sub + 1);
     for k in 0..n {
         let t = k as f64 * dt;
@@ -384,6 +462,36 @@ mod tests {
         let m = p.measure(1.23456);
         assert!((m - 1.23456).abs() <= 0.5 * lsb_nm + 1e-15);
         assert!(((m / lsb_nm) - (m / lsb_nm).round()).abs() < 1e-9);
+    }
+
+    /// The hostile configurations of issue 18 (each used to abort on a huge allocation or panic)
+    /// are input errors naming the field, before any sample is simulated.
+    #[test]
+    fn oversized_protocols_are_refused_before_allocating() {
+        let cases = [
+            ("[characterization]\nrepetitions = 1000000\n", "characterization"),
+            ("[characterization]\npause_s = 1e308\n", "characterization"),
+            ("[brake]\ncurrent_max_A = 2147483647\n", "characterization"),
+            ("[sensor]\nfull_scale_V = 1e308\n", "sensor.full_scale_V"),
+            ("[frequency_response]\npoints_per_decade = 1000000000\n", "points_per_decade"),
+            ("[frequency_response]\nomega_min_rad_s = 1e-300\n", "frequency_response"),
+            (
+                "[brake]\ndynamics_denominator = [5e-324, 0.01702, 1.0]\n",
+                "brake.dynamics_denominator",
+            ),
+            ("[motor]\ndenominator = [2e-5, 0.000368, 1e307]\n", "motor.denominator"),
+        ];
+        for (text, field) in cases {
+            let e = RigConfig::from_toml("rig.toml", text).unwrap_err();
+            assert!(mrbrake_error::Kind::is_input_error(&e), "{text}: {e}");
+            let message = e.to_string();
+            assert!(message.contains("rig.toml") && message.contains(field), "{text}: {message}");
+        }
+        // The defaults and the largest sensor voltage still run.
+        let mut c = RigConfig::default();
+        c.sensor.full_scale_v = MAX_FULL_SCALE_V;
+        c.characterization.repetitions = 1;
+        assert!(characterization_samples(&c).unwrap().len() > 1000);
     }
 
     #[test]
