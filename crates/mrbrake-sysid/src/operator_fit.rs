@@ -305,7 +305,7 @@ pub fn nnls_gram(gram: &[f64], rhs: &[f64], n: usize) -> Result<Vec<f64>, SysidE
     })
 }
 
-/// Solves `G_PP s_P = h_P` (Cholesky with a tiny ridge), `s = 0` outside the passive set.
+/// Solves `G_PP s_P = h_P` (Cholesky with a ridge of 10⁻¹⁴ on the unit diagonal), `s = 0` outside the passive set.
 fn solve_passive(
     g: &dyn Fn(usize, usize) -> f64,
     h: &[f64],
@@ -317,7 +317,7 @@ fn solve_passive(
     let mut l = vec![0.0; p * p];
     for a in 0..p {
         for b in 0..=a {
-            let mut v = g(idx[a], idx[b]) + if a == b { 1e-12 } else { 0.0 };
+            let mut v = g(idx[a], idx[b]) + if a == b { 1e-14 } else { 0.0 };
             for k in 0..b {
                 v -= l[a * p + k] * l[b * p + k];
             }
@@ -388,11 +388,13 @@ mod tests {
 
     #[test]
     fn a_model_in_the_class_is_recovered() {
+        // Same play grid as the fit (2 A / (2·4) apart) and a linear output map, so the truth is in the
+        // model class and the equation error is zero.
         let truth = OperatorModel::new(&OperatorParts {
             thresholds_a: &[0.0, 0.25, 0.5, 0.75],
-            weights: &[1.0, 0.4, 0.2, 0.1],
-            knots_nm: &[0.15, 1.5, 3.0],
-            slopes_a_per_nm: &[0.5, 0.7, 1.1],
+            weights: &[1.0, 0.4, 0.0, 0.1],
+            knots_nm: &[0.15],
+            slopes_a_per_nm: &[0.6],
             offset_a: 0.4,
             current_min_a: 0.0,
             current_max_a: 2.0,
@@ -400,11 +402,13 @@ mod tests {
         .unwrap();
         let current = nested_current();
         let torque = simulate(&truth, &current);
-        let fit = fit_operator_model(&current, &torque, OperatorOptions { plays: 4, segments: 3 })
+        let fit = fit_operator_model(&current, &torque, OperatorOptions { plays: 4, segments: 1 })
             .unwrap();
-        // Same grids as the truth (plays at (2 A/2)/4·i, knots at the torque range's thirds are not the
-        // truth's knots), so the fit is close but not exact.
-        assert!(fit.fit.fit_percent > 98.0, "{:?}", fit.fit);
+        assert!(fit.fit.rmse_nm < 1e-9, "{:?}", fit.fit);
+        let parts = fit.model.0.parts();
+        for (a, b) in parts.weights.iter().zip([1.0, 0.4, 0.0, 0.1]) {
+            assert!((a - b).abs() < 1e-9, "{:?}", parts.weights);
+        }
         assert!(fit.fit.inner_reversals >= 4);
     }
 
@@ -425,7 +429,7 @@ mod tests {
     fn nnls_matches_a_hand_solution() {
         // min ‖Aθ − b‖ with A = I₂, b = (1, −2): θ = (1, 0).
         let s = nnls_gram(&[1.0, 0.0, 0.0, 1.0], &[1.0, -2.0], 2).unwrap();
-        assert!((s[0] - 1.0).abs() < 1e-12 && s[1].abs() < 1e-15);
+        assert!((s[0] - 1.0).abs() < 1e-10 && s[1].abs() < 1e-15, "{s:?}");
     }
 
     #[test]

@@ -18,6 +18,10 @@ pub enum RigCommand {
     /// Frequency-response protocol (§5.3.2): sinusoidal torque demands through the inverse model;
     /// one log per frequency and a manifest.
     Freqresp(RigFreqArgs),
+    /// Minor-loop protocol: first-order reversal curves from below and above and decaying triangles
+    /// (`[minor_loops]` of the configuration); one log in the characterisation's format and a
+    /// manifest of the ramps, for `mrbrake characterize --operators`.
+    MinorLoops(RigArgs),
     /// Print the default rig configuration (TOML) to start a configuration file from.
     Config,
 }
@@ -73,6 +77,12 @@ pub fn run(command: RigCommand) -> CommandResult {
             let file = rig::characterization_log(&config)?;
             let written = write_rig_folder(&args.out, &config, std::slice::from_ref(&file))?;
             report(&args, &written, "characterization log")
+        }
+        RigCommand::MinorLoops(args) => {
+            let config = load_config(&args)?;
+            let files = rig::minor_loops::minor_loop_logs(&config)?;
+            let written = write_rig_folder(&args.out, &config, &files)?;
+            report(&args, &written, "minor-loop log")
         }
         RigCommand::Freqresp(args) => {
             let config = load_config(&args.common)?;
