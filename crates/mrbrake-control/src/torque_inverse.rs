@@ -8,6 +8,9 @@ use crate::inverse::{Branch, CompensationState, InverseModel};
 use crate::operator::{OperatorCompensation, OperatorModel};
 
 /// One brake's inverse model.
+// The operator variant is ~1.8 kB against the branches' ~170 B; boxing it would need an allocator,
+// which this crate must not use, and the controller holds two of them by value once.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TorqueInverse {
     /// Two polynomial branches (thesis §5.3.2, Fig. 5.7).

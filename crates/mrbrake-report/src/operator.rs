@@ -4,6 +4,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use mrbrake_sim::rig::tracking::TrackingScore;
 use mrbrake_sysid::operator_fit::OperatorFit;
 use serde_json::{Value, json};
 
@@ -39,4 +40,17 @@ pub fn operator_fit_text(fit: &OperatorFit, log: &Path, samples: usize) -> Strin
 pub fn operator_fit_json(fit: &OperatorFit, log: &Path) -> Result<Value, ReportError> {
     let value = serde_json::to_value(fit).map_err(ReportError::from)?;
     Ok(json!({ "log": log.display().to_string(), "operator_model": value }))
+}
+
+/// The tracking scores of `mrbrake rig track` as a table.
+pub fn tracking_text(scores: &[TrackingScore]) -> String {
+    let mut out = String::from("demand                 RMSE (5.2)\n");
+    for s in scores {
+        let _ = writeln!(
+            out,
+            "{:22} {:.4} N·m = {:.2} % of the demand's range ({})",
+            s.demand, s.rmse_nm, s.rmse_percent_of_range, s.file
+        );
+    }
+    out
 }

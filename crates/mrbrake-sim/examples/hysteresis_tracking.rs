@@ -6,28 +6,19 @@
 //!   quintic fits as in the thesis;
 //! - operators: `minor_loops.csv` of `mrbrake rig minor-loops` (FORCs and decaying triangles, seed 1),
 //!   12 plays and 12 output segments;
-//! - scoring: fresh tracking runs with noise seeds 101…, demands (a) 0.5–3.5 N·m sinusoid at 0.1 rad/s
-//!   (the thesis's Fig. 5.8: 3.54 % and 3.07 % measured), (b) 50 % and 25 % of that range about
-//!   2 N·m, (c) a band-limited random demand (random-phase multisine, 0.1–2 rad/s) over 0.5–3.5 N·m.
+//! - scoring: the logs of `mrbrake rig track` (fresh runs, noise seeds 102…105), demands (a) a
+//!   0.5–3.5 N·m sinusoid at 0.1 rad/s (the thesis's Fig. 5.8: 3.54 % and 3.07 % measured), (b) 50 %
+//!   and 25 % of that range about 2 N·m, (c) a band-limited random demand (random-phase multisine,
+//!   0.1–2 rad/s) over 0.5–3.5 N·m ([`mrbrake_sim::rig::tracking::tracking_suite`]).
 //!
 //! Run: `cargo run --release -p mrbrake-sim --example hysteresis_tracking`.
 
 use mrbrake_control::TorqueInverse;
 use mrbrake_sim::rig::preisach::HysteresisKind;
-use mrbrake_sim::rig::tracking::{Demand, track};
+use mrbrake_sim::rig::tracking::tracking_logs;
 use mrbrake_sim::rig::{RigConfig, characterization_samples, minor_loops::minor_loop_samples};
 use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
 use mrbrake_sysid::operator_fit::{OperatorOptions, fit_operator_model};
-use mrbrake_sysid::tracking::tracking_error;
-
-/// (RMSE N·m, RMSE % of the demand's range) over the samples after `skip_s`.
-fn score(samples: &[[f64; 4]], skip_s: f64) -> (f64, f64) {
-    let kept: Vec<&[f64; 4]> = samples.iter().filter(|s| s[0] >= skip_s).collect();
-    let demand: Vec<f64> = kept.iter().map(|s| s[1]).collect();
-    let measured: Vec<f64> = kept.iter().map(|s| s[2]).collect();
-    let e = tracking_error(&demand, &measured).expect("equal, non-empty signals");
-    (e.rmse_nm, e.rmse_percent_of_range)
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut config = RigConfig::default();
@@ -46,27 +37,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let inverses =
         [("branches", TorqueInverse::Branches(branches)), ("operators", fit.model.0.into())];
 
-    let period = 2.0 * std::f64::consts::PI / 0.1;
-    let sine = |amplitude_nm| Demand::Sine { mid_nm: 2.0, amplitude_nm, omega_rad_s: 0.1 };
-    let random = Demand::band_limited(2.0, 1.5, (0.1, 2.0), 16, 120.0, 7);
-    let cases = [
-        ("(a) full range 0.5–3.5 N·m, 0.1 rad/s", sine(1.5), 1.25 * period, 0.25 * period),
-        ("(b) 50 % of range about 2 N·m, 0.1 rad/s", sine(0.75), 1.25 * period, 0.25 * period),
-        ("(b) 25 % of range about 2 N·m, 0.1 rad/s", sine(0.375), 1.25 * period, 0.25 * period),
-        ("(c) band-limited random 0.5–3.5 N·m, 0.1–2 rad/s", random, 120.0, 5.0),
-    ];
-    println!("| demand | branch inverse RMSE | operator inverse RMSE |");
+    let scores: Vec<_> = inverses
+        .iter()
+        .map(|(_, inverse)| tracking_logs(&config, inverse).map(|(_, scores)| scores))
+        .collect::<Result<_, _>>()?;
+    println!("| demand (scoring log) | branch inverse RMSE | operator inverse RMSE |");
     println!("|---|---|---|");
-    for (k, (name, demand, duration, skip)) in cases.iter().enumerate() {
-        let mut cells = Vec::new();
-        for (_, inverse) in &inverses {
-            let run = track(&config, demand, *duration, inverse, 101 + k as u64)?;
-            let (nm, percent) = score(&run, *skip);
+    for (b, o) in scores[0].iter().zip(&scores[1]) {
+        for s in [b, o] {
             // Sane bounds, not tuned numbers: finite, and well below the demand's own range.
-            assert!(nm.is_finite() && percent > 0.0 && percent < 25.0, "{name}: {percent} %");
-            cells.push(format!("{percent:.2} % ({nm:.4} N·m)"));
+            let p = s.rmse_percent_of_range;
+            assert!(s.rmse_nm.is_finite() && p > 0.0 && p < 25.0, "{}: {p} %", s.demand);
         }
-        println!("| {name} | {} | {} |", cells[0], cells[1]);
+        println!(
+            "| {} (`{}`) | {:.2} % ({:.4} N·m) | {:.2} % ({:.4} N·m) |",
+            b.demand,
+            b.file,
+            b.rmse_percent_of_range,
+            b.rmse_nm,
+            o.rmse_percent_of_range,
+            o.rmse_nm
+        );
     }
     Ok(())
 }

@@ -370,6 +370,21 @@ pub fn parse_operator_model(source: &Path, text: &str) -> Result<OperatorModel, 
     })
 }
 
+/// Reads either model file: an operator-model file (it has a `schema` field) or the polynomial-branch
+/// inverse-model file ([`crate::model_file`]), as the controller's [`mrbrake_control::TorqueInverse`].
+pub fn read_torque_inverse(path: &Path) -> Result<mrbrake_control::TorqueInverse, SysidError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
+    let has_schema = serde_json::from_str::<serde_json::Value>(&text)
+        .map(|v| v.get("schema").is_some())
+        .unwrap_or(false);
+    if has_schema {
+        parse_operator_model(path, &text).map(Into::into)
+    } else {
+        crate::model_file::parse_inverse_model(path, &text).map(Into::into)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -127,11 +127,12 @@ pub fn program(config: &RigConfig) -> Vec<Ramp> {
     ramps
 }
 
+/// A ramp with its start and end time, s.
+pub type TimedRamp = (Ramp, f64, f64);
+
 /// Samples (time s, current A, torque N·m, speed rad/s) of the minor-loop program, and the ramps with
 /// their start and end times.
-pub fn minor_loop_samples(
-    config: &RigConfig,
-) -> Result<(Vec<[f64; 4]>, Vec<(Ramp, f64, f64)>), SimError> {
+pub fn minor_loop_samples(config: &RigConfig) -> Result<(Vec<[f64; 4]>, Vec<TimedRamp>), SimError> {
     config.validate("rig configuration")?;
     let (dt, sub) = rates(config);
     let mut plant = Plant::new(config, dt, config.seed)?;

@@ -107,3 +107,77 @@ pub fn track(
     }
     Ok(out)
 }
+
+/// One demand of the tracking suite: name, demand, run length (s), start of the scored part (s).
+pub type TrackingCase = (&'static str, Demand, f64, f64);
+
+/// The tracking suite over the frequency-response torque interval `[T_lo, T_hi]` of the configuration
+/// (default 0.5–3.5 N·m): (a) the full interval at 0.1 rad/s (thesis Fig. 5.8), (b) 50 % and 25 % of
+/// it about its middle at 0.1 rad/s, (c) a band-limited random demand (16 components, 0.1–2 rad/s)
+/// over the full interval. Sinusoids run 1.25 periods and are scored over the last period; the random
+/// demand runs 120 s and is scored after 5 s.
+pub fn tracking_suite(config: &RigConfig) -> Vec<TrackingCase> {
+    let f = &config.frequency_response;
+    let mid = 0.5 * (f.torque_min_nm + f.torque_max_nm);
+    let half = 0.5 * (f.torque_max_nm - f.torque_min_nm);
+    let period = 2.0 * std::f64::consts::PI / 0.1;
+    let sine =
+        |share: f64| Demand::Sine { mid_nm: mid, amplitude_nm: share * half, omega_rad_s: 0.1 };
+    let random =
+        Demand::band_limited(mid, half, (0.1, 2.0), 16, 120.0, config.seed.wrapping_add(7));
+    vec![
+        ("sine_full_range", sine(1.0), 1.25 * period, 0.25 * period),
+        ("sine_50_percent", sine(0.5), 1.25 * period, 0.25 * period),
+        ("sine_25_percent", sine(0.25), 1.25 * period, 0.25 * period),
+        ("band_limited_random", random, 120.0, 5.0),
+    ]
+}
+
+/// The score of one tracking run: RMSE (5.2) over the scored part.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct TrackingScore {
+    /// The demand's name in the suite.
+    pub demand: &'static str,
+    /// The log written for it.
+    pub file: String,
+    /// RMSE, N·m.
+    #[serde(rename = "rmse_Nm")]
+    pub rmse_nm: f64,
+    /// RMSE in % of the scored demand's range.
+    pub rmse_percent_of_range: f64,
+}
+
+/// Runs the suite through `inverse` (noise seeds `seed + 101 …`, none shared with the identification
+/// protocols): one log per demand (`time_s, input, output, current_A`), `manifest.csv` with the scores,
+/// and the scores.
+pub fn tracking_logs(
+    config: &RigConfig,
+    inverse: &TorqueInverse,
+) -> Result<(Vec<super::RigFile>, Vec<TrackingScore>), SimError> {
+    let mut files = Vec::new();
+    let mut scores = Vec::new();
+    let mut manifest = String::from("demand,file,rmse_Nm,rmse_percent_of_range\n");
+    for (k, (name, demand, duration, skip)) in tracking_suite(config).into_iter().enumerate() {
+        let run =
+            track(config, &demand, duration, inverse, config.seed.wrapping_add(101 + k as u64))?;
+        let scored: Vec<&[f64; 4]> = run.iter().filter(|s| s[0] >= skip).collect();
+        let d: Vec<f64> = scored.iter().map(|s| s[1]).collect();
+        let m: Vec<f64> = scored.iter().map(|s| s[2]).collect();
+        let e = mrbrake_sysid::tracking::tracking_error(&d, &m)?;
+        let file = format!("track_{name}.csv");
+        let mut csv = String::from("time_s,input,output,current_A\n");
+        for row in &run {
+            super::push_row(&mut csv, row);
+        }
+        manifest.push_str(&format!("{name},{file},{},{}\n", e.rmse_nm, e.rmse_percent_of_range));
+        scores.push(TrackingScore {
+            demand: name,
+            file: file.clone(),
+            rmse_nm: e.rmse_nm,
+            rmse_percent_of_range: e.rmse_percent_of_range,
+        });
+        files.push(super::RigFile { name: file, csv });
+    }
+    files.push(super::RigFile { name: "manifest.csv".into(), csv: manifest });
+    Ok((files, scores))
+}
