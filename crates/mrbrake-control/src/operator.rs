@@ -101,6 +101,8 @@ pub struct OperatorCompensation {
     z: f64,
     branch: Branch,
     started: bool,
+    /// The plays are in the rest state (after a zero demand): another zero demand changes nothing.
+    at_rest: bool,
 }
 
 impl OperatorCompensation {
@@ -273,6 +275,10 @@ impl OperatorModel {
             state.started = true;
         }
         let active = demand_nm.is_finite() && demand_nm > 0.0;
+        if !active && state.at_rest {
+            return 0.0; // the idle brake of a bidirectional pair costs nothing
+        }
+        state.at_rest = !active;
         let z = if active { self.output_map(demand_nm).clamp(z_rest, z_top) } else { z_rest };
         if z > state.z {
             state.branch = Branch::Rising;

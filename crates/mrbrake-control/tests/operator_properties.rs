@@ -7,20 +7,24 @@
 use mrbrake_control::*;
 use proptest::prelude::*;
 
-/// Valid models: 1..=MAX_PLAYS plays on a uniform grid, 1..=MAX_SEGMENTS segments.
+/// Valid models: 1..=MAX_PLAYS plays on a uniform grid, 1..=MAX_SEGMENTS segments, torque at rest
+/// 0.1–1.1 N·m.
 fn model() -> impl Strategy<Value = OperatorModel> {
     (
         prop::collection::vec(0.0f64..1.0, 1..MAX_PLAYS),
         prop::collection::vec(0.05f64..3.0, 1..MAX_SEGMENTS),
         0.5f64..5.0,
-        -1.0f64..1.0,
+        0.0f64..1.0,
     )
-        .prop_map(|(weights, slopes, i_max, offset)| {
+        .prop_map(|(weights, slopes, i_max, lift)| {
             let mut weights = weights;
             weights[0] += 0.1; // a₀ > 0
             let thresholds: Vec<f64> =
                 (0..weights.len()).map(|k| k as f64 * i_max / (2 * weights.len()) as f64).collect();
             let knots: Vec<f64> = (0..slopes.len()).map(|k| 0.1 + 0.3 * k as f64).collect();
+            // D(0.1 N·m + lift) = Π at rest: the brake's torque at rest is positive, as a brake's is.
+            let rest: f64 = weights.iter().zip(&thresholds).map(|(a, r)| a * r).sum();
+            let offset = rest - slopes[0] * lift;
             OperatorModel::new(&OperatorParts {
                 thresholds_a: &thresholds,
                 weights: &weights,
@@ -65,9 +69,7 @@ proptest! {
         for f in currents {
             let i = 1e-6 + f * (model.current_max_a() - 1e-6);
             let t = model.torque_nm(&mut forward, i);
-            if t <= 0.0 {
-                continue; // a non-positive demand means "off" by definition
-            }
+            prop_assert!(t > 0.0, "the model's torque at rest is ≥ 0.1 N·m");
             let back = model.compensate(&mut inverse, t, model.current_max_a());
             prop_assert!((back - i).abs() < 1e-9 * (1.0 + i), "{i} → {t} → {back}");
         }
