@@ -20,6 +20,7 @@
 
 use crate::error::{ControlError, check_range};
 use crate::inverse::{Branch, CURRENT_LIMIT_A, CompensationState, InverseModel};
+use crate::torque_inverse::{TorqueInverse, TorqueInverseState};
 use crate::wall::{VirtualWall, WallSide};
 
 /// The mechanical arrangement the controller drives.
@@ -61,7 +62,7 @@ impl Default for InputLimits {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DirectionalController {
     layout: BrakeLayout,
-    brakes: [InverseModel; 2],
+    brakes: [TorqueInverse; 2],
     current_max_a: f64,
     radians_per_count: f64,
     limits: InputLimits,
@@ -72,7 +73,7 @@ pub struct DirectionalController {
 /// demand, branch, and the previous current that warm-starts the next inversion) and the fault count.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ControllerState {
-    compensation: [CompensationState; 2],
+    compensation: [TorqueInverseState; 2],
     fault_count: u32,
 }
 
@@ -82,8 +83,13 @@ impl ControllerState {
         self.fault_count
     }
 
-    /// The hysteresis compensation of brake 1 and brake 2.
-    pub fn compensation(&self) -> &[CompensationState; 2] {
+    /// The branch compensation of brake 1 and brake 2 (the state of [`TorqueInverse::Branches`]).
+    pub fn compensation(&self) -> [CompensationState; 2] {
+        [self.compensation[0].branches, self.compensation[1].branches]
+    }
+
+    /// The full inverse state of brake 1 and brake 2 (either model's memory).
+    pub fn inverse_states(&self) -> &[TorqueInverseState; 2] {
         &self.compensation
     }
 }
@@ -155,6 +161,26 @@ impl DirectionalController {
         limits: InputLimits,
         branch_deadband_nm: f64,
     ) -> Result<Self, ControlError> {
+        let brakes = brakes.map(TorqueInverse::Branches);
+        Self::with_inverses(
+            layout,
+            brakes,
+            current_max_a,
+            counts_per_revolution,
+            limits,
+            branch_deadband_nm,
+        )
+    }
+
+    /// [`Self::new`] with either inverse per brake (polynomial branches or the operator model).
+    pub fn with_inverses(
+        layout: BrakeLayout,
+        brakes: [TorqueInverse; 2],
+        current_max_a: f64,
+        counts_per_revolution: u32,
+        limits: InputLimits,
+        branch_deadband_nm: f64,
+    ) -> Result<Self, ControlError> {
         let current_max_a =
             check_range("current_max_a", current_max_a, f64::MIN_POSITIVE, CURRENT_LIMIT_A)?;
         if counts_per_revolution == 0 {
@@ -197,7 +223,7 @@ impl DirectionalController {
     }
 
     /// The inverse models of brake 1 and brake 2.
-    pub fn brakes(&self) -> &[InverseModel; 2] {
+    pub fn brakes(&self) -> &[TorqueInverse; 2] {
         &self.brakes
     }
 
@@ -236,7 +262,7 @@ impl DirectionalController {
     pub fn step(&self, state: &mut ControllerState, input: &ControlInput) -> ControlOutput {
         let angle_rad = input.encoder_counts as f64 * self.radians_per_count;
         if let Some(fault) = self.check(input, angle_rad) {
-            state.compensation = [CompensationState::default(); 2];
+            state.compensation = [TorqueInverseState::default(); 2];
             state.fault_count = state.fault_count.saturating_add(1);
             return ControlOutput {
                 current_a: [0.0; 2],
@@ -253,7 +279,7 @@ impl DirectionalController {
                 self.current_max_a,
                 self.branch_deadband_nm,
             );
-            breakdown.branch[k] = state.compensation[k].branch();
+            breakdown.branch[k] = state.compensation[k].branch(&self.brakes[k]);
         }
         if self.layout == BrakeLayout::Conventional {
             current_a[1] = 0.0;

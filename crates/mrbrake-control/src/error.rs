@@ -30,6 +30,31 @@ pub enum ControlError {
         /// Which branch: `"rising"` or `"falling"`.
         branch: &'static str,
     },
+    /// A list of an operator model is empty or longer than the controller's fixed capacity.
+    Capacity {
+        /// The list, e.g. `"plays"`.
+        field: &'static str,
+        /// How many entries the model has.
+        count: usize,
+        /// The capacity ([`crate::MAX_PLAYS`] or [`crate::MAX_SEGMENTS`]).
+        limit: usize,
+    },
+    /// Two lists of an operator model that must be equally long are not.
+    CountMismatch {
+        /// The list, e.g. `"weights"`.
+        field: &'static str,
+        /// Its length.
+        count: usize,
+        /// The length it must have.
+        expected: usize,
+    },
+    /// A list of an operator model is not strictly increasing and finite (thresholds must start at 0).
+    NotIncreasing {
+        /// The list, e.g. `"thresholds"`.
+        field: &'static str,
+        /// The first offending value.
+        value: f64,
+    },
 }
 
 impl mrbrake_error::Kind for ControlError {
@@ -53,6 +78,20 @@ impl fmt::Display for ControlError {
             Self::NonMonotoneBranch { branch } => write!(
                 f,
                 "the {branch} branch decreases somewhere on the current range, so torque -> current is ambiguous"
+            ),
+            Self::Capacity { field, count, limit } => write!(
+                f,
+                "{field}: {count} entries, but the controller holds 1 to {limit} (fixed capacity)"
+            ),
+            Self::CountMismatch { field, count, expected } => {
+                write!(
+                    f,
+                    "{field}: {count} entries, expected {expected} (one per threshold or knot)"
+                )
+            }
+            Self::NotIncreasing { field, value } => write!(
+                f,
+                "{field}: must be finite and strictly increasing (thresholds starting at 0); {value} breaks it"
             ),
         }
     }

@@ -33,7 +33,9 @@
 pub mod controller;
 pub mod error;
 pub mod inverse;
+pub mod operator;
 pub mod polynomial;
+pub mod torque_inverse;
 pub mod velocity;
 pub mod wall;
 
@@ -43,6 +45,11 @@ pub use controller::{
 };
 pub use error::ControlError;
 pub use inverse::{Branch, CURRENT_LIMIT_A, CompensationState, InverseModel, InverseModelFile};
+pub use operator::{
+    MAX_PLAYS, MAX_SEGMENTS, OPERATOR_SCHEMA, OPERATOR_SCHEMA_VERSION, OperatorCompensation,
+    OperatorModel, OperatorParts, OperatorState,
+};
 pub use polynomial::{BranchPolynomial, MAX_DEGREE, MAX_INVERSE_ITERATIONS};
+pub use torque_inverse::{TorqueInverse, TorqueInverseState};
 pub use velocity::{VelocityEstimator, VelocityState};
 pub use wall::{VirtualWall, WallSide};

@@ -16,7 +16,9 @@ fn forward(model: &InverseModel, held_nm: f64, current_a: f64) -> f64 {
 #[test]
 fn sinusoidal_demand_is_tracked_through_the_loop() {
     let controller = common::controller(BrakeLayout::Bidirectional);
-    let model = controller.brakes()[0];
+    let TorqueInverse::Branches(model) = controller.brakes()[0] else {
+        panic!("the common controller uses branch models")
+    };
     let mut state = ControllerState::default();
     let k = 30.0; // Nm/rad
     let rad_per_count = controller.radians_per_count();

@@ -37,6 +37,7 @@ pub mod html;
 pub mod hysteresis;
 pub mod identification;
 pub mod materials;
+pub mod operator;
 pub mod pareto;
 pub mod response;
 pub mod rig;

@@ -7,6 +7,8 @@
 //! - [`model_file`] reads the inverse-model file those branches are saved as, into the one model type
 //!   every later stage runs: the controller's [`mrbrake_control::InverseModel`]
 //!   ([`characterize::Characterization::model`] converts a fit directly).
+//! - [`operator_fit`] identifies the operator hysteresis model (modified Prandtl–Ishlinskii, minor
+//!   loops, exact inverse) from a log with minor loops, and reads its file.
 //! - [`outliers`] screens a logged channel for corrupted samples before a fit.
 //! - [`tracking`] computes the torque-tracking RMSE (5.2).
 //! - [`freqresp`] turns sinusoidal tests (a manifest of logs) into frequency-response points by sine
@@ -33,6 +35,7 @@ pub mod freqresp;
 pub mod linalg;
 pub mod log;
 pub mod model_file;
+pub mod operator_fit;
 pub mod outliers;
 pub mod polynomial;
 pub mod tfest;

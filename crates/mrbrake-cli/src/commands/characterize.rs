@@ -5,8 +5,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 use mrbrake_report::identification::CharacterizationReport;
+use mrbrake_report::operator::{operator_fit_json, operator_fit_text};
 use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
 use mrbrake_sysid::log::read_log;
+use mrbrake_sysid::operator_fit::{OperatorOptions, fit_operator_model};
 use mrbrake_sysid::outliers::check_outliers;
 
 use crate::error::InputError;
@@ -33,7 +35,16 @@ pub struct CharacterizeArgs {
     /// Name of the torque column (newton-metres).
     #[arg(long, default_value = "torque_Nm")]
     torque_col: String,
-    /// Write the model (branches and current range; the controller's inverse-model file) as JSON here.
+    /// Identify the operator hysteresis model (modified Prandtl–Ishlinskii, minor loops, exact inverse)
+    /// with this many play operators instead of the polynomial branches; the log must contain minor
+    /// loops (`mrbrake rig minor-loops`). At most 32 (the controller's capacity).
+    #[arg(long, value_name = "N")]
+    operators: Option<usize>,
+    /// Segments of the operator model's output map (with --operators; at most 32).
+    #[arg(long, default_value_t = 12, value_name = "M")]
+    segments: usize,
+    /// Write the model as JSON here: the branches and current range (the controller's inverse-model
+    /// file) or, with --operators, the operator-model file (schema mrbrake.operator-model).
     #[arg(long, value_name = "FILE.json")]
     save_model: Option<PathBuf>,
     /// Also put the identified branches into this brake model file (from `mrbrake analyze
@@ -57,6 +68,9 @@ pub struct CharacterizeArgs {
 
 /// Runs `mrbrake characterize`.
 pub fn run(args: CharacterizeArgs) -> CommandResult {
+    if let Some(plays) = args.operators {
+        return run_operators(&args, plays);
+    }
     if args.order == 0 || args.order > 12 {
         return Err(InputError(format!("--order {} is outside 1..=12", args.order)).into());
     }
@@ -103,5 +117,22 @@ pub fn run(args: CharacterizeArgs) -> CommandResult {
         return print_json(&report.json()?);
     }
     crate::out!("{}", report.text());
+    Ok(())
+}
+
+/// `mrbrake characterize --operators N`: the operator model from a log with minor loops.
+fn run_operators(args: &CharacterizeArgs, plays: usize) -> CommandResult {
+    let log = read_log(&args.log, &args.time_col, &[&args.current_col, &args.torque_col], 10)?;
+    let (current, torque) = (&log.channels[0], &log.channels[1]);
+    let options = OperatorOptions { plays, segments: args.segments };
+    let fit = fit_operator_model(current, torque, options)?;
+    if let Some(path) = &args.save_model {
+        let text = crate::output::json_text(&fit)?;
+        mrbrake_report::write_atomic(path, text.as_bytes())?;
+    }
+    if args.json {
+        return print_json(&operator_fit_json(&fit, &args.log)?);
+    }
+    crate::out!("{}", operator_fit_text(&fit, &args.log, log.len()));
     Ok(())
 }

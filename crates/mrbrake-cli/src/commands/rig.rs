@@ -3,11 +3,13 @@
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
+use mrbrake_report::operator::tracking_text;
 use mrbrake_report::rig::{rig_json, rig_text, write_rig_folder};
 use mrbrake_sim::brake_model::BrakeModel;
 use mrbrake_sim::brake_model::apply::apply_to_rig;
 use mrbrake_sim::rig::{self, RigConfig};
 use mrbrake_sysid::model_file::read_inverse_model;
+use mrbrake_sysid::operator_fit::read_torque_inverse;
 
 use crate::error::CommandResult;
 use crate::output::print_json;
@@ -20,6 +22,14 @@ pub enum RigCommand {
     /// Frequency-response protocol (§5.3.2): sinusoidal torque demands through the inverse model;
     /// one log per frequency and a manifest.
     Freqresp(RigFreqArgs),
+    /// Minor-loop protocol: first-order reversal curves from below and above and decaying triangles
+    /// (`[minor_loops]` of the configuration); one log in the characterisation's format and a
+    /// manifest of the ramps, for `mrbrake characterize --operators`.
+    MinorLoops(RigArgs),
+    /// Torque tracking (RMSE of thesis (5.2)): full-range, 50 % and 25 % sinusoids at 0.1 rad/s and a
+    /// band-limited random demand through an inverse model (branch or operator-model file); one log per
+    /// demand and a manifest with the scores.
+    Track(RigTrackArgs),
     /// Print the default rig configuration (TOML) to start a configuration file from.
     Config,
 }
@@ -60,6 +70,17 @@ pub struct RigFreqArgs {
     model: Option<PathBuf>,
 }
 
+/// Arguments of `rig track`.
+#[derive(Debug, Args)]
+pub struct RigTrackArgs {
+    #[command(flatten)]
+    common: RigArgs,
+    /// Inverse model: `characterize --save-model` JSON, polynomial branches or (with --operators) the
+    /// operator-model file; default: the configured branches.
+    #[arg(long, value_name = "FILE.json")]
+    model: Option<PathBuf>,
+}
+
 fn load_config(args: &RigArgs) -> CommandResult<RigConfig> {
     let mut config = match &args.config {
         Some(path) => RigConfig::read(path)?,
@@ -89,6 +110,28 @@ pub fn run(command: RigCommand) -> CommandResult {
             let file = rig::characterization_log(&config)?;
             let written = write_rig_folder(&args.out, &config, std::slice::from_ref(&file))?;
             report(&args, &written, "characterization log")
+        }
+        RigCommand::MinorLoops(args) => {
+            let config = load_config(&args)?;
+            let files = rig::minor_loops::minor_loop_logs(&config)?;
+            let written = write_rig_folder(&args.out, &config, &files)?;
+            report(&args, &written, "minor-loop log")
+        }
+        RigCommand::Track(args) => {
+            let config = load_config(&args.common)?;
+            let inverse = match &args.model {
+                Some(path) => read_torque_inverse(path)?,
+                None => rig::configured_model(&config)?.into(),
+            };
+            let (files, scores) = rig::tracking::tracking_logs(&config, &inverse)?;
+            let written = write_rig_folder(&args.common.out, &config, &files)?;
+            if args.common.json {
+                return print_json(
+                    &serde_json::json!({ "files": rig_json(&written), "scores": scores }),
+                );
+            }
+            crate::out!("{}", tracking_text(&scores));
+            report(&args.common, &written, "tracking logs")
         }
         RigCommand::Freqresp(args) => {
             let config = load_config(&args.common)?;

@@ -27,6 +27,10 @@ pub struct RigConfig {
     pub characterization: CharacterizationProtocol,
     /// Frequency-response protocol (§5.3.2).
     pub frequency_response: FrequencyResponseProtocol,
+    /// Static hysteresis model of the brake (default: the play-type clamp).
+    pub hysteresis: super::preisach::HysteresisConfig,
+    /// Minor-loop protocol (`mrbrake rig minor-loops`).
+    pub minor_loops: super::minor_loops::MinorLoopProtocol,
 }
 
 /// The brake: static hysteresis branches and a linear dynamic model.
@@ -214,6 +218,8 @@ impl Default for RigConfig {
             daq: DaqConfig::default(),
             characterization: CharacterizationProtocol::default(),
             frequency_response: FrequencyResponseProtocol::default(),
+            hysteresis: Default::default(),
+            minor_loops: Default::default(),
         }
     }
 }
@@ -247,6 +253,8 @@ impl RigConfig {
         self.check_plant()
             .and_then(|()| self.check_protocols())
             .and_then(|()| super::check_run_size(self))
+            .and_then(|()| self.hysteresis.check())
+            .and_then(|()| self.minor_loops.check(self.brake.current_max_a))
             .map_err(|(field, msg)| SimError::Input(format!("{source}: {field}: {msg}")))
     }
 

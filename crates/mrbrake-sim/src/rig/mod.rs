@@ -24,7 +24,10 @@
 //! exactly as the controller would.
 
 pub mod config;
+pub mod minor_loops;
 pub mod noise;
+pub mod preisach;
+pub mod tracking;
 
 use mrbrake_control::{Branch, CompensationState, InverseModel};
 use mrbrake_sysid::polynomial::Polynomial;
@@ -34,6 +37,7 @@ use crate::SimError;
 use crate::lti::DiscreteStateSpace;
 pub use config::RigConfig;
 use noise::GaussianNoise;
+use preisach::{HysteresisKind, PreisachHysteresis};
 
 /// The simulated plant: brake, motor and sensor, advanced one output sample at a time.
 #[derive(Debug, Clone)]
@@ -52,6 +56,8 @@ pub struct Plant {
     full_scale_v: f64,
     stiffness: f64,
     noise: GaussianNoise,
+    /// The Preisach hysteresis when the configuration selects it (else the play-type clamp).
+    preisach: Option<PreisachHysteresis>,
 }
 
 /// One output sample of the plant.
@@ -90,18 +96,34 @@ impl Plant {
             full_scale_v: s.full_scale_v,
             stiffness: s.stiffness_nm_per_rad,
             noise: GaussianNoise::new(seed),
+            preisach: match config.hysteresis.model {
+                HysteresisKind::Clamp => None,
+                HysteresisKind::Preisach => Some(PreisachHysteresis::new(
+                    &config.hysteresis,
+                    &b.rising,
+                    &b.falling,
+                    b.current_max_a,
+                )?),
+            },
         })
     }
 
     /// Starts in equilibrium at current `current_a` on the rising branch, motor at steady speed.
     pub fn settle(&mut self, current_a: f64) {
-        self.static_torque_nm = self.rising.eval(current_a);
+        self.static_torque_nm = match &mut self.preisach {
+            Some(p) => p.settle(current_a),
+            None => self.rising.eval(current_a),
+        };
         self.brake_dynamics.set_steady_state(self.static_torque_nm);
         self.motor.set_steady_state(self.motor_voltage_v);
     }
 
     /// Static (quasi-steady) torque of the play-type hysteresis model for the next current.
     fn static_torque(&mut self, current_a: f64) -> f64 {
+        if let Some(p) = &mut self.preisach {
+            self.static_torque_nm = p.torque_nm(current_a);
+            return self.static_torque_nm;
+        }
         let up = self.rising.eval(current_a);
         let down = self.falling.eval(current_a);
         let (lo, hi) = if up <= down { (up, down) } else { (down, up) };
