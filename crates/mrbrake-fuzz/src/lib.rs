@@ -2,7 +2,7 @@
 //! (issue 18: CI machines have no nightly, so no libFuzzer; AFL++ needs its own compiler pass).
 //!
 //! Brief overview:
-//! - [`targets`] lists one [`Target`] per input format — brake spec, magnetic and heat problem
+//! - [`mod@targets`] lists one [`Target`] per input format — brake spec, magnetic and heat problem
 //!   files, MSH 2.2 and 4.1, optimisation problem, rig configuration, CSV logs (characterisation),
 //!   sine-test manifest, FRD, inverse-model JSON, results store — each with its seed corpus (the
 //!   files of `examples/` and the test fixtures, plus files the library writes itself) and a
