@@ -89,14 +89,16 @@ def test_an_unfittable_characterisation_is_a_solver_or_value_error():
         mrbrake.sysid.characterize(t, [1.0] * 100, [0.5] * 100)
 
 
-def test_a_numerical_failure_is_a_solver_error_with_the_cli_message(cli, tmp_path):
-    # A response that is zero everywhere leaves the least-squares problem without a solution.
+def test_an_all_zero_response_is_an_input_error_with_the_cli_message(cli, tmp_path):
+    # A response that is zero everywhere has nothing to fit: refused as input (issue 18: it used to
+    # reach the least-squares problem and fail there as a numerical error).
     omega = [10 ** (k / 10) for k in range(20)]
-    (tmp_path / "frd.csv").write_text(
-        "omega_rad_s,re,im\n" + "".join(f"{w!r},0,0\n" for w in omega))
-    code, message = cli.fail("tfest", tmp_path / "frd.csv", "--poles", "2")
-    assert code == 1
-    with pytest.raises(mrbrake.SolverError) as e:
+    path = tmp_path / "frd.csv"
+    path.write_text("omega_rad_s,re,im\n" + "".join(f"{w!r},0,0\n" for w in omega))
+    code, message = cli.fail("tfest", path, "--poles", "2")
+    assert code == 2
+    with pytest.raises(ValueError) as e:
         mrbrake.sysid.tfest(omega, [0j] * len(omega), poles=2)
-    assert str(e.value) == message
-    assert "least squares" in message
+    # The CLI names the file in front of the library's message.
+    assert message == f"{path}: {e.value}"
+    assert "every response is zero" in message
