@@ -21,26 +21,37 @@ use crate::SysidError;
 
 /// Reads an inverse-model file (see the module docs); errors name the file and the field.
 pub fn read_inverse_model(path: &Path) -> Result<InverseModel, SysidError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
-    parse_inverse_model(path, &text)
+    parse_inverse_model(path, &read_text(path)?)
 }
 
 /// Parses inverse-model JSON text; `source` names it in errors.
 pub fn parse_inverse_model(source: &Path, text: &str) -> Result<InverseModel, SysidError> {
-    let mut deserializer = serde_json::Deserializer::from_str(text);
-    let parts: InverseModelFile =
-        serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
-            // The path is "." at the root and "?" where the parser stopped outside any field.
-            let field = e.path().to_string();
-            SysidError::ModelFile {
-                file: source.to_path_buf(),
-                field: (field != "." && field != "?").then_some(field),
-                source: e.into_inner(),
-            }
-        })?;
+    let parts: InverseModelFile = deserialize_json(source, text)?;
     InverseModel::try_from(parts)
         .map_err(|e| SysidError::Model { file: source.to_path_buf(), source: e })
+}
+
+/// The text of a model file (an I/O error names it).
+pub(crate) fn read_text(path: &Path) -> Result<String, SysidError> {
+    std::fs::read_to_string(path)
+        .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })
+}
+
+/// Deserialises a model file's JSON text; an error names the file `source` and the field.
+pub(crate) fn deserialize_json<T: serde::de::DeserializeOwned>(
+    source: &Path,
+    text: &str,
+) -> Result<T, SysidError> {
+    let mut deserializer = serde_json::Deserializer::from_str(text);
+    serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
+        // The path is "." at the root and "?" where the parser stopped outside any field.
+        let field = e.path().to_string();
+        SysidError::ModelFile {
+            file: source.to_path_buf(),
+            field: (field != "." && field != "?").then_some(field),
+            source: e.into_inner(),
+        }
+    })
 }
 
 #[cfg(test)]

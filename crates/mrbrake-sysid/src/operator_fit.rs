@@ -352,29 +352,18 @@ fn solve_passive(
 /// Reads an operator-model file (schema [`mrbrake_control::OPERATOR_SCHEMA`]); errors name the file
 /// and the field (a list beyond the controller's capacity names its length and the capacity).
 pub fn read_operator_model(path: &Path) -> Result<OperatorModel, SysidError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
-    parse_operator_model(path, &text)
+    parse_operator_model(path, &crate::model_file::read_text(path)?)
 }
 
 /// Parses operator-model JSON text; `source` names it in errors.
 pub fn parse_operator_model(source: &Path, text: &str) -> Result<OperatorModel, SysidError> {
-    let mut deserializer = serde_json::Deserializer::from_str(text);
-    serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
-        let field = e.path().to_string();
-        SysidError::ModelFile {
-            file: source.to_path_buf(),
-            field: (field != "." && field != "?").then_some(field),
-            source: e.into_inner(),
-        }
-    })
+    crate::model_file::deserialize_json(source, text)
 }
 
 /// Reads either model file: an operator-model file (it has a `schema` field) or the polynomial-branch
 /// inverse-model file ([`crate::model_file`]), as the controller's [`mrbrake_control::TorqueInverse`].
 pub fn read_torque_inverse(path: &Path) -> Result<mrbrake_control::TorqueInverse, SysidError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
+    let text = crate::model_file::read_text(path)?;
     let has_schema = serde_json::from_str::<serde_json::Value>(&text)
         .map(|v| v.get("schema").is_some())
         .unwrap_or(false);
