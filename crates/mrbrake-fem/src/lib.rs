@@ -31,7 +31,8 @@
 //! - [`basis`], [`constraints`], [`assemble`] (with the [`by_order!`] dispatch macro),
 //!   [`boundary`], [`newton`], [`lu`]: the generic finite-element workflow above;
 //!   [`low_rank`]: dense rank-one Jacobian terms (an eliminated circuit equation) applied with the
-//!   sparse factor by the Woodbury formula.
+//!   sparse factor by the Woodbury formula; [`sweep`]: frequency sweeps of `(K + jωM) x = b` by an
+//!   adaptive reduced basis of real shifted Cholesky solves.
 
 pub mod assemble;
 pub mod basis;
@@ -51,6 +52,7 @@ pub mod ordering;
 pub mod pattern;
 pub mod quadrature;
 pub mod structured;
+pub mod sweep;
 pub mod vtu;
 
 /// Errors of this crate.

@@ -389,3 +389,93 @@ fn bad_dynamic_input_is_refused() {
     options.probes = probes.to_vec();
     assert!(dynamics.transient(&options).is_err(), "a probe outside the mesh is an error");
 }
+
+#[test]
+fn reduced_sweep_matches_the_direct_sweep() {
+    use mrbrake_magnetics::dynamics::harmonic::HarmonicMethod;
+    let mut dynamics =
+        cylinder(40, Magnetic::air(), SIGMA, current_drive(), Waveform::Step { initial: 0.0 });
+    // From a/δ ≈ 0.05 to 20: four decades of ω, ten points a decade, and zero.
+    let omega_1 = 2.0 / (MU_0 * SIGMA * A * A);
+    let mut frequencies = vec![0.0];
+    frequencies.extend(
+        (0..=40)
+            .map(|k| omega_1 * 10f64.powf(k as f64 / 10.0 - 2.5) / (2.0 * std::f64::consts::PI)),
+    );
+    let (reduced, report) =
+        dynamics.harmonic_potentials_by(&frequencies, None, HarmonicMethod::default()).unwrap();
+    let (direct, _) =
+        dynamics.harmonic_potentials_by(&frequencies, None, HarmonicMethod::Direct).unwrap();
+    let report = report.expect("a reduced sweep reports");
+    let mut worst = 0.0_f64;
+    for (r, d) in reduced.iter().zip(&direct) {
+        let scale = d.re.iter().chain(&d.im).fold(0.0_f64, |m, v| m.max(v.abs()));
+        let diff =
+            r.re.iter()
+                .zip(&d.re)
+                .chain(r.im.iter().zip(&d.im))
+                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        worst = worst.max(diff / scale);
+    }
+    println!(
+        "reduced sweep: {} shifts, basis {}, residual {:.2e}, energy bound {:.2e}; \
+         largest difference from the direct sweep {worst:.2e} of the largest potential",
+        report.shifts.len(),
+        report.basis,
+        report.max_backward_error,
+        report.max_energy_error_bound
+    );
+    assert!(report.max_backward_error <= 1e-7);
+    assert!(worst < 1e-7, "reduced vs direct: {worst:.3e}");
+}
+
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release only: a 16 k-node sweep")]
+fn reduced_sweep_of_the_pot_core_matches_the_direct_sweep() {
+    use mrbrake_magnetics::benchmark::{COIL, STEEL, pot_core_problem};
+    use mrbrake_magnetics::dynamics::harmonic::HarmonicMethod;
+    use mrbrake_magnetics::{Solver, SolverOptions};
+    let problem = pot_core_problem(16_000, Magnetic::Linear { mu_r: 1000.0 }, 1.0).unwrap();
+    let solver = Solver::new(problem, SolverOptions::default()).unwrap();
+    let conductors = [Conductor { tag: STEEL, conductivity_s_per_m: 5.8e6 }];
+    let coil = Coil {
+        tag: COIL,
+        turns: 500.0,
+        drive: Drive::Current { amplitude_a: 1.0 },
+        waveform: Waveform::Step { initial: 0.0 },
+    };
+    let mut dynamics = Dynamics::new(solver, &conductors, vec![coil]).unwrap();
+    let frequencies: Vec<f64> = (0..31).map(|k| 10f64.powf(k as f64 / 10.0)).collect();
+    let method = HarmonicMethod::default();
+    let (reduced, report) = dynamics.harmonic_potentials_by(&frequencies, None, method).unwrap();
+    let (direct, _) =
+        dynamics.harmonic_potentials_by(&frequencies, None, HarmonicMethod::Direct).unwrap();
+    let report = report.expect("a reduced sweep reports");
+    let (mut worst_potential, mut worst_flux) = (0.0_f64, 0.0_f64);
+    for (r, d) in reduced.iter().zip(&direct) {
+        let scale = d.re.iter().chain(&d.im).fold(0.0_f64, |m, v| m.max(v.abs()));
+        let diff =
+            r.re.iter()
+                .zip(&d.re)
+                .chain(r.im.iter().zip(&d.im))
+                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        worst_potential = worst_potential.max(diff / scale);
+        let flux_r = dynamics.harmonic_point(r, &[]).unwrap().coils[0].flux_linkage_wb;
+        let flux_d = dynamics.harmonic_point(d, &[]).unwrap().coils[0].flux_linkage_wb;
+        let flux_error =
+            ((flux_r[0] - flux_d[0]).hypot(flux_r[1] - flux_d[1])) / flux_d[0].hypot(flux_d[1]);
+        worst_flux = worst_flux.max(flux_error);
+    }
+    println!(
+        "pot core sweep: {} rounds, {} shifts, basis {}, backward error {:.2e}, energy bound \
+         {:.2e}; against the direct sweep: potential {worst_potential:.2e} of the largest, flux \
+         linkage {worst_flux:.2e}",
+        report.rounds,
+        report.shifts.len(),
+        report.basis,
+        report.max_backward_error,
+        report.max_energy_error_bound
+    );
+    assert!(worst_potential < 1e-5, "reduced vs direct potential: {worst_potential:.3e}");
+    assert!(worst_flux < 1e-8, "reduced vs direct flux linkage: {worst_flux:.3e}");
+}

@@ -17,18 +17,46 @@
 //! impedance `Z_k = jω λ̂_k / Î_k` it reports gives the current of a voltage source with series
 //! resistance `R` as `V̂/(R + Z)`). Constrained DOFs carry no harmonic part. Per frequency:
 //! flux linkages `λ̂_k = 2π c_k · â`, impedances, B at probes, and the time-averaged eddy loss
-//! `P = ½ ω² ∫ σ |â|² 2π r dr dz`. The complex system goes to the core's sparse LU
-//! ([`mrbrake_fem::lu::SparseLu`], symbolic analysis once for all frequencies).
+//! `P = ½ ω² ∫ σ |â|² 2π r dr dz`.
+//!
+//! Two solvers ([`HarmonicMethod`]): by default the core's reduced-basis sweep
+//! ([`mrbrake_fem::sweep`]: a few real shifted Cholesky factorisations for all frequencies, every
+//! frequency's residual checked to [`SweepOptions::tolerance`], the energy-norm error bounded);
+//! or one complex sparse LU per frequency ([`mrbrake_fem::lu::SparseLu`], symbolic analysis once),
+//! the reference the sweep is validated against.
 
 use std::time::Instant;
 
 use mrbrake_fem::lu::SparseLu;
+use mrbrake_fem::sweep::{SweepOptions, SweepReport, sweep};
 use num_complex::Complex64;
 use serde::Serialize;
 
 use super::transient::Probe;
 use super::{Drive, Dynamics, TWO_PI};
 use crate::MagneticsError;
+
+/// One complex LU factorisation and solve per frequency.
+fn direct_sweep(
+    pattern: &mrbrake_fem::pattern::SymmetricPattern,
+    jacobian: &[f64],
+    mass: &[f64],
+    rhs: &[f64],
+    frequencies_hz: &[f64],
+) -> Result<Vec<Vec<Complex64>>, MagneticsError> {
+    let mut lu = SparseLu::<Complex64>::new(pattern)?;
+    let mut out = Vec::with_capacity(frequencies_hz.len());
+    for &f in frequencies_hz {
+        let omega = TWO_PI * f;
+        let upper: Vec<Complex64> =
+            jacobian.iter().zip(mass).map(|(&k, &m)| Complex64::new(k, omega * m)).collect();
+        lu.factorize_symmetric(&upper)?;
+        let mut x: Vec<Complex64> = rhs.iter().map(|&r| Complex64::new(r, 0.0)).collect();
+        lu.solve_in_place(&mut x)?;
+        out.push(x);
+    }
+    Ok(out)
+}
 
 /// A complex value as `[re, im]` in the outputs.
 pub type ReIm = [f64; 2];
@@ -89,38 +117,70 @@ pub struct HarmonicPotential {
     pub im: Vec<f64>,
 }
 
+/// How a harmonic sweep is solved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HarmonicMethod {
+    /// The reduced-basis sweep of [`mrbrake_fem::sweep`] (the default).
+    Reduced(SweepOptions),
+    /// One complex sparse LU per frequency (the reference).
+    Direct,
+}
+
+impl Default for HarmonicMethod {
+    fn default() -> Self {
+        Self::Reduced(SweepOptions::default())
+    }
+}
+
 impl Dynamics {
     /// The harmonic potentials at `frequencies_hz`, linearised about the static solution at the
-    /// coils' `bias_a` currents (one per coil) when given.
+    /// coils' `bias_a` currents (one per coil) when given, by the default method.
     pub fn harmonic_potentials(
         &mut self,
         frequencies_hz: &[f64],
         bias_a: Option<&[f64]>,
     ) -> Result<Vec<HarmonicPotential>, MagneticsError> {
+        Ok(self.harmonic_potentials_by(frequencies_hz, bias_a, HarmonicMethod::default())?.0)
+    }
+
+    /// [`Self::harmonic_potentials`] by `method`, with the sweep's report (`None` for
+    /// [`HarmonicMethod::Direct`]).
+    pub fn harmonic_potentials_by(
+        &mut self,
+        frequencies_hz: &[f64],
+        bias_a: Option<&[f64]>,
+        method: HarmonicMethod,
+    ) -> Result<(Vec<HarmonicPotential>, Option<SweepReport>), MagneticsError> {
         self.check_harmonic(frequencies_hz, bias_a)?;
         let jacobian = self.tangent_values(bias_a)?;
-        let pattern = self.solver.assembly.pattern().clone();
         let mass = self.conductivity_mass_values();
-        let mut lu = SparseLu::<Complex64>::new(&pattern)?;
         let mut rhs = vec![0.0; self.solver.assembly.n_free()];
         for coil in &self.coils {
             let current = self.excitation(coil)?;
             rhs.iter_mut().zip(&coil.free).for_each(|(r, c)| *r += current * c);
         }
-        let mut out = Vec::with_capacity(frequencies_hz.len());
-        for &f in frequencies_hz {
-            let omega = TWO_PI * f;
-            let upper: Vec<Complex64> =
-                jacobian.iter().zip(&mass).map(|(&k, &m)| Complex64::new(k, omega * m)).collect();
-            lu.factorize_symmetric(&upper)?;
-            let mut x: Vec<Complex64> = rhs.iter().map(|&r| Complex64::new(r, 0.0)).collect();
-            lu.solve_in_place(&mut x)?;
-            let constraints = self.solver.assembly.constraints();
-            let re = constraints.extend_with_zeros(&x.iter().map(|z| z.re).collect::<Vec<_>>());
-            let im = constraints.extend_with_zeros(&x.iter().map(|z| z.im).collect::<Vec<_>>());
-            out.push(HarmonicPotential { frequency_hz: f, re, im });
-        }
-        Ok(out)
+        let pattern = self.solver.assembly.pattern();
+        let (solutions, report) = match method {
+            HarmonicMethod::Reduced(options) => {
+                let omegas: Vec<f64> = frequencies_hz.iter().map(|f| TWO_PI * f).collect();
+                let (x, report) = sweep(pattern, &jacobian, &mass, &rhs, &omegas, &options)?;
+                (x, Some(report))
+            }
+            HarmonicMethod::Direct => {
+                (direct_sweep(pattern, &jacobian, &mass, &rhs, frequencies_hz)?, None)
+            }
+        };
+        let constraints = self.solver.assembly.constraints();
+        let out = frequencies_hz
+            .iter()
+            .zip(solutions)
+            .map(|(&f, x)| HarmonicPotential {
+                frequency_hz: f,
+                re: constraints.extend_with_zeros(&x.iter().map(|z| z.re).collect::<Vec<_>>()),
+                im: constraints.extend_with_zeros(&x.iter().map(|z| z.im).collect::<Vec<_>>()),
+            })
+            .collect();
+        Ok((out, report))
     }
 
     /// The harmonic response (coils, probes, eddy loss) at `frequencies_hz`.
