@@ -132,15 +132,32 @@ pub fn place(
             border.iter().map(|b| (b.0 - p.0).hypot(b.1 - p.1)).fold(edges, f64::min)
         };
         let stride = mine.len().div_ceil(CANDIDATES).max(1);
-        let (anchor, room) = mine
-            .iter()
-            .step_by(stride)
-            .map(|&p| (p, clearance(p)))
-            .fold(((0.0, 0.0), f64::NEG_INFINITY), |best, c| if c.1 > best.1 { c } else { best });
+        let candidates: Vec<(Point, f64)> =
+            mine.iter().step_by(stride).map(|&p| (p, clearance(p))).collect();
+        // Plenty of room: the label's half width (about 0.3 `room_m` per character at the
+        // map's font) and half a room beyond it, at least twice the room a label needs.
+        let half_width = 0.3 * text.len() as f64 * room_m;
+        let (anchor, room) =
+            roomiest(&candidates, &mine, (half_width + 0.5 * room_m).max(2.0 * room_m));
         let moved_to = (room < room_m).then(|| beside(&mine, anchor, window, room_m));
         labels.push(Label { text, anchor, moved_to });
     }
     labels
+}
+
+/// The candidate `(point, clearance)` for a label: among those with at least `plenty` of room,
+/// the one nearest the centre of the kind's `points` (a label in the middle of its region reads
+/// best); else the one with the most room.
+fn roomiest(candidates: &[(Point, f64)], points: &[Point], plenty: f64) -> (Point, f64) {
+    let n = points.len().max(1) as f64;
+    let centre = points.iter().fold((0.0, 0.0), |c, p| (c.0 + p.0 / n, c.1 + p.1 / n));
+    let off_centre = |p: Point| (p.0 - centre.0).hypot(p.1 - centre.1);
+    let roomy = candidates
+        .iter()
+        .filter(|c| c.1 >= plenty)
+        .min_by(|a, b| off_centre(a.0).total_cmp(&off_centre(b.0)));
+    let most = candidates.iter().max_by(|a, b| a.1.total_cmp(&b.1));
+    roomy.or(most).copied().unwrap_or(((0.0, 0.0), 0.0))
 }
 
 /// Where the label of a thin kind goes: centred under its extent `points`, or over it when there
