@@ -9,7 +9,7 @@ use mrbrake_design::analysis::{Analysis, CurvePoint, FieldAtMaxCurrent};
 
 use crate::ReportError;
 use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
-use crate::field_map::{FieldMap, save_field_map};
+use crate::field_map::{FieldMap, View, save_field_map};
 
 /// Flux lines drawn on the field map.
 const FLUX_LINES: usize = 24;
@@ -152,22 +152,61 @@ pub fn torque_current_figure(a: &Analysis) -> Figure {
     };
     Figure::new(format!("{}: torque–current curve", a.name)).panel(
         Panel::new("current [A]", "torque [N·m]")
+            .legend(SeriesLabelPosition::LowerRight)
             .series(Series::line_points("local Bingham + viscous", pts(|p| p.torque_nm)))
             .series(Series::dashed("thesis method (mean B)", pts(|p| p.thesis_formula_nm))),
     )
 }
 
-/// |B| along the mid-line of every fluid gap at the maximum current.
+/// |B| along the mid-line of every fluid gap at the maximum current: one panel per unit (each
+/// solved with its own coil energised), gaps and units numbered from 1, the y axis from 0 and
+/// shared by the panels, neighbouring gaps told apart by colour and by solid/dashed lines.
 pub fn gap_flux_density_figure(a: &Analysis) -> Figure {
-    let mut gaps = Panel::new("position along the gap [mm]", "|B| [T]")
-        .legend(SeriesLabelPosition::LowerRight);
-    for g in &a.gaps {
-        let profile = g.profile.iter().map(|&(s, b)| (s * 1e3, b)).collect();
-        gaps = gaps.series(Series::line(format!("gap {} (unit {})", g.index, g.unit + 1), profile));
+    let units = a.gaps.iter().map(|g| g.unit + 1).max().unwrap_or(1);
+    let b_top = a
+        .gaps
+        .iter()
+        .flat_map(|g| g.profile.iter().map(|p| p.1))
+        .filter(|b| b.is_finite())
+        .fold(0.0, f64::max);
+    // Every gap's whole height, the same in every panel (the mirrored unit's sample positions
+    // can end a rounding error short of it).
+    let s_end = a.gaps.iter().map(|g| g.height_m * 1e3).fold(0.0, f64::max);
+    let mut figure =
+        Figure::new(format!("{}: |B| along the fluid gaps at {} A", a.name, a.max_current_a))
+            .columns(units)
+            .size(if units > 1 { 1100 } else { 900 }, 560);
+    for unit in 0..units {
+        let caption = if units > 1 {
+            format!("unit {}, its coil energised", unit + 1)
+        } else {
+            String::new()
+        };
+        let mut panel = Panel::new("position along the gap [mm]", "|B| [T]")
+            .caption(caption)
+            .y_range(0.0, (1.1 * b_top).max(1e-3))
+            .legend(SeriesLabelPosition::LowerMiddle);
+        if s_end > 0.0 {
+            panel = panel.x_range(0.0, s_end);
+        }
+        for (k, g) in a.gaps.iter().filter(|g| g.unit == unit).enumerate() {
+            let profile = g.profile.iter().map(|&(s, b)| (s * 1e3, b)).collect();
+            let label = format!("gap {}", g.index + 1);
+            let series = if k % 2 == 0 {
+                Series::line(label, profile)
+            } else {
+                Series::dashed(label, profile)
+            };
+            panel = panel.series(series.color(GAP_COLOURS[k % GAP_COLOURS.len()]));
+        }
+        figure = figure.panel(panel);
     }
-    Figure::new(format!("{}: |B| along the fluid gaps at {} A", a.name, a.max_current_a))
-        .panel(gaps)
+    figure
 }
+
+/// Palette indices of the gaps of one unit: blue, vermilion, bluish green, reddish purple (the
+/// Okabe–Ito colours that stay dark enough on white; no yellow).
+const GAP_COLOURS: [usize; 4] = [0, 1, 2, 3];
 
 /// The title of the field map of `a`.
 pub fn field_map_title(a: &Analysis) -> String {
@@ -184,6 +223,8 @@ pub fn field_map<'a>(title: &'a str, field: &'a FieldAtMaxCurrent) -> FieldMap<'
         b_abs_t: &field.b_abs_t,
         flux_function: &field.flux_function_wb,
         flux_lines: FLUX_LINES,
+        regions: &field.regions,
+        view: View::Energised,
     }
 }
 
@@ -241,5 +282,23 @@ mod tests {
             }
         }
         assert!(field_map_title(&analysis).ends_with("|B| and flux lines at 2 A"));
+
+        // The field map shows the energised unit 1 (z from below 0 to its spacer, not unit 2),
+        // labels its regions, and stays small (it was 3.2 MB of SVG polygons).
+        let title = field_map_title(&analysis);
+        let map = field_map(&title, &field);
+        let (lo, hi) = map.window();
+        let (_, whole_hi) = crate::field_map::bounds(&field.nodes);
+        assert!(lo[0].abs() < 1e-12 && hi[1] < 0.6 * whole_hi[1], "{lo:?} {hi:?} of {whole_hi:?}");
+        let svg = crate::field_map::field_map_svg(&map).unwrap();
+        assert!(svg.len() < 900_000, "field map SVG of {} bytes", svg.len());
+        assert!(!svg.contains("<polygon"), "triangles are one image, not polygons");
+        for label in ["steel", "MR fluid gaps", "coil", "non-magnetic"] {
+            assert!(svg.contains(&format!("\n{label}\n")), "no label {label}");
+        }
+        let gaps = gap_flux_density_figure(&analysis);
+        assert_eq!(gaps.panels.len(), 2, "one panel per unit");
+        let svg = gaps.to_svg().unwrap();
+        assert!(svg.contains("gap 1") && svg.contains("gap 8") && !svg.contains("gap 0"));
     }
 }

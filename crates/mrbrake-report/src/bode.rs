@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use crate::ReportError;
-use crate::chart::{Figure, Panel, Series};
+use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
 
 /// One frequency-response curve: (ω rad/s, magnitude dB, phase deg) per point.
 #[derive(Debug, Clone)]
@@ -17,10 +17,15 @@ pub struct BodeCurve {
     pub markers: bool,
 }
 
-/// The Bode figure of `curves`.
+/// The Bode figure of `curves`. The legends sit in the lower-left corners, which a low-pass
+/// response (flat, then falling) leaves empty.
 pub fn bode_figure(title: &str, curves: &[BodeCurve]) -> Figure {
-    let mut magnitude = Panel::new("frequency [rad/s]", "magnitude [dB]").log_x();
-    let mut phase = Panel::new("frequency [rad/s]", "phase [deg]").log_x();
+    let mut magnitude = Panel::new("frequency [rad/s]", "magnitude [dB]")
+        .log_x()
+        .legend(SeriesLabelPosition::LowerLeft);
+    let mut phase = Panel::new("frequency [rad/s]", "phase [deg]")
+        .log_x()
+        .legend(SeriesLabelPosition::LowerLeft);
     for (k, c) in curves.iter().enumerate() {
         let mag: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.1)).collect();
         let ph: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.2)).collect();

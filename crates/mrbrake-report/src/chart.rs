@@ -18,6 +18,7 @@ use std::path::Path;
 use std::sync::Once;
 
 use plotters::coord::Shift;
+use plotters::element::ComposedElement;
 pub use plotters::prelude::SeriesLabelPosition;
 use plotters::prelude::*;
 
@@ -60,28 +61,75 @@ pub struct Series {
     pub mark: Mark,
     /// Colour index into the palette (None: the series' position in the panel).
     pub color: Option<usize>,
+    /// Marker shape of [`Mark::Points`] and [`Mark::LinePoints`].
+    pub shape: Shape,
+    /// Marker radius in pixels.
+    pub marker_size: u32,
+    /// Line width in pixels.
+    pub line_width: u32,
+}
+
+/// The marker drawn at each point of a point series: shapes that stay apart in grey print and for
+/// colour-blind readers, not only colours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Shape {
+    /// A filled circle.
+    #[default]
+    Circle,
+    /// An open circle (the points under it stay visible).
+    Ring,
+    /// A filled triangle.
+    Triangle,
+    /// A diagonal cross.
+    Cross,
 }
 
 impl Series {
     /// A solid line.
     pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self { label: label.into(), points, mark: Mark::Line, color: None }
+        Self::with_mark(label.into(), points, Mark::Line)
     }
     /// A dashed line.
     pub fn dashed(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self { label: label.into(), points, mark: Mark::Dashed, color: None }
+        Self::with_mark(label.into(), points, Mark::Dashed)
     }
     /// Markers only.
     pub fn points(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self { label: label.into(), points, mark: Mark::Points, color: None }
+        Self::with_mark(label.into(), points, Mark::Points)
     }
     /// A line with markers.
     pub fn line_points(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self { label: label.into(), points, mark: Mark::LinePoints, color: None }
+        Self::with_mark(label.into(), points, Mark::LinePoints)
+    }
+    fn with_mark(label: String, points: Vec<(f64, f64)>, mark: Mark) -> Self {
+        Self {
+            label,
+            points,
+            mark,
+            color: None,
+            shape: Shape::Circle,
+            marker_size: 3,
+            line_width: 2,
+        }
     }
     /// Sets the palette colour index.
     pub fn color(mut self, index: usize) -> Self {
         self.color = Some(index);
+        self
+    }
+    /// Sets the marker shape.
+    pub fn shape(mut self, shape: Shape) -> Self {
+        self.shape = shape;
+        self
+    }
+    /// Sets the marker radius in pixels.
+    pub fn marker_size(mut self, pixels: u32) -> Self {
+        self.marker_size = pixels;
+        self
+    }
+    /// Sets the line width in pixels.
+    pub fn line_width(mut self, pixels: u32) -> Self {
+        self.line_width = pixels;
         self
     }
 }
@@ -117,6 +165,8 @@ pub struct Panel {
     pub series: Vec<Series>,
     /// Where the legend box goes.
     pub legend: SeriesLabelPosition,
+    /// A panel without axes that only shows this text (e.g. why a device has no such trace).
+    pub note: Option<String>,
 }
 
 impl Panel {
@@ -132,7 +182,15 @@ impl Panel {
             y_range: None,
             series: Vec::new(),
             legend: SeriesLabelPosition::UpperLeft,
+            note: None,
         }
+    }
+    /// A panel with a caption and a centred note instead of axes (keeps a grid of panels aligned
+    /// where one cell has nothing to plot).
+    pub fn note(caption: impl Into<String>, text: impl Into<String>) -> Self {
+        let mut panel = Self::new("", "").caption(caption);
+        panel.note = Some(text.into());
+        panel
     }
     /// Moves the legend (e.g. `SeriesLabelPosition::LowerRight`) away from the data.
     pub fn legend(mut self, position: SeriesLabelPosition) -> Self {
@@ -248,12 +306,20 @@ pub struct Figure {
     pub columns: usize,
     /// Pixel size (width, height).
     pub size: (u32, u32),
+    /// Relative heights of the panel rows (empty: equal rows).
+    pub row_weights: Vec<f64>,
 }
 
 impl Figure {
     /// An empty figure, 900 × 600 pixels, one column.
     pub fn new(title: impl Into<String>) -> Self {
-        Self { title: title.into(), panels: Vec::new(), columns: 1, size: (900, 600) }
+        Self {
+            title: title.into(),
+            panels: Vec::new(),
+            columns: 1,
+            size: (900, 600),
+            row_weights: Vec::new(),
+        }
     }
     /// Adds a panel.
     pub fn panel(mut self, panel: Panel) -> Self {
@@ -268,6 +334,12 @@ impl Figure {
     /// Sets the size in pixels.
     pub fn size(mut self, width: u32, height: u32) -> Self {
         self.size = (width, height);
+        self
+    }
+    /// Sets the relative heights of the panel rows (e.g. `[3.0, 1.0]`: a main panel over a
+    /// residual panel a third as tall).
+    pub fn row_weights(mut self, weights: Vec<f64>) -> Self {
+        self.row_weights = weights;
         self
     }
 
@@ -306,12 +378,30 @@ impl Picture for Figure {
             root.titled(&self.title, ("sans-serif", 22)).map_err(be)?
         };
         let rows = self.panels.len().div_ceil(self.columns);
-        let areas = area.split_evenly((rows, self.columns));
-        for (panel, sub) in self.panels.iter().zip(areas.iter()) {
-            draw_panel(panel, sub)?;
+        let row_areas = area.split_by_breakpoints(
+            Vec::<i32>::new(),
+            row_breakpoints(&self.row_weights, rows, area.dim_in_pixel().1),
+        );
+        let areas = row_areas.iter().flat_map(|row| row.split_evenly((1, self.columns)));
+        for (panel, sub) in self.panels.iter().zip(areas) {
+            draw_panel(panel, &sub)?;
         }
         Ok(())
     }
+}
+
+/// The pixel rows at which `rows` panel rows of `height` pixels split, in proportion to `weights`
+/// (equal rows where a weight is missing or not positive).
+fn row_breakpoints(weights: &[f64], rows: usize, height: u32) -> Vec<i32> {
+    let weight = |k: usize| weights.get(k).copied().filter(|w| *w > 0.0).unwrap_or(1.0);
+    let total: f64 = (0..rows).map(weight).sum();
+    let mut at = 0.0;
+    (0..rows.saturating_sub(1))
+        .map(|k| {
+            at += weight(k) / total;
+            (at * f64::from(height)).round() as i32
+        })
+        .collect()
 }
 
 /// Something drawn on any plotters backend at a fixed pixel size (a [`Figure`], a field map), so
@@ -380,7 +470,11 @@ pub(crate) fn save_picture(picture: &impl Picture, path: &Path) -> Result<(), Re
     }
 }
 
-/// Palette: distinguishable colours (Okabe–Ito, colour-blind safe) then plotters' Palette99.
+/// The palette index of a neutral grey (context data drawn under the series that matter).
+pub const GREY: usize = 8;
+
+/// Palette: distinguishable colours (Okabe–Ito, colour-blind safe), a neutral grey ([`GREY`]),
+/// then plotters' Palette99.
 pub fn palette(index: usize) -> RGBColor {
     const OKABE_ITO: [RGBColor; 8] = [
         RGBColor(0, 114, 178),
@@ -394,6 +488,8 @@ pub fn palette(index: usize) -> RGBColor {
     ];
     if index < OKABE_ITO.len() {
         OKABE_ITO[index]
+    } else if index == GREY {
+        RGBColor(150, 150, 150)
     } else {
         let c = Palette99::pick(index).to_rgba();
         RGBColor(c.0, c.1, c.2)
@@ -404,6 +500,10 @@ fn draw_panel<DB: DrawingBackend>(
     panel: &Panel,
     area: &DrawingArea<DB, Shift>,
 ) -> Result<(), ReportError> {
+    let be = |e: DrawingAreaErrorKind<DB::ErrorType>| ReportError::Backend(e.to_string());
+    if let Some(note) = &panel.note {
+        return draw_note(panel, note, area).map_err(be);
+    }
     let (x0, x1) = match panel.x_range {
         Some(r) => r,
         None => panel.data_range(0, panel.x_scale)?,
@@ -412,12 +512,14 @@ fn draw_panel<DB: DrawingBackend>(
         Some(r) => r,
         None => panel.data_range(1, panel.y_scale)?,
     };
-    let be = |e: DrawingAreaErrorKind<DB::ErrorType>| ReportError::Backend(e.to_string());
+    let span = |lo: f64, hi: f64, scale: Scale| if scale == Scale::Linear { hi - lo } else { 0.0 };
+    let (x_span, y_span) = (span(x0, x1, panel.x_scale), span(y0, y1, panel.y_scale));
     // The four scale combinations are four chart types in plotters; a macro keeps the axes one body.
     macro_rules! with_chart {
         ($xr:expr, $yr:expr) => {{
             let mut builder = ChartBuilder::on(area);
-            builder.margin(12).x_label_area_size(42).y_label_area_size(64);
+            // The right margin leaves room for the last x tick label, centred on the frame's edge.
+            builder.margin(12).margin_right(30).x_label_area_size(42).y_label_area_size(64);
             if !panel.caption.is_empty() {
                 builder.caption(&panel.caption, ("sans-serif", 17));
             }
@@ -426,6 +528,8 @@ fn draw_panel<DB: DrawingBackend>(
                 .configure_mesh()
                 .x_desc(panel.x_label.as_str())
                 .y_desc(panel.y_label.as_str())
+                .x_label_formatter(&|v| tick_label(snap_zero(*v, x_span)))
+                .y_label_formatter(&|v| tick_label(snap_zero(*v, y_span)))
                 .label_style(("sans-serif", 13))
                 .light_line_style(RGBColor(235, 235, 235))
                 .draw()
@@ -433,11 +537,76 @@ fn draw_panel<DB: DrawingBackend>(
             draw_series(&mut chart, panel)
         }};
     }
+    let log = |lo: f64, hi: f64| {
+        let (major, minor) = log_ticks(lo, hi);
+        (lo..hi).log_scale().with_key_points(major).with_light_points(minor)
+    };
     match (panel.x_scale, panel.y_scale) {
         (Scale::Linear, Scale::Linear) => with_chart!(x0..x1, y0..y1),
-        (Scale::Log, Scale::Linear) => with_chart!((x0..x1).log_scale(), y0..y1),
-        (Scale::Linear, Scale::Log) => with_chart!(x0..x1, (y0..y1).log_scale()),
-        (Scale::Log, Scale::Log) => with_chart!((x0..x1).log_scale(), (y0..y1).log_scale()),
+        (Scale::Log, Scale::Linear) => with_chart!(log(x0, x1), y0..y1),
+        (Scale::Linear, Scale::Log) => with_chart!(x0..x1, log(y0, y1)),
+        (Scale::Log, Scale::Log) => with_chart!(log(x0, x1), log(y0, y1)),
+    }
+}
+
+/// A panel that shows only its caption and a centred note.
+fn draw_note<DB: DrawingBackend>(
+    panel: &Panel,
+    note: &str,
+    area: &DrawingArea<DB, Shift>,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let area = if panel.caption.is_empty() {
+        area.clone()
+    } else {
+        area.titled(&panel.caption, ("sans-serif", 17))?
+    };
+    let (w, h) = area.dim_in_pixel();
+    let style = TextStyle::from(("sans-serif", 14).into_font())
+        .color(&RGBColor(110, 110, 110))
+        .pos(plotters::style::text_anchor::Pos::new(
+            plotters::style::text_anchor::HPos::Center,
+            plotters::style::text_anchor::VPos::Center,
+        ));
+    area.draw_text(note, &style, (w as i32 / 2, h as i32 / 2))
+}
+
+/// `v`, or 0 where it is rounding noise on an axis spanning `span` (a tick at -1e-17 is a 0).
+fn snap_zero(v: f64, span: f64) -> f64 {
+    if v.abs() < 1e-9 * span.abs() { 0.0 } else { v }
+}
+
+/// A tick label without float noise or a needless `.0` (`1000`, `0.1`, `-0.25`, `1e-5`).
+pub fn tick_label(v: f64) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    if v.abs() < 1e-300 {
+        return "0".into();
+    }
+    let magnitude = v.abs().log10().floor();
+    if !(-4.0..6.0).contains(&magnitude) {
+        return format!("{v:.1e}").replace(".0e", "e");
+    }
+    // Ten significant digits remove the noise of 0.1 + 0.2; Display drops trailing zeros.
+    let scale = 10f64.powi(9 - magnitude as i32);
+    format!("{}", (v * scale).round() / scale)
+}
+
+/// Tick values of a logarithmic axis from `lo` to `hi`: a labelled tick at every decade (and at
+/// 2 and 5 times each decade when the range spans less than two decades), a light grid line at
+/// every other integer multiple of a decade.
+pub fn log_ticks(lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
+    let (first, last) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let inside = |v: &f64| *v >= lo * (1.0 - 1e-9) && *v <= hi * (1.0 + 1e-9);
+    let decades: Vec<f64> = (first..=last).map(|d| 10f64.powi(d)).collect();
+    let multiples = |ks: &[f64]| -> Vec<f64> {
+        decades.iter().flat_map(|&d| ks.iter().map(move |k| k * d)).filter(inside).collect()
+    };
+    let major_decades: Vec<f64> = decades.iter().copied().filter(inside).collect();
+    if major_decades.len() >= 3 {
+        (major_decades, multiples(&[2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]))
+    } else {
+        (multiples(&[1.0, 2.0, 5.0]), multiples(&[3.0, 4.0, 6.0, 7.0, 8.0, 9.0]))
     }
 }
 
@@ -451,34 +620,31 @@ fn draw_series<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)
     for (i, s) in panel.series.iter().enumerate() {
         let color = palette(s.color.unwrap_or(i));
         let pts = panel.drawable_points(s);
-        let style = ShapeStyle::from(&color).stroke_width(2);
-        if s.mark == Mark::LinePoints {
-            chart
-                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                .map_err(be)?;
-        }
+        let style = ShapeStyle::from(&color).stroke_width(s.line_width);
+        let (shape, size) = (s.shape, s.marker_size);
         let anno = match s.mark {
-            Mark::Line | Mark::LinePoints => {
+            Mark::Line => {
+                chart.draw_series(LineSeries::new(pts.iter().copied(), style)).map_err(be)?
+            }
+            Mark::LinePoints => {
+                draw_markers(chart, &pts, shape, size, color).map_err(be)?;
                 chart.draw_series(LineSeries::new(pts.iter().copied(), style)).map_err(be)?
             }
             Mark::Dashed => chart
                 .draw_series(DashedLineSeries::new(pts.iter().copied(), 6, 4, style))
                 .map_err(be)?,
-            Mark::Points => chart
-                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                .map_err(be)?,
+            Mark::Points => draw_markers(chart, &pts, shape, size, color).map_err(be)?,
         };
         if !s.label.is_empty() {
             any_label = true;
-            anno.label(s.label.as_str()).legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
-            });
+            let mark = s.mark;
+            anno.label(s.label.as_str()).legend(move |(x, y)| legend_key(mark, shape, color, x, y));
         }
     }
     if any_label {
         chart
             .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
+            .background_style(WHITE.mix(0.9))
             .border_style(RGBColor(180, 180, 180))
             .label_font(("sans-serif", 13))
             .position(panel.legend.clone())
@@ -486,6 +652,88 @@ fn draw_series<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)
             .map_err(be)?;
     }
     Ok(())
+}
+
+/// Markers of `shape` and radius `size` at `pts`.
+fn draw_markers<'a, 'c, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)>>(
+    chart: &'c mut ChartContext<'a, DB, CT>,
+    pts: &[(f64, f64)],
+    shape: Shape,
+    size: u32,
+    color: RGBColor,
+) -> Result<&'c mut plotters::chart::SeriesAnno<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
+    let r = size as i32;
+    let at = |p: (f64, f64)| EmptyElement::at(p);
+    let cross = |p| {
+        at(p)
+            + PathElement::new(vec![(-r, -r), (r, r)], color.stroke_width(2))
+            + PathElement::new(vec![(-r, r), (r, -r)], color.stroke_width(2))
+    };
+    let triangle = |p| at(p) + Polygon::new(vec![(0, -r - 1), (r + 1, r), (-r - 1, r)], color);
+    match shape {
+        Shape::Circle => {
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, size, color.filled())))
+        }
+        Shape::Ring => {
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, size, color.stroke_width(1))))
+        }
+        Shape::Triangle => chart.draw_series(pts.iter().map(|&p| triangle(p))),
+        Shape::Cross => chart.draw_series(pts.iter().map(|&p| cross(p))),
+    }
+}
+
+/// An element of two parts in pixel coordinates.
+type Composed<DB, A, B> = ComposedElement<(i32, i32), DB, A, B>;
+/// A polyline in pixel coordinates.
+type PixelPath = PathElement<(i32, i32)>;
+/// A line and a circle marker (the inner parts of [`LegendKey`], in the order they are added).
+type LineAndCircle<DB> = Composed<DB, PixelPath, Circle<(i32, i32), u32>>;
+/// A legend key: two line pieces, a circle, a triangle and the two strokes of a cross.
+type LegendKey<DB> = Composed<
+    DB,
+    PixelPath,
+    Composed<
+        DB,
+        Composed<DB, Composed<DB, LineAndCircle<DB>, Polygon<(i32, i32)>>, PixelPath>,
+        PixelPath,
+    >,
+>;
+
+/// The legend key of a series at `(x, y)`: its marker for points, a line (with its marker)
+/// otherwise. One element type for every kind (plotters' legend wants a concrete element): the
+/// parts a kind does not use are transparent.
+fn legend_key<DB: DrawingBackend>(
+    mark: Mark,
+    shape: Shape,
+    color: RGBColor,
+    x: i32,
+    y: i32,
+) -> LegendKey<DB> {
+    let none = ShapeStyle::from(&TRANSPARENT);
+    let stroke = color.stroke_width(2);
+    let (first, second) = match mark {
+        Mark::Line | Mark::LinePoints => ((9, stroke), none),
+        Mark::Dashed => ((-3, stroke), stroke),
+        Mark::Points => ((9, none), none),
+    };
+    let glyph = matches!(mark, Mark::Points | Mark::LinePoints);
+    let pick =
+        |wanted: Shape, style: ShapeStyle| if glyph && shape == wanted { style } else { none };
+    let circle = match shape {
+        Shape::Ring => pick(Shape::Ring, color.stroke_width(1)),
+        _ => pick(Shape::Circle, color.filled()),
+    };
+    let r = 4;
+    EmptyElement::at((x + 9, y))
+        + PathElement::new(vec![(-9, 0), (first.0, 0)], first.1)
+        + PathElement::new(vec![(2, 0), (9, 0)], second)
+        + Circle::new((0, 0), r as u32, circle)
+        + Polygon::new(
+            vec![(0, -r - 1), (r + 1, r), (-r - 1, r)],
+            pick(Shape::Triangle, color.filled()),
+        )
+        + PathElement::new(vec![(-r, -r), (r, r)], pick(Shape::Cross, stroke))
+        + PathElement::new(vec![(-r, r), (r, -r)], pick(Shape::Cross, stroke))
 }
 
 #[cfg(test)]
@@ -529,6 +777,48 @@ mod tests {
         let png = std::fs::read(dir.path().join("fig.png")).unwrap();
         assert_eq!(&png[1..4], b"PNG");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2, "no temporary files left");
+    }
+
+    #[test]
+    fn tick_labels_and_log_ticks() {
+        assert_eq!(tick_label(1000.0), "1000");
+        assert_eq!(tick_label(0.1 + 0.2), "0.3");
+        assert_eq!(tick_label(-0.25), "-0.25");
+        assert_eq!(tick_label(snap_zero(-1e-17, 1.0)), "0");
+        assert_eq!(tick_label(2.5e-6), "2.5e-6");
+        // A label at every decade of a Bode axis, 0.1 to 1000 rad/s.
+        let (major, minor) = log_ticks(0.1, 1000.0);
+        let expected = [0.1, 1.0, 10.0, 100.0, 1000.0];
+        assert_eq!(major.len(), expected.len());
+        assert!(major.iter().zip(expected).all(|(a, b)| (a / b - 1.0).abs() < 1e-12), "{major:?}");
+        assert_eq!(minor.len(), 4 * 8);
+        // Less than two decades: 1-2-5 steps.
+        let (major, _) = log_ticks(3.0, 60.0);
+        assert_eq!(
+            major.iter().map(|v| tick_label(*v)).collect::<Vec<_>>(),
+            ["5", "10", "20", "50"]
+        );
+    }
+
+    #[test]
+    fn row_weights_split_the_height() {
+        assert_eq!(row_breakpoints(&[3.0, 1.0], 2, 800), vec![600]);
+        assert_eq!(row_breakpoints(&[], 3, 900), vec![300, 600]);
+    }
+
+    #[test]
+    fn markers_and_notes_render() {
+        let fig = Figure::new("shapes")
+            .columns(2)
+            .panel(
+                Panel::new("x", "y")
+                    .series(Series::points("ring", vec![(0.0, 1.0)]).shape(Shape::Ring))
+                    .series(Series::points("triangle", vec![(1.0, 2.0)]).shape(Shape::Triangle))
+                    .series(Series::points("cross", vec![(2.0, 3.0)]).shape(Shape::Cross)),
+            )
+            .panel(Panel::note("motor", "nothing to plot"));
+        let svg = fig.to_svg().unwrap();
+        assert!(svg.contains("nothing to plot") && svg.contains("cross"));
     }
 
     #[test]

@@ -13,7 +13,7 @@ use mrbrake_sim::haptic::{DeviceKind, HapticRun, Trace, WallMetrics};
 use serde_json::{Value, json};
 
 use crate::ReportError;
-use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
+use crate::chart::{Figure, Panel, Series, SeriesLabelPosition, Shape};
 
 /// Time histories of one run, at any uniform rate.
 #[derive(Debug, Clone, Copy)]
@@ -30,6 +30,9 @@ pub struct TimeHistory<'a> {
     pub wall_rad: &'a [f64],
     /// Coil currents of brake 1 and 2, A.
     pub current_a: [&'a [f64]; 2],
+    /// How many brake coils the device has (0: a motor, no current panel; 1: one brake that
+    /// resists both ways; 2: the bidirectional pair).
+    pub coils: usize,
     /// Device torque on the shaft, Nm.
     pub device_torque_nm: &'a [f64],
     /// Hand torque on the shaft, Nm.
@@ -37,10 +40,16 @@ pub struct TimeHistory<'a> {
 }
 
 impl<'a> TimeHistory<'a> {
-    /// The histories of a simulator trace, under `label`.
-    pub fn from_trace(label: &'a str, trace: &'a Trace) -> Self {
+    /// The histories of a simulator trace of `device`, under `label`.
+    pub fn from_trace(label: &'a str, device: DeviceKind, trace: &'a Trace) -> Self {
+        let coils = match device {
+            DeviceKind::Conventional => 1,
+            DeviceKind::Bidirectional => 2,
+            DeviceKind::Motor => 0,
+        };
         Self {
             label,
+            coils,
             time_s: &trace.time_s,
             angle_rad: &trace.angle_rad,
             intended_rad: &trace.intended_rad,
@@ -131,7 +140,9 @@ pub fn wall_runs_figure(
 ) -> Result<Figure, ReportError> {
     let histories: Vec<TimeHistory> = runs
         .iter()
-        .map(|&(device, run)| Ok(TimeHistory::from_trace(device.name(), trace_of(device, run)?)))
+        .map(|&(device, run)| {
+            Ok(TimeHistory::from_trace(device.name(), device, trace_of(device, run)?))
+        })
         .collect::<Result<_, ReportError>>()?;
     Ok(wall_comparison_figure(title, &histories))
 }
@@ -146,35 +157,30 @@ fn decimated(time: &[f64], values: &[f64]) -> Vec<(f64, f64)> {
 }
 
 /// One column per run and three rows: angle (with intention and wall), coil currents, torques.
+/// Each row shares its y range across the runs, so the columns compare at a glance; a device
+/// without coils (the motor) gets a note instead of an empty current panel.
 pub fn wall_comparison_figure(title: &str, runs: &[TimeHistory<'_>]) -> Figure {
-    let mut figure =
-        Figure::new(title).columns(runs.len().max(1)).size(520 * runs.len().max(1) as u32, 900);
+    let columns = runs.len().max(1);
+    let mut figure = Figure::new(title).columns(columns).size((520 * columns as u32).max(900), 900);
+    let ranges = shared_ranges(runs);
     let mut rows: [Vec<Panel>; 3] = Default::default();
     for run in runs {
         let t = run.time_s;
         rows[0].push(
             Panel::new("time [s]", "angle [rad]")
                 .caption(format!("{}: handle angle", run.label))
-                .legend(SeriesLabelPosition::LowerRight)
+                .legend(SeriesLabelPosition::LowerLeft)
+                .y_range(ranges[0].0, ranges[0].1)
                 .series(Series::line("handle", decimated(t, run.angle_rad)).color(0))
                 .series(Series::dashed("intended", decimated(t, run.intended_rad)).color(6))
                 .series(Series::dashed("wall", decimated(t, run.wall_rad)).color(1)),
         );
-        rows[1].push(
-            Panel::new("time [s]", "current [A]")
-                .caption(format!("{}: coil currents", run.label))
-                .legend(SeriesLabelPosition::UpperRight)
-                .series(
-                    Series::line("brake 1 (resists +)", decimated(t, run.current_a[0])).color(0),
-                )
-                .series(
-                    Series::line("brake 2 (resists −)", decimated(t, run.current_a[1])).color(1),
-                ),
-        );
+        rows[1].push(current_panel(run, ranges[1]));
         rows[2].push(
             Panel::new("time [s]", "torque [N·m]")
                 .caption(format!("{}: torques on the shaft", run.label))
                 .legend(SeriesLabelPosition::LowerLeft)
+                .y_range(ranges[2].0, ranges[2].1)
                 .series(Series::line("device", decimated(t, run.device_torque_nm)).color(0))
                 .series(Series::line("hand", decimated(t, run.hand_torque_nm)).color(2)),
         );
@@ -185,6 +191,64 @@ pub fn wall_comparison_figure(title: &str, runs: &[TimeHistory<'_>]) -> Figure {
         }
     }
     figure
+}
+
+/// The coil-current panel of `run` on the shared range `y`: one line per coil the device has.
+fn current_panel(run: &TimeHistory<'_>, y: (f64, f64)) -> Panel {
+    let caption = format!("{}: coil current{}", run.label, if run.coils == 1 { "" } else { "s" });
+    if run.coils == 0 {
+        return Panel::note(run.label, "no brake coil: the motor applies the torque directly");
+    }
+    let t = run.time_s;
+    let mut panel = Panel::new("time [s]", "current [A]")
+        .caption(caption)
+        .legend(SeriesLabelPosition::UpperRight)
+        .y_range(y.0, y.1);
+    if run.coils == 1 {
+        panel = panel.series(
+            Series::line("brake (resists both ways)", decimated(t, run.current_a[0])).color(0),
+        );
+    } else {
+        panel = panel
+            .series(Series::line("brake 1 (resists +)", decimated(t, run.current_a[0])).color(0))
+            .series(Series::dashed("brake 2 (resists −)", decimated(t, run.current_a[1])).color(1));
+    }
+    panel
+}
+
+/// The y ranges of the three rows (angles, currents, torques) over every run, padded by 5 %
+/// (with 35 % headroom on the current row for its legend); the current row starts at 0.
+fn shared_ranges(runs: &[TimeHistory<'_>]) -> [(f64, f64); 3] {
+    let span = |values: &mut dyn Iterator<Item = f64>| {
+        values
+            .filter(|v| v.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+    };
+    let pad = |(lo, hi): (f64, f64), top: f64| {
+        if !lo.is_finite() {
+            return (-1.0, 1.0);
+        }
+        let d = if hi > lo { hi - lo } else { hi.abs().max(1.0) };
+        (lo - 0.05 * d, hi + top * d)
+    };
+    let angles = span(
+        &mut runs
+            .iter()
+            .flat_map(|r| r.angle_rad.iter().chain(r.intended_rad).chain(r.wall_rad).copied()),
+    );
+    let currents = span(
+        &mut runs
+            .iter()
+            .filter(|r| r.coils > 0)
+            .flat_map(|r| r.current_a[0].iter().chain(r.current_a[1]).copied())
+            .chain([0.0]),
+    );
+    let torques = span(
+        &mut runs.iter().flat_map(|r| r.device_torque_nm.iter().chain(r.hand_torque_nm).copied()),
+    );
+    let (c0, c1) = pad(currents, 0.35);
+    let c0 = if currents.0 >= 0.0 { 0.0 } else { c0 };
+    [pad(angles, 0.05), (c0, c1), pad(torques, 0.05)]
 }
 
 /// A classified (K, B) pair of a Z-width map; `class` is `"passive"`, `"stable"` or `"unstable"`.
@@ -210,6 +274,12 @@ pub struct ZWidthPanel<'a> {
     pub boundary_damping_nms_per_rad: Option<f64>,
 }
 
+/// Colour (palette index) and marker of each Z-width class: passive bluish-green circles, stable
+/// blue triangles, unstable vermilion crosses (told apart by shape as well as by colour, for
+/// colour-blind readers and grey print).
+const ZWIDTH_STYLES: [(&str, usize, Shape); 3] =
+    [("passive", 2, Shape::Circle), ("stable", 0, Shape::Triangle), ("unstable", 1, Shape::Cross)];
+
 /// Z-width maps side by side: passive / stable / unstable markers and the predicted boundary.
 pub fn zwidth_figure(title: &str, sample_period_s: f64, panels: &[ZWidthPanel<'_>]) -> Figure {
     let mut figure =
@@ -217,13 +287,14 @@ pub fn zwidth_figure(title: &str, sample_period_s: f64, panels: &[ZWidthPanel<'_
     for p in panels {
         let k_max = p.pairs.iter().map(|c| c.stiffness_nm_per_rad).fold(0.0, f64::max);
         let b_max = p.pairs.iter().map(|c| c.damping_nms_per_rad).fold(0.0, f64::max);
+        // The y range leaves the top third free for the legend, off the grid of pairs.
         let mut panel =
             Panel::new("virtual stiffness K [N·m/rad]", "virtual damping B [N·m·s/rad]")
                 .caption(p.label.clone())
                 .legend(SeriesLabelPosition::UpperRight)
                 .x_range(0.0, k_max.max(1e-9) * 1.02)
-                .y_range(0.0, b_max.max(1e-9) * 1.05);
-        for (class, color) in [("passive", 2), ("stable", 4), ("unstable", 1)] {
+                .y_range(0.0, b_max.max(1e-9) * 1.5);
+        for (class, color, shape) in ZWIDTH_STYLES {
             let points: Vec<(f64, f64)> = p
                 .pairs
                 .iter()
@@ -231,7 +302,8 @@ pub fn zwidth_figure(title: &str, sample_period_s: f64, panels: &[ZWidthPanel<'_
                 .map(|c| (c.stiffness_nm_per_rad, c.damping_nms_per_rad))
                 .collect();
             if !points.is_empty() {
-                panel = panel.series(Series::points(class, points).color(color));
+                panel = panel
+                    .series(Series::points(class, points).color(color).shape(shape).marker_size(4));
             }
         }
         if let Some(b) = p.boundary_damping_nms_per_rad {
@@ -322,7 +394,8 @@ mod tests {
         assert!(text.contains("  passive                    true"), "{text}");
         assert_eq!(text.lines().count(), 9);
         let trace = run.trace.as_ref().unwrap();
-        let history = TimeHistory::from_trace("bidirectional", trace);
+        let history = TimeHistory::from_trace("bidirectional", DeviceKind::Bidirectional, trace);
+        assert_eq!(history.coils, 2);
         assert_eq!(history.time_s.len(), 200);
         assert_eq!(history.current_a[1].len(), trace.current_a[1].len());
     }
@@ -357,11 +430,25 @@ mod tests {
             intended_rad: &y,
             wall_rad: &y,
             current_a: [&y, &y],
+            coils: 2,
             device_torque_nm: &y,
             hand_torque_nm: &y,
         };
-        let svg = wall_comparison_figure("wall", &[run, run]).to_svg().unwrap();
+        let motor = TimeHistory { label: "motor", coils: 0, ..run };
+        let svg = wall_comparison_figure("wall", &[run, motor]).to_svg().unwrap();
         assert!(svg.contains("bidirectional: coil currents"));
+        assert!(svg.contains("no brake coil") && !svg.contains("motor: coil current"));
+        // Every row shares its y range across the columns (the motor's torques are twice as
+        // large here), and the current row starts at 0.
+        let y2: Vec<f64> = y.iter().map(|v| 2.0 * v).collect();
+        let motor = TimeHistory { device_torque_nm: &y2, ..motor };
+        let figure = wall_comparison_figure("wall", &[run, motor]);
+        for row in [0, 2] {
+            assert_eq!(figure.panels[2 * row].y_range, figure.panels[2 * row + 1].y_range);
+        }
+        let (_, hi) = figure.panels[4].y_range.unwrap();
+        assert!(hi > 1.99, "the bidirectional column shows the motor's 2 N·m: {hi}");
+        assert!(figure.panels[2].y_range.unwrap().0.abs() < 1e-15);
         let pairs = vec![
             ClassifiedPair {
                 stiffness_nm_per_rad: 0.0,

@@ -1,11 +1,66 @@
 //! Plots of an optimisation: the objective scatter with the Pareto front and a reference design, and
 //! the constraint activity of the front's designs.
 //!
-//! Built on [`crate::chart`]: every evaluated design is a grey point, infeasible ones a light point,
-//! the front a line with markers, and the reference design (the thesis's) a highlighted marker with
-//! its own legend entry.
+//! Built on [`crate::chart`]: feasible designs are green points, infeasible ones grey crosses under
+//! them, the front a line with markers, and the reference design (the thesis's) a large triangle
+//! with its own legend entry; axes and legends in the displayed units ([`metric_plot_axis`]).
 
-use crate::chart::{Figure, Panel, Series};
+use crate::chart::{Figure, GREY, Panel, Series, Shape, tick_label};
+use crate::study::metric_axis;
+
+/// Unit endings of metric names (case-insensitive, longest first), dropped from axis labels that
+/// carry the displayed unit in brackets instead.
+const UNIT_SUFFIXES: [&str; 15] = [
+    "_nm_per_m3",
+    "_nm_per_kg",
+    "_a_per_mm2",
+    "_kg_m2",
+    "_m3",
+    "_nm",
+    "_ohm",
+    "_kg",
+    "_m",
+    "_t",
+    "_a",
+    "_w",
+    "_k",
+    "_h",
+    "_s",
+];
+
+/// A metric's name in words, without its SI unit ending: `rotor_inertia_kg_m2` → `rotor inertia`,
+/// `mean_b_fluid_t` → `mean |B| fluid`.
+pub fn metric_words(name: &str) -> String {
+    let lower = name.to_ascii_lowercase();
+    let stem = UNIT_SUFFIXES
+        .iter()
+        .find(|suffix| lower.len() > suffix.len() && lower.ends_with(*suffix))
+        .map_or(name, |suffix| &name[..name.len() - suffix.len()]);
+    stem.split('_')
+        .map(|word| if word.eq_ignore_ascii_case("b") { "|B|" } else { word })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The display scale of a metric and its axis label in the displayed unit, e.g.
+/// `(1e6, "rotor inertia [kg·mm²]")` for `rotor_inertia_kg_m2`.
+pub fn metric_plot_axis(name: &str) -> (f64, String) {
+    let (scale, label) = metric_axis(name);
+    let unit = label.rsplit_once('[').and_then(|(_, u)| u.strip_suffix(']')).unwrap_or("");
+    let unit = if unit.is_empty() || unit == "1" { "–" } else { unit };
+    (scale, format!("{} [{unit}]", metric_words(name)))
+}
+
+/// A constraint as a legend label in displayed units, e.g. `outer diameter ≤ 80 mm`.
+pub fn constraint_legend(metric: &str, min: Option<f64>, max: Option<f64>) -> String {
+    let (scale, label) = metric_plot_axis(metric);
+    let unit = label.rsplit_once('[').and_then(|(_, u)| u.strip_suffix(']')).unwrap_or("");
+    let unit = if unit == "–" { String::new() } else { format!(" {unit}") };
+    let bound = |sign: &str, v: Option<f64>| {
+        v.map_or(String::new(), |v| format!(" {sign} {}{unit}", tick_label(v * scale)))
+    };
+    format!("{}{}{}", metric_words(metric), bound("≥", min), bound("≤", max))
+}
 
 /// The data of an objective-space plot (values already in display units).
 #[derive(Debug, Clone, Default)]
@@ -30,8 +85,12 @@ pub struct ObjectivePlot {
 pub fn objective_figure(plot: &ObjectivePlot) -> Figure {
     let mut panel = Panel::new(plot.x_label.clone(), plot.y_label.clone());
     if !plot.infeasible.is_empty() {
-        panel =
-            panel.series(Series::points("violates a constraint", plot.infeasible.clone()).color(7));
+        panel = panel.series(
+            Series::points("violates a constraint", plot.infeasible.clone())
+                .color(GREY)
+                .shape(Shape::Cross)
+                .marker_size(3),
+        );
     }
     if !plot.feasible.is_empty() {
         panel = panel.series(Series::points("feasible design", plot.feasible.clone()).color(2));
@@ -40,7 +99,12 @@ pub fn objective_figure(plot: &ObjectivePlot) -> Figure {
         panel = panel.series(Series::line_points("Pareto front", plot.front.clone()).color(0));
     }
     for (k, (label, point)) in plot.references.iter().enumerate() {
-        panel = panel.series(Series::points(label.clone(), vec![*point]).color(1 + 2 * k));
+        panel = panel.series(
+            Series::points(label.clone(), vec![*point])
+                .color(1 + 2 * k)
+                .shape(Shape::Triangle)
+                .marker_size(7),
+        );
     }
     let ys = plot.infeasible.iter().chain(&plot.feasible).chain(&plot.front).map(|p| p.1);
     let references = plot.references.iter().map(|(_, p)| p.1);
@@ -77,17 +141,20 @@ pub struct ConstraintActivity {
 /// The constraint-activity chart.
 pub fn constraint_activity_figure(activity: &ConstraintActivity) -> Figure {
     let mut panel = Panel::new(activity.x_label.clone(), "relative margin to the limit [–]");
-    let mut x_range = (f64::INFINITY, f64::NEG_INFINITY);
-    for (k, (label, points)) in activity.constraints.iter().enumerate() {
-        for &(x, _) in points {
-            x_range = (x_range.0.min(x), x_range.1.max(x));
-        }
-        panel = panel.series(Series::line_points(label.clone(), points.clone()).color(k));
+    let points = activity.constraints.iter().flat_map(|(_, points)| points.iter());
+    let (x0, x1) = points
+        .map(|p| p.0)
+        .filter(|x| x.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)));
+    // The limit first, in black, so the constraints that sit on it are drawn over it.
+    if x0.is_finite() {
+        let (x0, x1) = if x1 > x0 { (x0, x1) } else { (x0 - 1.0, x1 + 1.0) };
+        panel = panel
+            .series(Series::dashed("active (limit)", vec![(x0, 0.0), (x1, 0.0)]).color(6))
+            .x_range(x0, x1);
     }
-    if x_range.0.is_finite() {
-        panel = panel.series(
-            Series::dashed("active (limit)", vec![(x_range.0, 0.0), (x_range.1, 0.0)]).color(7),
-        );
+    for (k, (label, points)) in activity.constraints.iter().enumerate() {
+        panel = panel.series(Series::line_points(label.clone(), points.clone()).color(k));
     }
     let margins = activity.constraints.iter().flat_map(|(_, points)| points.iter().map(|p| p.1));
     panel.y_range = legend_headroom(margins, Some(0.0));
@@ -117,6 +184,24 @@ mod tests {
             constraints: vec![("T ≥ 3 N·m".into(), vec![(1.0, 0.0), (2.0, 0.2)])],
         };
         assert!(constraint_activity_figure(&activity).to_svg().unwrap().contains("active"));
+    }
+
+    #[test]
+    fn axis_and_legend_labels_are_in_the_displayed_unit() {
+        assert_eq!(metric_plot_axis("rotor_inertia_kg_m2"), (1e6, "rotor inertia [kg·mm²]".into()));
+        assert_eq!(metric_plot_axis("volume_m3").1, "volume [cm³]");
+        assert_eq!(metric_plot_axis("mean_b_fluid_t").1, "mean |B| fluid [T]");
+        assert_eq!(metric_plot_axis("current_to_rating").1, "current to rating [–]");
+        assert_eq!(metric_words("torque_max_Nm"), "torque max");
+        assert_eq!(
+            constraint_legend("outer_diameter_m", None, Some(0.08)),
+            "outer diameter ≤ 80 mm"
+        );
+        assert_eq!(constraint_legend("torque_max_nm", Some(3.0), None), "torque max ≥ 3 N·m");
+        assert_eq!(
+            constraint_legend("current_to_rating", None, Some(1.0)),
+            "current to rating ≤ 1"
+        );
     }
 
     #[test]

@@ -11,7 +11,7 @@ use mrbrake_design::response::Response;
 use crate::ReportError;
 use crate::atomic::write_atomic;
 use crate::bode::{BodeCurve, save_bode};
-use crate::chart::{Figure, Panel, Series};
+use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
 
 /// The thesis's measured transfer functions `1/(a s² + b s + 1)` scaled by `k`: (5.5) first brake,
 /// (5.6) second brake (Karabulut 2017, 5.3.2).
@@ -102,13 +102,16 @@ pub fn second_order_points(k: f64, a: f64, b: f64, omegas: &[f64]) -> Vec<(f64, 
         .collect()
 }
 
-/// The step-response figure (torque against time, each direction).
+/// The step-response figure (torque against time, each direction; the second dashed, as the
+/// two nearly coincide), the legend in the lower right, which a step leaves empty.
 pub fn step_figure(r: &Response) -> Figure {
-    let mut panel = Panel::new("time [ms]", "torque [N·m]");
+    let mut panel = Panel::new("time [ms]", "torque [N·m]").legend(SeriesLabelPosition::LowerRight);
     for (k, step) in r.step.iter().enumerate() {
         let points = step.time_s.iter().zip(&step.torque_nm).map(|(t, q)| (t * 1e3, *q)).collect();
-        panel =
-            panel.series(Series::line(format!("direction {}", step.direction), points).color(k));
+        let label = format!("direction {}", step.direction);
+        let series =
+            if k == 0 { Series::line(label, points) } else { Series::dashed(label, points) };
+        panel = panel.series(series.color(k));
     }
     Figure::new("predicted torque step response").panel(panel)
 }

@@ -17,7 +17,8 @@ use mrbrake_store::{MergeSummary, Record, Status};
 use serde_json::{Value, json};
 
 use crate::pareto::{
-    ConstraintActivity, ObjectivePlot, constraint_activity_figure, objective_figure,
+    ConstraintActivity, ObjectivePlot, constraint_activity_figure, constraint_legend,
+    metric_plot_axis, objective_figure,
 };
 use crate::{ReportError, write_atomic};
 
@@ -406,7 +407,8 @@ impl OptimizationReport<'_> {
         let (problem, result) = (self.problem, self.result);
         let (x_metric, y_metric) = self.plot_metrics();
         let y_metric = y_metric?;
-        let ((xs, x_label), (ys, y_label)) = (metric_axis(x_metric), metric_axis(y_metric));
+        let ((xs, x_label), (ys, y_label)) =
+            (metric_plot_axis(x_metric), metric_plot_axis(y_metric));
         let point = |r: &Record| Some((r.metric(x_metric)? * xs, r.metric(y_metric)? * ys));
         let mut plot = ObjectivePlot {
             title: format!(
@@ -442,7 +444,7 @@ impl OptimizationReport<'_> {
     /// Each constraint's margin (0 = active) along the front, against the first objective.
     fn constraint_activity(&self, front: &[Record]) -> ConstraintActivity {
         let (x_metric, _) = self.plot_metrics();
-        let (xs, x_label) = metric_axis(x_metric);
+        let (xs, x_label) = metric_plot_axis(x_metric);
         let along_front = |c: &Constraint| {
             let mut points: Vec<(f64, f64)> = front
                 .iter()
@@ -464,14 +466,9 @@ impl OptimizationReport<'_> {
     }
 }
 
-/// A constraint as a legend label, e.g. `torque_max_nm ≥ 3`.
+/// A constraint as a legend label in displayed units, e.g. `torque max ≥ 3 N·m`.
 fn constraint_label(c: &Constraint) -> String {
-    format!(
-        "{}{}{}",
-        c.metric,
-        c.min.map_or(String::new(), |v| format!(" ≥ {v}")),
-        c.max.map_or(String::new(), |v| format!(" ≤ {v}"))
-    )
+    constraint_legend(&c.metric, c.min, c.max)
 }
 
 /// The thesis's comparison tables (Tables 4.1–4.4) beside mrbrake's values, one block per table.
@@ -615,8 +612,8 @@ mod tests {
     #[test]
     fn constraint_labels_show_their_bounds() {
         let c = Constraint { metric: "torque_max_nm".into(), min: Some(3.0), max: None };
-        assert_eq!(constraint_label(&c), "torque_max_nm ≥ 3");
+        assert_eq!(constraint_label(&c), "torque max ≥ 3 N·m");
         let c = Constraint { metric: "outer_diameter_m".into(), min: Some(0.01), max: Some(0.08) };
-        assert_eq!(constraint_label(&c), "outer_diameter_m ≥ 0.01 ≤ 0.08");
+        assert_eq!(constraint_label(&c), "outer diameter ≥ 10 mm ≤ 80 mm");
     }
 }

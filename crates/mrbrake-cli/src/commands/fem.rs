@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::{Args, Subcommand};
 use mrbrake_magnetics::ElementOrder;
 use mrbrake_magnetics::problem_file::{solve_file_with_order, vtu_files};
-use mrbrake_report::field_map::{FieldMap, save_field_map};
+use mrbrake_report::field_map::{FieldMap, View, save_field_map};
 
 use crate::error::CommandResult;
 use crate::output::print_json;
@@ -71,7 +71,12 @@ fn solve(args: SolveArgs) -> CommandResult {
     if args.plot.is_some() {
         let field = solver.field_snapshot(&solution);
         if let Some(path) = &args.plot {
-            let title = format!("|B| and flux lines: {}", args.problem.display());
+            // The problem's name (its file name without the folder), not a path.
+            let name = args.problem.file_stem().map_or_else(
+                || args.problem.display().to_string(),
+                |s| s.to_string_lossy().into_owned(),
+            );
+            let title = format!("{name}: |B| and flux lines");
             let map = FieldMap {
                 title: &title,
                 nodes: &field.nodes,
@@ -80,6 +85,8 @@ fn solve(args: SolveArgs) -> CommandResult {
                 b_abs_t: &field.element_b_abs_t,
                 flux_function: &field.flux_function_wb,
                 flux_lines: args.flux_lines,
+                regions: &[],
+                view: View::Whole,
             };
             save_field_map(&map, path)?;
         }

@@ -24,7 +24,8 @@ use super::writer::{Cell, Table};
 use super::{Page, Section, cross_section, figure, inline_svg};
 use crate::ReportError;
 use crate::pareto::{
-    ConstraintActivity, ObjectivePlot, constraint_activity_figure, objective_figure,
+    ConstraintActivity, ObjectivePlot, constraint_activity_figure, metric_plot_axis,
+    objective_figure,
 };
 use crate::study::metric_axis;
 
@@ -204,7 +205,7 @@ impl StudyReport<'_> {
             );
             return Ok(s);
         };
-        let ((xs, x_label), (ys, y_label)) = (metric_axis(x), metric_axis(y));
+        let ((xs, x_label), (ys, y_label)) = (metric_plot_axis(x), metric_plot_axis(y));
         let point = |r: &Record| Some((r.metric(x)? * xs, r.metric(y)? * ys));
         let mut plot = ObjectivePlot {
             title: format!("{} designs and the front", self.records.len()),
@@ -383,9 +384,7 @@ fn pointer_escape(name: &str) -> String {
     name.replace('~', "~0").replace('/', "~1")
 }
 
-/// A constraint as a legend label, e.g. `torque_max_nm ≥ 3`.
+/// A constraint as a legend label in displayed units, e.g. `torque max ≥ 3 N·m`.
 fn constraint_label(c: &Constraint) -> String {
-    let lo = c.min.map_or(String::new(), |v| format!(" ≥ {v}"));
-    let hi = c.max.map_or(String::new(), |v| format!(" ≤ {v}"));
-    format!("{}{lo}{hi}", c.metric)
+    crate::pareto::constraint_legend(&c.metric, c.min, c.max)
 }
