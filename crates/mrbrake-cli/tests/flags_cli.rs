@@ -32,7 +32,7 @@ fn stdout_of(args: &[&str]) -> String {
 }
 
 fn wall(extra: &[&str]) -> String {
-    let mut args = vec!["haptic", "wall", "--device", "bidirectional", "--duration", "0.5s"];
+    let mut args = vec!["haptic", "wall", "--device", "bidirectional"];
     args.extend_from_slice(extra);
     stdout_of(&args)
 }
