@@ -329,10 +329,11 @@ pub fn zwidth_text(map: &ZWidthMap) -> String {
         c.physical_damping_nms_per_rad, c.controllable_damping_nms_per_rad
     );
     let _ = writeln!(out, "  {:<28} {:>8} {:>8} {:>8}", "device", "passive", "stable", "unstable");
-    let devices: [(&str, &dyn Fn(&ZWidthCell) -> Interaction); 3] = [
-        ("motor", &|cell| cell.motor),
-        ("hybrid (motor + MR damper)", &|cell| cell.hybrid),
-        ("bidirectional brake", &|cell| cell.brake),
+    type ClassOf = fn(&ZWidthCell) -> Interaction;
+    let devices: [(&str, ClassOf); 3] = [
+        ("motor", |cell| cell.motor),
+        ("hybrid (motor + MR damper)", |cell| cell.hybrid),
+        ("bidirectional brake", |cell| cell.brake),
     ];
     for (name, class) in devices {
         let _ = writeln!(
