@@ -1,10 +1,24 @@
-//! Printing helpers shared by the subcommands (JSON to stdout).
+//! Printing helpers shared by the subcommands (JSON to stdout), and the check of plot paths.
 
 use std::io::Write;
+use std::path::Path;
 
 use serde::Serialize;
 
 use crate::error::{CommandResult, InternalError};
+
+/// Refuses a plot path whose extension is not a supported picture format (`.svg`, `.png`), before
+/// any work starts; the error names `flag`, the path and the supported extensions (exit code 2).
+pub fn check_plot_path(flag: &str, path: Option<&Path>) -> CommandResult {
+    use crate::error::Context;
+    match path {
+        Some(path) => {
+            mrbrake_report::plot_format::PlotFormat::from_path(path).context(flag.to_string())?;
+            Ok(())
+        }
+        None => Ok(()),
+    }
+}
 
 /// `value` as pretty JSON text. Every result type serialises; a failure is a bug (internal).
 pub fn json_text<T: Serialize>(value: &T) -> CommandResult<String> {

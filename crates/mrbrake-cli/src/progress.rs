@@ -1,47 +1,196 @@
-//! A progress bar with rate and ETA for long studies, drawn on stderr only when it is a terminal
-//! (quiet in pipes, logs and batch jobs).
+//! Progress of long work on stderr: a bar with rate and ETA when stderr is a terminal, and plain
+//! lines when it is not (a pipe, a Slurm or Kubernetes log), so a batch job's log shows life.
+//!
+//! The lines follow one rule for every command: nothing for work that ends within
+//! [`QUIET_FOR`] (short runs stay quiet), then one line per completed design (`sweep`,
+//! `optimize`) or per completed step, at most one a second for fast steps (`analyze`'s
+//! currents, `haptic zwidth`'s stiffness rows), and a last line when the work is done. The
+//! environment variable `MRBRAKE_PROGRESS` overrides the choice: `lines` prints every line from
+//! the start (also on a terminal), `off` prints nothing, `auto` (or unset) is the rule above.
+//! A command's `quiet` (its `--json`) hides the terminal bar only: lines go to stderr, never
+//! into the JSON on stdout, and a batch job that keeps the JSON still shows life in its log.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
+use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use mrbrake_explore::Progress;
 
-/// Shows [`Progress`] reports as a bar.
+/// Work that ends sooner than this prints no progress lines.
+pub const QUIET_FOR: Duration = Duration::from_secs(2);
+
+/// The shortest interval between two lines for fast steps.
+const STEP_INTERVAL: Duration = Duration::from_secs(1);
+
+/// How progress is shown, from `MRBRAKE_PROGRESS` and whether stderr is a terminal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// A bar on the terminal.
+    Bar,
+    /// Lines after [`QUIET_FOR`] (stderr is not a terminal).
+    Lines,
+    /// Every line from the start (`MRBRAKE_PROGRESS=lines`).
+    AllLines,
+    /// Nothing.
+    Off,
+}
+
+fn mode(quiet: bool) -> Mode {
+    match std::env::var("MRBRAKE_PROGRESS").as_deref().map(str::trim) {
+        Ok("off") => Mode::Off,
+        Ok("lines") => Mode::AllLines,
+        _ if !std::io::stderr().is_terminal() => Mode::Lines,
+        _ if quiet => Mode::Off,
+        _ => Mode::Bar,
+    }
+}
+
+/// When a line is due: the rule of the module overview, with the clock passed in (testable).
+#[derive(Debug, Clone)]
+struct LineRule {
+    start: Instant,
+    quiet_for: Duration,
+    interval: Duration,
+    last: Option<Instant>,
+}
+
+impl LineRule {
+    /// Whether to print a line at `now`, `done` of `total` complete; records the line.
+    fn due(&mut self, now: Instant, done: usize, total: usize) -> bool {
+        let started = now.duration_since(self.start) >= self.quiet_for;
+        let finished = total > 0 && done >= total;
+        let spaced = self.last.is_none_or(|last| now.duration_since(last) >= self.interval);
+        // The last line is printed once lines have started (or the work has taken long).
+        let due = started && (spaced || finished) || (finished && self.last.is_some());
+        if due {
+            self.last = Some(now);
+        }
+        due
+    }
+}
+
+/// Shows the progress of one piece of work on stderr (see the module overview).
 pub struct ProgressDisplay {
     bar: ProgressBar,
+    what: String,
+    unit: &'static str,
+    lines: Option<LineRule>,
 }
 
 impl ProgressDisplay {
-    /// A bar labelled `what`; hidden when stderr is not a terminal or `quiet` is set.
+    /// Progress of `what` over designs, one line per completed design; `quiet` hides the bar.
     pub fn new(what: &str, quiet: bool) -> Self {
-        let bar = if quiet || !std::io::stderr().is_terminal() {
-            ProgressBar::hidden()
-        } else {
-            let bar = ProgressBar::new(0);
-            // The template is a constant known to be valid; fall back to the default style if not.
-            if let Ok(style) = ProgressStyle::with_template(
-                "{prefix} [{bar:30}] {pos}/{len} designs, {per_sec}, ETA {eta} {msg}",
-            ) {
-                bar.set_style(style.progress_chars("=> "));
-            }
-            bar.set_prefix(what.to_string());
-            bar
-        };
-        Self { bar }
+        Self::with_unit(what, "designs", Duration::ZERO, quiet)
     }
 
-    /// Updates the bar.
+    /// Progress of `what` over fast steps counted in `unit` (at most a line a second).
+    pub fn steps(what: &str, unit: &'static str, quiet: bool) -> Self {
+        Self::with_unit(what, unit, STEP_INTERVAL, quiet)
+    }
+
+    fn with_unit(what: &str, unit: &'static str, interval: Duration, quiet: bool) -> Self {
+        let mode = mode(quiet);
+        let bar = if mode == Mode::Bar { visible_bar(what, unit) } else { ProgressBar::hidden() };
+        let quiet_for = if mode == Mode::AllLines { Duration::ZERO } else { QUIET_FOR };
+        let lines = matches!(mode, Mode::Lines | Mode::AllLines).then(|| LineRule {
+            start: Instant::now(),
+            quiet_for,
+            interval: if mode == Mode::AllLines { Duration::ZERO } else { interval },
+            last: None,
+        });
+        Self { bar, what: what.to_string(), unit, lines }
+    }
+
+    /// Reports a run of designs.
     pub fn update(&mut self, p: &Progress) {
+        let detail =
+            format!("({} reused, {} infeasible, {} failed)", p.reused, p.infeasible, p.failed);
         self.bar.set_length(p.to_compute as u64);
         self.bar.set_position(p.computed as u64);
-        self.bar.set_message(format!(
-            "({} reused, {} infeasible, {} failed)",
-            p.reused, p.infeasible, p.failed
-        ));
+        self.bar.set_message(detail.clone());
+        self.line(p.computed, p.to_compute, &detail);
+    }
+
+    /// Reports `done` of `total` steps.
+    pub fn step(&mut self, done: usize, total: usize) {
+        self.bar.set_length(total as u64);
+        self.bar.set_position(done as u64);
+        self.line(done, total, "");
+    }
+
+    fn line(&mut self, done: usize, total: usize, detail: &str) {
+        let Some(rule) = &mut self.lines else { return };
+        let now = Instant::now();
+        if rule.due(now, done, total) {
+            let elapsed = now.duration_since(rule.start).as_secs_f64();
+            let text = format!(
+                "{}: {done}/{total} {} done, {elapsed:.0} s elapsed {detail}",
+                self.what, self.unit
+            );
+            // A closed stderr must not stop the work.
+            let _ = writeln!(std::io::stderr().lock(), "{}", text.trim_end());
+        }
     }
 
     /// Removes the bar.
     pub fn finish(&mut self) {
         self.bar.finish_and_clear();
+    }
+}
+
+fn visible_bar(what: &str, unit: &str) -> ProgressBar {
+    let bar = ProgressBar::new(0);
+    // The template is a constant known to be valid; fall back to the default style if not.
+    let template =
+        format!("{{prefix}} [{{bar:30}}] {{pos}}/{{len}} {unit}, {{per_sec}}, ETA {{eta}} {{msg}}");
+    if let Ok(style) = ProgressStyle::with_template(&template) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_prefix(what.to_string());
+    bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rule(interval_s: u64) -> (LineRule, Instant) {
+        let start = Instant::now();
+        let rule = LineRule {
+            start,
+            quiet_for: QUIET_FOR,
+            interval: Duration::from_secs(interval_s),
+            last: None,
+        };
+        (rule, start)
+    }
+
+    #[test]
+    fn short_work_is_quiet() {
+        let (mut r, t0) = rule(0);
+        let at = |ms| t0 + Duration::from_millis(ms);
+        assert!(!r.due(at(100), 1, 3));
+        assert!(!r.due(at(500), 2, 3));
+        assert!(!r.due(at(1900), 3, 3), "done within the quiet time: no line at all");
+    }
+
+    #[test]
+    fn one_line_per_design_after_the_quiet_time() {
+        let (mut r, t0) = rule(0);
+        let at = |ms| t0 + Duration::from_millis(ms);
+        assert!(!r.due(at(1000), 1, 4));
+        assert!(r.due(at(2100), 2, 4));
+        assert!(r.due(at(2200), 3, 4));
+        assert!(r.due(at(2300), 4, 4));
+    }
+
+    #[test]
+    fn fast_steps_are_spaced_and_the_last_is_printed() {
+        let (mut r, t0) = rule(1);
+        let at = |ms| t0 + Duration::from_millis(ms);
+        assert!(r.due(at(2000), 10, 100));
+        assert!(!r.due(at(2500), 20, 100), "half a second after the last line");
+        assert!(r.due(at(3000), 30, 100));
+        assert!(r.due(at(3100), 100, 100), "the last step always has its line");
     }
 }

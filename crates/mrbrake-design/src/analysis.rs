@@ -387,7 +387,7 @@ impl FieldAtMaxCurrent {
 
 /// Runs the whole analysis of `spec`.
 pub fn analyze(spec: &BrakeSpec, options: &AnalysisOptions) -> Result<Analysis, DesignError> {
-    run_analysis(spec, options, |_, _| ()).map(|(analysis, ())| analysis)
+    analyze_with_progress(spec, options, &mut |_, _| ())
 }
 
 /// Runs the analysis and also returns the field at the maximum current (for field maps).
@@ -395,7 +395,26 @@ pub fn analyze_with_field(
     spec: &BrakeSpec,
     options: &AnalysisOptions,
 ) -> Result<(Analysis, FieldAtMaxCurrent), DesignError> {
-    run_analysis(spec, options, FieldAtMaxCurrent::new)
+    analyze_with_field_and_progress(spec, options, &mut |_, _| ())
+}
+
+/// [`analyze`], calling `progress(done, total)` after each current of the torque–current sweep
+/// (for a front end's progress display on long sweeps, e.g. `--points 2000`).
+pub fn analyze_with_progress(
+    spec: &BrakeSpec,
+    options: &AnalysisOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Analysis, DesignError> {
+    run_analysis(spec, options, progress, |_, _| ()).map(|(analysis, ())| analysis)
+}
+
+/// [`analyze_with_field`] with the progress of [`analyze_with_progress`].
+pub fn analyze_with_field_and_progress(
+    spec: &BrakeSpec,
+    options: &AnalysisOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<(Analysis, FieldAtMaxCurrent), DesignError> {
+    run_analysis(spec, options, progress, FieldAtMaxCurrent::new)
 }
 
 /// Direction 1's curve points (unit 1 energised) at the given `currents` (A, each in
@@ -434,6 +453,7 @@ pub fn direction1_points(
 fn run_analysis<F>(
     spec: &BrakeSpec,
     options: &AnalysisOptions,
+    progress: &mut dyn FnMut(usize, usize),
     keep_field: impl FnOnce(&Model, &Solution) -> F,
 ) -> Result<(Analysis, F), DesignError> {
     let t_start = Instant::now();
@@ -457,7 +477,7 @@ fn run_analysis<F>(
     let t_setup = t0.elapsed().as_secs_f64();
 
     let t0 = Instant::now();
-    let sweep = model.sweep(options)?;
+    let sweep = model.sweep(options, progress)?;
     let solved = model.direction2(sweep, options)?;
     let t_solve = t0.elapsed().as_secs_f64();
 
@@ -575,7 +595,12 @@ impl Model {
     }
 
     /// The torque–current sweep: unit 1 energised, warm-started from the previous current.
-    fn sweep(&mut self, options: &AnalysisOptions) -> Result<Sweep, DesignError> {
+    /// `progress(done, total)` is called after each current.
+    fn sweep(
+        &mut self,
+        options: &AnalysisOptions,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<Sweep, DesignError> {
         let mut curve = Vec::with_capacity(options.points);
         let mut previous: Option<Solution> = None;
         let mut gaps_at_max = Vec::new();
@@ -588,6 +613,7 @@ impl Model {
                 gaps_at_max = gaps;
             }
             previous = Some(solution);
+            progress(k + 1, options.points);
         }
         let solution_at_max = previous.expect("the sweep has at least two points");
         Ok(Sweep { curve, gaps_at_max, solution_at_max })

@@ -152,6 +152,11 @@ pub fn single_disc(
     multi_disc(1, r1_m, r2_m, tau_y_pa, viscous)
 }
 
+/// The most discs of a multi-disc brake, or fluid surfaces of a multi-drum brake, the formulas
+/// accept: far beyond any brake that can be built (the thesis's designs have 1 to 4), and it keeps
+/// a typo such as 100000000 from sizing a list of radii.
+pub const MAX_SURFACES: u32 = 100;
+
 /// Multi-disc brake torque with `n` rotating discs, thesis (3.8): `n` times the single disc (3.6).
 pub fn multi_disc(
     n: u32,
@@ -160,8 +165,10 @@ pub fn multi_disc(
     tau_y_pa: f64,
     viscous: Option<Viscous>,
 ) -> Result<BrakeTorque, DesignError> {
-    if n == 0 {
-        return Err(DesignError::Input("number of discs must be at least 1".into()));
+    if !(1..=MAX_SURFACES).contains(&n) {
+        return Err(DesignError::Input(format!(
+            "discs = {n} is not allowed: a multi-disc brake has 1 to {MAX_SURFACES} discs"
+        )));
     }
     check_radii(r1_m, r2_m)?;
     non_negative("tau_y (yield stress)", tau_y_pa)?;
@@ -216,8 +223,11 @@ pub fn multi_drum(
     positive("d (cylinder thickness)", d_m)?;
     positive("g (fluid gap)", g_m)?;
     non_negative("tau_y (yield stress)", tau_y_pa)?;
-    if surfaces == 0 {
-        return Err(DesignError::Input("number of fluid surfaces must be at least 1".into()));
+    if !(1..=MAX_SURFACES).contains(&surfaces) {
+        return Err(DesignError::Input(format!(
+            "surfaces = {surfaces} is not allowed: a multi-drum brake has 1 to {MAX_SURFACES} fluid \
+             surfaces (the thesis's final design has 4)"
+        )));
     }
     let viscous = check_viscous(viscous_eta_omega.map(|(eta_pa_s, omega_rad_s)| Viscous {
         eta_pa_s,

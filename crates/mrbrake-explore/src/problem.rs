@@ -378,6 +378,64 @@ fn objectives_of(raw: &[RawObjective]) -> Result<Vec<Objective>, String> {
     Ok(objectives)
 }
 
+/// A budget override from the command line (`mrbrake optimize --generations N
+/// --max-evaluations M`), for a quick run of a problem file without editing it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BudgetOverride {
+    /// NSGA-II generations after the initial population.
+    pub generations: Option<usize>,
+    /// The most designs evaluated: pattern search's budget; for NSGA-II, the generations are cut
+    /// to the most whose `population × (generations + 1)` designs fit.
+    pub max_evaluations: Option<usize>,
+}
+
+impl Algorithm {
+    /// The algorithm with `budget` applied; an override the algorithm has no use for
+    /// (`--generations` for pattern search) or out of range is an input error naming the flag.
+    pub fn with_budget(&self, budget: BudgetOverride) -> Result<Algorithm, ExploreError> {
+        let bad = |what: String| Err(ExploreError::Input(what));
+        match *self {
+            Algorithm::Nsga2 { population, mut generations, seed } => {
+                if let Some(g) = budget.generations {
+                    generations = g;
+                }
+                if let Some(max) = budget.max_evaluations {
+                    if max < population {
+                        return bad(format!(
+                            "--max-evaluations {max} is less than one generation of NSGA-II \
+                             (population {population}); use at least {population}"
+                        ));
+                    }
+                    generations = generations.min(max / population - 1);
+                }
+                let designs = generations.checked_add(1).and_then(|g| g.checked_mul(population));
+                if designs.is_none_or(|d| d > MAX_EVALUATIONS) {
+                    return bad(format!(
+                        "--generations {generations} of {population} is more than \
+                         {MAX_EVALUATIONS} designs; use fewer"
+                    ));
+                }
+                Ok(Algorithm::Nsga2 { population, generations, seed })
+            }
+            Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base } => {
+                if budget.generations.is_some() {
+                    return bad("--generations applies to NSGA-II; pattern search takes \
+                                --max-evaluations"
+                        .into());
+                }
+                let max_evaluations = budget.max_evaluations.unwrap_or(max_evaluations);
+                if max_evaluations == 0 || max_evaluations > MAX_EVALUATIONS {
+                    return bad(format!(
+                        "--max-evaluations {max_evaluations} is not allowed; use 1 to \
+                         {MAX_EVALUATIONS}"
+                    ));
+                }
+                Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base })
+            }
+        }
+    }
+}
+
 /// The largest NSGA-II population (each generation holds and sorts it in memory).
 pub const MAX_POPULATION: usize = 100_000;
 
@@ -548,6 +606,41 @@ generations = 2
         let quadratic = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\norder = 2");
         let p = OptimizationProblem::from_toml_str(&quadratic, Path::new("p.toml")).unwrap();
         assert_eq!(p.settings.order, ElementOrder::P2);
+    }
+
+    /// Issue 19: `--generations` / `--max-evaluations` shorten a run without editing the file.
+    #[test]
+    fn budget_overrides_shorten_the_run() {
+        let nsga = Algorithm::Nsga2 { population: 8, generations: 10, seed: 1 };
+        let quick = |g, m| nsga.with_budget(BudgetOverride { generations: g, max_evaluations: m });
+        assert_eq!(
+            quick(Some(2), None).unwrap(),
+            Algorithm::Nsga2 { population: 8, generations: 2, seed: 1 }
+        );
+        // 20 designs hold two generations of 8 (the initial one and one more).
+        assert_eq!(
+            quick(None, Some(20)).unwrap(),
+            Algorithm::Nsga2 { population: 8, generations: 1, seed: 1 }
+        );
+        assert_eq!(quick(None, None).unwrap(), nsga);
+        let e = quick(None, Some(7)).unwrap_err().to_string();
+        assert!(e.contains("--max-evaluations 7") && e.contains("at least 8"), "{e}");
+        assert!(quick(Some(usize::MAX), None).is_err());
+        let ps = Algorithm::PatternSearch {
+            max_evaluations: 200,
+            seed: 1,
+            random_poll: false,
+            start_at_base: false,
+        };
+        let b = |g, m| ps.with_budget(BudgetOverride { generations: g, max_evaluations: m });
+        assert!(matches!(
+            b(None, Some(12)).unwrap(),
+            Algorithm::PatternSearch { max_evaluations: 12, .. }
+        ));
+        assert!(
+            b(Some(3), None).unwrap_err().to_string().contains("--generations applies to NSGA-II")
+        );
+        assert!(b(None, Some(0)).is_err());
     }
 
     /// Issue 18: a population of 10¹² aborted on its allocation; counts are bounded first.

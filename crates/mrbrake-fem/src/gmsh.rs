@@ -98,8 +98,8 @@ pub fn parse_msh(text: &str, file: &str, length_scale: f64) -> Result<GmshMesh, 
 /// Triangles and lines as read, before node renumbering.
 #[derive(Default)]
 struct RawElements {
-    /// Corner node tags, physical tag and the line the triangle was read on.
-    triangles: Vec<([usize; 3], u32, usize)>,
+    /// Corner node tags, physical tag, the line the triangle was read on and its element tag.
+    triangles: Vec<([usize; 3], u32, usize, usize)>,
     /// End node tags and physical tag of each line in a physical curve.
     edges: Vec<([usize; 2], u32)>,
 }
@@ -254,7 +254,7 @@ fn compact_mesh(
     // Map Gmsh node tags to compact indices of the nodes used by triangles, in file order.
     let mut used = vec![false; nodes.coords.len()];
     let mut tri_idx = Vec::with_capacity(elements.triangles.len());
-    for (tri, tag, ln) in &elements.triangles {
+    for (tri, tag, ln, _) in &elements.triangles {
         let mut idx = [0; 3];
         for k in 0..3 {
             idx[k] = *nodes.index.get(&tri[k]).ok_or_else(|| FemError::Parse {
@@ -268,10 +268,12 @@ fn compact_mesh(
     }
     let mut new_id = vec![usize::MAX; nodes.coords.len()];
     let mut mesh = Mesh::default();
+    let mut node_tags = Vec::new();
     for (i, c) in nodes.coords.iter().enumerate() {
         if used[i] {
             new_id[i] = mesh.nodes.len();
             mesh.nodes.push([c[0] * length_scale, c[1] * length_scale]);
+            node_tags.push(nodes.tags[i]);
         }
     }
     for (idx, tag) in tri_idx {
@@ -291,12 +293,48 @@ fn compact_mesh(
         }
     }
     mesh.orient_counter_clockwise();
+    check_in_file_terms(&mesh, &node_tags, &elements.triangles, file)?;
     // Name the file in the mesh's own message; other kinds of error pass unchanged.
     mesh.validate().map_err(|e| match e {
         FemError::Input(message) => FemError::Input(format!("{file}: {message}")),
         other => other,
     })?;
     Ok(mesh)
+}
+
+/// The checks of [`Mesh::validate`] that a user fixes in the file (a node at r < 0, a
+/// degenerate triangle), reported with the file's node and element tags and the triangle's line:
+/// the mesh's own indices are 0-based and renumbered, the file's tags are 1-based.
+/// `triangles` are the file's, in the mesh's order.
+fn check_in_file_terms(
+    mesh: &Mesh,
+    node_tags: &[usize],
+    triangles: &[([usize; 3], u32, usize, usize)],
+    file: &str,
+) -> Result<(), FemError> {
+    let scale = mesh.size_scale();
+    for (i, p) in mesh.nodes.iter().enumerate() {
+        if p[0] < -1e-9 * scale {
+            return Err(FemError::Input(format!(
+                "{file}: node {} has r = {} m < 0: an axisymmetric mesh must lie in r >= 0",
+                node_tags[i], p[0]
+            )));
+        }
+    }
+    for (t, (corners, _, line, element)) in triangles.iter().enumerate() {
+        let area = mesh.signed_area(t);
+        if area.abs() <= 1e-14 * scale * scale {
+            return Err(FemError::Parse {
+                file: file.into(),
+                line: *line,
+                message: format!(
+                    "triangle {element} (nodes {corners:?}) is degenerate: its corners are \
+                     collinear or coincide (area {area:e} m²)"
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 struct Reader<'a> {
@@ -424,6 +462,8 @@ fn require_any_version(
 struct Nodes {
     coords: Vec<[f64; 2]>,
     index: HashMap<usize, usize>,
+    /// The file's tag of each node, for messages in the file's own (1-based) numbering.
+    tags: Vec<usize>,
 }
 
 impl Nodes {
@@ -447,14 +487,18 @@ impl Nodes {
             return Err(reader.err(line, format!("node tag {tag} appears twice")));
         }
         self.coords.push([xyz[0], xyz[1]]);
+        self.tags.push(tag);
         Ok(())
     }
 }
 
 fn read_nodes_v2(reader: &mut Reader<'_>) -> Result<Nodes, FemError> {
     let count = reader.count("the number of nodes")?;
-    let mut nodes =
-        Nodes { coords: Vec::with_capacity(count), index: HashMap::with_capacity(count) };
+    let mut nodes = Nodes {
+        coords: Vec::with_capacity(count),
+        index: HashMap::with_capacity(count),
+        tags: Vec::with_capacity(count),
+    };
     for _ in 0..count {
         let (ln, l) = reader.next_line("a node line `tag x y z`")?;
         let mut it = l.split_whitespace();
@@ -516,7 +560,7 @@ fn read_elements_v2(reader: &mut Reader<'_>, elements: &mut RawElements) -> Resu
                 if physical == 0 {
                     return Err(reader.err(ln, format!("triangle {} has no physical group: define a Physical Surface for every surface", v[0])));
                 }
-                elements.triangles.push(([nodes[0], nodes[1], nodes[2]], physical, ln));
+                elements.triangles.push(([nodes[0], nodes[1], nodes[2]], physical, ln, v[0]));
             }
             1 | 8 if physical != 0 => elements.edges.push(([nodes[0], nodes[1]], physical)),
             _ => {}
@@ -573,8 +617,11 @@ fn read_nodes_v4(reader: &mut Reader<'_>) -> Result<Nodes, FemError> {
     }
     let count = reader.check_count(ln, head[1], "the number of nodes")?;
     reader.check_count(ln, head[0], "the number of entity blocks")?;
-    let mut nodes =
-        Nodes { coords: Vec::with_capacity(count), index: HashMap::with_capacity(count) };
+    let mut nodes = Nodes {
+        coords: Vec::with_capacity(count),
+        index: HashMap::with_capacity(count),
+        tags: Vec::with_capacity(count),
+    };
     for _ in 0..head[0] {
         let (ln, l) =
             reader.next_line("an entity block `entityDim entityTag parametric numNodesInBlock`")?;
@@ -654,7 +701,7 @@ fn read_elements_v4(
                     let physical = physical.ok_or_else(|| {
                         reader.err(block_line, format!("triangles of surface {entity} have no physical group: define a Physical Surface for it"))
                     })?;
-                    elements.triangles.push(([v[1], v[2], v[3]], physical, ln));
+                    elements.triangles.push(([v[1], v[2], v[3]], physical, ln, v[0]));
                 }
                 1 | 8 => {
                     if let Some(p) = physical {

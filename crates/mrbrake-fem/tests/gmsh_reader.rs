@@ -212,3 +212,18 @@ fn huge_counts_inside_lines_are_parse_errors() {
     assert_eq!(line, 10);
     assert!(message.contains("needs"), "{message}");
 }
+
+/// Issue 19: a mesh error names the file's 1-based node and element tags (and the line), not
+/// the mesh's 0-based renumbered indices.
+#[test]
+fn mesh_errors_use_the_files_tags() {
+    // Element 7's corners 11, 12, 13 are collinear; node tags start at 11.
+    let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n11 0 0 0\n12 1 0 0\n13 2 0 0\n14 0 1 0\n$EndNodes\n$Elements\n2\n6 2 2 7 5 11 12 14\n7 2 2 7 5 11 12 13\n$EndElements\n";
+    let (line, message) = parse_error(text);
+    assert_eq!(line, 14);
+    assert!(message.contains("triangle 7") && message.contains("[11, 12, 13]"), "{message}");
+
+    let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n21 0 0 0\n22 1 0 0\n23 -1 1 0\n$EndNodes\n$Elements\n1\n1 2 2 7 5 21 22 23\n$EndElements\n";
+    let err = parse_msh(text, "neg.msh", 1.0).unwrap_err().to_string();
+    assert!(err.contains("node 23 has r = -1 m"), "{err}");
+}

@@ -174,7 +174,7 @@ const CATALOGUE: &[Entry] = &[
     ),
     Entry::steel(
         "steel-1020",
-        "AISI 1020 steel (FEMM 4.2 library; the thesis's flux-path steel)",
+        "AISI 1020 steel (FEMM 4.2 library; a cross-check: the thesis uses AISI 1008, Table 5.1)",
         data_file!("steel_1020_femm_BH.csv"),
         CurveSource::Femm { block: "1020 Steel", note: "" },
         Some("FEMM 1020 Steel"),

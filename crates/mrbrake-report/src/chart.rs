@@ -354,7 +354,8 @@ impl Figure {
         render_png(self)
     }
 
-    /// Writes the figure to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
+    /// Writes the figure to `path` atomically: PNG for a `.png` name, SVG for `.svg`; any other
+    /// extension is [`ReportError::PlotFormat`].
     pub fn save(&self, path: &Path) -> Result<(), ReportError> {
         save_picture(self, path)
     }
@@ -444,9 +445,11 @@ pub(crate) fn render_png(picture: &impl Picture) -> Result<Vec<u8>, ReportError>
     Ok(out)
 }
 
-/// Writes `picture` to `path` atomically: PNG if the name ends in `.png`, SVG otherwise.
+/// Writes `picture` to `path` atomically: PNG for a `.png` name, SVG for `.svg`; any other
+/// extension is [`ReportError::PlotFormat`].
 pub(crate) fn save_picture(picture: &impl Picture, path: &Path) -> Result<(), ReportError> {
-    let is_png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    let is_png =
+        crate::plot_format::PlotFormat::from_path(path)? == crate::plot_format::PlotFormat::Png;
     if !is_png {
         return crate::write_atomic(path, render_svg(picture)?.as_bytes());
     }

@@ -230,11 +230,16 @@ impl CoilReport<'_> {
             e.wire_length_m,
             self.mean_radius_m * 1e3
         );
-        let _ = writeln!(
-            out,
-            "  resistance     {:.3} Ω at 20 °C, {:.3} Ω at {} °C",
-            e.resistance_20c_ohm, e.resistance_ohm, self.temperature_c
-        );
+        // At 20 °C the two resistances are the same number: say it once.
+        if (self.temperature_c - 20.0).abs() < 1e-9 {
+            let _ = writeln!(out, "  resistance     {:.3} Ω at 20 °C", e.resistance_ohm);
+        } else {
+            let _ = writeln!(
+                out,
+                "  resistance     {:.3} Ω at 20 °C, {:.3} Ω at {} °C",
+                e.resistance_20c_ohm, e.resistance_ohm, self.temperature_c
+            );
+        }
         let _ = writeln!(
             out,
             "  current        {} A: J_D = {:.3} A/mm² (4.1), {:.3} A/mm² in the copper",

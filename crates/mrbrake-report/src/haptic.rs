@@ -378,6 +378,53 @@ pub fn zwidth_summary(map: &ZWidthMap) -> Value {
     })
 }
 
+/// The Z-width map as text (the CLI's default output): the grid, then per device the cells that
+/// are passive, stable and unstable, and how many of the motor's and the hybrid device's cells
+/// agree with the passivity conditions (2.2) and (2.4).
+pub fn zwidth_text(map: &ZWidthMap) -> String {
+    use Interaction as I;
+    let c = &map.config;
+    let count = |f: &dyn Fn(&ZWidthCell) -> bool| map.cells.iter().filter(|cell| f(cell)).count();
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "Z-width map: {} × {} (K, B) pairs, K 0–{} N·m/rad, B 0–{} N·m·s/rad, T = {} ms",
+        c.stiffness_points,
+        c.damping_points,
+        c.stiffness_max_nm_per_rad,
+        c.damping_max_nms_per_rad,
+        c.sample_period_s * 1e3
+    );
+    let _ = writeln!(
+        out,
+        "  physical damping b = {} N·m·s/rad, controllable MR damping b_c = {} N·m·s/rad",
+        c.physical_damping_nms_per_rad, c.controllable_damping_nms_per_rad
+    );
+    let _ = writeln!(out, "  {:<28} {:>8} {:>8} {:>8}", "device", "passive", "stable", "unstable");
+    type ClassOf = fn(&ZWidthCell) -> Interaction;
+    let devices: [(&str, ClassOf); 3] = [
+        ("motor", |cell| cell.motor),
+        ("hybrid (motor + MR damper)", |cell| cell.hybrid),
+        ("bidirectional brake", |cell| cell.brake),
+    ];
+    for (name, class) in devices {
+        let _ = writeln!(
+            out,
+            "  {name:<28} {:>8} {:>8} {:>8}",
+            count(&|cell| class(cell) == I::Passive),
+            count(&|cell| class(cell) == I::Stable),
+            count(&|cell| class(cell) == I::Unstable)
+        );
+    }
+    let total = map.cells.len();
+    let motor = count(&|cell| (cell.motor == I::Passive) == cell.motor_predicted_passive);
+    let hybrid = count(&|cell| (cell.hybrid == I::Passive) == cell.hybrid_predicted_passive);
+    let _ = writeln!(out, "  motor agrees with (2.2) b > KT/2 + B in {motor} of {total} cells");
+    let _ =
+        writeln!(out, "  hybrid agrees with (2.4) b + b_c > KT/2 + B in {hybrid} of {total} cells");
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -414,6 +461,9 @@ mod tests {
                 .sum();
             assert_eq!(total, 6, "{device}: {summary}");
         }
+        let text = zwidth_text(&map);
+        assert!(text.starts_with("Z-width map: 3 × 2 (K, B) pairs"), "{text}");
+        assert!(text.contains("of 6 cells"), "{text}");
         let panels = zwidth_panels(&map);
         assert_eq!(panels[0].boundary_damping_nms_per_rad, Some(0.005));
         assert!(panels[2].pairs.iter().all(|p| p.class == "passive"));

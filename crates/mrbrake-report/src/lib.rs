@@ -39,10 +39,12 @@ pub mod identification;
 pub mod materials;
 pub mod operator;
 pub mod pareto;
+pub mod plot_format;
 pub mod response;
 pub mod rig;
 pub mod study;
 pub mod thermal;
+pub mod wording;
 
 pub use atomic::write_atomic;
 
@@ -64,6 +66,16 @@ pub enum ReportError {
     /// The plotting backend failed.
     #[error("plotting failed: {0}")]
     Backend(String),
+    /// A plot path names a format that is not drawn (see [`plot_format`]).
+    #[error(
+        "'{}': unsupported plot format; use one of the extensions {}",
+        path.display(),
+        plot_format::SUPPORTED_EXTENSIONS
+    )]
+    PlotFormat {
+        /// The plot path given.
+        path: std::path::PathBuf,
+    },
     /// An output folder could not be created.
     #[error("cannot create output folder '{}'", path.display())]
     Folder {
@@ -94,7 +106,7 @@ impl mrbrake_error::Kind for ReportError {
         use mrbrake_error::{ErrorKind, Kind};
         match self {
             Self::Io { source, .. } | Self::Folder { source, .. } => Kind::kind(source),
-            Self::Data(_) => ErrorKind::Input,
+            Self::Data(_) | Self::PlotFormat { .. } => ErrorKind::Input,
             Self::Backend(_) | Self::Json(_) => ErrorKind::Internal,
             Self::Store(e) => e.kind(),
             Self::Explore(e) => e.kind(),

@@ -20,6 +20,7 @@ use crate::pareto::{
     ConstraintActivity, ObjectivePlot, constraint_activity_figure, constraint_legend,
     metric_plot_axis, objective_figure,
 };
+use crate::wording::count;
 use crate::{ReportError, write_atomic};
 
 /// Evaluations per minute of a run (0 before any time has passed).
@@ -198,9 +199,9 @@ pub fn merge_text(input: &Path, summary: &MergeSummary) -> String {
 pub fn store_summary_text(store: &Path, records: &[Record]) -> String {
     let ok = records.iter().filter(|r| r.status == Status::Ok).count();
     format!(
-        "{}: {} designs ({} ok, {} infeasible or failed); use --csv FILE or --json to export\n",
+        "{}: {} ({} ok, {} infeasible or failed); use --csv FILE or --json to export\n",
         store.display(),
-        records.len(),
+        count(records.len(), "design", "designs"),
         ok,
         records.len() - ok
     )
@@ -258,8 +259,8 @@ impl OptimizationReport<'_> {
         } else {
             let _ = writeln!(
                 out,
-                "{feasible} feasible; Pareto front of {} designs:",
-                result.front.len()
+                "{feasible} feasible; Pareto front of {}:",
+                count(result.front.len(), "design", "designs")
             );
         }
         let front = result.front.iter().map(|&i| &result.evaluated[i]);
@@ -277,11 +278,13 @@ impl OptimizationReport<'_> {
     fn run_summary(&self) -> String {
         let (result, totals) = (self.result, &self.result.totals.progress);
         let how = match result.converged {
-            None => format!("{} generations", result.iterations),
-            Some(true) => format!("converged after {} iterations", result.iterations),
+            None => count(result.iterations, "generation", "generations"),
+            Some(true) => {
+                format!("converged after {}", count(result.iterations, "iteration", "iterations"))
+            }
             Some(false) => format!(
-                "evaluation budget spent after {} iterations (not converged)",
-                result.iterations
+                "evaluation budget spent after {} (not converged)",
+                count(result.iterations, "iteration", "iterations")
             ),
         };
         let work = if totals.computed == 0 {
@@ -297,9 +300,9 @@ impl OptimizationReport<'_> {
             )
         };
         format!(
-            "{}: {how}; {} distinct designs{}; {work}; store {}",
+            "{}: {how}; {}{}; {work}; store {}",
             self.problem_path.display(),
-            result.evaluated.len(),
+            count(result.evaluated.len(), "distinct design", "distinct designs"),
             if result.reference.is_some() { " + the reference" } else { "" },
             self.store.display()
         )
@@ -475,16 +478,24 @@ fn constraint_label(c: &Constraint) -> String {
 pub fn thesis_tables_text(tables: &[StudyTable]) -> String {
     let mut out = String::new();
     for t in tables {
-        let _ = writeln!(out, "{}: {} — ours | thesis", t.table, t.title);
+        // Torque is spelled out: a column "T" beside "B [T]" reads as tesla.
+        let _ = writeln!(out, "{}: {} — ours | thesis (torques in N·m)", t.table, t.title);
         let _ = writeln!(
             out,
-            "  {:<32} {:>8} {:>10} {:>10} {:>10} | {:>8} {:>10} {:>8}",
-            "", "B [T]", "tau [kPa]", "T mean-B", "T local", "B [T]", "tau [kPa]", "T [N·m]"
+            "  {:<32} {:>8} {:>11} {:>15} {:>14} | {:>8} {:>11} {:>8}",
+            "",
+            "B [T]",
+            "tau_y [kPa]",
+            "torque (mean B)",
+            "torque (local)",
+            "B [T]",
+            "tau_y [kPa]",
+            "torque"
         );
         for r in &t.rows {
             let _ = writeln!(
                 out,
-                "  {:<32} {:>8.4} {:>10.3} {:>10.3} {:>10.3} | {:>8.4} {:>10.4} {:>8.2}",
+                "  {:<32} {:>8.4} {:>11.3} {:>15.3} {:>14.3} | {:>8.4} {:>11.4} {:>8.2}",
                 r.label,
                 r.mean_b_t,
                 r.tau_y_kpa,

@@ -44,13 +44,21 @@ pub enum Dimension {
     TemperatureCelsius,
     /// Time, SI unit s.
     Time,
+    /// Rotational stiffness (a virtual wall's K), SI unit N·m/rad.
+    RotationalStiffness,
+    /// Rotational viscous damping (a virtual wall's B), SI unit N·m·s/rad.
+    RotationalDamping,
+    /// Electrical conductivity, SI unit S/m.
+    Conductivity,
+    /// Heat-transfer coefficient of a surface, SI unit W/(m²·K).
+    HeatTransferCoefficient,
     /// A plain number without unit.
     Dimensionless,
 }
 
 impl Dimension {
     /// Every dimension, in declaration order.
-    pub const ALL: [Dimension; 11] = [
+    pub const ALL: [Dimension; 15] = [
         Dimension::Length,
         Dimension::FluxDensity,
         Dimension::FieldStrength,
@@ -61,6 +69,10 @@ impl Dimension {
         Dimension::Torque,
         Dimension::TemperatureCelsius,
         Dimension::Time,
+        Dimension::RotationalStiffness,
+        Dimension::RotationalDamping,
+        Dimension::Conductivity,
+        Dimension::HeatTransferCoefficient,
         Dimension::Dimensionless,
     ];
 
@@ -101,6 +113,28 @@ impl Dimension {
             Dimension::Time => {
                 &[("s", 1.0), ("ms", 1e-3), ("us", 1e-6), ("min", 60.0), ("h", 3600.0)]
             }
+            Dimension::RotationalStiffness => &[
+                ("N·m/rad", 1.0),
+                ("Nm/rad", 1.0),
+                ("N.m/rad", 1.0),
+                ("mN·m/rad", 1e-3),
+                ("mNm/rad", 1e-3),
+            ],
+            Dimension::RotationalDamping => &[
+                ("N·m·s/rad", 1.0),
+                ("Nms/rad", 1.0),
+                ("N.m.s/rad", 1.0),
+                ("mN·m·s/rad", 1e-3),
+                ("mNms/rad", 1e-3),
+            ],
+            Dimension::Conductivity => &[("S/m", 1.0), ("MS/m", 1e6)],
+            Dimension::HeatTransferCoefficient => &[
+                ("W/(m²·K)", 1.0),
+                ("W/(m²K)", 1.0),
+                ("W/(m2K)", 1.0),
+                ("W/m2K", 1.0),
+                ("W/m²K", 1.0),
+            ],
             Dimension::Dimensionless => &[],
         }
     }
@@ -118,6 +152,10 @@ impl Dimension {
             Dimension::Torque => "Nm",
             Dimension::TemperatureCelsius => "°C",
             Dimension::Time => "s",
+            Dimension::RotationalStiffness => "N·m/rad",
+            Dimension::RotationalDamping => "N·m·s/rad",
+            Dimension::Conductivity => "S/m",
+            Dimension::HeatTransferCoefficient => "W/(m²·K)",
             Dimension::Dimensionless => "",
         }
     }
@@ -135,6 +173,10 @@ impl Dimension {
             Dimension::Torque => "a torque",
             Dimension::TemperatureCelsius => "a temperature",
             Dimension::Time => "a time",
+            Dimension::RotationalStiffness => "a rotational stiffness",
+            Dimension::RotationalDamping => "a rotational damping",
+            Dimension::Conductivity => "an electrical conductivity",
+            Dimension::HeatTransferCoefficient => "a heat-transfer coefficient",
             Dimension::Dimensionless => "a plain number",
         }
     }
@@ -327,6 +369,24 @@ mod tests {
         assert!(close(parse("0.056Pa.s", Dimension::Viscosity).unwrap(), 0.056));
         assert!(close(parse("1e-3m", Dimension::Length).unwrap(), 1e-3));
         assert!(close(parse("2.5E3 Pa", Dimension::Stress).unwrap(), 2500.0));
+    }
+
+    /// Issue 19: a haptic wall's K and B, a conductivity and a film coefficient carry units too.
+    #[test]
+    fn wall_and_material_quantities_parse() {
+        let k = Dimension::RotationalStiffness;
+        assert!(close(parse("30N·m/rad", k).unwrap(), 30.0));
+        assert!(close(parse("30 Nm/rad", k).unwrap(), 30.0));
+        assert!(close(parse("500mNm/rad", k).unwrap(), 0.5));
+        let b = Dimension::RotationalDamping;
+        assert!(close(parse("0.02N·m·s/rad", b).unwrap(), 0.02));
+        assert!(close(parse("-20mNms/rad", b).unwrap(), -0.02));
+        assert!(close(parse("5.8MS/m", Dimension::Conductivity).unwrap(), 5.8e6));
+        assert!(close(parse("10W/(m²·K)", Dimension::HeatTransferCoefficient).unwrap(), 10.0));
+        assert!(close(parse("10 W/m2K", Dimension::HeatTransferCoefficient).unwrap(), 10.0));
+        // A damping is not a stiffness.
+        let e = parse("30Nms/rad", k).unwrap_err().to_string();
+        assert!(e.contains("a rotational stiffness") && e.contains("Nm/rad"), "{e}");
     }
 
     #[test]

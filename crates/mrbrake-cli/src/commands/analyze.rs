@@ -13,6 +13,7 @@ use mrbrake_units::{Dimension, parse};
 use crate::error::CommandResult;
 use crate::error::InputError;
 use crate::output::print_json;
+use crate::progress::ProgressDisplay;
 
 /// Arguments of `mrbrake analyze`.
 #[derive(Debug, Args)]
@@ -54,6 +55,12 @@ pub struct AnalyzeArgs {
     save_model: Option<PathBuf>,
 }
 
+/// The spec as a word of a printed command: the path quoted for a shell (a path with spaces
+/// pastes as one word), or `source` ("embedded default") when no spec was given.
+pub fn command_word(spec: Option<&std::path::Path>, source: &str) -> String {
+    spec.map_or_else(|| source.to_string(), mrbrake_report::wording::shell_quote)
+}
+
 /// Runs `mrbrake analyze`.
 pub fn run(a: AnalyzeArgs) -> CommandResult {
     let spec = match &a.spec {
@@ -74,12 +81,16 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
     if a.points < 2 {
         return Err(InputError(format!("--points must be at least 2, got {}", a.points)).into());
     }
+    let mut display = ProgressDisplay::steps("analyze", "currents", a.json);
+    let mut progress = |done, total| display.step(done, total);
     let (analysis, field) = if a.plot_dir.is_some() {
-        let (analysis, field) = analysis::analyze_with_field(&spec, &options)?;
+        let (analysis, field) =
+            analysis::analyze_with_field_and_progress(&spec, &options, &mut progress)?;
         (analysis, Some(field))
     } else {
-        (analysis::analyze(&spec, &options)?, None)
+        (analysis::analyze_with_progress(&spec, &options, &mut progress)?, None)
     };
+    display.finish();
     for w in &analysis.warnings {
         eprintln!("warning: {w}");
     }
@@ -93,8 +104,11 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     if let Some(path) = &a.save_model {
         let how = format!(
-            "mrbrake analyze {source} (--mesh {} --order {} --points {})",
-            a.mesh, a.order, a.points
+            "mrbrake analyze {} (--mesh {} --order {} --points {})",
+            command_word(a.spec.as_deref(), &source),
+            a.mesh,
+            a.order,
+            a.points
         );
         let model = mrbrake_report::brake_model::from_analysis(&analysis, &spec, &options, &how)?;
         mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;

@@ -45,7 +45,7 @@ pub struct CharacterizeArgs {
     segments: usize,
     /// Write the model as JSON here: the branches and current range (the controller's inverse-model
     /// file) or, with --operators, the operator-model file (schema mrbrake.operator-model).
-    #[arg(long, value_name = "FILE.json")]
+    #[arg(long, value_name = "FILE.json", alias = "save")]
     save_model: Option<PathBuf>,
     /// Also put the identified branches into this brake model file (from `mrbrake analyze
     /// --save-model`) as the hysteresis of `--unit`; the file is rewritten atomically.
@@ -58,7 +58,7 @@ pub struct CharacterizeArgs {
     /// times the channel's 1st–99th percentile spread beyond them).
     #[arg(long)]
     keep_outliers: bool,
-    /// Draw the hysteresis loop (SVG, or PNG for a .png name).
+    /// Draw the hysteresis loop (.svg or .png).
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
     /// Print a JSON object instead of text.
@@ -68,6 +68,7 @@ pub struct CharacterizeArgs {
 
 /// Runs `mrbrake characterize`.
 pub fn run(args: CharacterizeArgs) -> CommandResult {
+    crate::output::check_plot_path("--plot", args.plot.as_deref())?;
     if let Some(plays) = args.operators {
         return run_operators(&args, plays);
     }
@@ -103,7 +104,7 @@ pub fn run(args: CharacterizeArgs) -> CommandResult {
         let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
         let source = format!(
             "mrbrake characterize {} (order {}, {} repetitions)",
-            args.log.display(),
+            mrbrake_report::wording::shell_quote(&args.log),
             args.order,
             c.repetitions
         );

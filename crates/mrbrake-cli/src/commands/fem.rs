@@ -37,7 +37,7 @@ pub struct SolveArgs {
     /// state; several instants go to FILE_000.vtu, … with a FILE.pvd collection).
     #[arg(long, value_name = "FILE.vtu")]
     vtu: Option<PathBuf>,
-    /// Draw the |B| map with flux lines (SVG, or PNG for a .png name).
+    /// Draw the |B| map with flux lines (.svg or .png).
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
     /// Number of flux lines in the plot.
@@ -53,6 +53,7 @@ pub fn run(command: FemCommand) -> CommandResult {
 }
 
 fn solve(args: SolveArgs) -> CommandResult {
+    crate::output::check_plot_path("--plot", args.plot.as_deref())?;
     let order = args
         .order
         .map(|degree| ElementOrder::from_degree(degree.into()).expect("clap accepts only 1 and 2"));

@@ -36,13 +36,9 @@ pub enum FormulaCommand {
 #[derive(Debug, Args)]
 pub struct FluidArgs {
     /// Yield stress τ_y (e.g. 24.315kPa); or give --b to read it from the fluid's τ_y(B) curve.
-    #[arg(
-        long = "tau-y",
-        value_name = "STRESS",
-        allow_hyphen_values = true,
-        conflicts_with = "b",
-        required_unless_present = "b"
-    )]
+    // Not `required_unless_present`: clap's message would name --tau-y alone; `yield_stress`
+    // names both ways.
+    #[arg(long = "tau-y", value_name = "STRESS", allow_hyphen_values = true, conflicts_with = "b")]
     tau_y: Option<String>,
     /// Mean flux density in the fluid (e.g. 0.46T); τ_y is then read from the fluid's τ_y(B) curve.
     #[arg(long, value_name = "FLUX_DENSITY", allow_hyphen_values = true)]
@@ -251,7 +247,12 @@ fn yield_stress(a: &FluidArgs) -> CommandResult<YieldStress> {
             }
             Ok(YieldStress::AtFluxDensity(b_t))
         }
-        (None, None) => Err(InputError("give --tau-y or --b".into()).into()),
+        (None, None) => Err(InputError(
+            "give the yield stress: --tau-y STRESS (e.g. 24.315kPa), or --b FLUX_DENSITY (e.g. \
+             0.46T) to read it from the fluid's τ_y(B) curve"
+                .into(),
+        )
+        .into()),
     }
 }
 

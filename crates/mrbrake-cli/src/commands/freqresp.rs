@@ -10,8 +10,8 @@ use mrbrake_report::identification::{
 use mrbrake_sysid::freqresp::{FreqRespOptions, frd_csv, frequency_response};
 use mrbrake_units::{Dimension, parse};
 
-use crate::error::CommandResult;
 use crate::error::InputError;
+use crate::error::{CommandResult, Context as _};
 use crate::output::print_json;
 
 /// Arguments of `mrbrake freqresp`.
@@ -20,8 +20,8 @@ pub struct FreqRespArgs {
     /// Manifest CSV with columns frequency_rad_s,file (files relative to the manifest).
     manifest: PathBuf,
     /// Output FRD file (default: frd.csv beside the manifest).
-    #[arg(long, value_name = "FRD.csv")]
-    out: Option<PathBuf>,
+    #[arg(short, long, value_name = "FRD.csv", alias = "out")]
+    output: Option<PathBuf>,
     /// Name of the time column of the test logs (seconds).
     #[arg(long, default_value = "time_s")]
     time_col: String,
@@ -41,7 +41,7 @@ pub struct FreqRespArgs {
     /// with an error naming its log (a frequency that does not match the log); 0 accepts all.
     #[arg(long, value_name = "PERCENT", default_value_t = mrbrake_sysid::freqresp::DEFAULT_MIN_QUALITY_PERCENT)]
     min_quality: f64,
-    /// Draw the measured Bode diagram (SVG, or PNG for a .png name).
+    /// Draw the measured Bode diagram (.svg or .png).
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
     /// Print a JSON object instead of text.
@@ -51,7 +51,8 @@ pub struct FreqRespArgs {
 
 /// Runs `mrbrake freqresp`.
 pub fn run(args: FreqRespArgs) -> CommandResult {
-    let settle_s = parse(&args.settle, Dimension::Time)?;
+    crate::output::check_plot_path("--plot", args.plot.as_deref())?;
+    let settle_s = parse(&args.settle, Dimension::Time).context("--settle")?;
     let non_negative = |v: f64| v.is_finite() && v >= 0.0;
     if !non_negative(settle_s) || !non_negative(args.discard_periods) {
         return Err(InputError("--settle and --discard-periods must be non-negative".into()).into());
@@ -68,7 +69,7 @@ pub fn run(args: FreqRespArgs) -> CommandResult {
         min_quality_percent: args.min_quality,
     };
     let points = frequency_response(&args.manifest, &options)?;
-    let out = args.out.clone().unwrap_or_else(|| args.manifest.with_file_name("frd.csv"));
+    let out = args.output.clone().unwrap_or_else(|| args.manifest.with_file_name("frd.csv"));
     mrbrake_report::write_atomic(&out, frd_csv(&points).as_bytes())?;
     if let Some(path) = &args.plot {
         save_frequency_response_plot(path, &points)?;

@@ -7,11 +7,11 @@ use crate::error::Context;
 use clap::{Args, Subcommand, ValueEnum};
 use mrbrake_report::haptic::{
     save_zwidth_plot, trace_csv, wall_metrics_text, wall_plot_title, wall_runs_figure,
-    zwidth_summary,
+    zwidth_summary, zwidth_text,
 };
 use mrbrake_sim::brake_model::BrakeModel;
 use mrbrake_sim::brake_model::apply::apply_to_haptic;
-use mrbrake_sim::haptic::zwidth::{ZWidthConfig, sweep};
+use mrbrake_sim::haptic::zwidth::{ZWidthConfig, sweep_with_progress};
 use mrbrake_sim::haptic::{DeviceKind, HapticConfig, HapticRun, Scenario, simulate};
 use mrbrake_sysid::model_file::read_inverse_model;
 use mrbrake_units::{Dimension, parse};
@@ -19,6 +19,7 @@ use mrbrake_units::{Dimension, parse};
 use crate::error::CommandResult;
 use crate::error::InputError;
 use crate::output::print_json;
+use crate::progress::ProgressDisplay;
 
 /// `mrbrake haptic` subcommands.
 #[derive(Debug, Subcommand)]
@@ -80,12 +81,24 @@ pub struct WallArgs {
     /// The interaction scenario.
     #[arg(long, value_enum, default_value = "press-withdraw")]
     scenario: ScenarioArg,
-    /// Virtual wall stiffness K in N·m/rad.
-    #[arg(long = "stiffness-nm-per-rad", default_value_t = 30.0)]
-    stiffness: f64,
-    /// Virtual wall damping B in N·m·s/rad.
-    #[arg(long = "damping-nms-per-rad", default_value_t = 0.02)]
-    damping: f64,
+    /// Virtual wall stiffness K, ≥ 0 (e.g. 30N·m/rad, 30Nm/rad; a bare number is N·m/rad).
+    #[arg(
+        long,
+        value_name = "STIFFNESS",
+        default_value = "30N·m/rad",
+        allow_hyphen_values = true,
+        alias = "stiffness-nm-per-rad"
+    )]
+    stiffness: String,
+    /// Virtual wall damping B, ≥ 0 (e.g. 0.02N·m·s/rad, 20mNms/rad; a bare number is N·m·s/rad).
+    #[arg(
+        long,
+        value_name = "DAMPING",
+        default_value = "0.02N·m·s/rad",
+        allow_hyphen_values = true,
+        alias = "damping-nms-per-rad"
+    )]
+    damping: String,
     /// Run length (e.g. 4s, 10s); default: the scenario's 4 s.
     #[arg(long, value_name = "TIME")]
     duration: Option<String>,
@@ -99,10 +112,10 @@ pub struct WallArgs {
     /// prototype-like brakes (examples/brake-models/prototype.json).
     #[arg(long, value_name = "FILE.json", conflicts_with = "model")]
     brake_model: Option<PathBuf>,
-    /// Print the metrics as JSON.
+    /// Print the metrics as JSON instead of text.
     #[arg(long)]
     json: bool,
-    /// Write the time-history plot (SVG, or PNG by extension). With --compare: conventional,
+    /// Write the time-history plot (.svg or .png). With --compare: conventional,
     /// bidirectional and motor side by side.
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
@@ -117,31 +130,56 @@ pub struct WallArgs {
 /// Arguments of `haptic zwidth`.
 #[derive(Debug, Args)]
 pub struct ZwidthArgs {
-    /// Largest virtual stiffness K of the grid, N·m/rad.
-    #[arg(long = "stiffness-max-nm-per-rad", default_value_t = 100.0)]
-    stiffness_max: f64,
-    /// Largest virtual damping B of the grid, N·m·s/rad.
-    #[arg(long = "damping-max-nms-per-rad", default_value_t = 0.05)]
-    damping_max: f64,
+    /// Largest virtual stiffness K of the grid (e.g. 100N·m/rad; a bare number is N·m/rad).
+    #[arg(
+        long,
+        value_name = "STIFFNESS",
+        default_value = "100N·m/rad",
+        allow_hyphen_values = true,
+        alias = "stiffness-max-nm-per-rad"
+    )]
+    stiffness_max: String,
+    /// Largest virtual damping B of the grid (e.g. 0.05N·m·s/rad; a bare number is N·m·s/rad).
+    #[arg(
+        long,
+        value_name = "DAMPING",
+        default_value = "0.05N·m·s/rad",
+        allow_hyphen_values = true,
+        alias = "damping-max-nms-per-rad"
+    )]
+    damping_max: String,
     /// Grid points along each axis (2..=1000).
     #[arg(long, default_value_t = 50)]
     points: usize,
     /// Sample period T of the haptic loop (e.g. 1ms).
     #[arg(long, default_value = "1ms", value_name = "TIME")]
     period: String,
-    /// Physical damping b of the device, N·m·s/rad.
-    #[arg(long = "physical-damping-nms-per-rad", default_value_t = 0.005)]
-    physical_damping: f64,
-    /// Controllable MR damping b_c of the hybrid device, N·m·s/rad (thesis (2.4)).
-    #[arg(long = "controllable-damping-nms-per-rad", default_value_t = 0.05)]
-    controllable_damping: f64,
+    /// Physical damping b of the device (e.g. 5mNms/rad; a bare number is N·m·s/rad).
+    #[arg(
+        long,
+        value_name = "DAMPING",
+        default_value = "0.005N·m·s/rad",
+        allow_hyphen_values = true,
+        alias = "physical-damping-nms-per-rad"
+    )]
+    physical_damping: String,
+    /// Controllable MR damping b_c of the hybrid device, thesis (2.4) (e.g. 0.05N·m·s/rad; a bare
+    /// number is N·m·s/rad).
+    #[arg(
+        long,
+        value_name = "DAMPING",
+        default_value = "0.05N·m·s/rad",
+        allow_hyphen_values = true,
+        alias = "controllable-damping-nms-per-rad"
+    )]
+    controllable_damping: String,
     /// Write the map as CSV (one row per (K, B) pair).
     #[arg(long, value_name = "FILE")]
     csv: Option<PathBuf>,
-    /// Write the map plot (SVG, or PNG by extension).
+    /// Write the map plot (.svg or .png).
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
-    /// Print a JSON summary.
+    /// Print a JSON summary instead of text.
     #[arg(long)]
     json: bool,
 }
@@ -154,10 +192,26 @@ pub fn run(command: HapticCommand) -> CommandResult {
     }
 }
 
+/// A quantity flag's value in SI, with the flag in front of any error.
+fn quantity(flag: &str, text: &str, dimension: Dimension) -> CommandResult<f64> {
+    parse(text, dimension).context(flag.to_string())
+}
+
+/// The wall's K and B (N·m/rad, N·m·s/rad), each finite and ≥ 0.
+fn wall_gains(args: &WallArgs) -> CommandResult<(f64, f64)> {
+    let k = quantity("--stiffness", &args.stiffness, Dimension::RotationalStiffness)?;
+    let b = quantity("--damping", &args.damping, Dimension::RotationalDamping)?;
+    for (flag, value, unit) in [("--stiffness", k, "N·m/rad"), ("--damping", b, "N·m·s/rad")] {
+        if value < 0.0 {
+            return Err(InputError(format!("{flag} = {value} {unit} must be ≥ 0")).into());
+        }
+    }
+    Ok((k, b))
+}
+
 fn wall_config(args: &WallArgs, device: DeviceKind) -> CommandResult<HapticConfig> {
     let mut config = HapticConfig::new(device, args.scenario.into());
-    config.wall_stiffness_nm_per_rad = args.stiffness;
-    config.wall_damping_nms_per_rad = args.damping;
+    (config.wall_stiffness_nm_per_rad, config.wall_damping_nms_per_rad) = wall_gains(args)?;
     if let Some(text) = &args.duration {
         config.duration_s = parse(text, Dimension::Time).context("--duration")?;
     }
@@ -177,13 +231,8 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> CommandResult<HapticConfi
 }
 
 fn wall(args: WallArgs) -> CommandResult {
-    for (flag, value) in
-        [("--stiffness-nm-per-rad", args.stiffness), ("--damping-nms-per-rad", args.damping)]
-    {
-        if !(value.is_finite() && value >= 0.0) {
-            return Err(InputError(format!("{flag} = {value} must be a number ≥ 0")).into());
-        }
-    }
+    let (stiffness, damping) = wall_gains(&args)?;
+    crate::output::check_plot_path("--plot", args.plot.as_deref())?;
     let device: DeviceKind = args.device.into();
     let record = args.plot.is_some() || args.csv.is_some();
     let run = simulate(&wall_config(&args, device)?, record)?;
@@ -191,7 +240,7 @@ fn wall(args: WallArgs) -> CommandResult {
         mrbrake_report::write_atomic(path, trace_csv(device, &run)?.as_bytes())?;
     }
     if let Some(path) = &args.plot {
-        let title = wall_plot_title(run.metrics.scenario, args.stiffness, args.damping);
+        let title = wall_plot_title(run.metrics.scenario, stiffness, damping);
         let compared: Vec<(DeviceKind, HapticRun)> = if args.compare {
             [DeviceKind::Conventional, DeviceKind::Bidirectional, DeviceKind::Motor]
                 .into_iter()
@@ -210,7 +259,7 @@ fn wall(args: WallArgs) -> CommandResult {
     if args.json {
         return print_json(&run.metrics);
     }
-    crate::out!("{}", wall_metrics_text(&run.metrics, args.stiffness));
+    crate::out!("{}", wall_metrics_text(&run.metrics, stiffness));
     Ok(())
 }
 
@@ -219,27 +268,38 @@ fn zwidth(args: ZwidthArgs) -> CommandResult {
     if !(2..=1000).contains(&args.points) {
         return Err(InputError(format!("--points = {} must be in 2..=1000", args.points)).into());
     }
+    crate::output::check_plot_path("--plot", args.plot.as_deref())?;
+    let (stiffness, damping) = (Dimension::RotationalStiffness, Dimension::RotationalDamping);
     let config = ZWidthConfig {
-        stiffness_max_nm_per_rad: args.stiffness_max,
+        stiffness_max_nm_per_rad: quantity("--stiffness-max", &args.stiffness_max, stiffness)?,
         stiffness_points: args.points,
-        damping_max_nms_per_rad: args.damping_max,
+        damping_max_nms_per_rad: quantity("--damping-max", &args.damping_max, damping)?,
         damping_points: args.points,
         sample_period_s: period,
-        physical_damping_nms_per_rad: args.physical_damping,
-        controllable_damping_nms_per_rad: args.controllable_damping,
+        physical_damping_nms_per_rad: quantity(
+            "--physical-damping",
+            &args.physical_damping,
+            damping,
+        )?,
+        controllable_damping_nms_per_rad: quantity(
+            "--controllable-damping",
+            &args.controllable_damping,
+            damping,
+        )?,
         ..ZWidthConfig::default()
     };
-    let map = sweep(&config)?;
+    let mut display = ProgressDisplay::steps("haptic zwidth", "stiffness rows", args.json);
+    let map = sweep_with_progress(&config, &mut |done, total| display.step(done, total))?;
+    display.finish();
     if let Some(path) = &args.csv {
         mrbrake_report::write_atomic(path, map.to_csv().as_bytes())?;
     }
     if let Some(path) = &args.plot {
         save_zwidth_plot(path, &map)?;
     }
-    let summary = zwidth_summary(&map);
     if args.json {
-        return print_json(&summary);
+        return print_json(&zwidth_summary(&map));
     }
-    crate::outln!("{}", crate::output::json_text(&summary)?);
+    crate::out!("{}", zwidth_text(&map));
     Ok(())
 }

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use mrbrake_explore::optimize;
-use mrbrake_explore::problem::OptimizationProblem;
+use mrbrake_explore::problem::{BudgetOverride, OptimizationProblem};
 use mrbrake_report::study::{self as study_report, OptimizationReport};
 
 use crate::error::CommandResult;
@@ -35,6 +35,14 @@ pub struct OptimizeArgs {
     /// designs/front-NN.toml and designs/reference.toml.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// NSGA-II generations after the initial population, overriding the problem file's
+    /// `algorithm.generations` (e.g. 1 for a quick run).
+    #[arg(long, value_name = "N")]
+    generations: Option<usize>,
+    /// The most designs to evaluate, overriding the problem file's budget: pattern search's
+    /// `algorithm.max_evaluations`; for NSGA-II, the generations that fit in N designs.
+    #[arg(long, value_name = "N")]
+    max_evaluations: Option<usize>,
     /// List the metrics a problem may constrain or optimise, and exit.
     #[arg(long)]
     list_metrics: bool,
@@ -50,7 +58,9 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
         return Ok(());
     }
     let path = a.problem.as_ref().ok_or_else(|| InputError("give a PROBLEM.toml".into()))?;
-    let problem = OptimizationProblem::from_path(path)?;
+    let mut problem = OptimizationProblem::from_path(path)?;
+    let budget = BudgetOverride { generations: a.generations, max_evaluations: a.max_evaluations };
+    problem.algorithm = problem.algorithm.with_budget(budget)?;
     let store_path = a.store.clone().unwrap_or_else(|| optimize::default_store_path(path));
     let mut store = optimize::open_problem_store(&problem, &store_path, a.resume)?;
     let mut display = ProgressDisplay::new("optimize", a.json);

@@ -34,9 +34,10 @@ pub struct ResponseArgs {
     /// Duration of the step response (e.g. 100ms).
     #[arg(long, default_value = "100ms")]
     duration: String,
-    /// Conductivity of the flux-path steel in S/m (default: the material library's value).
-    #[arg(long, value_name = "S_PER_M")]
-    conductivity: Option<f64>,
+    /// Conductivity of the flux-path steel (e.g. 5.8MS/m; a bare number is S/m); default: the
+    /// material library's value.
+    #[arg(long, value_name = "CONDUCTIVITY")]
+    conductivity: Option<String>,
     /// First-order lag of the MR fluid (e.g. 0.48ms, 0s for none); default T90 = 1.1 ms (Kubík et
     /// al. 2022) over ln 10.
     #[arg(long)]
@@ -73,7 +74,11 @@ fn options(a: &ResponseArgs) -> Result<ResponseOptions, InputError> {
             }
         },
         duration_s: quantity("duration", &a.duration, Dimension::Time)?,
-        flux_path_conductivity_s_per_m: a.conductivity,
+        flux_path_conductivity_s_per_m: a
+            .conductivity
+            .as_deref()
+            .map(|text| quantity("conductivity", text, Dimension::Conductivity))
+            .transpose()?,
         ..ResponseOptions::default()
     };
     if let Some(step) = &a.step {
@@ -112,7 +117,8 @@ pub fn run(a: ResponseArgs) -> CommandResult {
         a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     if let Some(path) = &a.save_model {
         let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
-        let how = format!("mrbrake response {source} (--mesh {} --drive {})", a.mesh, a.drive);
+        let word = super::analyze::command_word(a.spec.as_deref(), &source);
+        let how = format!("mrbrake response {word} (--mesh {} --drive {})", a.mesh, a.drive);
         mrbrake_report::brake_model::add_dynamics(&mut model, &r, &how)?;
         mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
     }

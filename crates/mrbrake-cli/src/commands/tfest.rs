@@ -42,12 +42,12 @@ pub struct TfestArgs {
     /// Known input delay removed before fitting (e.g. 0.5ms for a 1 kHz zero-order hold).
     #[arg(long, default_value = "0s")]
     delay: String,
-    /// Draw measured points and the fitted model (SVG, or PNG for a .png name).
+    /// Draw measured points and the fitted model (.svg or .png).
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
-    /// Also write the JSON result to this file.
-    #[arg(long, value_name = "FILE.json")]
-    save: Option<PathBuf>,
+    /// Also write the fitted model (the JSON result) to this file.
+    #[arg(long, value_name = "FILE.json", alias = "save")]
+    save_model: Option<PathBuf>,
     /// Print a JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -62,7 +62,8 @@ pub fn run(args: TfestArgs) -> CommandResult {
         ))
         .into());
     }
-    let delay_s = parse(&args.delay, Dimension::Time)?;
+    crate::output::check_plot_path("--plot", args.plot.as_deref())?;
+    let delay_s = parse(&args.delay, Dimension::Time).context("--delay")?;
     let frd = read_frd(&args.frd, args.weight_col.as_deref())?;
     let mut options = TfestOptions::new(args.poles, args.zeros);
     options.delay_s = delay_s;
@@ -72,7 +73,7 @@ pub fn run(args: TfestArgs) -> CommandResult {
     };
     let fit = tfest(&frd, &options).with_context(|| args.frd.display().to_string())?;
     let summary = fit.summary()?;
-    if let Some(path) = &args.save {
+    if let Some(path) = &args.save_model {
         mrbrake_report::write_atomic(path, crate::output::json_text(&summary)?.as_bytes())?;
     }
     if let Some(path) = &args.plot {

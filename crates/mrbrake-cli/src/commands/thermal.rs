@@ -31,9 +31,10 @@ pub struct ThermalArgs {
     /// Ambient temperature (e.g. 25C).
     #[arg(long, default_value = "25C", allow_hyphen_values = true)]
     ambient: String,
-    /// Heat-transfer coefficient of the housing in W/(m² K), or `natural` for natural convection
-    /// to still air with the axis horizontal (Churchill–Chu, iterated with the surface temperature).
-    #[arg(long, value_name = "W_PER_M2K|natural", default_value = "10")]
+    /// Heat-transfer coefficient of the housing (e.g. 10W/(m²·K), 10W/m2K; a bare number is
+    /// W/(m²·K)), or `natural` for natural convection to still air with the axis horizontal
+    /// (Churchill–Chu, iterated with the surface temperature).
+    #[arg(long, value_name = "COEFFICIENT|natural", default_value = "10")]
     h: String,
     /// Emissivity of the housing for radiation to surroundings at the ambient, in [0, 1] (0: none;
     /// about 0.8–0.95 for painted or oxidised steel).
@@ -100,11 +101,9 @@ fn cooling(text: &str) -> Result<Cooling, InputError> {
     if text.trim().eq_ignore_ascii_case("natural") {
         return Ok(Cooling::Natural);
     }
-    text.trim().parse::<f64>().map(|h_w_per_m2k| Cooling::Fixed { h_w_per_m2k }).map_err(|_| {
-        InputError(format!(
-            "--h: '{text}' is neither a number in W/(m² K) (in (0, 1e5]) nor `natural`"
-        ))
-    })
+    parse(text, Dimension::HeatTransferCoefficient)
+        .map(|h_w_per_m2k| Cooling::Fixed { h_w_per_m2k })
+        .map_err(|e| InputError(format!("--h: {e} (in (0, 1e5] W/(m²·K)), or `natural`")))
 }
 
 fn options(a: &ThermalArgs, spec: &BrakeSpec) -> Result<ThermalOptions, InputError> {
@@ -160,7 +159,8 @@ pub fn run(a: ThermalArgs) -> CommandResult {
         a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     if let Some(path) = &a.save_model {
         let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
-        let how = format!("mrbrake thermal {source} (--mesh {} --h {})", a.mesh, a.h);
+        let word = super::analyze::command_word(a.spec.as_deref(), &source);
+        let how = format!("mrbrake thermal {word} (--mesh {} --h {})", a.mesh, a.h);
         mrbrake_report::brake_model::add_thermal(&mut model, &result, &spec.name, &how)?;
         mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
     }

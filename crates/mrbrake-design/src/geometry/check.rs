@@ -41,7 +41,7 @@ fn check_drum_fit(spec: &BrakeSpec, d: &Drum, p: &mut Problems) {
     if d.r0.m() + 2.0 * b + cw > shell_in + 1e-9 {
         p.error(
             "coil.window_width",
-            format!("{} does not fit between the core (r = {}) and the case shell (r = {}) with two bobbin walls: allowed ≤ {}", fmt_mm(cw), fmt_mm(d.r0.m()), fmt_mm(shell_in), fmt_mm(shell_in - d.r0.m() - 2.0 * b)),
+            format!("{} does not fit between the core (r = {}) and the case shell (r = {}) with two bobbin walls: {}", fmt_mm(cw), fmt_mm(d.r0.m()), fmt_mm(shell_in), allowed_window(shell_in - d.r0.m() - 2.0 * b, b, "increase housing.outer_radius or reduce drum.r0")),
         );
     }
 }
@@ -77,9 +77,22 @@ fn check_disc_fit(spec: &BrakeSpec, d: &Disc, p: &mut Problems) {
         if core_out + 2.0 * b + cw > r1 + 1e-9 {
             p.error(
                 "coil.window_width",
-                format!("{} does not fit the inner coil between the core ring (r = {}) and disc.inner_radius = {} with two bobbin walls: allowed ≤ {}", fmt_mm(cw), fmt_mm(core_out), fmt_mm(r1), fmt_mm(r1 - core_out - 2.0 * b)),
+                format!("{} does not fit the inner coil between the core ring (r = {}) and disc.inner_radius = {} with two bobbin walls: {}", fmt_mm(cw), fmt_mm(core_out), fmt_mm(r1), allowed_window(r1 - core_out - 2.0 * b, b, "increase disc.inner_radius or reduce housing.inner_case_thickness")),
             );
         }
+    }
+}
+
+/// The allowed window width: "allowed ≤ limit", or, when the two bobbin walls (each `wall_m`)
+/// leave no room at all, that no width fits and `remedy`.
+fn allowed_window(limit_m: f64, wall_m: f64, remedy: &str) -> String {
+    if limit_m > 0.0 {
+        format!("allowed ≤ {}", fmt_mm(limit_m))
+    } else {
+        format!(
+            "no width fits, the two bobbin walls of coil.bobbin_wall = {} already take the room; {remedy}",
+            fmt_mm(wall_m)
+        )
     }
 }
 
@@ -146,5 +159,23 @@ fn check_envelope(spec: &BrakeSpec, g: &BrakeGeometry, p: &mut Problems) {
                 fmt_mm(spec.envelope.length.m())
             ),
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 19: a window limit at or below zero said "allowed ≤ -0 mm".
+    #[test]
+    fn no_room_says_so_instead_of_a_negative_limit() {
+        assert_eq!(allowed_window(2.5e-3, 1e-3, "x"), "allowed ≤ 2.5000 mm");
+        for limit in [0.0, -0.0, -1e-13, -2e-3] {
+            let text = allowed_window(limit, 1e-3, "increase housing.outer_radius");
+            assert!(text.starts_with("no width fits"), "{text}");
+            assert!(text.contains("coil.bobbin_wall = 1 mm") && !text.contains('-'), "{text}");
+        }
+        assert_eq!(fmt_mm(-1e-12), "0 mm");
+        assert_eq!(fmt_mm(-2e-3), "-2 mm");
     }
 }

@@ -665,7 +665,9 @@ impl std::fmt::Display for Warning {
 
 /// Formats a length in millimetres for messages.
 pub(crate) fn fmt_mm(m: f64) -> String {
-    format!("{:.4} mm", m * 1e3).replace(".0000 mm", " mm")
+    let text = format!("{:.4} mm", m * 1e3).replace(".0000 mm", " mm");
+    // A length that rounds to zero is "0 mm", never "-0 mm".
+    if text == "-0 mm" { "0 mm".to_string() } else { text }
 }
 
 impl BrakeSpec {

@@ -93,10 +93,10 @@ impl StudyReport<'_> {
         let facts = vec![
             format!("Results store {}", self.store.display()),
             format!(
-                "{} designs ({ok} analysed, {} infeasible or failed); Pareto front of {} designs.",
-                self.records.len(),
+                "{} ({ok} analysed, {} infeasible or failed); Pareto front of {}.",
+                crate::wording::count(self.records.len(), "design", "designs"),
                 self.records.len() - ok,
-                front.len()
+                crate::wording::count(front.len(), "design", "designs")
             ),
         ];
         let stem =

@@ -303,6 +303,15 @@ pub fn free_response_decays(
 
 /// Runs the sweep.
 pub fn sweep(config: &ZWidthConfig) -> Result<ZWidthMap, SimError> {
+    sweep_with_progress(config, &mut |_, _| ())
+}
+
+/// Runs the sweep, calling `progress(done, total)` after each stiffness row of the grid (for a
+/// front end's progress display on long sweeps).
+pub fn sweep_with_progress(
+    config: &ZWidthConfig,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<ZWidthMap, SimError> {
     let check = |field, value, min, max| check_range("zwidth", field, value, min, max);
     check("stiffness_max_nm_per_rad", config.stiffness_max_nm_per_rad, 1e-9, 1e6)?;
     check("damping_max_nms_per_rad", config.damping_max_nms_per_rad, 0.0, 1e3)?;
@@ -360,6 +369,7 @@ pub fn sweep(config: &ZWidthConfig) -> Result<ZWidthMap, SimError> {
                 brake_energy_j,
             });
         }
+        progress(i + 1, config.stiffness_points);
     }
     Ok(ZWidthMap { config: *config, cells })
 }
