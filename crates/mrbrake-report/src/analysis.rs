@@ -89,7 +89,7 @@ fn gaps_text(out: &mut String, a: &Analysis) {
         let _ = writeln!(
             out,
             "  {:>3} {:>4} {:>7.2} {:>7.2} {:>7.2} {:>11.4} {:>10.4} {:>20.3} {:>13.4}",
-            g.index,
+            g.index + 1,
             g.unit + 1,
             g.r_m * 1e3,
             g.height_m * 1e3,
@@ -163,7 +163,8 @@ pub fn gap_flux_density_figure(a: &Analysis) -> Figure {
         .legend(SeriesLabelPosition::LowerRight);
     for g in &a.gaps {
         let profile = g.profile.iter().map(|&(s, b)| (s * 1e3, b)).collect();
-        gaps = gaps.series(Series::line(format!("gap {} (unit {})", g.index, g.unit + 1), profile));
+        gaps = gaps
+            .series(Series::line(format!("gap {} (unit {})", g.index + 1, g.unit + 1), profile));
     }
     Figure::new(format!("{}: |B| along the fluid gaps at {} A", a.name, a.max_current_a))
         .panel(gaps)

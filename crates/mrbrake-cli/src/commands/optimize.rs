@@ -51,6 +51,9 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     }
     let path = a.problem.as_ref().ok_or_else(|| InputError("give a PROBLEM.toml".into()))?;
     let problem = OptimizationProblem::from_path(path)?;
+    for note in &problem.notes {
+        eprintln!("note: {note}");
+    }
     let store_path = a.store.clone().unwrap_or_else(|| optimize::default_store_path(path));
     let mut store = optimize::open_problem_store(&problem, &store_path, a.resume)?;
     let mut display = ProgressDisplay::new("optimize", a.json);

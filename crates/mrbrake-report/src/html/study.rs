@@ -30,7 +30,7 @@ use crate::study::metric_axis;
 
 /// The objectives of a store without a problem (a sweep): most torque, least volume.
 pub const DEFAULT_OBJECTIVES: [(&str, Goal); 2] =
-    [("torque_max_nm", Goal::Maximize), ("volume_m3", Goal::Minimize)];
+    [("torque_max_Nm", Goal::Maximize), ("volume_m3", Goal::Minimize)];
 
 /// A results store to report.
 #[derive(Debug)]
@@ -383,7 +383,7 @@ fn pointer_escape(name: &str) -> String {
     name.replace('~', "~0").replace('/', "~1")
 }
 
-/// A constraint as a legend label, e.g. `torque_max_nm ≥ 3`.
+/// A constraint as a legend label, e.g. `torque_max_Nm ≥ 3`.
 fn constraint_label(c: &Constraint) -> String {
     let lo = c.min.map_or(String::new(), |v| format!(" ≥ {v}"));
     let hi = c.max.map_or(String::new(), |v| format!(" ≤ {v}"));
