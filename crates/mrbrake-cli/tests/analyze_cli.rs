@@ -45,7 +45,9 @@ fn default_brake_json_has_the_issue_fields() {
     let gaps = v["gaps"].as_array().expect("gaps is an array");
     assert_eq!(gaps.len(), 8);
     for (i, gap) in gaps.iter().enumerate() {
-        assert_eq!(gap["index"].as_u64(), Some(i as u64), "{gap}");
+        // Gaps and units are numbered from 1, as in the text output and the plots.
+        assert_eq!(gap["index"].as_u64(), Some(i as u64 + 1), "{gap}");
+        assert_eq!(gap["unit"].as_u64(), Some(i as u64 / 4 + 1), "{gap}");
         for field in ["r_m", "height_m", "mean_B_T", "tau_y_Pa", "torque_Nm"] {
             assert!(number(gap, field) > 0.0, "{gap}");
         }
@@ -55,7 +57,7 @@ fn default_brake_json_has_the_issue_fields() {
     }
     // The gaps of one unit carry the yield torque of one direction at the maximum current.
     let unit0_torque: f64 =
-        gaps.iter().filter(|g| g["unit"] == 0).map(|g| number(g, "torque_Nm")).sum();
+        gaps.iter().filter(|g| g["unit"] == 1).map(|g| number(g, "torque_Nm")).sum();
     let yield_at_max = number(&curve[2], "yield_torque_Nm");
     assert!(close(unit0_torque, yield_at_max, 1e-9), "{unit0_torque} vs {yield_at_max}");
 

@@ -43,11 +43,11 @@ fn potcore_json_has_the_issue_fields_and_converges() {
     for p in probes {
         let (b_r, b_z, b_abs) = (number(p, "B_r_T"), number(p, "B_z_T"), number(p, "B_abs_T"));
         assert!((b_r.hypot(b_z) - b_abs).abs() < 1e-9, "{p}");
-        assert!(p["r"].is_number() && p["z"].is_number(), "{p}");
+        assert!(p["r_m"].is_number() && p["z_m"].is_number(), "{p}");
     }
     // Probe coordinates come back in metres (the problem file is in mm).
-    assert!((number(&probes[1], "r") - 0.005).abs() < 1e-12);
-    assert!((number(&probes[1], "z") - 0.0155).abs() < 1e-12);
+    assert!((number(&probes[1], "r_m") - 0.005).abs() < 1e-12);
+    assert!((number(&probes[1], "z_m") - 0.0155).abs() < 1e-12);
     // On the axis the field is purely axial by symmetry.
     assert!(number(&probes[2], "B_r_T").abs() < 1e-9, "{}", probes[2]);
 

@@ -31,7 +31,7 @@ fn steady_heat_file_reports_probes_regions_boundaries_and_balance() {
     assert!(number(&v, "energy_balance_W").abs() < 1e-9);
     let probe = &v["probes"][0];
     assert_eq!(probe["name"], "coil_centre");
-    assert!(number(probe, "T_C") > 25.0 && number(probe, "r") > 0.0);
+    assert!(number(probe, "T_C") > 25.0 && number(probe, "r_m") > 0.0);
     assert!(v["transient"].is_null());
 }
 

@@ -33,7 +33,7 @@ fn show_mrf122eg_json_has_the_thesis_points_and_provenance() {
     let v = json(&["materials", "show", "MRF-122EG", "--json", "--b", "0.46T,490mT"]);
     assert_eq!(v["name"], "mrf-122eg");
     assert_eq!(v["kind"], "mr-fluid");
-    let at_b = v["fluid"]["tau_y_at_b"].as_array().unwrap();
+    let at_b = v["fluid"]["tau_y_at_B"].as_array().unwrap();
     assert!((at_b[0]["tau_y_Pa"].as_f64().unwrap() - 24_315.0).abs() < 1e-6);
     assert!((at_b[1]["tau_y_Pa"].as_f64().unwrap() - 25_670.0).abs() < 1e-6);
     assert!((v["fluid"]["tau_y_ceiling_Pa"].as_f64().unwrap() - 35_000.0).abs() < 1e-9);
@@ -55,7 +55,7 @@ fn show_steel_text_reports_derived_values() {
     assert!(text.contains("B(     1000 A/m)"), "{text}");
     assert!(text.contains("trust   medium-high"), "{text}");
     let v = json(&["materials", "show", "steel-1008", "--json", "--h", "5kA/m"]);
-    let b = v["magnetic"]["bh_curve"]["b_at_h"][0]["B_T"].as_f64().unwrap();
+    let b = v["magnetic"]["bh_curve"]["B_at_H"][0]["B_T"].as_f64().unwrap();
     assert!((b - 1.69).abs() < 0.01, "{b}");
 }
 

@@ -155,9 +155,9 @@ fn study_report_of_a_small_optimisation() {
             "spec = \"{SINGLE_DISC}\"\nmesh = \"coarse\"\n\
              [[variable]]\nname = \"g\"\nmin = \"0.3mm\"\nmax = \"1mm\"\n\
              [[variable]]\nname = \"d\"\nmin = \"1mm\"\nmax = \"2mm\"\n\
-             [[constraint]]\nmetric = \"torque_max_nm\"\nmin = \"0.5Nm\"\n\
+             [[constraint]]\nmetric = \"torque_max_Nm\"\nmin = \"0.5Nm\"\n\
              [[objective]]\nmetric = \"rotor_inertia_kg_m2\"\n\
-             [[objective]]\nmetric = \"torque_max_nm\"\ngoal = \"maximize\"\n\
+             [[objective]]\nmetric = \"torque_max_Nm\"\ngoal = \"maximize\"\n\
              [algorithm]\nkind = \"nsga2\"\npopulation = 4\ngenerations = 1\nseed = 7\n"
         ),
     )

@@ -245,12 +245,12 @@ name = "d"
 min = "1mm"
 max = "2mm"
 [[constraint]]
-metric = "torque_max_nm"
+metric = "torque_max_Nm"
 min = "0.5Nm"
 [[objective]]
 metric = "rotor_inertia_kg_m2"
 [[objective]]
-metric = "torque_max_nm"
+metric = "torque_max_Nm"
 goal = "maximize"
 [algorithm]
 kind = "nsga2"
@@ -322,11 +322,16 @@ max_evaluations = 10
     )
     .unwrap();
     let store = dir.path().join("single.sqlite");
-    let v = json(&["optimize", path_str(&problem), "--store", path_str(&store), "--json"]);
+    // The problem names the torque by its legacy metric name: it still works, with a note.
+    let out = mrbrake(&["optimize", path_str(&problem), "--store", path_str(&store), "--json"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("'torque_max_nm' is now named 'torque_max_Nm'"), "{stderr}");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON on stdout");
     let front = v["front"].as_array().unwrap();
     assert_eq!(front.len(), 1, "one objective: the best feasible design");
     let best = &front[0]["metrics"];
-    assert!(best["torque_max_nm"].as_f64().unwrap() >= 1.2);
+    assert!(best["torque_max_Nm"].as_f64().unwrap() >= 1.2);
     let evaluated = v["evaluated"].as_u64().unwrap();
     assert!((2..=10).contains(&evaluated), "budget respected: {evaluated}");
     // Every evaluated design meeting the torque has at least the best design's inertia.
@@ -334,7 +339,7 @@ max_evaluations = 10
     let best_j = best["rotor_inertia_kg_m2"].as_f64().unwrap();
     for d in all.as_array().unwrap() {
         let m = &d["metrics"];
-        if m["torque_max_nm"].as_f64().is_some_and(|t| t >= 1.2) {
+        if m["torque_max_Nm"].as_f64().is_some_and(|t| t >= 1.2) {
             assert!(m["rotor_inertia_kg_m2"].as_f64().unwrap() >= best_j * (1.0 - 1e-12));
         }
     }

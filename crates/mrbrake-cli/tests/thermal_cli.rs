@@ -87,7 +87,7 @@ fn thermal_json_keys_and_plots() {
 #[cfg_attr(debug_assertions, ignore)]
 fn thermal_natural_convection_and_hot_behaviour() {
     let v = json(&["thermal", "--h", "natural", "--time", "30min", "--json"]);
-    let h = number(&v["cooling"], "h_W_per_m2K");
+    let h = number(&v["cooling"], "h_W_per_m2_K");
     assert!((2.0..20.0).contains(&h), "natural-convection h = {h}");
     let b = &v["behaviour"];
     assert!(number(b, "coil_resistance_hot_ohm") > number(b, "coil_resistance_cold_ohm"));

@@ -118,12 +118,20 @@ pub struct CurvePoint {
     pub newton_iterations: usize,
 }
 
+/// Serialises a 0-based index as the 1-based number the reports show.
+fn one_based<S: serde::Serializer>(index: &usize, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_u64(*index as u64 + 1)
+}
+
 /// One fluid gap at the maximum current.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GapResult {
-    /// Global gap index.
+    /// Global gap index, 0-based here; serialised 1-based (`gap 1` is the first), as every
+    /// report numbers gaps and units (docs/CONVENTIONS.md).
+    #[serde(serialize_with = "one_based")]
     pub index: usize,
-    /// Unit (0 or 1).
+    /// Unit, 0 or 1 here; serialised 1-based (unit 1 resists positive rotation, 2 negative).
+    #[serde(serialize_with = "one_based")]
     pub unit: usize,
     /// Shear radius R (drums: R_k of (4.4); discs: mean radius) (m).
     pub r_m: f64,
@@ -237,11 +245,14 @@ pub struct Mechanics {
 pub struct FluxPathField {
     /// Largest |B| at any quadrature point of any flux-path part (T). Re-entrant steel corners make
     /// this a local, mesh-dependent peak.
+    #[serde(rename = "max_B_T")]
     pub max_b_t: f64,
     /// The largest of the parts' volume-weighted 90 % quantiles of |B| (T): the level that a tenth
     /// of the most loaded part exceeds; robust to corner peaks, so better for a saturation limit.
+    #[serde(rename = "q90_B_T")]
     pub q90_b_t: f64,
     /// Volume-weighted mean |B| over all flux-path parts (T).
+    #[serde(rename = "mean_B_T")]
     pub mean_b_t: f64,
 }
 

@@ -144,7 +144,7 @@ fn write_physical_curves(out: &mut String, geometry: &BrakeGeometry, segments: &
     let names: HashMap<u32, String> = std::iter::once((geometry.axis_tag, "axis".to_string()))
         .chain(std::iter::once((geometry.outer_tag, "outer_boundary".to_string())))
         .chain(geometry.gaps.iter().flat_map(|g| {
-            let base = format!("unit{}.gap{}", g.unit + 1, g.index_in_unit);
+            let base = format!("unit{}.gap{}", g.unit + 1, g.index_in_unit + 1);
             [
                 (g.inner_wall_tag, format!("{base}.inner_wall")),
                 (g.outer_wall_tag, format!("{base}.outer_wall")),

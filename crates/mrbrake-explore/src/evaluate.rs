@@ -63,6 +63,23 @@ impl EvaluationSettings {
         })
     }
 
+    /// The settings as every stored record keeps them (`mrbrake export` shows them per row, so
+    /// rows of merged stores with different settings can be told apart); names follow
+    /// docs/CONVENTIONS.md.
+    pub fn recorded(&self) -> serde_json::Map<String, Value> {
+        [
+            ("mesh_level", json!(format!("{:?}", self.mesh).to_ascii_lowercase())),
+            ("element_order", json!(self.order.degree())),
+            ("speed_rad_s", json!(self.speed_rad_s)),
+            ("seal_friction_Nm", json!(self.seal_friction_nm)),
+            ("temperature_C", json!(self.temperature_c)),
+            ("convection_W_per_m2_K", json!(self.convection_w_m2k)),
+        ]
+        .into_iter()
+        .map(|(name, value)| (name.to_string(), value))
+        .collect()
+    }
+
     fn analysis_options(&self) -> AnalysisOptions {
         AnalysisOptions {
             mesh: self.mesh,
@@ -90,55 +107,98 @@ const fn metric(name: &'static str, unit: &'static str, meaning: &'static str) -
     MetricInfo { name, unit, meaning }
 }
 
-/// Every metric an `ok` evaluation reports, in store order. `torque_dir2_nm` and
-/// `wire_rated_current_a`/`current_to_rating` appear only where they apply (bidirectional brake; a
+/// Every metric an `ok` evaluation reports, in store order. `torque_dir2_Nm` and
+/// `wire_rated_current_A`/`current_to_rating` appear only where they apply (bidirectional brake; a
 /// wire with a known rating).
 pub const METRICS: &[MetricInfo] = &[
     metric(
-        "torque_max_nm",
+        "torque_max_Nm",
         "N·m",
         "torque at the maximum current, direction 1: local Bingham yield torque + viscous + friction",
     ),
-    metric("torque_off_nm", "N·m", "off-state torque (zero current): viscous (3.4) + friction"),
-    metric("dynamic_range", "1", "torque_max_nm / torque_off_nm"),
-    metric("torque_dir2_nm", "N·m", "bidirectional: direction 2 with its own coil at max current"),
-    metric("thesis_torque_nm", "N·m", "thesis method: mean |B| in the gaps → τ_y → (4.4)/(3.7)"),
-    metric("mean_b_fluid_t", "T", "volume-mean |B| over the direction-1 fluid gaps"),
-    metric("max_b_fluid_t", "T", "largest |B| on a gap mid-line"),
-    metric("flux_path_max_b_t", "T", "largest |B| at a quadrature point of the steel flux path"),
-    metric("flux_path_q90_b_t", "T", "largest per-part 90 % quantile of |B| in the flux path"),
-    metric("flux_path_mean_b_t", "T", "volume-mean |B| over the flux path"),
+    metric("torque_off_Nm", "N·m", "off-state torque (zero current): viscous (3.4) + friction"),
+    metric("dynamic_range", "1", "torque_max_Nm / torque_off_Nm"),
+    metric("torque_dir2_Nm", "N·m", "bidirectional: direction 2 with its own coil at max current"),
+    metric("thesis_torque_Nm", "N·m", "thesis method: mean |B| in the gaps → τ_y → (4.4)/(3.7)"),
+    metric("mean_B_fluid_T", "T", "volume-mean |B| over the direction-1 fluid gaps"),
+    metric("max_B_fluid_T", "T", "largest |B| on a gap mid-line"),
+    metric("flux_path_max_B_T", "T", "largest |B| at a quadrature point of the steel flux path"),
+    metric("flux_path_q90_B_T", "T", "largest per-part 90 % quantile of |B| in the flux path"),
+    metric("flux_path_mean_B_T", "T", "volume-mean |B| over the flux path"),
     metric("volume_m3", "m³", "envelope volume of the modelled device (bounding cylinder)"),
     metric("mass_kg", "kg", "mass of all modelled parts"),
     metric("rotor_inertia_kg_m2", "kg·m²", "inertia of the parts turning in direction 1"),
     metric("outer_diameter_m", "m", "outer diameter of the modelled device"),
     metric("length_m", "m", "axial length of the modelled device"),
-    metric("torque_density_nm_per_m3", "N·m/m³", "torque_max_nm / volume_m3"),
-    metric("torque_density_nm_per_kg", "N·m/kg", "torque_max_nm / mass_kg"),
+    metric("torque_density_Nm_per_m3", "N·m/m³", "torque_max_Nm / volume_m3"),
+    metric("torque_density_Nm_per_kg", "N·m/kg", "torque_max_Nm / mass_kg"),
     metric("min_gap_m", "m", "narrowest fluid gap"),
     metric(
         "min_wall_m",
         "m",
         "thinnest structural wall: case, end plate, cylinders or discs, covers",
     ),
-    metric("max_current_a", "A", "maximum coil current"),
+    metric("max_current_A", "A", "maximum coil current"),
     metric("turns", "1", "turns per coil"),
-    metric("current_density_a_per_mm2", "A/mm²", "thesis current density (4.1) at max current"),
-    metric("wire_rated_current_a", "A", "the wire's current rating (given or thesis Table 4.6)"),
-    metric("current_to_rating", "1", "max_current_a / wire_rated_current_a"),
+    metric("current_density_A_per_mm2", "A/mm²", "thesis current density (4.1) at max current"),
+    metric("wire_rated_current_A", "A", "the wire's current rating (given or thesis Table 4.6)"),
+    metric("current_to_rating", "1", "max_current_A / wire_rated_current_A"),
     metric("resistance_ohm", "Ω", "coil resistance at the settings' temperature"),
-    metric("power_w", "W", "ohmic power of one coil at max current"),
+    metric("power_W", "W", "ohmic power of one coil at max current"),
     metric(
-        "temperature_rise_k",
+        "temperature_rise_K",
         "K",
-        "steady rise: power_w / (h · outer surface), h = the settings' convection coefficient",
+        "steady rise: power_W / (h · outer surface), h = the settings' convection coefficient",
     ),
-    metric("inductance_h", "H", "secant inductance λ/I at max current"),
-    metric("incremental_inductance_h", "H", "incremental inductance dλ/dI at max current"),
+    metric("inductance_H", "H", "secant inductance λ/I at max current"),
+    metric("incremental_inductance_H", "H", "incremental inductance dλ/dI at max current"),
     metric("time_constant_s", "s", "L/R with the secant inductance"),
     metric("nodes", "1", "mesh nodes"),
     metric("newton_iterations", "1", "Newton iterations of the max-current solve"),
 ];
+
+/// Metric names before the unit convention of docs/CONVENTIONS.md (SI symbol with its case after
+/// the last underscore), as `(old, new)`. Stores written before keep them in their records and
+/// problem files may still name them: [`current_metric_name`] maps them to the current names.
+pub const LEGACY_METRIC_NAMES: &[(&str, &str)] = &[
+    ("torque_max_nm", "torque_max_Nm"),
+    ("torque_off_nm", "torque_off_Nm"),
+    ("torque_dir2_nm", "torque_dir2_Nm"),
+    ("thesis_torque_nm", "thesis_torque_Nm"),
+    ("mean_b_fluid_t", "mean_B_fluid_T"),
+    ("max_b_fluid_t", "max_B_fluid_T"),
+    ("flux_path_max_b_t", "flux_path_max_B_T"),
+    ("flux_path_q90_b_t", "flux_path_q90_B_T"),
+    ("flux_path_mean_b_t", "flux_path_mean_B_T"),
+    ("torque_density_nm_per_m3", "torque_density_Nm_per_m3"),
+    ("torque_density_nm_per_kg", "torque_density_Nm_per_kg"),
+    ("max_current_a", "max_current_A"),
+    ("current_density_a_per_mm2", "current_density_A_per_mm2"),
+    ("wire_rated_current_a", "wire_rated_current_A"),
+    ("power_w", "power_W"),
+    ("temperature_rise_k", "temperature_rise_K"),
+    ("inductance_h", "inductance_H"),
+    ("incremental_inductance_h", "incremental_inductance_H"),
+];
+
+/// The current name of a metric named `name`, and whether `name` was a legacy name (see
+/// [`LEGACY_METRIC_NAMES`]); any other name is returned as it is.
+pub fn current_metric_name(name: &str) -> (&str, bool) {
+    match LEGACY_METRIC_NAMES.iter().find(|(old, _)| *old == name) {
+        Some(&(_, new)) => (new, true),
+        None => (name, false),
+    }
+}
+
+/// Renames a stored record's legacy metric names to the current ones (see
+/// [`LEGACY_METRIC_NAMES`]), so a store written before the convention reads like a new one.
+pub fn upgrade_metric_names(record: &mut mrbrake_store::Record) {
+    for (name, _) in &mut record.metrics {
+        if let (new, true) = current_metric_name(name) {
+            *name = new.to_string();
+        }
+    }
+}
 
 /// The result of one evaluation.
 #[derive(Debug, Clone, PartialEq)]
@@ -209,46 +269,46 @@ fn with_causes(error: &dyn std::error::Error) -> String {
 fn metrics_of(spec: &BrakeSpec, a: &Analysis, settings: &EvaluationSettings) -> Vec<(String, f64)> {
     let mut m: Vec<(&'static str, f64)> = Vec::with_capacity(METRICS.len());
     let t = &a.torque;
-    m.push(("torque_max_nm", t.at_max_current_nm));
-    m.push(("torque_off_nm", t.off_state_nm));
+    m.push(("torque_max_Nm", t.at_max_current_nm));
+    m.push(("torque_off_Nm", t.off_state_nm));
     m.push(("dynamic_range", t.dynamic_range));
     if let Some(t2) = t.direction2_at_max_current_nm {
-        m.push(("torque_dir2_nm", t2));
+        m.push(("torque_dir2_Nm", t2));
     }
-    m.push(("thesis_torque_nm", t.thesis_formula_nm));
-    m.push(("mean_b_fluid_t", t.mean_b_t));
+    m.push(("thesis_torque_Nm", t.thesis_formula_nm));
+    m.push(("mean_B_fluid_T", t.mean_b_t));
     let max_b_fluid = a.gaps.iter().map(|g| g.max_b_t).fold(0.0, f64::max);
-    m.push(("max_b_fluid_t", max_b_fluid));
-    m.push(("flux_path_max_b_t", a.flux_path.max_b_t));
-    m.push(("flux_path_q90_b_t", a.flux_path.q90_b_t));
-    m.push(("flux_path_mean_b_t", a.flux_path.mean_b_t));
+    m.push(("max_B_fluid_T", max_b_fluid));
+    m.push(("flux_path_max_B_T", a.flux_path.max_b_t));
+    m.push(("flux_path_q90_B_T", a.flux_path.q90_b_t));
+    m.push(("flux_path_mean_B_T", a.flux_path.mean_b_t));
     let mech = &a.mechanics;
     m.push(("volume_m3", mech.volume_m3));
     m.push(("mass_kg", mech.mass_kg));
     m.push(("rotor_inertia_kg_m2", mech.rotor_inertia_kg_m2));
     m.push(("outer_diameter_m", mech.outer_diameter_m));
     m.push(("length_m", mech.length_m));
-    m.push(("torque_density_nm_per_m3", mech.torque_density_nm_per_m3));
-    m.push(("torque_density_nm_per_kg", mech.torque_density_nm_per_kg));
+    m.push(("torque_density_Nm_per_m3", mech.torque_density_nm_per_m3));
+    m.push(("torque_density_Nm_per_kg", mech.torque_density_nm_per_kg));
     m.push(("min_gap_m", a.gaps.iter().map(|g| g.width_m).fold(f64::INFINITY, f64::min)));
     m.push(("min_wall_m", min_wall_m(spec)));
-    m.push(("max_current_a", a.max_current_a));
+    m.push(("max_current_A", a.max_current_a));
     let coil = &a.coil;
     m.push(("turns", f64::from(coil.turns)));
-    m.push(("current_density_a_per_mm2", coil.current_density_a_per_mm2));
+    m.push(("current_density_A_per_mm2", coil.current_density_a_per_mm2));
     if let Some(rating) = spec.coil.wire.rated_current_a() {
-        m.push(("wire_rated_current_a", rating));
+        m.push(("wire_rated_current_A", rating));
         m.push(("current_to_rating", a.max_current_a / rating));
     }
     m.push(("resistance_ohm", coil.resistance_ohm));
-    m.push(("power_w", coil.power_w));
+    m.push(("power_W", coil.power_w));
     // Steady state of a body losing heat through its outer surface only (cylinder side + ends):
     // ΔT = P / (h A) (Newton's law of cooling).
     let (d, l) = (mech.outer_diameter_m, mech.length_m);
     let surface = std::f64::consts::PI * d * l + std::f64::consts::PI * d * d / 2.0;
-    m.push(("temperature_rise_k", coil.power_w / (settings.convection_w_m2k * surface)));
-    m.push(("inductance_h", coil.inductance_h));
-    m.push(("incremental_inductance_h", coil.incremental_inductance_h));
+    m.push(("temperature_rise_K", coil.power_w / (settings.convection_w_m2k * surface)));
+    m.push(("inductance_H", coil.inductance_h));
+    m.push(("incremental_inductance_H", coil.incremental_inductance_h));
     m.push(("time_constant_s", coil.time_constant_s));
     m.push(("nodes", a.mesh.nodes as f64));
     let iterations = a.torque_current_curve.last().map_or(0, |p| p.newton_iterations);

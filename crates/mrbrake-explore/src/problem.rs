@@ -12,7 +12,7 @@
 //! min = "18mm"
 //! max = "30mm"
 //! [[constraint]]
-//! metric = "torque_max_nm"                     # any metric of `mrbrake optimize --list-metrics`
+//! metric = "torque_max_Nm"                     # any metric of `mrbrake optimize --list-metrics`
 //! min = "3Nm"                                  # and/or max; a number (SI) or a quantity with unit
 //! [[objective]]
 //! metric = "rotor_inertia_kg_m2"
@@ -38,7 +38,7 @@ use mrbrake_units::{Dimension, parse};
 use serde::Deserialize;
 
 use crate::ExploreError;
-use crate::evaluate::{EvaluationSettings, METRICS, metric_info};
+use crate::evaluate::{EvaluationSettings, METRICS, current_metric_name, metric_info};
 
 /// A number (SI) or a quantity with its unit.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -231,6 +231,9 @@ pub struct OptimizationProblem {
     pub objectives: Vec<Objective>,
     /// Algorithm.
     pub algorithm: Algorithm,
+    /// Notes for the user that do not stop the run: a metric named by its legacy name (see
+    /// [`crate::evaluate::LEGACY_METRIC_NAMES`]), with its current name.
+    pub notes: Vec<String>,
 }
 
 impl OptimizationProblem {
@@ -252,6 +255,7 @@ impl OptimizationProblem {
         let variables = variables_of(&raw.variables).map_err(bad)?;
         let constraints = constraints_of(&raw.constraints).map_err(bad)?;
         let objectives = objectives_of(&raw.objectives).map_err(bad)?;
+        let notes = legacy_name_notes(&raw, &origin);
         let algorithm = algorithm_of(&raw.algorithm, objectives.len()).map_err(bad)?;
         Ok(Self {
             path: path.to_path_buf(),
@@ -263,8 +267,28 @@ impl OptimizationProblem {
             constraints,
             objectives,
             algorithm,
+            notes,
         })
     }
+}
+
+/// A note for every constraint or objective that names a metric by its legacy name.
+fn legacy_name_notes(raw: &RawProblem, origin: &str) -> Vec<String> {
+    let constraints = raw.constraints.iter().map(|c| ("constraint", c.metric.trim()));
+    let objectives = raw.objectives.iter().map(|o| ("objective", o.metric.trim()));
+    let mut notes = Vec::new();
+    let mut counts = [0usize; 2];
+    for (table, name) in constraints.chain(objectives) {
+        let count = &mut counts[usize::from(table == "objective")];
+        *count += 1;
+        if let (new, true) = current_metric_name(name) {
+            notes.push(format!(
+                "{origin}: {table} {count}: metric '{name}' is now named '{new}' (the old name \
+                 still works; see docs/CONVENTIONS.md)"
+            ));
+        }
+    }
+    notes
 }
 
 // The readers of each part of the file return what is wrong, naming the table and the field; the
@@ -504,7 +528,7 @@ fn pattern_search_of(a: &RawAlgorithm, objectives: usize, seed: u64) -> Result<A
 }
 
 fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
-    metric_info(name.trim()).ok_or_else(|| {
+    metric_info(current_metric_name(name.trim()).0).ok_or_else(|| {
         ExploreError::Input(format!(
             "unknown metric '{name}'; allowed: {}",
             METRICS.iter().map(|m| m.name).collect::<Vec<_>>().join(", ")
@@ -557,7 +581,7 @@ name = "n"
 min = 1
 max = 3
 [[constraint]]
-metric = "torque_max_nm"
+metric = "torque_max_Nm"
 min = "3Nm"
 [[constraint]]
 metric = "outer_diameter_m"
@@ -584,8 +608,21 @@ generations = 2
     }
 
     #[test]
+    fn legacy_metric_names_still_work_with_a_note_naming_the_new_name() {
+        let good = OptimizationProblem::from_toml_str(GOOD, Path::new("p.toml")).unwrap();
+        assert!(good.notes.is_empty(), "{:?}", good.notes);
+        let old = GOOD.replace("torque_max_Nm", "torque_max_nm");
+        let p = OptimizationProblem::from_toml_str(&old, Path::new("p.toml")).unwrap();
+        assert_eq!(p.constraints, good.constraints, "the old name reads as the new one");
+        assert_eq!(p.notes.len(), 1, "{:?}", p.notes);
+        let note = &p.notes[0];
+        assert!(note.contains("p.toml") && note.contains("constraint 1"), "{note}");
+        assert!(note.contains("'torque_max_nm'") && note.contains("'torque_max_Nm'"), "{note}");
+    }
+
+    #[test]
     fn errors_name_the_file_and_field() {
-        let bad = GOOD.replace("torque_max_nm", "torque_maximum");
+        let bad = GOOD.replace("torque_max_Nm", "torque_maximum");
         let e = OptimizationProblem::from_toml_str(&bad, Path::new("p.toml")).unwrap_err();
         let text = e.to_string();
         assert!(text.contains("p.toml") && text.contains("constraint 1"), "{text}");
@@ -666,7 +703,7 @@ generations = 2
 
     #[test]
     fn violation_and_margin_are_relative() {
-        let c = Constraint { metric: "torque_max_nm".into(), min: Some(3.0), max: None };
+        let c = Constraint { metric: "torque_max_Nm".into(), min: Some(3.0), max: None };
         assert!(c.violation(3.5).abs() < 1e-15);
         assert!((c.violation(1.5) - 0.5).abs() < 1e-12);
         assert!((c.margin(3.3) - 0.1).abs() < 1e-12);

@@ -103,9 +103,11 @@ impl<'a> Runner<'a> {
         progress.elapsed_s = start.elapsed().as_secs_f64();
         let mut records = Vec::with_capacity(designs.len());
         for design in designs {
-            let record = self.store.get(&design.key)?.ok_or_else(|| {
+            let mut record = self.store.get(&design.key)?.ok_or_else(|| {
                 ExploreError::Internal(format!("design {} missing from the store", design.key))
             })?;
+            // A record reused from a store written before the unit convention.
+            crate::evaluate::upgrade_metric_names(&mut record);
             records.push(record);
         }
         let summary =
@@ -174,7 +176,7 @@ impl<'a> Runner<'a> {
                 if first_error.is_some() {
                     continue;
                 }
-                let record = record_of(todo[i], outcome, seconds);
+                let record = record_of(todo[i], outcome, seconds, &settings);
                 if let Err(e) = self.store_record(&record, seconds, timing, progress) {
                     stop.store(true, Ordering::Relaxed);
                     first_error = Some(e);
@@ -216,7 +218,12 @@ struct Timing {
     store_s: f64,
 }
 
-fn record_of(design: &Design, outcome: Outcome, seconds: f64) -> Record {
+fn record_of(
+    design: &Design,
+    outcome: Outcome,
+    seconds: f64,
+    settings: &EvaluationSettings,
+) -> Record {
     Record {
         key: design.key.clone(),
         status: outcome.status,
@@ -226,5 +233,6 @@ fn record_of(design: &Design, outcome: Outcome, seconds: f64) -> Record {
         spec_toml: design.spec_toml.clone(),
         eval_seconds: seconds,
         solver_version: solver_version(),
+        settings: settings.recorded(),
     }
 }

@@ -291,13 +291,14 @@ fn store_seed() -> Vec<u8> {
             reason: (status != Status::Ok).then(|| "a reason".to_string()),
             variables: vec![("drum.gap".into(), 5e-4 + k as f64 * 1e-4)],
             metrics: if status == Status::Ok {
-                vec![("torque_max_nm".into(), 3.5)]
+                vec![("torque_max_Nm".into(), 3.5)]
             } else {
                 vec![]
             },
             spec_toml: "name = \"x\"\n".into(),
             eval_seconds: 1.5,
             solver_version: "0.1.0".into(),
+            settings: Default::default(),
         };
         store.insert(&record).expect("insert a record");
     }

@@ -16,8 +16,10 @@ use crate::{BhCurve, Provenance, Sourced};
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Viscosity {
     /// Viscosity \[Pa·s\].
+    #[serde(rename = "viscosity_Pa_s")]
     pub pa_s: f64,
     /// Temperature of the measurement \[°C\].
+    #[serde(rename = "temperature_C")]
     pub temperature_c: f64,
     /// Where the number comes from.
     pub provenance: Provenance,
@@ -27,10 +29,13 @@ pub struct Viscosity {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ReferencePoint {
     /// Flux density \[T\], if given.
+    #[serde(rename = "B_T")]
     pub b_t: Option<f64>,
     /// Field strength \[A/m\], if given.
+    #[serde(rename = "H_A_per_m")]
     pub h_a_per_m: Option<f64>,
     /// Yield stress \[Pa\].
+    #[serde(rename = "tau_y_Pa")]
     pub tau_y_pa: f64,
     /// Where the point comes from.
     pub source: String,
@@ -42,6 +47,7 @@ pub struct ReferenceCheck {
     /// The reference point.
     pub reference: ReferencePoint,
     /// The model's `τ_y` \[Pa\] at the point's B (or at its H when no B is given).
+    #[serde(rename = "model_tau_y_Pa")]
     pub model_tau_y_pa: f64,
     /// `(model − reference)/reference` in percent.
     pub error_percent: f64,

@@ -89,7 +89,7 @@ fn gaps_text(out: &mut String, a: &Analysis) {
         let _ = writeln!(
             out,
             "  {:>3} {:>4} {:>7.2} {:>7.2} {:>7.2} {:>11.4} {:>10.4} {:>20.3} {:>13.4}",
-            g.index,
+            g.index + 1,
             g.unit + 1,
             g.r_m * 1e3,
             g.height_m * 1e3,

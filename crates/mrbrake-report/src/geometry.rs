@@ -24,7 +24,7 @@ pub fn export_json(
         .iter()
         .map(|g| {
             json!({
-                "index": g.index, "unit": g.unit + 1, "index_in_unit": g.index_in_unit, "tag": g.tag,
+                "index": g.index + 1, "unit": g.unit + 1, "index_in_unit": g.index_in_unit + 1, "tag": g.tag,
                 "r_m": g.shear_radius_m, "height_m": g.height_m, "width_m": g.width_m,
                 "inner_wall_tag": g.inner_wall_tag, "outer_wall_tag": g.outer_wall_tag,
             })

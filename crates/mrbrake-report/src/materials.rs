@@ -50,7 +50,7 @@ fn curve_json(curve: &BhCurve, h_values: &[f64]) -> Value {
     json!({
         "points_H_A_per_m_B_T": curve.points(),
         "initial_relative_permeability": curve.initial_relative_permeability(),
-        "b_at_h": h_values.iter().map(|&h| json!({ "H_A_per_m": h, "B_T": curve.b_of_h(h) })).collect::<Vec<_>>(),
+        "B_at_H": h_values.iter().map(|&h| json!({ "H_A_per_m": h, "B_T": curve.b_of_h(h) })).collect::<Vec<_>>(),
         "last_point": { "H_A_per_m": h_last, "B_T": b_last },
         "beyond_last_point": "straight line of slope dB/dH = mu0",
         "interpolation": "monotone C1 cubic H(B) (Steffen 1990), odd first piece, exact at the points",
@@ -62,10 +62,10 @@ fn curve_json(curve: &BhCurve, h_values: &[f64]) -> Value {
 fn fluid_json(fluid: &MrFluid, b_values: &[f64], h_values: &[f64]) -> Value {
     let ys = fluid.yield_stress();
     json!({
-        "tau_y_at_b": b_values.iter().map(|&b| json!({
+        "tau_y_at_B": b_values.iter().map(|&b| json!({
             "B_T": b, "H_A_per_m": fluid.bh().h_of_b(b), "tau_y_Pa": fluid.tau_y_of_b(b),
         })).collect::<Vec<_>>(),
-        "tau_y_at_h": h_values.iter().map(|&h| json!({
+        "tau_y_at_H": h_values.iter().map(|&h| json!({
             "H_A_per_m": h, "B_T": fluid.bh().b_of_h(h), "tau_y_Pa": fluid.tau_y_of_h(h),
         })).collect::<Vec<_>>(),
         "tau_y_ceiling_Pa": fluid.tau_y_ceiling_pa(),
@@ -78,7 +78,7 @@ fn fluid_json(fluid: &MrFluid, b_values: &[f64], h_values: &[f64]) -> Value {
         "viscosities": fluid.viscosities,
         "iron_volume_fraction": fluid.iron_volume_fraction,
         "carrier": fluid.carrier,
-        "density_kg_m3": fluid.density_kg_m3,
+        "density_kg_per_m3": fluid.density_kg_m3,
     })
 }
 
@@ -89,7 +89,7 @@ pub fn show_json(m: &Material, b_values: &[f64], h_values: &[f64]) -> Value {
         "kind": m.kind,
         "description": m.description,
         "provenance": m.provenance,
-        "density_kg_m3": m.density_kg_m3,
+        "density_kg_per_m3": m.density_kg_m3,
         "conductivity_S_per_m": m.conductivity_s_per_m,
         "mu_r_linear": m.mu_r_linear,
     });
@@ -236,7 +236,7 @@ mod tests {
         assert!(text.starts_with("mrf-122eg (mr-fluid): "), "{text}");
         assert!(text.contains("  yield stress: ") && !text.contains("B-H points"), "{text}");
         assert_eq!(
-            show_json(fluid, &[0.46], &[]).pointer("/fluid/tau_y_at_b/0/B_T"),
+            show_json(fluid, &[0.46], &[]).pointer("/fluid/tau_y_at_B/0/B_T"),
             Some(&json!(0.46))
         );
         let steel = library::get("steel-1008").unwrap();

@@ -29,7 +29,7 @@ const UNIT_SUFFIXES: [&str; 15] = [
 ];
 
 /// A metric's name in words, without its SI unit ending: `rotor_inertia_kg_m2` → `rotor inertia`,
-/// `mean_b_fluid_t` → `mean |B| fluid`.
+/// `mean_B_fluid_T` → `mean |B| fluid`.
 pub fn metric_words(name: &str) -> String {
     let lower = name.to_ascii_lowercase();
     let stem = UNIT_SUFFIXES
@@ -190,14 +190,14 @@ mod tests {
     fn axis_and_legend_labels_are_in_the_displayed_unit() {
         assert_eq!(metric_plot_axis("rotor_inertia_kg_m2"), (1e6, "rotor inertia [kg·mm²]".into()));
         assert_eq!(metric_plot_axis("volume_m3").1, "volume [cm³]");
-        assert_eq!(metric_plot_axis("mean_b_fluid_t").1, "mean |B| fluid [T]");
+        assert_eq!(metric_plot_axis("mean_B_fluid_T").1, "mean |B| fluid [T]");
         assert_eq!(metric_plot_axis("current_to_rating").1, "current to rating [–]");
         assert_eq!(metric_words("torque_max_Nm"), "torque max");
         assert_eq!(
             constraint_legend("outer_diameter_m", None, Some(0.08)),
             "outer diameter ≤ 80 mm"
         );
-        assert_eq!(constraint_legend("torque_max_nm", Some(3.0), None), "torque max ≥ 3 N·m");
+        assert_eq!(constraint_legend("torque_max_Nm", Some(3.0), None), "torque max ≥ 3 N·m");
         assert_eq!(
             constraint_legend("current_to_rating", None, Some(1.0)),
             "current to rating ≤ 1"

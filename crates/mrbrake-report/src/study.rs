@@ -74,13 +74,13 @@ pub struct SweepReport<'a> {
 
 /// Headline metrics of a sweep's table: metric, column title, display scale.
 const SWEEP_COLUMNS: [(&str, &str, f64); 7] = [
-    ("torque_max_nm", "T_max[N·m]", 1.0),
-    ("torque_off_nm", "T_off[N·m]", 1.0),
-    ("mean_b_fluid_t", "B_gap[T]", 1.0),
-    ("flux_path_q90_b_t", "B_steel90[T]", 1.0),
+    ("torque_max_Nm", "T_max[N·m]", 1.0),
+    ("torque_off_Nm", "T_off[N·m]", 1.0),
+    ("mean_B_fluid_T", "B_gap[T]", 1.0),
+    ("flux_path_q90_B_T", "B_steel90[T]", 1.0),
     ("volume_m3", "V[cm³]", 1e6),
     ("rotor_inertia_kg_m2", "J[kg·mm²]", 1e6),
-    ("power_w", "P[W]", 1.0),
+    ("power_W", "P[W]", 1.0),
 ];
 
 impl SweepReport<'_> {
@@ -525,6 +525,7 @@ mod tests {
             spec_toml: String::new(),
             eval_seconds: 0.5,
             solver_version: "test".into(),
+            settings: Default::default(),
         }
     }
 
@@ -543,7 +544,7 @@ mod tests {
     #[test]
     fn a_sweep_table_has_the_headline_metrics_or_the_reason() {
         let records = [
-            record('a', Status::Ok, None, &[("torque_max_nm", 5.38), ("volume_m3", 396.092e-6)]),
+            record('a', Status::Ok, None, &[("torque_max_Nm", 5.38), ("volume_m3", 396.092e-6)]),
             record('b', Status::Infeasible, Some("coil.window_width: too wide\n  "), &[]),
         ];
         let summary = run_summary(2, 0);
@@ -586,7 +587,7 @@ mod tests {
             ("volume_m3", 1e6, "volume_m3 [cm³]"),
             ("rotor_inertia_kg_m2", 1e6, "rotor_inertia_kg_m2 [kg·mm²]"),
             ("outer_diameter_m", 1e3, "outer_diameter_m [mm]"),
-            ("torque_max_nm", 1.0, "torque_max_nm [N·m]"),
+            ("torque_max_Nm", 1.0, "torque_max_Nm [N·m]"),
             ("no_such_metric", 1.0, "no_such_metric []"),
         ];
         for (name, scale, label) in cases {
@@ -622,7 +623,7 @@ mod tests {
 
     #[test]
     fn constraint_labels_show_their_bounds() {
-        let c = Constraint { metric: "torque_max_nm".into(), min: Some(3.0), max: None };
+        let c = Constraint { metric: "torque_max_Nm".into(), min: Some(3.0), max: None };
         assert_eq!(constraint_label(&c), "torque max ≥ 3 N·m");
         let c = Constraint { metric: "outer_diameter_m".into(), min: Some(0.01), max: Some(0.08) };
         assert_eq!(constraint_label(&c), "outer diameter ≥ 10 mm ≤ 80 mm");

@@ -32,6 +32,7 @@ fn realistic_record(index: u64) -> Record {
         spec_toml: "[geometry]\nouter_radius = \"40 mm\"\ngap = \"0.75 mm\"\n".repeat(40),
         eval_seconds: 0.3,
         solver_version: "mrbrake 0.1.0".into(),
+        settings: Default::default(),
     }
 }
 

@@ -2,7 +2,9 @@
 //! (atomically, with `mrbrake_report::write_atomic`).
 //!
 //! CSV columns: `key,status,reason`, then every variable name in first-seen order over all
-//! records, then every metric name in first-seen order, then `eval_seconds,solver_version`. A
+//! records, then every metric name in first-seen order, then every evaluation setting (mesh level,
+//! element order, speed, … as the caller recorded them; empty for records written before schema
+//! version 3), then `eval_seconds,solver_version`. A
 //! record without a given variable or metric leaves the cell empty. Numbers use Rust's `{}`
 //! formatting, the shortest decimal text that parses back to the same `f64` (NaN is `NaN`,
 //! infinities `inf` / `-inf`). A name used both as a variable and as a metric gives two columns
@@ -30,6 +32,27 @@ fn union_of_names<'a>(
     names
 }
 
+/// Setting names in first-seen order over all records.
+fn setting_names(records: &[Record]) -> Vec<&str> {
+    let mut seen = HashSet::new();
+    let mut names = Vec::new();
+    for name in records.iter().flat_map(|record| record.settings.keys()) {
+        if seen.insert(name.as_str()) {
+            names.push(name.as_str());
+        }
+    }
+    names
+}
+
+/// A setting as a CSV cell: text as it is, other values as JSON, empty when absent.
+fn setting_cell(record: &Record, name: &str) -> String {
+    match record.settings.get(name) {
+        None => String::new(),
+        Some(serde_json::Value::String(text)) => text.clone(),
+        Some(other) => other.to_string(),
+    }
+}
+
 fn cell(values: &[(String, f64)], name: &str) -> String {
     values
         .iter()
@@ -43,12 +66,14 @@ fn cell(values: &[(String, f64)], name: &str) -> String {
 pub fn to_csv(records: &[Record]) -> Result<Vec<u8>, StoreError> {
     let variable_names = union_of_names(records, |record| &record.variables);
     let metric_names = union_of_names(records, |record| &record.metrics);
+    let setting_names = setting_names(records);
     let mut writer =
         csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
 
     let mut header = vec!["key", "status", "reason"];
     header.extend(&variable_names);
     header.extend(&metric_names);
+    header.extend(&setting_names);
     header.extend(["eval_seconds", "solver_version"]);
     writer.write_record(&header)?;
 
@@ -60,6 +85,7 @@ pub fn to_csv(records: &[Record]) -> Result<Vec<u8>, StoreError> {
         ];
         row.extend(variable_names.iter().map(|name| cell(&record.variables, name)));
         row.extend(metric_names.iter().map(|name| cell(&record.metrics, name)));
+        row.extend(setting_names.iter().map(|name| setting_cell(record, name)));
         row.push(format!("{}", record.eval_seconds));
         row.push(record.solver_version.clone());
         writer.write_record(&row)?;
@@ -74,8 +100,8 @@ fn named_object(values: &[(String, f64)]) -> serde_json::Value {
 }
 
 /// The records as a JSON array of objects
-/// `{key, status, reason, variables: {name: value}, metrics: {name: value}, eval_seconds,
-/// solver_version}` (the design TOML is left out; it is in the store). Non-finite values are the
+/// `{key, status, reason, variables: {name: value}, metrics: {name: value}, settings: {name: value},
+/// eval_seconds, solver_version}` (the design TOML is left out; it is in the store). Non-finite values are the
 /// strings `"NaN"`, `"inf"`, `"-inf"`; `reason` is `null` when absent. Object keys come out
 /// sorted (serde_json's map), the array keeps the order of `records`.
 pub fn to_json(records: &[Record]) -> serde_json::Value {
@@ -89,6 +115,7 @@ pub fn to_json(records: &[Record]) -> serde_json::Value {
                     "reason": record.reason,
                     "variables": named_object(&record.variables),
                     "metrics": named_object(&record.metrics),
+                    "settings": record.settings,
                     "eval_seconds": value_to_json(record.eval_seconds),
                     "solver_version": record.solver_version,
                 })
@@ -115,6 +142,7 @@ mod tests {
             spec_toml: "[brake]\n".into(),
             eval_seconds: 0.25,
             solver_version: "0.1.0".into(),
+            settings: Default::default(),
         }
     }
 

@@ -28,6 +28,7 @@
 //!     spec_toml: "[geometry]\ngap = \"0.75 mm\"\n".into(),
 //!     eval_seconds: 0.31,
 //!     solver_version: "mrbrake 0.1.0".into(),
+//!     settings: Default::default(),
 //! };
 //! assert!(store.insert(&record)?); // on disk when this returns
 //! assert!(!store.insert(&record)?); // already stored: nothing changes
@@ -38,7 +39,7 @@
 //! # }
 //! ```
 //!
-//! # Schema (version 2)
+//! # Schema (version 3)
 //!
 //! Researchers may query a store directly with the `sqlite3` shell (read-only is safest while a
 //! run is writing: `sqlite3 -readonly study.mrbrake`).
@@ -55,7 +56,8 @@
 //!     eval_seconds   REAL,                  -- wall-clock time of the evaluation
 //!     solver_version TEXT,
 //!     created_unix_s REAL,                  -- when the record was first stored (kept by merges)
-//!     checksum       INTEGER                -- FNV-1a 64 of the row (version 2; NULL: unverified)
+//!     checksum       INTEGER,               -- FNV-1a 64 of the row (version 2; NULL: unverified)
+//!     settings       TEXT                   -- JSON object of the evaluation settings (version 3)
 //! );
 //! CREATE TABLE meta (name TEXT PRIMARY KEY, value TEXT);  -- study description, its hash, ...
 //! -- One row per variable / metric: (seq, key, status, position, name, value), where position
@@ -67,7 +69,7 @@
 //! Values are JSON numbers, except non-finite ones, stored as the strings `"NaN"`, `"inf"`,
 //! `"-inf"` (JSON has no such numbers). Pairs rather than a JSON object keep the caller's order.
 //! The file is marked with `PRAGMA application_id = 0x4D524252` ("MRBR") and
-//! `PRAGMA user_version = 2`. Sample queries:
+//! `PRAGMA user_version = 3`. Sample queries:
 //!
 //! ```sql
 //! -- The ten designs with the highest torque, with their gap:

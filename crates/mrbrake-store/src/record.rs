@@ -83,6 +83,11 @@ pub struct Record {
     pub eval_seconds: f64,
     /// Version of the solver that produced the record.
     pub solver_version: String,
+    /// The evaluation settings the caller records with the result (e.g. mesh level, element
+    /// order, speed), so rows of merged stores with different settings can be told apart; empty
+    /// for a record written before schema version 3. Kept in the `settings` column as a JSON
+    /// object and covered by the checksum when present.
+    pub settings: serde_json::Map<String, serde_json::Value>,
 }
 
 impl Record {
@@ -143,6 +148,7 @@ mod tests {
             spec_toml: String::new(),
             eval_seconds: 0.3,
             solver_version: "test".into(),
+            settings: Default::default(),
         }
     }
 

@@ -77,6 +77,8 @@ impl Raw {
 /// A row of `evaluations` as SQLite returned it, before it is verified and decoded.
 pub(crate) struct RawRow {
     columns: [Raw; RECORD_COLUMNS],
+    /// The `settings` column (`NULL` before schema version 3 or for a record without settings).
+    settings: Raw,
     checksum: Raw,
 }
 
@@ -88,13 +90,18 @@ pub(crate) struct StoredRecord {
     pub(crate) verified: bool,
 }
 
-/// Reads the columns of [`RECORD_COLUMNS_SQL`] plus the checksum; never fails on a value's type.
+/// Reads the columns of [`RECORD_COLUMNS_SQL`] plus the settings and the checksum; never fails on
+/// a value's type.
 pub(crate) fn read_row(row: &rusqlite::Row<'_>) -> rusqlite::Result<RawRow> {
     let mut columns: [Raw; RECORD_COLUMNS] = std::array::from_fn(|_| Raw::Null);
     for (index, column) in columns.iter_mut().enumerate() {
         *column = Raw::from_ref(row.get_ref(index)?);
     }
-    Ok(RawRow { columns, checksum: Raw::from_ref(row.get_ref(RECORD_COLUMNS)?) })
+    Ok(RawRow {
+        columns,
+        settings: Raw::from_ref(row.get_ref(RECORD_COLUMNS)?),
+        checksum: Raw::from_ref(row.get_ref(RECORD_COLUMNS + 1)?),
+    })
 }
 
 impl RawRow {
@@ -109,6 +116,7 @@ impl RawRow {
 
     fn decode_verified(self) -> Result<StoredRecord, String> {
         let verified = self.verify()?;
+        let settings = settings_of(self.settings)?;
         let [key, status, reason, variables, metrics, spec_toml, eval_seconds, solver, created] =
             self.columns;
         let status: Status = text(status, "status")?.parse().map_err(|e| format!("{e}"))?;
@@ -127,6 +135,7 @@ impl RawRow {
                 // SQLite stores a NaN REAL as NULL; read it back as the NaN it was.
                 eval_seconds: number(eval_seconds, "eval_seconds")?.unwrap_or(f64::NAN),
                 solver_version: optional_text(solver, "solver_version")?.unwrap_or_default(),
+                settings,
             },
             created_unix_s: number(created, "created_unix_s")?,
             verified,
@@ -146,7 +155,12 @@ impl RawRow {
                 ));
             }
         };
-        let columns: Vec<Column<'_>> = self.columns.iter().map(Raw::column).collect();
+        let mut columns: Vec<Column<'_>> = self.columns.iter().map(Raw::column).collect();
+        // Settings are hashed after the other columns when present (schema version 3), so a
+        // record without them keeps the checksum it had in version 2.
+        if !matches!(self.settings, Raw::Null) {
+            columns.push(self.settings.column());
+        }
         let computed = record_checksum(&columns);
         if computed == stored {
             Ok(true)
@@ -156,6 +170,17 @@ impl RawRow {
                  was damaged or edited after it was written; it is refused rather than read wrong"
             ))
         }
+    }
+}
+
+/// The `settings` column: `NULL` for none, else a JSON object.
+fn settings_of(raw: Raw) -> Result<serde_json::Map<String, serde_json::Value>, String> {
+    match optional_text(raw, "settings")? {
+        None => Ok(serde_json::Map::new()),
+        Some(text) => match serde_json::from_str(&text) {
+            Ok(serde_json::Value::Object(map)) => Ok(map),
+            _ => Err("settings: not a JSON object".into()),
+        },
     }
 }
 
@@ -213,12 +238,16 @@ pub(crate) fn insert_new(
         Column::Text(record.solver_version.as_bytes()),
         created_unix_s.map_or(Column::Null, Column::Number),
     ];
+    let settings = (!record.settings.is_empty())
+        .then(|| serde_json::Value::Object(record.settings.clone()).to_string());
+    let mut columns = columns.to_vec();
+    columns.extend(settings.as_ref().map(|text| Column::Text(text.as_bytes())));
     let checksum = checksummed.then(|| record_checksum(&columns));
     let changed = transaction
         .prepare_cached(
             "INSERT INTO evaluations (key, status, reason, variables, metrics, spec_toml, \
-             eval_seconds, solver_version, created_unix_s, checksum) \
-             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10) ON CONFLICT (key) DO NOTHING",
+             eval_seconds, solver_version, created_unix_s, checksum, settings) \
+             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11) ON CONFLICT (key) DO NOTHING",
         )?
         .execute(params![
             record.key,
@@ -231,6 +260,7 @@ pub(crate) fn insert_new(
             record.solver_version,
             created_unix_s,
             checksum,
+            settings,
         ])?;
     Ok(changed == 1)
 }

@@ -24,7 +24,9 @@ pub const APPLICATION_ID: i32 = 0x4d52_4252;
 /// Schema version written to `PRAGMA user_version` and the newest this build understands.
 /// Version 2 added the per-record `checksum` column (see [`crate::checksum`]); a version-1 store is
 /// read with its records unverified and migrated (the column added) when opened for writing.
-pub const SCHEMA_VERSION: i64 = 2;
+/// Version 3 added the per-record `settings` column (the evaluation settings, JSON); older records
+/// read with no settings.
+pub const SCHEMA_VERSION: i64 = 3;
 
 /// How long a writer waits for another process's write transaction before giving up.
 pub const BUSY_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(10);
@@ -74,7 +76,8 @@ CREATE TABLE evaluations (
     eval_seconds   REAL,
     solver_version TEXT,
     created_unix_s REAL,
-    checksum       INTEGER
+    checksum       INTEGER,
+    settings       TEXT
 );
 CREATE TABLE meta (
     name  TEXT PRIMARY KEY,
@@ -303,13 +306,19 @@ pub(crate) fn check_store(connection: &Connection, path: &Path) -> Result<(), St
     Ok(())
 }
 
+/// True when `evaluations` has the `settings` column (schema version 3 and later).
+pub(crate) fn has_settings_column(connection: &Connection) -> rusqlite::Result<bool> {
+    Ok(table_columns(connection, "evaluations")?.iter().any(|name| name == "settings"))
+}
+
 /// True when `evaluations` has the `checksum` column (schema version 2 and later).
 pub(crate) fn has_checksum_column(connection: &Connection) -> rusqlite::Result<bool> {
     Ok(table_columns(connection, "evaluations")?.iter().any(|name| name == "checksum"))
 }
 
 /// Brings a store opened for writing to [`SCHEMA_VERSION`]: version 1 gains the `checksum` column
-/// (its existing records keep `NULL`, "unverified"). One write transaction, so concurrent writers
+/// (its existing records keep `NULL`, "unverified"), versions 1 and 2 the `settings` column
+/// (existing records keep `NULL`, no settings). One write transaction, so concurrent writers
 /// migrate once; adding a column does not rewrite the table.
 pub(crate) fn migrate(connection: &Connection) -> rusqlite::Result<()> {
     let read_version = |connection: &Connection| -> rusqlite::Result<i64> {
@@ -322,6 +331,9 @@ pub(crate) fn migrate(connection: &Connection) -> rusqlite::Result<()> {
     let migrated = (|| {
         if read_version(connection)? < 2 && !has_checksum_column(connection)? {
             connection.execute_batch("ALTER TABLE evaluations ADD COLUMN checksum INTEGER")?;
+        }
+        if !has_settings_column(connection)? {
+            connection.execute_batch("ALTER TABLE evaluations ADD COLUMN settings TEXT")?;
         }
         connection.pragma_update(None, "user_version", SCHEMA_VERSION)?;
         connection.execute_batch("COMMIT")

@@ -28,6 +28,8 @@ pub struct Store {
     read_only: bool,
     /// False for a store of schema version 1 opened read-only (no `checksum` column yet).
     has_checksums: bool,
+    /// Whether `evaluations` has the `settings` column (schema version 3).
+    has_settings: bool,
 }
 
 impl Store {
@@ -242,7 +244,8 @@ impl Store {
     /// `SELECT` of every record column and the checksum (`NULL` where the store has none).
     pub(crate) fn select_records_sql(&self) -> String {
         let checksum = if self.has_checksums { "checksum" } else { "NULL" };
-        format!("SELECT {RECORD_COLUMNS_SQL}, {checksum} FROM evaluations")
+        let settings = if self.has_settings { "settings" } else { "NULL" };
+        format!("SELECT {RECORD_COLUMNS_SQL}, {settings}, {checksum} FROM evaluations")
     }
 
     /// Number of records without a checksum (written before schema version 2, or merged from such
@@ -293,7 +296,15 @@ impl Store {
             let connection = open_for_reading(path)?;
             let has_checksums = schema::has_checksum_column(&connection)
                 .map_err(|error| schema::sqlite_error(path, error))?;
-            return Ok(Store { path: path.to_owned(), connection, read_only, has_checksums });
+            let has_settings = schema::has_settings_column(&connection)
+                .map_err(|error| schema::sqlite_error(path, error))?;
+            return Ok(Store {
+                path: path.to_owned(),
+                connection,
+                read_only,
+                has_checksums,
+                has_settings,
+            });
         }
 
         // No CREATE flag: if the file vanished since the checks, fail instead of making a new one.
@@ -304,7 +315,13 @@ impl Store {
         .map_err(|error| schema::sqlite_error(path, error))?;
         configure_for_writing(&connection).map_err(|error| schema::sqlite_error(path, error))?;
         schema::migrate(&connection).map_err(|error| schema::sqlite_error(path, error))?;
-        Ok(Store { path: path.to_owned(), connection, read_only, has_checksums: true })
+        Ok(Store {
+            path: path.to_owned(),
+            connection,
+            read_only,
+            has_checksums: true,
+            has_settings: true,
+        })
     }
 }
 
@@ -555,6 +572,7 @@ mod tests {
             spec_toml: format!("[geometry]\n# design {index}\ngap = \"{} mm\"\n", index + 1),
             eval_seconds: 0.1 + f64::from(index) * 1e-3,
             solver_version: "mrbrake 0.1.0 (test)".into(),
+            settings: Default::default(),
         }
     }
 
@@ -571,6 +589,7 @@ mod tests {
         assert_eq!(a.spec_toml, b.spec_toml);
         assert_eq!(a.eval_seconds.to_bits(), b.eval_seconds.to_bits());
         assert_eq!(a.solver_version, b.solver_version);
+        assert_eq!(a.settings, b.settings);
     }
 
     fn new_store() -> (tempfile::TempDir, Store) {
@@ -598,6 +617,23 @@ mod tests {
             assert_same(read, written);
         }
         assert_eq!(store.get(&"e".repeat(64)).expect("get"), None);
+    }
+
+    #[test]
+    fn settings_round_trip_and_a_record_without_them_reads_empty() {
+        let (directory, mut store) = new_store();
+        let mut with = record(3, Status::Ok);
+        with.settings.insert("mesh_level".into(), serde_json::json!("coarse"));
+        with.settings.insert("element_order".into(), serde_json::json!(2));
+        let without = record(4, Status::Ok);
+        assert!(store.insert(&with).expect("insert") && store.insert(&without).expect("insert"));
+        drop(store);
+        let store = Store::open_read_only(&directory.path().join("study.mrbrake")).expect("open");
+        let read = store.records().expect("records, checksums verified");
+        assert_same(&read[0], &with);
+        assert_same(&read[1], &without);
+        assert!(read[1].settings.is_empty());
+        assert_eq!(store.unverified_len().expect("count"), 0);
     }
 
     #[test]
@@ -822,6 +858,7 @@ mod tests {
                 spec_toml,
                 eval_seconds,
                 solver_version,
+                settings: Default::default(),
             };
             let (_directory, mut store) = new_store();
             proptest::prop_assert!(store.insert(&original).expect("insert"));

@@ -22,6 +22,7 @@ fn record(index: u32) -> Record {
         spec_toml: format!("[geometry]\n# design {index}\ngap = \"{} mm\"\n", index + 1),
         eval_seconds: 0.1 + f64::from(index) * 1e-3,
         solver_version: "mrbrake 0.1.0 (test)".into(),
+        settings: Default::default(),
     }
 }
 

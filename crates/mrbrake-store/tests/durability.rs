@@ -53,6 +53,7 @@ fn expected_record(index: u32) -> Record {
         ),
         eval_seconds: 0.3 + x * 1e-6,
         solver_version: "mrbrake-test".into(),
+        settings: Default::default(),
     }
 }
 

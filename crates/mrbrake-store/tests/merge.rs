@@ -20,6 +20,7 @@ fn record(index: u32, torque_nm: f64) -> Record {
         spec_toml: format!("# design {index}\n"),
         eval_seconds: 0.3,
         solver_version: "test".into(),
+        settings: Default::default(),
     }
 }
 

@@ -17,6 +17,7 @@ fn record(index: u32) -> Record {
         spec_toml: "[geometry]\nouter_radius = \"40 mm\"\n".repeat(20),
         eval_seconds: 0.3,
         solver_version: "test".into(),
+        settings: Default::default(),
     }
 }
 

@@ -59,6 +59,9 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     }
     let path = a.problem.as_ref().ok_or_else(|| InputError("give a PROBLEM.toml".into()))?;
     let mut problem = OptimizationProblem::from_path(path)?;
+    for note in &problem.notes {
+        eprintln!("note: {note}");
+    }
     let budget = BudgetOverride { generations: a.generations, max_evaluations: a.max_evaluations };
     problem.algorithm = problem.algorithm.with_budget(budget)?;
     let store_path = a.store.clone().unwrap_or_else(|| optimize::default_store_path(path));

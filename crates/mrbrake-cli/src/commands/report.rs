@@ -144,7 +144,8 @@ mod study {
     /// records, else the default pair.
     pub fn page(store: &Path, problem: Option<&Path>) -> CommandResult<String> {
         let opened = Store::open_read_only(store)?;
-        let records = opened.records()?;
+        let mut records = opened.records()?;
+        records.iter_mut().for_each(mrbrake_explore::evaluate::upgrade_metric_names);
         let recorded = opened.meta("problem")?;
         let problem = match (problem, recorded) {
             (Some(path), _) => {
@@ -159,6 +160,9 @@ mod study {
             }
             (None, None) => None,
         };
+        for note in problem.iter().flat_map(|(p, _)| &p.notes) {
+            eprintln!("note: {note}");
+        }
         let report = match problem {
             Some((p, source)) => StudyReport {
                 store,

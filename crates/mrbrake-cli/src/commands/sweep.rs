@@ -212,7 +212,9 @@ pub fn run_export(a: ExportArgs) -> CommandResult {
     // Read-only: an export never changes the store (nor migrates an old one).
     let store = Store::open_read_only(&a.store)?;
     warn_unverified(&store)?;
-    let records = store.records()?;
+    let mut records = store.records()?;
+    // A store written before the unit convention exports under the current metric names.
+    records.iter_mut().for_each(mrbrake_explore::evaluate::upgrade_metric_names);
     if let Some(path) = &a.csv {
         mrbrake_report::write_atomic(path, &mrbrake_store::to_csv(&records)?)?;
     }

@@ -119,7 +119,7 @@ pub(crate) fn check_assembled(spec: &BrakeSpec, g: &BrakeGeometry, p: &mut Probl
                 field,
                 format!(
                     "gap {} (unit {}) is not a fluid layer between a rotating and a static wall",
-                    gap.index_in_unit,
+                    gap.index_in_unit + 1,
                     gap.unit + 1
                 ),
             ),

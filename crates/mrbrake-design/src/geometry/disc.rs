@@ -136,8 +136,14 @@ fn stack(spec: &BrakeSpec, disc: &Disc, s: &Stations, b: &mut Builder) {
     let mut z = s.z_stack0;
     for k in 0..gaps {
         let rect = Rect::new(s.r1, s.r2, z, z + g);
-        let tag =
-            b.add(format!("unit1.gap{k}"), &m.fluid, PartKind::Fluid, vec![rect], Some(0), None);
+        let tag = b.add(
+            format!("unit1.gap{}", k + 1),
+            &m.fluid,
+            PartKind::Fluid,
+            vec![rect],
+            Some(0),
+            None,
+        );
         let walls = b.wall_tags();
         let zm = z + 0.5 * g;
         b.gaps.push(GapInfo {

@@ -143,7 +143,7 @@ fn gaps(spec: &BrakeSpec, drum: &Drum, s: &Stations, b: &mut Builder, direction:
     for k in 0..drum.surfaces() {
         let rk = drum.surface_radius_m(k);
         let rect = Rect::new(rk, rk + g, s.z_rotor, s.z_stack);
-        let name = format!("unit1.gap{k}");
+        let name = format!("unit1.gap{}", k + 1);
         let tag = b.add(name, &spec.materials.fluid, PartKind::Fluid, vec![rect], Some(0), None);
         let walls = b.wall_tags();
         let mid = rk + 0.5 * g;

@@ -182,11 +182,12 @@ pub enum RotatingWall {
 /// A fluid gap with the data the torque integration needs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GapInfo {
-    /// Global index (0-based over all units).
+    /// Global index (0-based over all units). Every report (text, JSON, plots, region names,
+    /// the Gmsh export) shows it 1-based, as gap 1, 2, … (docs/CONVENTIONS.md).
     pub index: usize,
-    /// Index within its unit: k of (4.4) for drums.
+    /// Index within its unit, 0-based: k of (4.4) for drums (shown 1-based, like `index`).
     pub index_in_unit: usize,
-    /// The unit it belongs to.
+    /// The unit it belongs to, 0-based (shown as unit 1 or 2).
     pub unit: usize,
     /// Physical tag of the gap's triangles.
     pub tag: u32,

@@ -329,7 +329,7 @@ pub struct SteadyTemperatures {
     #[serde(rename = "housing_mean_T_C")]
     pub housing_mean_t_c: f64,
     /// The housing's heat-transfer coefficient of this state \[W/(m² K)\].
-    #[serde(rename = "h_W_per_m2K")]
+    #[serde(rename = "h_W_per_m2_K")]
     pub h_w_per_m2k: f64,
 }
 
@@ -397,13 +397,13 @@ pub struct CoolingSummary {
     /// `fixed` or `natural` (still air, axis horizontal).
     pub kind: &'static str,
     /// Heat-transfer coefficient \[W/(m² K)\].
-    #[serde(rename = "h_W_per_m2K")]
+    #[serde(rename = "h_W_per_m2_K")]
     pub h_w_per_m2k: f64,
     /// Natural convection: the lateral surface's coefficient \[W/(m² K)\].
-    #[serde(rename = "h_side_W_per_m2K")]
+    #[serde(rename = "h_side_W_per_m2_K")]
     pub h_side_w_per_m2k: Option<f64>,
     /// Natural convection: the end faces' coefficient \[W/(m² K)\].
-    #[serde(rename = "h_ends_W_per_m2K")]
+    #[serde(rename = "h_ends_W_per_m2_K")]
     pub h_ends_w_per_m2k: Option<f64>,
     /// Natural convection: Rayleigh number on the outer diameter.
     pub rayleigh_d: Option<f64>,

@@ -16,8 +16,10 @@ pub struct ProbeReport {
     /// Name from the file.
     pub name: String,
     /// r in metres.
+    #[serde(rename = "r_m")]
     pub r: f64,
     /// z in metres.
+    #[serde(rename = "z_m")]
     pub z: f64,
     /// Temperature \[°C\].
     #[serde(rename = "T_C")]

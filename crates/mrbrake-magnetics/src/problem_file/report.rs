@@ -13,8 +13,10 @@ pub struct ProbeReport {
     /// Probe name.
     pub name: String,
     /// Radius (m).
+    #[serde(rename = "r_m")]
     pub r: f64,
     /// Axial position (m).
+    #[serde(rename = "z_m")]
     pub z: f64,
     /// Radial flux density (T).
     #[serde(rename = "B_r_T")]

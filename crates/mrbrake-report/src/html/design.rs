@@ -303,8 +303,8 @@ impl DesignReport<'_> {
         for (k, g) in a.gaps.iter().enumerate() {
             let at = |field: &str| format!("/gaps/{k}/{field}");
             t.row(vec![
-                Cell::json(g.index as f64, 0, at("index"), 1.0),
-                Cell::text((g.unit + 1).to_string()),
+                Cell::json((g.index + 1) as f64, 0, at("index"), 1.0),
+                Cell::json((g.unit + 1) as f64, 0, at("unit"), 1.0),
                 Cell::text(g.orientation),
                 Cell::json(g.r_m, 2, at("r_m"), 1e3),
                 Cell::json(g.height_m, 2, at("height_m"), 1e3),
@@ -413,9 +413,9 @@ fn mechanics_table(a: &Analysis) -> Table {
         1.0,
         "N·m/kg",
     ));
-    rows.push(("flux path: max |B|", f.max_b_t, 3, "/flux_path/max_b_t", 1.0, "T"));
-    rows.push(("flux path: 90 % quantile of |B|", f.q90_b_t, 3, "/flux_path/q90_b_t", 1.0, "T"));
-    rows.push(("flux path: mean |B|", f.mean_b_t, 3, "/flux_path/mean_b_t", 1.0, "T"));
+    rows.push(("flux path: max |B|", f.max_b_t, 3, "/flux_path/max_B_T", 1.0, "T"));
+    rows.push(("flux path: 90 % quantile of |B|", f.q90_b_t, 3, "/flux_path/q90_B_T", 1.0, "T"));
+    rows.push(("flux path: mean |B|", f.mean_b_t, 3, "/flux_path/mean_B_T", 1.0, "T"));
     for (what, v, d, p, scale, unit) in rows {
         mech.row(vec![Cell::text(what), Cell::json(v, d, p, scale), Cell::text(unit)]);
     }

@@ -31,7 +31,7 @@ use crate::study::metric_axis;
 
 /// The objectives of a store without a problem (a sweep): most torque, least volume.
 pub const DEFAULT_OBJECTIVES: [(&str, Goal); 2] =
-    [("torque_max_nm", Goal::Maximize), ("volume_m3", Goal::Minimize)];
+    [("torque_max_Nm", Goal::Maximize), ("volume_m3", Goal::Minimize)];
 
 /// A results store to report.
 #[derive(Debug)]

@@ -36,6 +36,7 @@ pub struct WallMetrics {
     /// Largest penetration into the wall, rad.
     pub max_penetration_rad: f64,
     /// Felt stiffness while pressing in, Nm/rad (`None` without enough contact samples).
+    #[serde(rename = "displayed_stiffness_Nm_per_rad")]
     pub displayed_stiffness_nm_per_rad: Option<f64>,
     /// Torque resisting the withdrawal (peak and mean), Nm.
     #[serde(rename = "withdraw_resisting_torque_Nm")]
