@@ -390,6 +390,20 @@ fn bad_dynamic_input_is_refused() {
     assert!(dynamics.transient(&options).is_err(), "a probe outside the mesh is an error");
 }
 
+/// The largest difference of two harmonic potentials relative to the largest value of `d`.
+fn relative_difference(
+    r: &mrbrake_magnetics::dynamics::harmonic::HarmonicPotential,
+    d: &mrbrake_magnetics::dynamics::harmonic::HarmonicPotential,
+) -> f64 {
+    let scale = d.re.iter().chain(&d.im).fold(0.0_f64, |m, v| m.max(v.abs()));
+    let diff =
+        r.re.iter()
+            .zip(&d.re)
+            .chain(r.im.iter().zip(&d.im))
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    diff / scale
+}
+
 #[test]
 fn reduced_sweep_matches_the_direct_sweep() {
     use mrbrake_magnetics::dynamics::harmonic::HarmonicMethod;
@@ -407,16 +421,8 @@ fn reduced_sweep_matches_the_direct_sweep() {
     let (direct, _) =
         dynamics.harmonic_potentials_by(&frequencies, None, HarmonicMethod::Direct).unwrap();
     let report = report.expect("a reduced sweep reports");
-    let mut worst = 0.0_f64;
-    for (r, d) in reduced.iter().zip(&direct) {
-        let scale = d.re.iter().chain(&d.im).fold(0.0_f64, |m, v| m.max(v.abs()));
-        let diff =
-            r.re.iter()
-                .zip(&d.re)
-                .chain(r.im.iter().zip(&d.im))
-                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-        worst = worst.max(diff / scale);
-    }
+    let worst =
+        reduced.iter().zip(&direct).fold(0.0_f64, |m, (r, d)| m.max(relative_difference(r, d)));
     println!(
         "reduced sweep: {} shifts, basis {}, residual {:.2e}, energy bound {:.2e}; \
          largest difference from the direct sweep {worst:.2e} of the largest potential",
@@ -453,13 +459,7 @@ fn reduced_sweep_of_the_pot_core_matches_the_direct_sweep() {
     let report = report.expect("a reduced sweep reports");
     let (mut worst_potential, mut worst_flux) = (0.0_f64, 0.0_f64);
     for (r, d) in reduced.iter().zip(&direct) {
-        let scale = d.re.iter().chain(&d.im).fold(0.0_f64, |m, v| m.max(v.abs()));
-        let diff =
-            r.re.iter()
-                .zip(&d.re)
-                .chain(r.im.iter().zip(&d.im))
-                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-        worst_potential = worst_potential.max(diff / scale);
+        worst_potential = worst_potential.max(relative_difference(r, d));
         let flux_r = dynamics.harmonic_point(r, &[]).unwrap().coils[0].flux_linkage_wb;
         let flux_d = dynamics.harmonic_point(d, &[]).unwrap().coils[0].flux_linkage_wb;
         let flux_error =
