@@ -18,7 +18,7 @@ use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use mrbrake_magnetics::exact::{conducting_cylinder_potential, cylinder_step_flux};
 use mrbrake_magnetics::material::MarroccoCurve;
 use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
-use mrbrake_magnetics::{Solver, SolverOptions};
+use mrbrake_magnetics::{ElementOrder, Solver, SolverOptions};
 use mrbrake_materials::{MU_0, Magnetic};
 use num_complex::Complex64;
 
@@ -38,9 +38,15 @@ fn h0() -> f64 {
 
 /// Lines of the radial bands; the conductor's cells shrink towards its surface (`surface_cell`).
 fn radial_lines(cells: usize) -> Vec<f64> {
+    radial_lines_refined(cells, 1)
+}
+
+/// [`radial_lines`] with the bands outside the conductor refined `outer` times (every cell
+/// halves when `cells` and `outer` double: the mesh family of the spatial convergence study).
+fn radial_lines_refined(cells: usize, outer: usize) -> Vec<f64> {
     let mut r = graded_lines(0.0, A, cells, 0.04);
     for (start, end, n) in [(A, B, 6), (B, C, 4), (C, D, 4)] {
-        r.extend_from_slice(&graded_lines(start, end, n, 1.0)[1..]);
+        r.extend_from_slice(&graded_lines(start, end, n * outer, 1.0)[1..]);
     }
     r
 }
@@ -63,9 +69,21 @@ fn cylinder(
     drive: Drive,
     waveform: Waveform,
 ) -> Dynamics {
+    cylinder_on(&radial_lines(cells), SolverOptions::default(), core, sigma, drive, waveform)
+}
+
+/// [`cylinder`] on the radial grid lines `r` with the solver `options` (element order).
+fn cylinder_on(
+    r: &[f64],
+    options: SolverOptions,
+    core: Magnetic,
+    sigma: f64,
+    drive: Drive,
+    waveform: Waveform,
+) -> Dynamics {
     let z = graded_lines(0.0, H, 2, 1.0);
     let sides = SideTags { r_min: 10, r_max: 11, z_min: 12, z_max: 13 };
-    let mesh = rectangle_mesh(&radial_lines(cells), &z, |r, _| band(r), sides).unwrap();
+    let mesh = rectangle_mesh(r, &z, |r, _| band(r), sides).unwrap();
     let region = |tag, material| Region { tag, material, source: None };
     let problem = Problem {
         mesh: Arc::new(mesh),
@@ -81,7 +99,7 @@ fn cylinder(
         ],
         boundaries: vec![],
     };
-    let solver = Solver::new(problem, SolverOptions::default()).unwrap();
+    let solver = Solver::new(problem, options).unwrap();
     let conductors = [Conductor { tag: 1, conductivity_s_per_m: sigma }];
     let coil = Coil { tag: 3, turns: TURNS, drive, waveform };
     Dynamics::new(solver, &conductors, vec![coil]).unwrap()
@@ -154,6 +172,60 @@ fn harmonic_skin_effect_matches_the_bessel_solution() {
         );
         assert!(flux_error < 2e-3, "a/δ = {ratio}: flux error {flux_error:.3e}");
         assert!(loss_error < 5e-3, "a/δ = {ratio}: loss error {loss_error:.3e}");
+    }
+}
+
+/// The flux and loss errors of the harmonic solve at `a/δ = ratio` on the mesh with `cells`
+/// conductor cells (and the outer bands refined alike).
+fn skin_errors(cells: usize, order: ElementOrder, ratio: f64) -> (f64, f64) {
+    let options = SolverOptions { order, ..SolverOptions::default() };
+    let r = radial_lines_refined(cells, cells / 10);
+    let waveform = Waveform::Step { initial: 0.0 };
+    let mut dynamics = cylinder_on(&r, options, Magnetic::air(), SIGMA, current_drive(), waveform);
+    let omega = 2.0 * ratio * ratio / (MU_0 * SIGMA * A * A);
+    let frequency = omega / (2.0 * std::f64::consts::PI);
+    // The direct solve: the reduced-basis sweep's tolerance would floor the P2 errors.
+    let method = mrbrake_magnetics::dynamics::harmonic::HarmonicMethod::Direct;
+    let (potentials, _) = dynamics.harmonic_potentials_by(&[frequency], None, method).unwrap();
+    let potential = &potentials[0];
+    let solver = dynamics.solver();
+    let surface = [A, 0.5 * H];
+    let re = solver.a_phi_at(&dynamics.solution(potential.re.clone()), surface).unwrap();
+    let im = solver.a_phi_at(&dynamics.solution(potential.im.clone()), surface).unwrap();
+    let exact = conducting_cylinder_potential(A, A, MU_0, SIGMA, omega, h0());
+    let flux_error = (Complex64::new(re, im) - exact).norm() / exact.norm();
+    let loss = dynamics.harmonic_point(potential, &[]).unwrap().eddy_loss_w;
+    let loss_exact = exact_loss(MU_0, omega);
+    (flux_error, (loss - loss_exact).abs() / loss_exact)
+}
+
+#[test]
+fn skin_effect_converges_in_space() {
+    // a/δ = 5: the field decays over a fifth of the radius, resolved by the graded cells. Every
+    // cell halves from one mesh to the next. P1 shows order 2 in the flux at the surface (the
+    // potential's L2 order) and about 3.8 in the loss. P2 is 100x more accurate on the same mesh
+    // but its flux error falls at order 2 only on the finer meshes (4, 2.9, 2.0 at a/δ = 0.05;
+    // the loss at 3.4–4): the asserted bound is order 1.8; why P2 loses its third order here is
+    // open (the static P2 studies in tests/validation.rs show > 2.8).
+    let meshes = [10, 20, 40, 80];
+    let p1: Vec<(f64, f64)> =
+        meshes.iter().map(|&n| skin_errors(n, ElementOrder::P1, 5.0)).collect();
+    let p2: Vec<(f64, f64)> =
+        meshes.iter().map(|&n| skin_errors(n, ElementOrder::P2, 5.0)).collect();
+    for (order, runs) in [(ElementOrder::P1, &p1), (ElementOrder::P2, &p2)] {
+        let rate = |e: fn(&(f64, f64)) -> f64| -> Vec<f64> {
+            runs.windows(2).map(|w| (e(&w[0]) / e(&w[1])).log2()).collect()
+        };
+        let (flux_orders, loss_orders) = (rate(|r| r.0), rate(|r| r.1));
+        println!(
+            "skin effect a/δ = 5, {order:?}, 10/20/40/80 conductor cells: errors (flux, loss) \
+             {runs:?}, orders flux {flux_orders:?}, loss {loss_orders:?}"
+        );
+        assert!(flux_orders.iter().all(|&o| o > 1.8), "{order:?} flux orders {flux_orders:?}");
+        assert!(loss_orders.iter().all(|&o| o > 0.7), "{order:?} loss orders {loss_orders:?}");
+    }
+    for (a, b) in p1.iter().zip(&p2) {
+        assert!(b.0 < 0.05 * a.0 && b.1 < 0.05 * a.1, "P2 {b:?} not far below P1 {a:?}");
     }
 }
 
