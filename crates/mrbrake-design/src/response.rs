@@ -89,6 +89,9 @@ pub struct ResponseOptions {
     pub omegas_rad_s: Vec<f64>,
     /// Copper temperature for the coil resistance of a voltage drive (°C).
     pub temperature_c: f64,
+    /// Keep the eddy-current density of direction 1's step at the first time level at or after
+    /// this instant (s), for a map ([`Response::eddy`]); `None`: keep none.
+    pub eddy_at_s: Option<f64>,
 }
 
 impl Default for ResponseOptions {
@@ -106,6 +109,7 @@ impl Default for ResponseOptions {
             flux_path_conductivity_s_per_m: None,
             omegas_rad_s: decades(0.1, 1000.0, 10),
             temperature_c: 20.0,
+            eddy_at_s: None,
         }
     }
 }
@@ -183,6 +187,30 @@ pub struct Response {
     pub nodes: usize,
     /// Timings (s).
     pub timings_s: ResponseTimings,
+    /// The eddy-current density at the instant asked for ([`ResponseOptions::eddy_at_s`]); not in
+    /// the JSON (a field over the mesh: the map shows it).
+    #[serde(skip)]
+    pub eddy: Option<EddyField>,
+}
+
+/// The induced azimuthal current density `J_φ = −σ ∂A/∂t` over the brake's section at one
+/// instant of a step response.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EddyField {
+    /// The time level shown (s): the first at or after the instant asked for.
+    pub time_s: f64,
+    /// The direction whose step it is (1-based).
+    pub direction: usize,
+    /// The mesh: node coordinates `[r, z]` (m).
+    pub nodes: Vec<[f64; 2]>,
+    /// Triangles (node indices).
+    pub triangles: Vec<[usize; 3]>,
+    /// Region tag per triangle.
+    pub region_tags: Vec<u32>,
+    /// True for the triangles of conducting parts (the only ones that carry `J`).
+    pub conducting: Vec<bool>,
+    /// `J_φ` (A/m²) at the three vertices of every triangle, in the triangle's node order.
+    pub j_a_per_m2: Vec<[f64; 3]>,
 }
 
 /// Wall times (s).
@@ -212,8 +240,12 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
     }
     let t0 = Instant::now();
     let mut step = Vec::with_capacity(model.geometry.units);
+    let mut eddy = None;
     for unit in 0..model.geometry.units {
-        step.push(model.step_response(unit, options.step_from_a, to)?);
+        let keep_at = if unit == 0 { options.eddy_at_s } else { None };
+        let (response, field) = model.step_response(unit, options.step_from_a, to, keep_at)?;
+        step.push(response);
+        eddy = eddy.or(field);
     }
     let step_s = t0.elapsed().as_secs_f64();
     let t0 = Instant::now();
@@ -237,6 +269,7 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
             frequency: frequency_s,
             total: start.elapsed().as_secs_f64(),
         },
+        eddy,
     })
 }
 
@@ -258,6 +291,14 @@ fn check_options(options: &ResponseOptions) -> Result<(), DesignError> {
     }
     if let Some(s) = options.flux_path_conductivity_s_per_m {
         positive("flux-path conductivity", s)?;
+    }
+    if let Some(t) = options.eddy_at_s
+        && !(t >= 0.0 && t <= options.duration_s)
+    {
+        return Err(DesignError::Input(format!(
+            "response: the eddy-current instant {t} s must lie in [0, duration = {} s]",
+            options.duration_s
+        )));
     }
     if options.omegas_rad_s.iter().any(|w| !(*w > 0.0 && w.is_finite())) {
         return Err(DesignError::Input("response: frequencies must be finite and > 0".into()));
@@ -357,8 +398,15 @@ fn conductors(
 }
 
 impl Model<'_> {
-    /// The torque step response of `unit` from `from` to `to` amperes.
-    fn step_response(&self, unit: usize, from: f64, to: f64) -> Result<StepResponse, DesignError> {
+    /// The torque step response of `unit` from `from` to `to` amperes, and the eddy-current
+    /// density at the first level at or after `keep_at` (s) when asked for.
+    fn step_response(
+        &self,
+        unit: usize,
+        from: f64,
+        to: f64,
+        keep_at: Option<f64>,
+    ) -> Result<(StepResponse, Option<EddyField>), DesignError> {
         let waveform = Waveform::Step { initial: from / to };
         let drive = |sign: f64, resistance: f64| match self.options.drive {
             ResponseDrive::Current => Drive::Current { amplitude_a: sign * to },
@@ -373,11 +421,16 @@ impl Model<'_> {
         let transient = TransientOptions::new(duration, Scheme::Bdf2, step);
         let mut yield_torque = Vec::new();
         let mut failure = None;
+        let mut eddy = None;
         let result = dynamics
             .transient_observed(&transient, |view| {
                 match self.torque(view.dynamics, unit, view.a.to_vec()) {
                     Ok(t) => yield_torque.push(t),
                     Err(e) => failure = Some(e),
+                }
+                if eddy.is_none() && keep_at.is_some_and(|t| view.t >= t * (1.0 - 1e-12)) {
+                    let j = view.dynamics.eddy_current_density(view.rate)?;
+                    eddy = Some(self.eddy_field(unit, view.t, &j));
                 }
                 Ok(())
             })
@@ -390,7 +443,7 @@ impl Model<'_> {
         let sign =
             self.geometry.coils.iter().find(|c| c.unit == unit).map_or(1.0, |c| c.current_sign);
         let current = result.coils[0].current_a.iter().map(|i| i * sign).collect();
-        Ok(StepResponse {
+        let response = StepResponse {
             direction: unit + 1,
             t63_s: rise_time(&time, &torque, 0.63),
             t90_s: rise_time(&time, &torque, 0.90),
@@ -398,7 +451,32 @@ impl Model<'_> {
             time_s: time,
             current_a: current,
             torque_nm: torque,
-        })
+        };
+        Ok((response, eddy))
+    }
+
+    /// The [`EddyField`] of `unit`'s step at `t` from the vertex values `j` (three per element).
+    fn eddy_field(&self, unit: usize, t: f64, j: &[f64]) -> EddyField {
+        let conducting_tags: Vec<u32> = self
+            .conductors
+            .iter()
+            .filter(|c| c.conductivity_s_per_m > 0.0)
+            .map(|c| c.tag)
+            .collect();
+        EddyField {
+            time_s: t,
+            direction: unit + 1,
+            nodes: self.mesh.nodes.clone(),
+            triangles: self.mesh.triangles.clone(),
+            region_tags: self.mesh.triangle_tags.clone(),
+            conducting: self
+                .mesh
+                .triangle_tags
+                .iter()
+                .map(|t| conducting_tags.contains(t))
+                .collect(),
+            j_a_per_m2: j.chunks_exact(3).map(|v| [v[0], v[1], v[2]]).collect(),
+        }
     }
 
     /// The small-signal torque per current of direction 1 about `bias` amperes: the DC gain and

@@ -1,17 +1,18 @@
 //! Presentation of a brake's predicted dynamics ([`mrbrake_design::response`]): the text summary,
 //! the frequency response as an FRD CSV file (`mrbrake tfest` reads it), and the plots (step
 //! response; Bode diagram with, for the embedded thesis brake, its measured transfer functions
-//! (5.5) and (5.6)).
+//! (5.5) and (5.6); the eddy-current density map at a chosen instant).
 
 use std::fmt::Write as _;
 use std::path::Path;
 
-use mrbrake_design::response::Response;
+use mrbrake_design::response::{EddyField, Response};
 
 use crate::ReportError;
 use crate::atomic::write_atomic;
 use crate::bode::{BodeCurve, save_bode};
 use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
+use crate::field_map::{ENERGISED_FRACTION, ScalarMap, Window, energised_window, save_scalar_map};
 
 /// The thesis's measured transfer functions `1/(a s² + b s + 1)` scaled by `k`: (5.5) first brake,
 /// (5.6) second brake (Karabulut 2017, 5.3.2).
@@ -136,8 +137,153 @@ pub fn bode_curves(r: &Response, thesis: bool) -> Vec<BodeCurve> {
 pub const BODE_TITLE: &str = "torque per current, normalised";
 
 /// Writes `step_response.svg` and `bode.svg` into `dir` (with the thesis's measured transfer
-/// functions when `thesis` is true).
-pub fn write_plots(r: &Response, dir: &Path, thesis: bool) -> Result<(), ReportError> {
-    step_figure(r).save(&dir.join("step_response.svg"))?;
-    save_bode(&dir.join("bode.svg"), BODE_TITLE, &bode_curves(r, thesis))
+/// functions when `thesis` is true), and `eddy_current.svg` when the response kept an
+/// eddy-current field; PNG copies too with `png`.
+pub fn write_plots(r: &Response, dir: &Path, thesis: bool, png: bool) -> Result<(), ReportError> {
+    let eddy = r.eddy.as_ref().map(EddyMap::new).transpose()?;
+    for ext in if png { &["svg", "png"][..] } else { &["svg"][..] } {
+        step_figure(r).save(&dir.join(format!("step_response.{ext}")))?;
+        save_bode(&dir.join(format!("bode.{ext}")), BODE_TITLE, &bode_curves(r, thesis))?;
+        if let Some(map) = &eddy {
+            save_scalar_map(&map.scalar_map(), &dir.join(format!("eddy_current.{ext}")))?;
+        }
+    }
+    Ok(())
+}
+
+/// The conducting parts of an [`EddyField`], as a mesh of their own: every region keeps its own
+/// copy of the nodes on its boundary, since `J = −σ ∂A/∂t` jumps with `σ` between parts; `J` in
+/// A/mm², shown in the window where it flows.
+pub struct EddyMap {
+    /// Title: the instant and the direction.
+    pub title: String,
+    /// Node coordinates `[r, z]` (m).
+    pub nodes: Vec<[f64; 2]>,
+    /// Triangles.
+    pub triangles: Vec<[usize; 3]>,
+    /// Region tag per triangle.
+    pub region_tags: Vec<u32>,
+    /// `J_φ` (A/mm²) per node.
+    pub j_a_per_mm2: Vec<f64>,
+    /// The window shown: the triangles where `|J|` is at least [`EDDY_FRACTION`] of its largest,
+    /// with the field map's margins ([`energised_window`]).
+    pub window: Window,
+}
+
+/// The share of the largest `|J|` that puts a triangle inside the eddy-current map's window
+/// (lower than the |B| map's: the steel's currents are a few per cent of a conducting bobbin's).
+pub const EDDY_FRACTION: f64 = 0.002;
+
+impl EddyMap {
+    /// The map of `field`.
+    pub fn new(field: &EddyField) -> Result<Self, ReportError> {
+        let mut map = Self {
+            title: format!(
+                "eddy-current density J_φ, direction {} step at t = {:.2} ms",
+                field.direction,
+                field.time_s * 1e3
+            ),
+            nodes: Vec::new(),
+            triangles: Vec::new(),
+            region_tags: Vec::new(),
+            j_a_per_mm2: Vec::new(),
+            window: ([0.0; 2], [0.0; 2]),
+        };
+        let mut index = std::collections::HashMap::new();
+        let mut magnitude = Vec::new();
+        for (t, tri) in field.triangles.iter().enumerate() {
+            if !field.conducting[t] {
+                continue;
+            }
+            let tag = field.region_tags[t];
+            let mut local = [0; 3];
+            for (k, &v) in tri.iter().enumerate() {
+                local[k] = *index.entry((v, tag)).or_insert_with(|| {
+                    map.nodes.push(field.nodes[v]);
+                    map.j_a_per_mm2.push(field.j_a_per_m2[t][k] * 1e-6);
+                    map.nodes.len() - 1
+                });
+            }
+            map.triangles.push(local);
+            map.region_tags.push(tag);
+            magnitude.push(field.j_a_per_m2[t].iter().map(|j| j.abs()).sum::<f64>() / 3.0);
+        }
+        if map.triangles.is_empty() {
+            return Err(ReportError::Data("eddy-current map: no conducting part".into()));
+        }
+        // The window of the triangles above the threshold (energised_window's rule with its own
+        // fraction: scale the magnitudes so that EDDY_FRACTION lands on its threshold).
+        let scale = ENERGISED_FRACTION / EDDY_FRACTION;
+        let largest = magnitude.iter().copied().fold(0.0, f64::max);
+        let scaled: Vec<f64> = magnitude.iter().map(|m| (m * scale).min(largest)).collect();
+        map.window = energised_window(&map.nodes, &map.triangles, &scaled);
+        Ok(map)
+    }
+
+    /// The map to draw.
+    pub fn scalar_map(&self) -> ScalarMap<'_> {
+        ScalarMap {
+            title: &self.title,
+            nodes: &self.nodes,
+            triangles: &self.triangles,
+            region_tags: &self.region_tags,
+            values: &self.j_a_per_mm2,
+            label: "J_φ [A/mm²]",
+            levels: 8,
+            window: Some(self.window),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two unit squares side by side, each of two triangles: region 1 (r 0..1 mm) conducts with
+    /// J = −2 A/mm², region 2 (r 1..2 mm) with J = −1 A/mm²; region 3 (r 2..3 mm) does not conduct.
+    fn field() -> EddyField {
+        let mm = 1e-3;
+        let nodes: Vec<[f64; 2]> =
+            (0..4).flat_map(|i| [[i as f64 * mm, 0.0], [i as f64 * mm, mm]]).collect();
+        let square = |i: usize| [[2 * i, 2 * i + 2, 2 * i + 3], [2 * i, 2 * i + 3, 2 * i + 1]];
+        let triangles: Vec<[usize; 3]> = (0..3).flat_map(square).collect();
+        let j = [-2e6, -1e6, 0.0];
+        EddyField {
+            time_s: 2e-3,
+            direction: 1,
+            nodes,
+            triangles,
+            region_tags: vec![1, 1, 2, 2, 3, 3],
+            conducting: vec![true, true, true, true, false, false],
+            j_a_per_m2: (0..6).map(|t| [j[t / 2]; 3]).collect(),
+        }
+    }
+
+    #[test]
+    fn eddy_map_keeps_the_jump_between_parts_and_leaves_out_non_conductors() {
+        let map = EddyMap::new(&field()).unwrap();
+        // Region 1's four nodes and region 2's four (the shared edge's two nodes twice).
+        assert_eq!(map.triangles.len(), 4);
+        assert_eq!(map.nodes.len(), 8);
+        let at_interface: Vec<f64> = map
+            .nodes
+            .iter()
+            .zip(&map.j_a_per_mm2)
+            .filter(|(p, _)| (p[0] - 1e-3).abs() < 1e-12)
+            .map(|(_, j)| *j)
+            .collect();
+        assert_eq!(at_interface.len(), 4);
+        assert!(at_interface.iter().any(|j| (j + 2.0).abs() < 1e-12));
+        assert!(at_interface.iter().any(|j| (j + 1.0).abs() < 1e-12));
+        assert!(map.title.contains("t = 2.00 ms") && map.title.contains("direction 1"));
+        let svg = crate::field_map::scalar_map_svg(&map.scalar_map()).unwrap();
+        assert!(svg.contains("J_φ [A/mm²]"));
+    }
+
+    #[test]
+    fn an_eddy_field_without_conductors_is_an_error() {
+        let mut f = field();
+        f.conducting = vec![false; 6];
+        assert!(EddyMap::new(&f).is_err());
+    }
 }

@@ -200,6 +200,7 @@ pub fn temperature_map<'a>(title: &'a str, field: &'a TemperatureField) -> Scala
         values: &field.t_c,
         label: "T [°C]",
         levels: 8,
+        window: None,
     }
 }
 

@@ -45,9 +45,16 @@ pub struct ResponseArgs {
     /// Write the frequency response as FRD CSV (the form `mrbrake tfest` reads).
     #[arg(long, value_name = "FILE.csv")]
     frd: Option<PathBuf>,
-    /// Write plots here: step response, Bode diagram (SVG).
+    /// Write plots here: step response, Bode diagram, eddy-current density map (SVG).
     #[arg(long, value_name = "DIR")]
     plot_dir: Option<PathBuf>,
+    /// Instant of the eddy-current density map in `--plot-dir` (e.g. 2ms; the first time step at
+    /// or after it, direction 1); default a fiftieth of the duration.
+    #[arg(long, value_name = "TIME")]
+    eddy_at: Option<String>,
+    /// Also write PNG versions of the plots.
+    #[arg(long)]
+    png: bool,
     /// Print a JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -94,6 +101,11 @@ fn options(a: &ResponseArgs) -> Result<ResponseOptions, InputError> {
     if let Some(lag) = &a.fluid_lag {
         o.fluid_lag_s = quantity("fluid-lag", lag, Dimension::Time)?;
     }
+    o.eddy_at_s = match (&a.eddy_at, &a.plot_dir) {
+        (Some(text), _) => Some(quantity("eddy-at", text, Dimension::Time)?),
+        (None, Some(_)) => Some(o.duration_s / 50.0),
+        (None, None) => None,
+    };
     Ok(o)
 }
 
@@ -111,7 +123,7 @@ pub fn run(a: ResponseArgs) -> CommandResult {
         std::fs::create_dir_all(dir).map_err(|e| {
             InputError(format!("--plot-dir {}: cannot create it: {e}", dir.display()))
         })?;
-        report::write_plots(&r, dir, a.spec.is_none())?;
+        report::write_plots(&r, dir, a.spec.is_none(), a.png)?;
     }
     let source =
         a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());

@@ -170,6 +170,28 @@ impl Dynamics {
         TWO_PI * self.mass_norm2(rate)
     }
 
+    /// The induced azimuthal current density `J_φ = −σ ∂A/∂t` (A/m²) at the three vertices of
+    /// every element (`3 × elements` values, element order; 0 in non-conducting elements), for the
+    /// DOF rates `rate` (e.g. [`transient::StepView::rate`]). Per element, not per node: `σ` jumps
+    /// between regions, and so does `J`.
+    pub fn eddy_current_density(&self, rate: &[f64]) -> Result<Vec<f64>, MagneticsError> {
+        let dofs = self.solver.basis().dofs();
+        if rate.len() != self.solver.dof_count() {
+            return Err(MagneticsError::Input(format!(
+                "eddy current density: {} rates for {} DOFs",
+                rate.len(),
+                self.solver.dof_count()
+            )));
+        }
+        let per_element = dofs.element_dofs().len() / self.sigma.len().max(1);
+        let mut out = Vec::with_capacity(3 * self.sigma.len());
+        // The first three DOFs of an element are its vertices (P1 and P2 alike).
+        for (element, &sigma) in dofs.element_dofs().chunks_exact(per_element).zip(&self.sigma) {
+            out.extend(element[..3].iter().map(|&d| -sigma * rate[d]));
+        }
+        Ok(out)
+    }
+
     /// `y = Σ_e σ_e M_e x_e` at every DOF (the eddy-current mass matrix times `x`; conducting
     /// elements only, so its cost is the conductors' share of the mesh).
     pub(crate) fn mass_mul(&self, x: &[f64]) -> Vec<f64> {

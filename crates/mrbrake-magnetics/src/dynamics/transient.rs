@@ -244,6 +244,9 @@ pub struct StepView<'a> {
     pub a: &'a [f64],
     /// Coil currents (A), in the order of the coils.
     pub currents: &'a [f64],
+    /// `∂A/∂t` at every DOF as the scheme discretises it (`ρ (a − h)`, Wb/(m s)); zero at `t = 0`
+    /// (the DC state). With [`Dynamics::eddy_current_density`] it gives the eddy currents.
+    pub rate: &'a [f64],
     /// The dynamics (solver, post-processing).
     pub dynamics: &'a Dynamics,
 }
@@ -381,6 +384,8 @@ struct Run {
     scale: f64,
     a_max: f64,
     next_snapshot: usize,
+    /// `∂A/∂t` of the newest level (zero at `t = 0`).
+    rate: Vec<f64>,
 }
 
 impl Run {
@@ -419,6 +424,7 @@ impl Run {
             total_s: 0.0,
         };
         let a_max = max_abs(&a);
+        let rate = vec![0.0; a.len()];
         let levels = vec![Level { t: 0.0, dt: 0.0, a, lambda }];
         Ok(Self {
             levels,
@@ -428,6 +434,7 @@ impl Run {
             scale,
             a_max,
             next_snapshot: 0,
+            rate,
         })
     }
 }
@@ -689,7 +696,13 @@ impl Run {
         let level = &self.levels[self.levels.len() - 1];
         let currents: Vec<f64> =
             self.result.coils.iter().map(|c| c.current_a[c.current_a.len() - 1]).collect();
-        observer(&StepView { t: level.t, a: &level.a, currents: &currents, dynamics })
+        observer(&StepView {
+            t: level.t,
+            a: &level.a,
+            currents: &currents,
+            rate: &self.rate,
+            dynamics,
+        })
     }
 }
 
@@ -833,6 +846,7 @@ impl Run {
         let rates: Vec<f64> =
             attempt.a.iter().zip(&c.history).map(|(a, h)| c.rate * (a - h)).collect();
         let eddy = dynamics.eddy_loss(&rates);
+        self.rate = rates;
         let r = &mut self.result;
         r.eddy_loss_w.push(eddy);
         r.winding_loss_w.push(winding_loss);

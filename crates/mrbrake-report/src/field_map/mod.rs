@@ -551,9 +551,15 @@ pub struct ScalarMap<'a> {
     pub label: &'a str,
     /// Number of level lines.
     pub levels: usize,
+    /// The part of the section shown (clipped); `None`: the whole mesh.
+    pub window: Option<Window>,
 }
 
 impl ScalarMap<'_> {
+    fn shown(&self) -> Window {
+        self.window.unwrap_or_else(|| bounds(self.nodes))
+    }
+
     fn range(&self) -> (f64, f64) {
         let (lo, hi) = self
             .values
@@ -603,7 +609,7 @@ impl ScalarMap<'_> {
             triangles: self.triangles,
             region_tags: self.region_tags,
             regions: &[],
-            window: bounds(self.nodes),
+            window: self.shown(),
             fraction: &|t| (mean(t) - lo) / (hi - lo),
             contour_values: self.values,
             contour_in: &|_| true,
@@ -615,7 +621,7 @@ impl ScalarMap<'_> {
 
 impl Picture for ScalarMap<'_> {
     fn size(&self) -> (u32, u32) {
-        size_for(bounds(self.nodes))
+        size_for(self.shown())
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ReportError> {
@@ -801,6 +807,7 @@ mod tests {
             values: &values,
             label: "T [°C]",
             levels: 3,
+            window: None,
         };
         assert_eq!(map.range(), (20.0, 60.0));
         let svg = scalar_map_svg(&map).unwrap();
