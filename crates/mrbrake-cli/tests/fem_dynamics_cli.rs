@@ -97,3 +97,46 @@ fn newton_failure_at_a_step_exits_1_and_writes_nothing() {
     assert!(err.contains("time step 1") && err.contains("residual history"), "{err}");
     assert!(!vtu.exists(), "nothing is written after a failure");
 }
+
+/// A harmonic file's `--vtu`: the phasors (real and imaginary parts) at every frequency with a
+/// `.pvd` whose time steps are the frequencies, or one file at `vtu_frequencies_Hz`; a
+/// frequency that was not solved is an input error.
+#[test]
+fn harmonic_vtu_writes_the_phasors_at_the_chosen_frequencies() {
+    let dir = tempfile::tempdir().unwrap();
+    let source = regions("{ turns = 10, current_A = 0.1 }");
+    let every = problem(
+        dir.path(),
+        "every.toml",
+        &format!("{source}[harmonic]\nfrequencies_Hz = [1.0, 100.0]\n"),
+    );
+    let vtu = dir.path().join("h.vtu");
+    let out = mrbrake(&["fem", "solve", &every, "--vtu", path_str(&vtu)]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let pvd = std::fs::read_to_string(dir.path().join("h.pvd")).unwrap();
+    assert!(pvd.contains("timestep=\"1e0\"") && pvd.contains("timestep=\"1e2\""), "{pvd}");
+    for k in 0..2 {
+        let text = std::fs::read_to_string(dir.path().join(format!("h_{k:03}.vtu"))).unwrap();
+        for name in ["A_phi_re_Wb_per_m", "A_phi_im_Wb_per_m", "B_re_T", "B_im_T"] {
+            assert!(text.contains(name), "h_{k:03}.vtu lacks {name}");
+        }
+    }
+    let one = problem(
+        dir.path(),
+        "one.toml",
+        &format!(
+            "{source}[harmonic]\nfrequencies_Hz = [1.0, 100.0]\nvtu_frequencies_Hz = [100.0]\n"
+        ),
+    );
+    let single = dir.path().join("single.vtu");
+    let out = mrbrake(&["fem", "solve", &one, "--vtu", path_str(&single)]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(std::fs::read_to_string(&single).unwrap().contains("B_phasor_norm_T"));
+    assert!(!dir.path().join("single.pvd").exists());
+    let unknown = problem(
+        dir.path(),
+        "unknown.toml",
+        &format!("{source}[harmonic]\nfrequencies_Hz = [1.0]\nvtu_frequencies_Hz = [50.0]\n"),
+    );
+    expect_input_error(&["fem", "solve", &unknown], &["unknown.toml", "vtu_frequencies_Hz[0]"]);
+}

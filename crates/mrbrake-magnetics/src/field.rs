@@ -137,6 +137,34 @@ impl FieldSnapshot {
     }
 }
 
+/// A time-harmonic field as a ParaView `.vtu` file from the snapshots of its real and imaginary
+/// parts (peak phasors, time factor `exp(+jωt)`): `A_phi` and `r·A_phi` (re, im) at the nodes,
+/// B (re, im) and `sqrt(|B̂_r|² + |B̂_z|²)` per triangle.
+pub fn phasor_vtu(re: &FieldSnapshot, im: &FieldSnapshot, mesh: &Mesh) -> String {
+    use mrbrake_fem::vtu::{Field, to_vtu};
+    let b3 = |s: &FieldSnapshot| -> Vec<f64> {
+        s.element_b_t.iter().flat_map(|b| [b[0], b[1], 0.0]).collect()
+    };
+    let (b_re, b_im) = (b3(re), b3(im));
+    let norm: Vec<f64> =
+        re.element_b_abs_t.iter().zip(&im.element_b_abs_t).map(|(r, i)| r.hypot(*i)).collect();
+    let point = |name, values| Field { name, components: 1, values };
+    to_vtu(
+        mesh,
+        &[
+            point("A_phi_re_Wb_per_m", &re.a_phi_wb_per_m),
+            point("A_phi_im_Wb_per_m", &im.a_phi_wb_per_m),
+            point("flux_function_re_r_A_phi", &re.flux_function_wb),
+            point("flux_function_im_r_A_phi", &im.flux_function_wb),
+        ],
+        &[
+            Field { name: "B_re_T", components: 3, values: &b_re },
+            Field { name: "B_im_T", components: 3, values: &b_im },
+            Field { name: "B_phasor_norm_T", components: 1, values: &norm },
+        ],
+    )
+}
+
 /// The potential and flux density of a solution at one quadrature point of one triangle.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct FieldSample {

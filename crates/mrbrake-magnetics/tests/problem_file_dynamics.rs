@@ -313,3 +313,57 @@ fn a_static_file_refuses_a_negative_conductivity_and_ignores_a_valid_one() {
     assert!(report.dynamics.is_none());
     assert!(serde_json::to_value(&report).unwrap().get("conductors").is_none());
 }
+
+/// A per-coil bias (`bias.coils`) with every coil listed is the uniform `current_A` bias; with
+/// two coils, the unlisted one is at 0 A and the report lists each coil's bias.
+#[test]
+fn per_coil_bias_matches_the_uniform_bias_and_is_reported_per_coil() {
+    let dir = mesh_dir();
+    let core = "\"steel-1010\"";
+    let source = "{ turns = 10, current_A = 0.5 }";
+    let harmonic = "[harmonic]\nfrequencies_Hz = [0.001, 50.0]\n";
+    let uniform = format!("{harmonic}bias = {{ current_A = 0.5 }}\n");
+    let per_coil =
+        format!("{harmonic}bias = {{ coils = [{{ physical = 3, current_A = 0.5 }}] }}\n");
+    let a = solve_in(dir.path(), &problem(core, source, &uniform)).unwrap();
+    let b = solve_in(dir.path(), &problem(core, source, &per_coil)).unwrap();
+    let (da, db) = (a.dynamics.as_ref().unwrap(), b.dynamics.as_ref().unwrap());
+    assert_eq!(db.harmonic_bias_a, Some(0.5));
+    assert!(db.harmonic_bias_coils.is_empty());
+    for (pa, pb) in da.harmonic.as_ref().unwrap().iter().zip(db.harmonic.as_ref().unwrap()) {
+        let (za, zb) = (pa.coils[0].impedance_ohm, pb.coils[0].impedance_ohm);
+        assert!((za[0] - zb[0]).abs() <= 1e-12 * za[0].abs().max(za[1].abs()), "{za:?} {zb:?}");
+        assert!((za[1] - zb[1]).abs() <= 1e-12 * za[1].abs(), "{za:?} {zb:?}");
+    }
+    // The outer air band as a second coil, unbiased.
+    let two_coils = problem(core, source, &per_coil).replace(
+        "physical = 4\nmaterial = \"air\"\n",
+        "physical = 4\nmaterial = \"air\"\nsource = { turns = 5, current_A = 0.1 }\n",
+    );
+    let c = solve_in(dir.path(), &two_coils).unwrap();
+    let dc = c.dynamics.as_ref().unwrap();
+    assert_eq!(dc.harmonic_bias_a, None);
+    let listed: Vec<(u32, f64)> =
+        dc.harmonic_bias_coils.iter().map(|b| (b.physical, b.current_a)).collect();
+    assert_eq!(listed.len(), 2);
+    assert!(listed[0].0 == 3 && (listed[0].1 - 0.5).abs() < 1e-15, "{listed:?}");
+    assert!(listed[1].0 == 4 && listed[1].1.abs() < 1e-15, "{listed:?}");
+    let text = c.text("p.toml");
+    assert!(text.contains("coil 3 at 0.5 A, coil 4 at 0 A"), "{text}");
+}
+
+#[test]
+fn bad_per_coil_bias_is_an_input_error_naming_the_field() {
+    let harmonic = "[harmonic]\nfrequencies_Hz = [1.0]\n";
+    let with = |bias: &str| format!("{harmonic}bias = {bias}\n");
+    let unknown = with("{ coils = [{ physical = 7, current_A = 1.0 }] }");
+    bad(LINEAR_CORE, CURRENT, &unknown, &[], "harmonic.bias.coils[0].physical = 7");
+    let twice =
+        with("{ coils = [{ physical = 3, current_A = 1.0 }, { physical = 3, current_A = 2.0 }] }");
+    bad(LINEAR_CORE, CURRENT, &twice, &[], "listed twice");
+    let both = with("{ current_A = 1.0, coils = [{ physical = 3, current_A = 1.0 }] }");
+    bad(LINEAR_CORE, CURRENT, &both, &[], "not both or neither");
+    bad(LINEAR_CORE, CURRENT, &with("{}"), &[], "not both or neither");
+    let nan = with("{ coils = [{ physical = 3, current_A = nan }] }");
+    bad(LINEAR_CORE, CURRENT, &nan, &[], "harmonic.bias.coils[0].current_A");
+}

@@ -34,7 +34,9 @@ pub struct SolveArgs {
     json: bool,
     /// Write the field (A_phi and r·A_phi at the mesh nodes, B at the triangle centroids, |B|,
     /// region) as a ParaView .vtu file; for a `[transient]`, at its `vtu_times` (default the final
-    /// state; several instants go to FILE_000.vtu, … with a FILE.pvd collection).
+    /// state; several instants go to FILE_000.vtu, … with a FILE.pvd collection); for a
+    /// `[harmonic]`, the phasors (re, im) at its `vtu_frequencies_Hz` (default every frequency;
+    /// the .pvd's time steps are the frequencies in Hz).
     #[arg(long, value_name = "FILE.vtu")]
     vtu: Option<PathBuf>,
     /// Draw the |B| map with flux lines (.svg or .png).
@@ -64,7 +66,7 @@ fn solve(args: SolveArgs) -> CommandResult {
     }
     let (report, solver, solution) = solve_file_with_order(&args.problem, order)?;
     if let Some(path) = &args.vtu {
-        // The static field, or a transient's chosen instants (see `vtu_files`).
+        // The static field, a transient's chosen instants or a harmonic solve's phasors.
         for (file, text) in vtu_files(&report, &solver, &solution, path) {
             mrbrake_report::write_atomic(&file, text.as_bytes())?;
         }

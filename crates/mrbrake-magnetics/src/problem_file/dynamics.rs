@@ -25,6 +25,10 @@
 //! [harmonic]                           # instead of [transient]
 //! frequencies_Hz = [1.0, 10.0, 100.0]
 //! bias = { current_A = 1.0 }           # optional: small-signal about the DC state at this current
+//! # or per coil (unlisted coils at 0 A):
+//! # bias = { coils = [{ physical = 2, current_A = 1.0 }, { physical = 5, current_A = -0.5 }] }
+//! vtu_frequencies_Hz = [100.0]         # optional: `fem solve --vtu` writes these phasors
+//!                                      # (default: every frequency)
 //! ```
 //!
 //! Times are in seconds and frequencies in hertz whatever the file's `length_unit` (which scales
@@ -50,13 +54,13 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use super::raw::{RawFile, RawHarmonic, RawRegion, RawTransient, RawWaveform};
+use super::raw::{RawBias, RawFile, RawHarmonic, RawRegion, RawTransient, RawWaveform};
 use super::{ProblemFile, SolveReport};
 use crate::MagneticsError;
-use crate::dynamics::harmonic::HarmonicPoint;
+use crate::dynamics::harmonic::{HarmonicPoint, HarmonicPotential};
 use crate::dynamics::transient::{Probe, Scheme, TimeStep, TransientOptions, TransientResult};
 use crate::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
-use crate::field::Solution;
+use crate::field::{Solution, phasor_vtu};
 use crate::problem::{Problem, Source};
 use crate::solver::Solver;
 
@@ -77,12 +81,14 @@ pub struct ConductorReport {
 pub enum Analysis {
     /// A transient; its `snapshot_times_s` are the file's `vtu_times` (default: `t_end`).
     Transient(TransientOptions),
-    /// Harmonic solves at these frequencies, about the DC state at `bias_a` (every coil) if given.
+    /// Harmonic solves at these frequencies, about the DC state at `bias_a` if given.
     Harmonic {
         /// Frequencies (Hz).
         frequencies_hz: Vec<f64>,
-        /// Bias current of every coil (A).
-        bias_a: Option<f64>,
+        /// Bias current of each coil (A), in the order of [`DynamicsSpec::coils`].
+        bias_a: Option<Vec<f64>>,
+        /// The frequencies whose phasors `fem solve --vtu` writes (members of `frequencies_hz`).
+        vtu_frequencies_hz: Vec<f64>,
     },
 }
 
@@ -118,11 +124,27 @@ pub struct DynamicsReport {
     /// Harmonic response per frequency (peak phasors `[re, im]`, time factor `exp(+jωt)`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub harmonic: Option<Vec<HarmonicPoint>>,
-    /// The DC bias of a small-signal harmonic solve (A), every coil.
+    /// The DC bias of a small-signal harmonic solve (A) when every coil has the same.
     #[serde(rename = "harmonic_bias_A", skip_serializing_if = "Option::is_none")]
     pub harmonic_bias_a: Option<f64>,
+    /// The DC bias of each coil (A) when they differ (a per-coil `bias.coils` table).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub harmonic_bias_coils: Vec<CoilBias>,
+    /// The potentials of the harmonic solve at `vtu_frequencies_Hz` (for `--vtu`).
+    #[serde(skip)]
+    pub harmonic_potentials: Vec<HarmonicPotential>,
     /// Wall time of the transient or harmonic solve (s).
     pub dynamics_s: f64,
+}
+
+/// A coil's DC bias current.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CoilBias {
+    /// Physical tag of the coil region.
+    pub physical: u32,
+    /// Bias current (A).
+    #[serde(rename = "current_A")]
+    pub current_a: f64,
 }
 
 fn input(message: String) -> MagneticsError {
@@ -190,7 +212,10 @@ pub(super) fn spec_of(
             waveform_of(t.waveform.as_ref(), dir, file)?,
         ),
         // The waveform of a harmonic solve is the phasor's `exp(+jωt)`; the coils' is unused.
-        (None, Some(h)) => (harmonic_of(h, file)?, Waveform::Step { initial: 0.0 }),
+        (None, Some(h)) => (
+            harmonic_of(h, &coil_tags(&raw.region, problem), file)?,
+            Waveform::Step { initial: 0.0 },
+        ),
         (None, None) => {
             if let Some(k) = raw.region.iter().position(has_drive) {
                 return Err(input(format!(
@@ -470,7 +495,17 @@ fn read_waveform_csv(
     Ok(points)
 }
 
-fn harmonic_of(raw: &RawHarmonic, file: &str) -> Result<Analysis, MagneticsError> {
+/// The physical tags of the driven coils, in the order [`coils_of`] builds them.
+fn coil_tags(raw: &[RawRegion], problem: &Problem) -> Vec<u32> {
+    raw.iter()
+        .filter(|r| {
+            matches!(problem.region(r.physical).and_then(|x| x.source), Some(Source::Coil { .. }))
+        })
+        .map(|r| r.physical)
+        .collect()
+}
+
+fn harmonic_of(raw: &RawHarmonic, coils: &[u32], file: &str) -> Result<Analysis, MagneticsError> {
     if raw.frequencies_hz.is_empty() {
         return Err(input(format!("{file}: harmonic.frequencies_Hz is empty")));
     }
@@ -479,13 +514,80 @@ fn harmonic_of(raw: &RawHarmonic, file: &str) -> Result<Analysis, MagneticsError
             "{file}: harmonic.frequencies_Hz: {f} Hz must be finite and >= 0"
         )));
     }
-    let bias_a = raw.bias.as_ref().map(|b| b.current_a);
-    if let Some(b) = bias_a
-        && !b.is_finite()
-    {
-        return Err(input(format!("{file}: harmonic.bias.current_A = {b} must be finite")));
+    if raw.frequencies_hz.len() > MAX_FREQUENCIES {
+        return Err(input(format!(
+            "{file}: harmonic.frequencies_Hz has {} frequencies; at most {MAX_FREQUENCIES}",
+            raw.frequencies_hz.len()
+        )));
     }
-    Ok(Analysis::Harmonic { frequencies_hz: raw.frequencies_hz.clone(), bias_a })
+    let bias_a = raw.bias.as_ref().map(|b| bias_of(b, coils, file)).transpose()?;
+    let vtu_frequencies_hz = match &raw.vtu_frequencies_hz {
+        None => raw.frequencies_hz.clone(),
+        Some(chosen) if chosen.is_empty() => {
+            return Err(input(format!(
+                "{file}: harmonic.vtu_frequencies_Hz is empty (omit it for every frequency)"
+            )));
+        }
+        Some(chosen) => {
+            for (k, f) in chosen.iter().enumerate() {
+                if !raw.frequencies_hz.iter().any(|g| (g - f).abs() <= 1e-12 * g.abs().max(1.0)) {
+                    return Err(input(format!(
+                        "{file}: harmonic.vtu_frequencies_Hz[{k}] = {f} Hz is not one of \
+                         frequencies_Hz"
+                    )));
+                }
+            }
+            chosen.clone()
+        }
+    };
+    Ok(Analysis::Harmonic {
+        frequencies_hz: raw.frequencies_hz.clone(),
+        bias_a,
+        vtu_frequencies_hz,
+    })
+}
+
+/// The most frequencies one `[harmonic]` table may list (every one's potential is kept while the
+/// sweep runs: a bound on memory for hostile files).
+pub const MAX_FREQUENCIES: usize = 10_000;
+
+/// The bias current of each coil: `current_A` for every coil, or the `coils` table (unlisted
+/// coils at 0 A).
+fn bias_of(raw: &RawBias, coils: &[u32], file: &str) -> Result<Vec<f64>, MagneticsError> {
+    let finite = |b: f64, field: String| {
+        if b.is_finite() {
+            Ok(b)
+        } else {
+            Err(input(format!("{file}: {field} = {b} must be finite")))
+        }
+    };
+    match (raw.current_a, &raw.coils) {
+        (Some(b), None) => Ok(vec![finite(b, "harmonic.bias.current_A".into())?; coils.len()]),
+        (None, Some(list)) => {
+            let mut bias = vec![0.0; coils.len()];
+            for (k, entry) in list.iter().enumerate() {
+                let field = format!("harmonic.bias.coils[{k}]");
+                let index = coils.iter().position(|&t| t == entry.physical).ok_or_else(|| {
+                    input(format!(
+                        "{file}: {field}.physical = {}: not a coil region (coils: {coils:?})",
+                        entry.physical
+                    ))
+                })?;
+                if list[..k].iter().any(|e| e.physical == entry.physical) {
+                    return Err(input(format!(
+                        "{file}: {field}.physical = {}: listed twice",
+                        entry.physical
+                    )));
+                }
+                bias[index] = finite(entry.current_a, format!("{field}.current_A"))?;
+            }
+            Ok(bias)
+        }
+        _ => Err(input(format!(
+            "{file}: harmonic.bias takes either current_A (every coil) or coils = [{{ physical, \
+             current_A }}, ...], not both or neither"
+        ))),
+    }
 }
 
 /// An input error of the library gets the problem file's name in front.
@@ -522,6 +624,8 @@ pub(super) fn run(
         transient: None,
         harmonic: None,
         harmonic_bias_a: None,
+        harmonic_bias_coils: Vec::new(),
+        harmonic_potentials: Vec::new(),
         dynamics_s: 0.0,
     };
     match &spec.analysis {
@@ -530,13 +634,39 @@ pub(super) fn run(
             let result = dynamics.transient(&options).map_err(|e| named(e, &file))?;
             report.transient = Some(TransientReport { scheme: options.scheme, result });
         }
-        Analysis::Harmonic { frequencies_hz, bias_a } => {
-            let bias: Option<Vec<f64>> = bias_a.map(|b| vec![b; spec.coils.len()]);
-            let (points, _) = dynamics
-                .harmonic(frequencies_hz, bias.as_deref(), &probes)
+        Analysis::Harmonic { frequencies_hz, bias_a, vtu_frequencies_hz } => {
+            let potentials = dynamics
+                .harmonic_potentials(frequencies_hz, bias_a.as_deref())
+                .map_err(|e| named(e, &file))?;
+            let points = potentials
+                .iter()
+                .map(|p| dynamics.harmonic_point(p, &probes))
+                .collect::<Result<Vec<_>, _>>()
                 .map_err(|e| named(e, &file))?;
             report.harmonic = Some(points);
-            report.harmonic_bias_a = *bias_a;
+            report.harmonic_potentials = potentials
+                .into_iter()
+                .filter(|p| {
+                    vtu_frequencies_hz
+                        .iter()
+                        .any(|f| (f - p.frequency_hz).abs() <= 1e-12 * f.abs().max(1.0))
+                })
+                .collect();
+            if let Some(bias) = bias_a {
+                match bias.split_first() {
+                    Some((first, rest)) if rest.iter().all(|b| b.to_bits() == first.to_bits()) => {
+                        report.harmonic_bias_a = Some(*first);
+                    }
+                    _ => {
+                        report.harmonic_bias_coils = spec
+                            .coils
+                            .iter()
+                            .zip(bias)
+                            .map(|(c, &b)| CoilBias { physical: c.tag, current_a: b })
+                            .collect();
+                    }
+                }
+            }
         }
     }
     report.dynamics_s = start.elapsed().as_secs_f64();
@@ -544,44 +674,60 @@ pub(super) fn run(
 }
 
 /// The `.vtu` files `fem solve --vtu PATH` writes, with their contents: the static field at
-/// `PATH`, or for a transient the kept instants (`vtu_times`, default the final state): one
-/// instant at `PATH`, several at `STEM_000.vtu`, `STEM_001.vtu`, … beside `PATH` with a ParaView
-/// collection `STEM.pvd` giving their times.
+/// `PATH`; for a transient the kept instants (`vtu_times`, default the final state); for a
+/// harmonic solve the phasors at `vtu_frequencies_Hz` (default every frequency; real and
+/// imaginary parts, [`crate::field::phasor_vtu`]). One file goes to `PATH`, several to
+/// `STEM_000.vtu`, `STEM_001.vtu`, … beside `PATH` with a ParaView collection `STEM.pvd` giving
+/// their times (s) or frequencies (Hz) as its time steps.
 pub fn vtu_files(
     report: &SolveReport,
     solver: &Solver,
     solution: &Solution,
     path: &Path,
 ) -> Vec<(PathBuf, String)> {
-    let snapshots = match report.dynamics.as_ref().and_then(|d| d.transient.as_ref()) {
-        Some(t) => &t.result.snapshots,
-        None => {
+    let state = |a: &[f64]| {
+        let s = Solution::from_potential(a.to_vec(), solver.basis().dofs().n_vertices());
+        solver.field_snapshot(&s)
+    };
+    let dynamics = report.dynamics.as_ref();
+    let files: Vec<(f64, String)> = match (
+        dynamics.and_then(|d| d.transient.as_ref()),
+        dynamics.filter(|d| d.harmonic.is_some()),
+    ) {
+        (Some(t), _) => {
+            t.result.snapshots.iter().map(|(t, a)| (*t, state(a).to_vtu(solver.mesh()))).collect()
+        }
+        (None, Some(d)) => d
+            .harmonic_potentials
+            .iter()
+            .map(|p| {
+                let vtu = phasor_vtu(&state(&p.re), &state(&p.im), solver.mesh());
+                (p.frequency_hz, vtu)
+            })
+            .collect(),
+        (None, None) => {
             return vec![(
                 path.to_path_buf(),
                 solver.field_snapshot(solution).to_vtu(solver.mesh()),
             )];
         }
     };
-    let field = |a: &[f64]| {
-        let state = Solution::from_potential(a.to_vec(), solver.basis().dofs().n_vertices());
-        solver.field_snapshot(&state).to_vtu(solver.mesh())
-    };
-    if let [(_, a)] = snapshots.as_slice() {
-        return vec![(path.to_path_buf(), field(a))];
+    if files.len() == 1 {
+        return files.into_iter().map(|(_, text)| (path.to_path_buf(), text)).collect();
     }
     let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    let mut files = Vec::with_capacity(snapshots.len() + 1);
+    let mut out = Vec::with_capacity(files.len() + 1);
     let mut pvd = String::from(
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n",
     );
-    for (k, (t, a)) in snapshots.iter().enumerate() {
+    for (k, (step, text)) in files.into_iter().enumerate() {
         let name = format!("{stem}_{k:03}.vtu");
-        let _ = writeln!(pvd, "<DataSet timestep=\"{t:e}\" file=\"{name}\"/>");
-        files.push((path.with_file_name(&name), field(a)));
+        let _ = writeln!(pvd, "<DataSet timestep=\"{step:e}\" file=\"{name}\"/>");
+        out.push((path.with_file_name(&name), text));
     }
     pvd.push_str("</Collection>\n</VTKFile>\n");
-    files.push((path.with_file_name(format!("{stem}.pvd")), pvd));
-    files
+    out.push((path.with_file_name(format!("{stem}.pvd")), pvd));
+    out
 }
 
 impl DynamicsReport {
@@ -604,7 +750,18 @@ impl DynamicsReport {
             write_transient(t, self.dynamics_s, out);
         }
         if let Some(points) = &self.harmonic {
-            write_harmonic(points, self.harmonic_bias_a, self.dynamics_s, out);
+            let about = match (self.harmonic_bias_a, self.harmonic_bias_coils.as_slice()) {
+                (Some(b), _) => format!("small-signal about the DC state at {b} A"),
+                (None, []) => "linear about a = 0 (initial permeability)".to_string(),
+                (None, coils) => {
+                    let each: Vec<String> = coils
+                        .iter()
+                        .map(|c| format!("coil {} at {} A", c.physical, c.current_a))
+                        .collect();
+                    format!("small-signal about the DC state with {}", each.join(", "))
+                }
+            };
+            write_harmonic(points, &about, self.dynamics_s, out);
         }
     }
 }
@@ -680,11 +837,7 @@ fn write_energy_balance(r: &TransientResult, out: &mut String) {
     );
 }
 
-fn write_harmonic(points: &[HarmonicPoint], bias: Option<f64>, seconds: f64, out: &mut String) {
-    let about = match bias {
-        Some(b) => format!("small-signal about the DC state at {b} A"),
-        None => "linear about a = 0 (initial permeability)".to_string(),
-    };
+fn write_harmonic(points: &[HarmonicPoint], about: &str, seconds: f64, out: &mut String) {
     let _ = writeln!(
         out,
         "  harmonic ({about}; peak phasors, time factor exp(+jωt)): {} frequencies, {seconds:.3} s",

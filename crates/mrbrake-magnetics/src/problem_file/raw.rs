@@ -107,11 +107,24 @@ pub(super) struct RawHarmonic {
     #[serde(rename = "frequencies_Hz")]
     pub frequencies_hz: Vec<f64>,
     pub bias: Option<RawBias>,
+    #[serde(rename = "vtu_frequencies_Hz")]
+    pub vtu_frequencies_hz: Option<Vec<f64>>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawBias {
+    /// Every coil at this current.
+    #[serde(rename = "current_A")]
+    pub current_a: Option<f64>,
+    /// Or each listed coil at its own current (the others at 0 A).
+    pub coils: Option<Vec<RawCoilBias>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawCoilBias {
+    pub physical: u32,
     #[serde(rename = "current_A")]
     pub current_a: f64,
 }
