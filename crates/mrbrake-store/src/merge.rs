@@ -56,7 +56,7 @@ impl Store {
     pub fn merge_from_upgrading(
         &mut self,
         other: &Path,
-        upgrade: &dyn Fn(&mut [(String, f64)]),
+        upgrade: &MetricUpgrade<'_>,
     ) -> Result<MergeSummary, StoreError> {
         self.refuse_if_read_only()?;
         if is_same_file(self.path(), other) {
@@ -115,6 +115,10 @@ impl Store {
         Ok(summary)
     }
 }
+
+/// A renaming of metrics applied in place to a record's `(name, value)` list (see
+/// [`Store::merge_from_upgrading`]).
+pub type MetricUpgrade<'a> = dyn Fn(&mut [(String, f64)]) + 'a;
 
 /// Status and metrics of a stored record.
 type StoredOutcome = (Status, Vec<(String, f64)>);
