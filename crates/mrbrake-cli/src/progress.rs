@@ -15,6 +15,7 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use mrbrake_explore::Progress;
+use mrbrake_explore::optimize::{OptimizeProgress, Stage};
 
 /// Work that ends sooner than this prints no progress lines.
 pub const QUIET_FOR: Duration = Duration::from_secs(2);
@@ -75,6 +76,8 @@ pub struct ProgressDisplay {
     what: String,
     unit: &'static str,
     lines: Option<LineRule>,
+    /// The `done` of the last optimisation line printed: a line is printed only when it grew.
+    last_done: usize,
 }
 
 impl ProgressDisplay {
@@ -98,7 +101,7 @@ impl ProgressDisplay {
             interval: if mode == Mode::AllLines { Duration::ZERO } else { interval },
             last: None,
         });
-        Self { bar, what: what.to_string(), unit, lines }
+        Self { bar, what: what.to_string(), unit, lines, last_done: 0 }
     }
 
     /// Reports a run of designs.
@@ -111,6 +114,36 @@ impl ProgressDisplay {
         self.line(p.computed, p.to_compute, &detail);
     }
 
+    /// Reports an optimisation, counted over the whole run with its generation (or poll): the
+    /// lines never restart at a new batch, and none says "0/N" (nothing done yet).
+    pub fn update_optimize(&mut self, p: &OptimizeProgress) {
+        let stage = match p.stage {
+            Stage::Reference => "reference design".to_string(),
+            Stage::Generation { index: 0, .. } => "initial population".to_string(),
+            Stage::Generation { index, of } => format!("generation {index}/{of}"),
+            Stage::Poll { index: 0 } => "start point".to_string(),
+            Stage::Poll { index } => format!("poll {index}"),
+        };
+        let r = &p.run;
+        let detail =
+            format!("({} reused, {} infeasible, {} failed)", r.reused, r.infeasible, r.failed);
+        self.bar.set_length(p.total as u64);
+        self.bar.set_position(p.done as u64);
+        self.bar.set_message(format!("{stage} {detail}"));
+        if p.done <= self.last_done {
+            return;
+        }
+        // Pattern search may converge before its budget: the total is an upper bound there.
+        let of = match p.stage {
+            Stage::Poll { .. } => format!("{} of at most {}", p.done, p.total),
+            _ => format!("{}/{}", p.done, p.total),
+        };
+        let what = format!("{}: {stage}, {of}", self.what);
+        if self.line_with(p.done, p.total, &what, &detail) {
+            self.last_done = p.done;
+        }
+    }
+
     /// Reports `done` of `total` steps.
     pub fn step(&mut self, done: usize, total: usize) {
         self.bar.set_length(total as u64);
@@ -119,17 +152,23 @@ impl ProgressDisplay {
     }
 
     fn line(&mut self, done: usize, total: usize, detail: &str) {
-        let Some(rule) = &mut self.lines else { return };
+        let what = format!("{}: {done}/{total}", self.what);
+        self.line_with(done, total, &what, detail);
+    }
+
+    /// Prints `{what} {unit} done, {elapsed} s elapsed {detail}` when a line is due; returns
+    /// whether it did.
+    fn line_with(&mut self, done: usize, total: usize, what: &str, detail: &str) -> bool {
+        let Some(rule) = &mut self.lines else { return false };
         let now = Instant::now();
-        if rule.due(now, done, total) {
+        let due = rule.due(now, done, total);
+        if due {
             let elapsed = now.duration_since(rule.start).as_secs_f64();
-            let text = format!(
-                "{}: {done}/{total} {} done, {elapsed:.0} s elapsed {detail}",
-                self.what, self.unit
-            );
+            let text = format!("{what} {} done, {elapsed:.0} s elapsed {detail}", self.unit);
             // A closed stderr must not stop the work.
             let _ = writeln!(std::io::stderr().lock(), "{}", text.trim_end());
         }
+        due
     }
 
     /// Removes the bar.

@@ -182,6 +182,38 @@ fn export_geo_writes_physical_groups() {
     assert!(text.contains("Point(") && text.contains("Plane Surface"), "{text}");
 }
 
+/// Issue 19: units and gaps are numbered from 1 in the `.geo` physical names and in the JSON,
+/// as everywhere else (the bidirectional default has two units).
+#[test]
+fn export_geo_numbers_units_and_gaps_from_1() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let geo = dir.path().join("bidirectional.geo");
+    let v = json(&["export-geo", "-o", geo.to_str().unwrap(), "--json"]);
+    let text = std::fs::read_to_string(&geo).expect("the .geo file is written");
+    let names: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("Physical "))
+        .filter_map(|l| l.split('"').nth(1))
+        .collect();
+    for first in ["unit1.gap1", "unit2.gap1", "unit1.coil", "unit2.coil"] {
+        assert!(names.iter().any(|n| n.starts_with(first)), "no {first} in {names:?}");
+    }
+    assert!(!names.iter().any(|n| n.contains("unit0") || n.contains("gap0")), "{names:?}");
+    let gaps = v["gaps"].as_array().expect("gaps");
+    let numbers = |field: &str| -> Vec<u64> {
+        gaps.iter().map(|g| g[field].as_u64().expect("a number")).collect()
+    };
+    assert_eq!(numbers("index").iter().min(), Some(&1), "{v}");
+    assert_eq!(numbers("index_in_unit").iter().min(), Some(&1), "{v}");
+    assert_eq!(
+        numbers("unit").iter().copied().collect::<std::collections::BTreeSet<_>>(),
+        [1, 2].into()
+    );
+    let coil_units: Vec<u64> =
+        v["coils"].as_array().expect("coils").iter().map(|c| c["unit"].as_u64().unwrap()).collect();
+    assert!(coil_units.contains(&1) && coil_units.contains(&2) && !coil_units.contains(&0), "{v}");
+}
+
 #[test]
 fn study_thesis_tables_returns_four_tables() {
     let v = json(&["study", "thesis-tables", "--mesh", "coarse", "--json"]);

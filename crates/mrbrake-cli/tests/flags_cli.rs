@@ -153,20 +153,25 @@ fn write_manifest(dir: &Path) -> std::path::PathBuf {
     path
 }
 
-/// `freqresp -o/--output FILE` writes a file (`--out` is a folder elsewhere; it stays a hidden
-/// alias here); `tfest --save-model` is the name of saving a model (`--save` a hidden alias).
+/// `freqresp -o/--output FILE` writes a file; `--out`, a folder everywhere else, is refused here
+/// (no hidden alias taking a file); `tfest --save-model` is the name of saving a model (`--save`
+/// a hidden alias).
 #[test]
 fn output_files_and_saved_models_have_one_name() {
     let dir = tempfile::tempdir().unwrap();
     let manifest = write_manifest(dir.path());
     let mut written = Vec::new();
-    for flag in ["-o", "--output", "--out"] {
+    for flag in ["-o", "--output"] {
         let frd = dir.path().join(format!("frd{flag}.csv"));
         let out = mrbrake(&["freqresp", path_str(&manifest), flag, path_str(&frd)]);
         assert!(out.status.success(), "{flag}: {}", String::from_utf8_lossy(&out.stderr));
         written.push(std::fs::read_to_string(&frd).expect("FRD written"));
     }
     assert!(written.windows(2).all(|w| w[0] == w[1]));
+    let frd = dir.path().join("frd--out.csv");
+    let out_flag = ["freqresp", path_str(&manifest), "--out", path_str(&frd)];
+    expect_input_error(&out_flag, &["'--out'", "--output"]);
+    assert!(!frd.exists(), "--out wrote a file");
     let frd = dir.path().join("frd-o.csv");
     let mut models = Vec::new();
     for flag in ["--save-model", "--save"] {
@@ -181,6 +186,33 @@ fn output_files_and_saved_models_have_one_name() {
     assert!(help.contains("--save-model") && !help.contains("--save "), "{help}");
     let help = stdout_of(&["freqresp", "--help"]);
     assert!(help.contains("-o, --output") && !help.contains("--out "), "{help}");
+}
+
+/// A negative quantity reaches the command's range check (exit 2, the flag and the allowed
+/// range named) instead of clap's "unexpected argument '-1s'": every quantity flag takes a value
+/// starting with a hyphen.
+#[test]
+fn negative_quantities_get_the_range_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = write_manifest(dir.path());
+    let manifest = path_str(&manifest);
+    let cases: [(&[&str], &[&str]); 7] = [
+        (&["response", "--duration", "-1s"], &["duration = -1", "> 0"]),
+        (&["response", "--fluid-lag", "-1ms"], &["fluid lag", ">= 0"]),
+        (&["thermal", "--current", "-2A"], &["--current", "(0, 100] A"]),
+        (&["thermal", "--period", "-1s"], &["--period", "> 0"]),
+        (&["thermal", "--duty", "-0.5"], &["--duty", "(0, 1]"]),
+        (&["freqresp", manifest, "--settle", "-1s"], &["--settle", "non-negative"]),
+        (
+            &["haptic", "wall", "--device", "conventional", "--duration", "-1s"],
+            &["duration_s = -1"],
+        ),
+    ];
+    for (args, needles) in cases {
+        expect_input_error(args, needles);
+        let err = String::from_utf8_lossy(&mrbrake(args).stderr).into_owned();
+        assert!(!err.contains("unexpected argument"), "{args:?}: {err}");
+    }
 }
 
 #[test]
@@ -226,6 +258,59 @@ fn progress_lines_go_to_stderr_when_it_is_not_a_terminal() {
         assert!(err.contains(&format!("sweep: {k}/2 designs done")), "{err}");
     }
     serde_json::from_slice::<serde_json::Value>(&out.stdout).expect("stdout stays pure JSON");
+}
+
+/// `optimize` progress lines count over the whole run with the generation, never restarting at
+/// a new generation's batch and never "0/N".
+#[test]
+fn optimize_progress_lines_are_cumulative_with_the_generation() {
+    let dir = tempfile::tempdir().unwrap();
+    let objective = "[[objective]]\nmetric = \"rotor_inertia_kg_m2\"\n\
+                     [[objective]]\nmetric = \"torque_max_Nm\"\ngoal = \"maximize\"";
+    let nsga = problem(
+        dir.path(),
+        "progress.toml",
+        objective,
+        "kind = \"nsga2\"\npopulation = 4\ngenerations = 2\nseed = 5",
+    );
+    let store = dir.path().join("progress.sqlite");
+    let args = ["optimize", path_str(&nsga), "--store", path_str(&store), "--json"];
+    let out = mrbrake_with_progress(Some("lines"), &args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    serde_json::from_slice::<serde_json::Value>(&out.stdout).expect("stdout stays pure JSON");
+    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("optimize: ")).collect();
+    // (done, total) of each line: "optimize: generation 1/2, 6/12 designs done, …".
+    let counts: Vec<(usize, usize)> = lines
+        .iter()
+        .map(|line| {
+            let (_, rest) = line.split_once(", ").expect("a stage, then the count");
+            let (count, _) = rest.split_once(" designs done").expect("designs done");
+            let (done, total) = count.split_once('/').expect("done/total");
+            (done.parse().unwrap(), total.parse().unwrap())
+        })
+        .collect();
+    // Population 4 for the initial population and each of 2 generations (no reference design).
+    assert!(counts.iter().all(|&(_, total)| total == 12), "{err}");
+    assert!(counts.windows(2).all(|w| w[0].0 < w[1].0), "done must only grow: {err}");
+    assert!(counts.iter().all(|&(done, _)| done > 0), "no 0/N line: {err}");
+    assert_eq!(counts.last(), Some(&(12, 12)), "{err}");
+    for stage in [
+        "optimize: initial population, ",
+        "optimize: generation 1/2, ",
+        "optimize: generation 2/2, ",
+    ] {
+        assert!(lines.iter().any(|l| l.starts_with(stage)), "no line of {stage:?}: {err}");
+    }
+    assert!(!err.contains("0/0"), "{err}");
+    // Replayed from the store: the same cumulative count, all designs reused.
+    let mut resume = args.to_vec();
+    resume.push("--resume");
+    let out = mrbrake_with_progress(Some("lines"), &resume);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("optimize: generation 2/2, 12/12 designs done"), "{err}");
+    assert!(!err.contains(" 0/"), "{err}");
 }
 
 /// A problem file `name` on the single-disc spec: gap g in 0.3–1 mm, `objectives`, `algorithm`.

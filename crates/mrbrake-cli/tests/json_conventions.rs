@@ -1,8 +1,8 @@
 //! The naming convention of docs/CONVENTIONS.md, checked on every command's `--json` output and on
 //! the results store's metric names: snake_case words, then the unit after the last word, written
 //! as SI symbols with their case (`torque_Nm`, `mean_B_T`, `h_W_per_m2_K`); dimensionless keys
-//! have no unit. Each command runs with cheap settings (coarse mesh, few points); the frequency
-//! sweep of `mrbrake response` is release-only.
+//! have no unit. Each command runs with cheap settings (coarse mesh, few points, a short step
+//! response).
 
 mod common;
 
@@ -196,8 +196,8 @@ fn design_commands_follow_the_convention() {
     assert_conventional(&["thermal", "--mesh", "coarse"]);
 }
 
+/// Coarse mesh and a 5 ms step: about 8 s in a debug build.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "a transient and a frequency sweep: release only")]
 fn response_follows_the_convention() {
     assert_conventional(&["response", "--mesh", "coarse", "--duration", "5ms"]);
 }
@@ -283,6 +283,23 @@ fn rig_and_identification_follow_the_convention() {
     ]);
     assert_conventional(&["freqresp", path_str(&freq_dir.join("manifest.csv"))]);
     assert_conventional(&["tfest", path_str(&freq_dir.join("frd.csv")), "--poles", "2"]);
+
+    // The minor-loop chain: its rig log, the operator model fitted to it, and tracking with it.
+    let preisach = dir.path().join("preisach.toml");
+    std::fs::write(&preisach, "[hysteresis]\nmodel = \"preisach\"\n").expect("config written");
+    let config = path_str(&preisach);
+    let (loops_dir, track_dir) = (dir.path().join("loops"), dir.path().join("track"));
+    let operators = dir.path().join("operators.json");
+    assert_conventional(&["rig", "minor-loops", "--config", config, "--out", path_str(&loops_dir)]);
+    let loops = loops_dir.join("minor_loops.csv");
+    let operators_model = path_str(&operators);
+    let fit =
+        ["characterize", path_str(&loops), "--operators", "8", "--save-model", operators_model];
+    assert_conventional(&fit);
+    let track_out = path_str(&track_dir);
+    let track =
+        ["rig", "track", "--config", config, "--out", track_out, "--model", operators_model];
+    assert_conventional(&track);
 }
 
 #[test]

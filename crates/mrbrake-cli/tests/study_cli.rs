@@ -344,3 +344,73 @@ max_evaluations = 10
         }
     }
 }
+
+/// A small sweep of the single-disc example over the gaps `gaps` into `store`, as JSON.
+fn gap_sweep(store: &Path, gaps: &str, extra: &[&str]) -> serde_json::Value {
+    let vary = format!("g={gaps}");
+    let mut args = vec!["sweep", SPEC, "--vary", &vary, "--mesh", "coarse", "--store"];
+    args.extend([path_str(store), "--json"]);
+    args.extend_from_slice(extra);
+    json(&args)
+}
+
+/// Asserts that every design of `designs` (a JSON array) names its metrics the current way.
+fn assert_current_names(designs: &serde_json::Value) {
+    for design in designs.as_array().expect("an array of designs") {
+        let metrics = design["metrics"].as_object().expect("metrics");
+        assert!(metrics.contains_key("torque_max_Nm"), "{design}");
+        for (old, _) in mrbrake_explore::evaluate::LEGACY_METRIC_NAMES {
+            assert!(!metrics.contains_key(*old), "legacy {old} in {design}");
+        }
+    }
+}
+
+/// A store written before the unit convention (`torque_max_nm`, …) exports under the current
+/// names, merges with a store of the same designs under the new names without a conflict (in
+/// either direction), and resumes.
+#[test]
+fn a_store_with_the_old_metric_names_exports_merges_and_resumes() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let new = dir.path().join("new.sqlite");
+    gap_sweep(&new, "0.4mm,0.6mm", &[]);
+    // The old store: the same records under the legacy names, written through the store (which
+    // computes each record's checksum, as the old version did).
+    let old = dir.path().join("old.sqlite");
+    {
+        let source = mrbrake_store::Store::open_read_only(&new).expect("new store");
+        let mut target = mrbrake_store::Store::create(&old).expect("old store");
+        for mut record in source.records().expect("records") {
+            for (name, _) in &mut record.metrics {
+                let legacy = mrbrake_explore::evaluate::LEGACY_METRIC_NAMES.iter();
+                if let Some((old_name, _)) = legacy.clone().find(|(_, current)| current == name) {
+                    *name = (*old_name).to_string();
+                }
+            }
+            assert!(target.insert(&record).expect("insert"));
+        }
+        let stored = target.records().expect("records");
+        assert!(stored.iter().all(|r| r.metric("torque_max_nm").is_some()), "legacy names kept");
+        target.close().expect("close");
+    }
+
+    assert_current_names(&json(&["export", path_str(&old), "--json"]));
+    assert_same_results(&exported(&new), &exported(&old));
+
+    for (name, first, second) in [("a.sqlite", &new, &old), ("b.sqlite", &old, &new)] {
+        let merged = dir.path().join(name);
+        let out = mrbrake(&["merge", path_str(&merged), path_str(first), path_str(second)]);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(!text.contains("CONFLICTS"), "{text}");
+        let second_line = format!("{}: 0 added, 2 already present\n", second.display());
+        assert!(text.contains(&second_line), "{text}");
+        assert!(text.ends_with(&format!("{}: 2 designs (2 added)\n", merged.display())), "{text}");
+        assert_current_names(&json(&["export", path_str(&merged), "--json"]));
+    }
+
+    // Resuming the old store reuses its two designs and reports every design by the new names.
+    let resumed = gap_sweep(&old, "0.4mm,0.6mm,0.8mm", &["--resume"]);
+    assert_current_names(&resumed["designs"]);
+    assert_eq!(resumed["designs"].as_array().map(Vec::len), Some(3), "{resumed}");
+    assert_current_names(&json(&["export", path_str(&old), "--json"]));
+}

@@ -193,7 +193,13 @@ pub fn current_metric_name(name: &str) -> (&str, bool) {
 /// Renames a stored record's legacy metric names to the current ones (see
 /// [`LEGACY_METRIC_NAMES`]), so a store written before the convention reads like a new one.
 pub fn upgrade_metric_names(record: &mut mrbrake_store::Record) {
-    for (name, _) in &mut record.metrics {
+    upgrade_metric_list(&mut record.metrics);
+}
+
+/// Renames the legacy metric names of a `(name, value)` list to the current ones (see
+/// [`upgrade_metric_names`]); the form `mrbrake_store::Store::merge_from_upgrading` takes.
+pub fn upgrade_metric_list(metrics: &mut [(String, f64)]) {
+    for (name, _) in metrics {
         if let (new, true) = current_metric_name(name) {
             *name = new.to_string();
         }

@@ -56,6 +56,44 @@ pub struct OptimizationResult {
     pub converged: Option<bool>,
 }
 
+/// Which batch of an optimisation is being evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stage {
+    /// The base spec, evaluated as the reference design before the algorithm starts.
+    Reference,
+    /// NSGA-II generation `index` of `of` (0: the initial population).
+    Generation {
+        /// 0 for the initial population, then 1 to `of`.
+        index: usize,
+        /// Generations after the initial population.
+        of: usize,
+    },
+    /// Pattern search: the start point (0), then poll `index`.
+    Poll {
+        /// 0 for the start point, then 1, 2, …
+        index: usize,
+    },
+}
+
+/// Where an optimisation stands, over the whole run, reported after every stored evaluation.
+///
+/// Why not the runner's [`Progress`]: the optimiser runs one batch per generation (or poll), and
+/// a batch's progress restarts at zero, so its lines would read "0/N" at every generation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OptimizeProgress {
+    /// The batch being evaluated.
+    pub stage: Stage,
+    /// Designs asked for so far that are done (computed, read back from the store or repeats
+    /// within their batch); never decreases during a run.
+    pub done: usize,
+    /// Designs the run asks for: the reference design, plus population × (generations + 1) for
+    /// NSGA-II or the evaluation budget for pattern search (which may converge sooner).
+    pub total: usize,
+    /// The counts of every batch so far summed (this batch's included); `elapsed_s` is the time
+    /// spent in batches.
+    pub run: Progress,
+}
+
 /// The [`mrbrake_optim::Problem`] of an optimisation problem file.
 pub struct StudyProblem<'s, 'p> {
     problem: &'p OptimizationProblem,
@@ -67,7 +105,9 @@ pub struct StudyProblem<'s, 'p> {
     batches: usize,
     requested: usize,
     totals: Option<RunSummary>,
-    on_progress: &'p mut dyn FnMut(&Progress),
+    /// Batches the algorithm asked for (the reference design not counted).
+    algorithm_batches: usize,
+    on_progress: &'p mut dyn FnMut(&OptimizeProgress),
 }
 
 impl<'s, 'p> StudyProblem<'s, 'p> {
@@ -76,7 +116,7 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         problem: &'p OptimizationProblem,
         store: &'s mut Store,
         jobs: usize,
-        on_progress: &'p mut dyn FnMut(&Progress),
+        on_progress: &'p mut dyn FnMut(&OptimizeProgress),
     ) -> Result<Self, ExploreError> {
         let (space, bounds) = space_and_bounds(problem)?;
         Ok(Self {
@@ -89,6 +129,7 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             batches: 0,
             requested: 0,
             totals: None,
+            algorithm_batches: 0,
             on_progress,
         })
     }
@@ -157,8 +198,47 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         Ok(point)
     }
 
-    fn run_batch(&mut self, designs: &[Design]) -> Result<Vec<Record>, ExploreError> {
-        let (records, summary) = self.runner.run(designs, self.on_progress)?;
+    /// Designs the whole run asks for (see [`OptimizeProgress::total`]).
+    fn planned_designs(&self) -> usize {
+        let algorithm = match self.problem.algorithm {
+            Algorithm::Nsga2 { population, generations, .. } => population * (generations + 1),
+            Algorithm::PatternSearch { max_evaluations, .. } => max_evaluations,
+        };
+        algorithm + usize::from(self.problem.reference)
+    }
+
+    /// The stage of the algorithm's next batch.
+    fn next_algorithm_stage(&self) -> Stage {
+        let index = self.algorithm_batches;
+        match self.problem.algorithm {
+            Algorithm::Nsga2 { generations, .. } => Stage::Generation { index, of: generations },
+            Algorithm::PatternSearch { .. } => Stage::Poll { index },
+        }
+    }
+
+    fn run_batch(&mut self, designs: &[Design], stage: Stage) -> Result<Vec<Record>, ExploreError> {
+        // The batch's progress made cumulative: designs and counts of the earlier batches added.
+        let done_before = self.requested;
+        let before = self.totals.as_ref().map(|t| t.progress);
+        let total = self.planned_designs().max(done_before + designs.len());
+        let on_progress = &mut *self.on_progress;
+        let mut relay = |p: &Progress| {
+            // Everything of the batch not waiting to be computed is done (reused, computed, or a
+            // repeat of a design earlier in the batch).
+            let waiting = p.to_compute - p.computed;
+            let mut run = *p;
+            if let Some(b) = before {
+                run.to_compute += b.to_compute;
+                run.computed += b.computed;
+                run.reused += b.reused;
+                run.infeasible += b.infeasible;
+                run.failed += b.failed;
+                run.elapsed_s += b.elapsed_s;
+            }
+            let done = done_before + designs.len() - waiting;
+            on_progress(&OptimizeProgress { stage, done, total, run });
+        };
+        let (records, summary) = self.runner.run(designs, &mut relay)?;
         self.batches += 1;
         self.requested += designs.len();
         self.totals = Some(match self.totals.take() {
@@ -194,7 +274,9 @@ impl Problem for StudyProblem<'_, '_> {
     fn evaluate_batch(&mut self, xs: &[Vec<f64>]) -> Result<Vec<Evaluation>, ExploreError> {
         let designs: Vec<Design> =
             xs.iter().map(|x| self.space.design(x)).collect::<Result<_, _>>()?;
-        let records = self.run_batch(&designs)?;
+        let stage = self.next_algorithm_stage();
+        self.algorithm_batches += 1;
+        let records = self.run_batch(&designs, stage)?;
         let mut evaluations = Vec::with_capacity(records.len());
         for record in records {
             let evaluation = self.evaluation_of(&record);
@@ -294,13 +376,13 @@ pub fn run(
     problem: &OptimizationProblem,
     store: &mut Store,
     jobs: usize,
-    on_progress: &mut dyn FnMut(&Progress),
+    on_progress: &mut dyn FnMut(&OptimizeProgress),
 ) -> Result<OptimizationResult, ExploreError> {
     let mut study = StudyProblem::new(problem, store, jobs, on_progress)?;
     let reference = if problem.reference {
         let base = study.space.base_design()?;
         let record = study
-            .run_batch(std::slice::from_ref(&base))?
+            .run_batch(std::slice::from_ref(&base), Stage::Reference)?
             .pop()
             .ok_or_else(|| ExploreError::Internal("the reference design was not stored".into()))?;
         let evaluation = study.evaluation_of(&record);

@@ -474,6 +474,20 @@ impl Nodes {
         tag: usize,
         xyz: [f64; 3],
     ) -> Result<(), FemError> {
+        // Rust parses `nan` and `inf` as numbers; refused here, with the file's tag and line,
+        // before they reach the mesh (whose checks would name a renumbered 0-based index, and
+        // whose size scale they would make infinite).
+        if let Some(k) = xyz.iter().position(|c| !c.is_finite()) {
+            return Err(reader.err(
+                line,
+                format!(
+                    "node {tag} has a non-finite coordinate {} = {}: every coordinate must be a \
+                     finite number",
+                    ["x", "y", "z"][k],
+                    xyz[k]
+                ),
+            ));
+        }
         if xyz[2].abs() > 1e-12 * (1.0 + xyz[0].abs() + xyz[1].abs()) {
             return Err(reader.err(
                 line,

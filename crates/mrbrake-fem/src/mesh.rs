@@ -108,10 +108,12 @@ impl Mesh {
             return Err(FemError::Input("mesh has no triangles".into()));
         }
         let scale = self.size_scale();
+        // Indices here are the mesh's own, 0-based; a mesh read from a file is checked in the
+        // file's own tags first (`crate::gmsh`), so these messages are for meshes built in code.
         for (i, p) in self.nodes.iter().enumerate() {
             if !p[0].is_finite() || !p[1].is_finite() {
                 return Err(FemError::Input(format!(
-                    "mesh node {i} has a non-finite coordinate {p:?}"
+                    "mesh node {i} (0-based index) has a non-finite coordinate {p:?}"
                 )));
             }
             if p[0] < -1e-9 * scale {
@@ -131,7 +133,8 @@ impl Mesh {
             let area = self.signed_area(t);
             if area <= 1e-14 * scale * scale {
                 return Err(FemError::Input(format!(
-                    "triangle {t} (nodes {tri:?}) is degenerate or clockwise (signed area {area:e} m²)"
+                    "triangle {t} (0-based index; nodes {tri:?}) is degenerate or clockwise (signed area \
+                     {area:e} m²)"
                 )));
             }
         }

@@ -227,3 +227,36 @@ fn mesh_errors_use_the_files_tags() {
     let err = parse_msh(text, "neg.msh", 1.0).unwrap_err().to_string();
     assert!(err.contains("node 23 has r = -1 m"), "{err}");
 }
+
+/// Issue 19: `nan` and `inf` (which Rust parses as numbers) are refused while the nodes are read,
+/// naming the file's node tag and line, in both formats; a zero-area triangle whose corners
+/// coincide is named by its element tag.
+#[test]
+fn non_finite_coordinates_and_coinciding_corners_use_the_files_tags() {
+    let elements = "$Elements\n1\n1 2 2 7 5 31 32 33\n$EndElements\n";
+    for (value, shown) in [("nan", "NaN"), ("inf", "inf"), ("-inf", "-inf")] {
+        let text = format!(
+            "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n31 0 0 0\n32 1 {value} 0\n\
+             33 0 1 0\n$EndNodes\n{elements}"
+        );
+        let (line, message) = parse_error(&text);
+        assert_eq!(line, 7, "{message}");
+        assert!(
+            message.contains(&format!("node 32 has a non-finite coordinate y = {shown}")),
+            "{message}"
+        );
+    }
+    let v4 = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 1 0\n\
+              1 0 0 0 1 1 0 1 5 0\n$EndEntities\n$Nodes\n1 3 41 43\n2 1 0 3\n41\n42\n43\n\
+              0 0 0\nnan 0 0\n0 1 0\n$EndNodes\n";
+    let (line, message) = parse_error(v4);
+    assert_eq!(line, 15, "{message}");
+    assert!(message.contains("node 42 has a non-finite coordinate x = NaN"), "{message}");
+
+    // Corners 51 and 52 coincide: zero area, reported as the file's element 9 on its line.
+    let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n51 1 1 0\n52 1 1 0\n53 0 1 0\n54 2 0 0\n$EndNodes\n$Elements\n2\n8 2 2 7 5 51 54 53\n9 2 2 7 5 51 52 53\n$EndElements\n";
+    let (line, message) = parse_error(text);
+    assert_eq!(line, 14);
+    assert!(message.contains("triangle 9") && message.contains("[51, 52, 53]"), "{message}");
+    assert!(message.contains("degenerate"), "{message}");
+}

@@ -106,14 +106,16 @@ fn gaps_text(out: &mut String, a: &Analysis) {
 fn coil_and_mechanics_text(out: &mut String, a: &Analysis) {
     let c = &a.coil;
     let _ = writeln!(out);
+    // At the 20 °C reference the hot resistance is the same number: say it once (compared as
+    // printed, so a temperature a hair above 20 °C does not repeat it either).
+    let (cold, hot) = (format!("{:.3}", c.resistance_20c_ohm), format!("{:.3}", c.resistance_ohm));
+    let hot = if hot == cold { String::new() } else { format!(" ({hot} Ω hot)") };
     let _ = writeln!(
         out,
-        "coil: {} turns of {:.3} mm wire, {:.1} m, {:.3} Ω at 20 °C ({:.3} Ω hot), J = {:.2} A/mm² (4.1), {:.2} W",
+        "coil: {} turns of {:.3} mm wire, {:.1} m, {cold} Ω at 20 °C{hot}, J = {:.2} A/mm² (4.1), {:.2} W",
         c.turns,
         c.wire_diameter_m * 1e3,
         c.wire_length_m,
-        c.resistance_20c_ohm,
-        c.resistance_ohm,
         c.current_density_a_per_mm2,
         c.power_w
     );
@@ -272,6 +274,16 @@ mod tests {
         assert_eq!(lines[16], "gaps at the maximum current:");
         assert!(lines[29].starts_with("mechanics: mass ") && lines[29].contains("(direction 2: "));
         assert!(lines[lines.len() - 1].starts_with("time: ") && text.ends_with(")\n"));
+        // At the default 20 °C the resistance is said once; a hot coil adds its hot value.
+        let coil = lines.iter().find(|l| l.starts_with("coil: ")).expect("a coil line");
+        assert_eq!(coil.matches('Ω').count(), 1, "{coil}");
+        assert!(coil.contains(" Ω at 20 °C, J = ") && !coil.contains("hot"), "{coil}");
+        let mut hot = analysis.clone();
+        hot.coil.resistance_ohm = 1.2 * hot.coil.resistance_20c_ohm;
+        let text_hot = super::text(&hot, "embedded default");
+        let coil = text_hot.lines().find(|l| l.starts_with("coil: ")).expect("a coil line");
+        let expected = format!("({:.3} Ω hot), J = ", hot.coil.resistance_ohm);
+        assert!(coil.contains(&expected), "{coil}");
 
         let dir = tempfile::tempdir().unwrap();
         write_plots(&analysis, &field, dir.path(), true).unwrap();

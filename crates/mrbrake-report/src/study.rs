@@ -119,10 +119,11 @@ impl SweepReport<'_> {
         self.table(&mut out);
         let p = &self.summary.progress;
         if p.computed == 0 {
+            let all = if p.reused == 1 { "" } else { "all " };
             let _ = writeln!(
                 out,
-                "nothing to compute: all {} designs were already in the store",
-                p.reused
+                "nothing to compute: {all}{} already in the store",
+                count(p.reused, "design was", "designs were")
             );
         } else {
             // The writer thread inserts while the workers analyse, so the store's time overlaps
@@ -415,9 +416,9 @@ impl OptimizationReport<'_> {
         let point = |r: &Record| Some((r.metric(x_metric)? * xs, r.metric(y_metric)? * ys));
         let mut plot = ObjectivePlot {
             title: format!(
-                "{} — {} evaluated designs",
+                "{} — {}",
                 problem.path.file_stem().and_then(|s| s.to_str()).unwrap_or("optimisation"),
-                result.evaluated.len()
+                count(result.evaluated.len(), "evaluated design", "evaluated designs")
             ),
             x_label,
             y_label,
@@ -579,6 +580,12 @@ mod tests {
         let resumed = run_summary(0, 2);
         let text = SweepReport { summary: &resumed, ..report }.text();
         assert!(text.ends_with("nothing to compute: all 2 designs were already in the store\n"));
+        let one = run_summary(0, 1);
+        let text = SweepReport { summary: &one, ..report }.text();
+        assert!(
+            text.ends_with("nothing to compute: 1 design was already in the store\n"),
+            "{text}"
+        );
     }
 
     #[test]

@@ -127,6 +127,8 @@ mod store;
 
 pub use error::StoreError;
 pub use export::{to_csv, to_json};
-pub use merge::{MERGE_RELATIVE_TOLERANCE, MergeSummary, metrics_agree, values_agree};
+pub use merge::{
+    MERGE_RELATIVE_TOLERANCE, MergeSummary, MetricUpgrade, metrics_agree, values_agree,
+};
 pub use record::{KEY_HEX_DIGITS, Record, Status, UnknownStatus, is_design_key};
 pub use store::Store;

@@ -5,6 +5,10 @@
 //! agree (same status, same metric names, every metric within a relative
 //! [`MERGE_RELATIVE_TOLERANCE`]) and a *conflict* otherwise; either way the record already in the
 //! destination is kept. The whole merge is one transaction: it lands completely or not at all.
+//!
+//! Metric names may have changed between the versions that wrote two stores (see
+//! `mrbrake_explore::evaluate::LEGACY_METRIC_NAMES`); [`Store::merge_from_upgrading`] takes the
+//! renaming, which this crate does not know, and applies it to both sides before comparing.
 
 use std::path::Path;
 
@@ -41,6 +45,19 @@ impl Store {
     /// first with [`Store::open_read_only`] and [`Store::meta`] if the stores must belong to the
     /// same study. Merging a store into itself fails with [`StoreError::Conflict`].
     pub fn merge_from(&mut self, other: &Path) -> Result<MergeSummary, StoreError> {
+        self.merge_from_upgrading(other, &|_| {})
+    }
+
+    /// [`Store::merge_from`], with `upgrade` applied to the metrics of both records of a key
+    /// before they are compared, and to every record copied in. `upgrade` renames metrics written
+    /// under an older name to the current one, so that a store written before a renaming agrees
+    /// with a newer store of the same designs (instead of every shared design being a conflict)
+    /// and the merged store holds current names only.
+    pub fn merge_from_upgrading(
+        &mut self,
+        other: &Path,
+        upgrade: &MetricUpgrade<'_>,
+    ) -> Result<MergeSummary, StoreError> {
         self.refuse_if_read_only()?;
         if is_same_file(self.path(), other) {
             return Err(StoreError::Conflict {
@@ -66,7 +83,8 @@ impl Store {
             let rows = rows.query_map([], read_row).map_err(|error| source.sqlite_error(error))?;
             for row in rows {
                 let row = row.map_err(|error| source.sqlite_error(error))?;
-                let incoming = source.decode(row)?;
+                let mut incoming = source.decode(row)?;
+                upgrade(&mut incoming.record.metrics);
                 let existing =
                     existing_outcome(&transaction, &incoming.record.key).map_err(write_error)?;
                 match existing {
@@ -80,7 +98,8 @@ impl Store {
                         .map_err(write_error)?;
                         summary.inserted += 1;
                     }
-                    Some((status, metrics)) => {
+                    Some((status, mut metrics)) => {
+                        upgrade(&mut metrics);
                         let agrees = status == incoming.record.status
                             && metrics_agree(&metrics, &incoming.record.metrics);
                         if agrees {
@@ -96,6 +115,10 @@ impl Store {
         Ok(summary)
     }
 }
+
+/// A renaming of metrics applied in place to a record's `(name, value)` list (see
+/// [`Store::merge_from_upgrading`]).
+pub type MetricUpgrade<'a> = dyn Fn(&mut [(String, f64)]) + 'a;
 
 /// Status and metrics of a stored record.
 type StoredOutcome = (Status, Vec<(String, f64)>);

@@ -153,3 +153,47 @@ fn a_merged_source_is_unchanged_and_its_side_files_go_with_the_next_writer() {
         .collect();
     assert_eq!(names, vec!["source.mrbrake".to_owned()]);
 }
+
+/// A store written before a metric was renamed merges with a newer store of the same designs
+/// through the renaming: agreeing designs are duplicates (not conflicts), copied records carry
+/// the current name and keep a valid checksum.
+#[test]
+fn a_renaming_applies_to_both_sides_before_comparing() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let rename = |metrics: &mut [(String, f64)]| {
+        for (name, _) in metrics {
+            if name == "torque_on_nm" {
+                *name = "torque_on_Nm".into();
+            }
+        }
+    };
+    let renamed = |record: Record| {
+        let mut record = record;
+        rename(record.metrics.as_mut_slice());
+        record
+    };
+    let old: Vec<Record> = (0..3).map(|index| record(index, 2.0)).collect();
+    let new: Vec<Record> = (1..4).map(|index| renamed(record(index, 2.0))).collect();
+    let path_old = store_with(directory.path(), "old.mrbrake", &old);
+    let path_new = store_with(directory.path(), "new.mrbrake", &new);
+
+    // Without the renaming every shared design differs by its metric names.
+    let path_plain = store_with(directory.path(), "plain.mrbrake", &new);
+    let mut plain = Store::open(&path_plain).expect("open");
+    let summary = plain.merge_from(&path_old).expect("merge");
+    assert_eq!(summary.conflicts.len(), 2, "{summary:?}");
+    plain.close().expect("close");
+
+    let path_into = store_with(directory.path(), "into.mrbrake", &new);
+    let mut merged = Store::open(&path_into).expect("open");
+    let summary = merged.merge_from_upgrading(&path_old, &rename).expect("merge");
+    assert_eq!(summary, MergeSummary { inserted: 1, duplicates: 2, conflicts: vec![] });
+    let copied = merged.get(&format!("{:064x}", 0)).expect("get (checksum verified)");
+    let copied = copied.expect("copied");
+    assert_eq!(copied.metric("torque_on_Nm"), Some(2.0));
+    assert_eq!(copied.metric("torque_on_nm"), None);
+    // And the other way round: an old-name destination against a new-name source.
+    let mut old_store = Store::open(&path_old).expect("open old");
+    let summary = old_store.merge_from_upgrading(&path_new, &rename).expect("merge");
+    assert_eq!(summary, MergeSummary { inserted: 1, duplicates: 2, conflicts: vec![] });
+}

@@ -20,7 +20,7 @@ pub struct FreqRespArgs {
     /// Manifest CSV with columns frequency_rad_s,file (files relative to the manifest).
     manifest: PathBuf,
     /// Output FRD file (default: frd.csv beside the manifest).
-    #[arg(short, long, value_name = "FRD.csv", alias = "out")]
+    #[arg(short, long, value_name = "FRD.csv")]
     output: Option<PathBuf>,
     /// Name of the time column of the test logs (seconds).
     #[arg(long, default_value = "time_s")]
@@ -32,14 +32,19 @@ pub struct FreqRespArgs {
     #[arg(long, default_value = "output")]
     output_col: String,
     /// Periods discarded at the start of each test (start-up transient).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     discard_periods: f64,
     /// Time discarded at the start of each test (the larger discard applies), e.g. 0.5s.
-    #[arg(long, default_value = "0.5s")]
+    #[arg(long, default_value = "0.5s", allow_hyphen_values = true)]
     settle: String,
     /// Lowest accepted output sine-fit quality of a point, %: a point below it stops the analysis
     /// with an error naming its log (a frequency that does not match the log); 0 accepts all.
-    #[arg(long, value_name = "PERCENT", default_value_t = mrbrake_sysid::freqresp::DEFAULT_MIN_QUALITY_PERCENT)]
+    #[arg(
+        long,
+        value_name = "PERCENT",
+        default_value_t = mrbrake_sysid::freqresp::DEFAULT_MIN_QUALITY_PERCENT,
+        allow_hyphen_values = true
+    )]
     min_quality: f64,
     /// Draw the measured Bode diagram (.svg or .png).
     #[arg(long, value_name = "FILE.svg")]

@@ -100,7 +100,7 @@ pub struct WallArgs {
     )]
     damping: String,
     /// Run length (e.g. 4s, 10s); default: the scenario's 4 s.
-    #[arg(long, value_name = "TIME")]
+    #[arg(long, value_name = "TIME", allow_hyphen_values = true)]
     duration: Option<String>,
     /// Characterisation JSON (rising/falling coefficients, current_min_A/current_max_A) used for both
     /// brakes, in the plant and in the controller; default: built-in prototype-like branches.
@@ -152,7 +152,7 @@ pub struct ZwidthArgs {
     #[arg(long, default_value_t = 50)]
     points: usize,
     /// Sample period T of the haptic loop (e.g. 1ms).
-    #[arg(long, default_value = "1ms", value_name = "TIME")]
+    #[arg(long, default_value = "1ms", value_name = "TIME", allow_hyphen_values = true)]
     period: String,
     /// Physical damping b of the device (e.g. 5mNms/rad; a bare number is N·m·s/rad).
     #[arg(

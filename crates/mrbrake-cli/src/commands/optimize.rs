@@ -67,7 +67,7 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     let store_path = a.store.clone().unwrap_or_else(|| optimize::default_store_path(path));
     let mut store = optimize::open_problem_store(&problem, &store_path, a.resume)?;
     let mut display = ProgressDisplay::new("optimize", a.json);
-    let result = optimize::run(&problem, &mut store, a.jobs, &mut |p| display.update(p))?;
+    let result = optimize::run(&problem, &mut store, a.jobs, &mut |p| display.update_optimize(p))?;
     display.finish();
 
     let report = OptimizationReport {

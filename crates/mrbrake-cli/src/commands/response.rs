@@ -26,21 +26,21 @@ pub struct ResponseArgs {
     #[arg(long, value_name = "current|voltage", default_value = "current")]
     drive: String,
     /// Current step FROM..TO (e.g. 0A..2A); default 0 A to the spec's maximum current.
-    #[arg(long, value_name = "FROM..TO")]
+    #[arg(long, value_name = "FROM..TO", allow_hyphen_values = true)]
     step: Option<String>,
     /// DC bias of the frequency response (e.g. 1A); default half the maximum current.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     bias: Option<String>,
     /// Duration of the step response (e.g. 100ms).
-    #[arg(long, default_value = "100ms")]
+    #[arg(long, default_value = "100ms", allow_hyphen_values = true)]
     duration: String,
     /// Conductivity of the flux-path steel (e.g. 5.8MS/m; a bare number is S/m); default: the
     /// material library's value.
-    #[arg(long, value_name = "CONDUCTIVITY")]
+    #[arg(long, value_name = "CONDUCTIVITY", allow_hyphen_values = true)]
     conductivity: Option<String>,
     /// First-order lag of the MR fluid (e.g. 0.48ms, 0s for none); default T90 = 1.1 ms (Kubík et
     /// al. 2022) over ln 10.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     fluid_lag: Option<String>,
     /// Write the frequency response as FRD CSV (the form `mrbrake tfest` reads).
     #[arg(long, value_name = "FILE.csv")]

@@ -59,7 +59,7 @@ pub struct SweepArgs {
     #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
     order: u8,
     /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
-    #[arg(long, default_value = "1rad/s")]
+    #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
     speed: String,
     /// Also write this sweep's designs as CSV.
     #[arg(long, value_name = "FILE")]
@@ -189,7 +189,9 @@ pub fn run_merge(a: MergeArgs) -> CommandResult {
     let mut store = Store::open_or_create(&a.output, true)?;
     let mut total = 0;
     for input in &a.inputs {
-        let summary = match store.merge_from(input) {
+        // A store written before the unit convention merges under the current metric names.
+        let upgrade = mrbrake_explore::evaluate::upgrade_metric_list;
+        let summary = match store.merge_from_upgrading(input, &upgrade) {
             Ok(summary) => summary,
             Err(error) => {
                 // A store this command created and could not fill is removed again.
@@ -203,7 +205,8 @@ pub fn run_merge(a: MergeArgs) -> CommandResult {
         total += summary.inserted;
         crate::out!("{}", study_report::merge_text(input, &summary));
     }
-    crate::outln!("{}: {} designs ({} added)", a.output.display(), store.len()?, total);
+    let designs = mrbrake_report::wording::count(store.len()?, "design", "designs");
+    crate::outln!("{}: {designs} ({total} added)", a.output.display());
     Ok(())
 }
 

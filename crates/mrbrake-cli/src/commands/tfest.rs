@@ -40,7 +40,7 @@ pub struct TfestArgs {
     #[arg(long, value_name = "COLUMN")]
     weight_col: Option<String>,
     /// Known input delay removed before fitting (e.g. 0.5ms for a 1 kHz zero-order hold).
-    #[arg(long, default_value = "0s")]
+    #[arg(long, default_value = "0s", allow_hyphen_values = true)]
     delay: String,
     /// Draw measured points and the fitted model (.svg or .png).
     #[arg(long, value_name = "FILE.svg")]

@@ -20,13 +20,13 @@ pub struct ThermalArgs {
     /// Brake specification (TOML). Omitted: the embedded thesis bidirectional brake.
     spec: Option<PathBuf>,
     /// Coil current when on (e.g. 2A); default the spec's maximum current.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     current: Option<String>,
     /// Duty cycle in (0, 1]: the fraction of time the current is on.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     duty: f64,
     /// Period of the duty cycle (e.g. 10s); checked against the thermal time constant.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     period: Option<String>,
     /// Ambient temperature (e.g. 25C).
     #[arg(long, default_value = "25C", allow_hyphen_values = true)]
@@ -34,25 +34,30 @@ pub struct ThermalArgs {
     /// Heat-transfer coefficient of the housing (e.g. 10W/(m²·K), 10W/m2K; a bare number is
     /// W/(m²·K)), or `natural` for natural convection to still air with the axis horizontal
     /// (Churchill–Chu, iterated with the surface temperature).
-    #[arg(long, value_name = "COEFFICIENT|natural", default_value = "10")]
+    #[arg(
+        long,
+        value_name = "COEFFICIENT|natural",
+        default_value = "10",
+        allow_hyphen_values = true
+    )]
     h: String,
     /// Emissivity of the housing for radiation to surroundings at the ambient, in [0, 1] (0: none;
     /// about 0.8–0.95 for painted or oxidised steel).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     emissivity: f64,
     /// Insulation limit of the winding: a temperature (e.g. 155C) or an IEC 60085 thermal class
     /// letter (A 105, E 120, B 130, F 155, H 180 °C).
-    #[arg(long, default_value = "155C")]
+    #[arg(long, default_value = "155C", allow_hyphen_values = true)]
     insulation_class: String,
     /// Duration of the warm-up (e.g. 2h, 30min).
-    #[arg(long, default_value = "2h")]
+    #[arg(long, default_value = "2h", allow_hyphen_values = true)]
     time: String,
     /// Time step of the warm-up (e.g. 10s).
-    #[arg(long, default_value = "10s")]
+    #[arg(long, default_value = "10s", allow_hyphen_values = true)]
     dt: String,
     /// Shaft speed for the viscous heat in the gaps and the off-state torque (e.g. 0rad/s, 60rpm;
     /// the off-state torque is quoted at 1 rad/s when the speed is 0).
-    #[arg(long, default_value = "0rad/s")]
+    #[arg(long, default_value = "0rad/s", allow_hyphen_values = true)]
     speed: String,
     /// Mesh density: coarse, default or fine.
     #[arg(long, default_value = "default")]

@@ -27,7 +27,7 @@ pub enum RegionKind {
 }
 
 impl RegionKind {
-    /// The kind of a region named `name` (a part name such as `unit1.gap0`) made of the library
+    /// The kind of a region named `name` (a part name such as `unit1.gap1`) made of the library
     /// material `material`; `None` when neither says.
     pub fn of(name: &str, material: &str) -> Option<Self> {
         let part = name.rsplit('.').next().unwrap_or(name).to_ascii_lowercase();
@@ -202,7 +202,7 @@ mod tests {
     #[test]
     fn kinds_come_from_names_and_library_materials() {
         assert_eq!(RegionKind::of("unit1.core", "steel-1008"), Some(RegionKind::Steel));
-        assert_eq!(RegionKind::of("unit1.gap0", "mrf-122eg"), Some(RegionKind::Fluid));
+        assert_eq!(RegionKind::of("unit1.gap1", "mrf-122eg"), Some(RegionKind::Fluid));
         assert_eq!(RegionKind::of("unit1.coil", "copper"), Some(RegionKind::Coil));
         assert_eq!(RegionKind::of("spacer", "aluminium"), Some(RegionKind::NonMagnetic));
         assert_eq!(RegionKind::of("air", "air"), Some(RegionKind::Air));

@@ -208,7 +208,10 @@ impl StudyReport<'_> {
         let ((xs, x_label), (ys, y_label)) = (metric_plot_axis(x), metric_plot_axis(y));
         let point = |r: &Record| Some((r.metric(x)? * xs, r.metric(y)? * ys));
         let mut plot = ObjectivePlot {
-            title: format!("{} designs and the front", self.records.len()),
+            title: format!(
+                "{} and the front",
+                crate::wording::count(self.records.len(), "design", "designs")
+            ),
             x_label: x_label.clone(),
             y_label,
             ..ObjectivePlot::default()
