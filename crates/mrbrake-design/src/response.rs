@@ -37,6 +37,7 @@ use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use mrbrake_magnetics::{Solution, Solver, SolverOptions};
 use mrbrake_materials::{CopperWire, MrFluid, library};
 use num_complex::Complex64;
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::DesignError;
@@ -239,11 +240,20 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
         ));
     }
     let t0 = Instant::now();
-    let mut step = Vec::with_capacity(model.geometry.units);
+    // The directions' transients are independent: one thread each (on two cores the step
+    // responses of the bidirectional brake take the time of one).
+    let steps: Vec<Result<(StepResponse, Option<EddyField>), DesignError>> =
+        (0..model.geometry.units)
+            .into_par_iter()
+            .map(|unit| {
+                let keep_at = if unit == 0 { options.eddy_at_s } else { None };
+                model.step_response(unit, options.step_from_a, to, keep_at)
+            })
+            .collect();
+    let mut step = Vec::with_capacity(steps.len());
     let mut eddy = None;
-    for unit in 0..model.geometry.units {
-        let keep_at = if unit == 0 { options.eddy_at_s } else { None };
-        let (response, field) = model.step_response(unit, options.step_from_a, to, keep_at)?;
+    for outcome in steps {
+        let (response, field) = outcome?;
         step.push(response);
         eddy = eddy.or(field);
     }
