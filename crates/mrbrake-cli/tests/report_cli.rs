@@ -82,8 +82,8 @@ fn design_report_matches_analyze_json_and_renders() {
     check_in_browser(&[&dir.path().join("design.html")]);
 }
 
-/// `--response` adds the predicted dynamics: its section, table and two more figures, the
-/// numbers of `response --json`, and the page still loads cleanly (release only: a non-linear
+/// `--response` adds the predicted dynamics: its section, table and three more figures (step
+/// response, Bode diagram, eddy-current map), the numbers of `response --json`, and the page still loads cleanly (release only: a non-linear
 /// transient of the whole brake).
 #[test]
 #[cfg_attr(debug_assertions, ignore = "release only: the brake's transient and frequency sweep")]
@@ -92,8 +92,9 @@ fn design_report_with_the_predicted_dynamics() {
     let page =
         report(dir.path(), "dynamics.html", &["--mesh", "coarse", "--points", "3", "--response"]);
     let (svgs, imgs) = well_formed(&page);
-    assert_eq!((svgs, imgs), (6, 1), "two more figures: step response and Bode");
+    assert_eq!((svgs, imgs), (7, 1), "three more figures: step response, Bode, eddy currents");
     assert!(page.contains("id=\"dynamics\""));
+    assert!(page.contains("J_φ = −σ ∂A/∂t"), "the eddy-current map's caption");
     let response = json(&["response", "--mesh", "coarse", "--json"]);
     let bandwidth = response["bandwidth_rad_s"].as_f64().expect("a bandwidth below 1000 rad/s");
     let t63 = response["step"][0]["t63_s"].as_f64().expect("t63") * 1e3;

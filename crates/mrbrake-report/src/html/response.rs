@@ -1,13 +1,14 @@
 //! The dynamics section of a design report: the predicted step response and Bode diagram
 //! ([`mrbrake_design::response`]), with the thesis's measured transfer functions for the embedded
-//! default.
+//! default, and the eddy-current density map when the response kept one.
 
 use mrbrake_design::response::Response;
 
 use super::{Cell, Section, Table, figure, inline_svg};
 use crate::ReportError;
 use crate::bode::bode_figure;
-use crate::response::{BODE_TITLE, bode_curves, step_figure};
+use crate::field_map::scalar_map_svg;
+use crate::response::{BODE_TITLE, EddyMap, bode_curves, step_figure};
 
 /// The section (anchor `dynamics`).
 pub fn section(r: &Response, thesis: bool) -> Result<Section, ReportError> {
@@ -72,5 +73,19 @@ pub fn section(r: &Response, thesis: bool) -> Result<Section, ReportError> {
         "Predicted small-signal response."
     };
     figure(&mut s.body, &bode, caption);
+    if let Some(field) = &r.eddy {
+        let map = EddyMap::new(field)?;
+        let svg = inline_svg(&scalar_map_svg(&map.scalar_map())?, "eddy-current density map")?;
+        figure(
+            &mut s.body,
+            &svg,
+            &format!(
+                "Induced current density J_φ = −σ ∂A/∂t in the conducting parts {:.2} ms into the \
+                 direction-{} step.",
+                field.time_s * 1e3,
+                field.direction
+            ),
+        );
+    }
     Ok(s)
 }
