@@ -227,13 +227,8 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             // repeat of a design earlier in the batch).
             let waiting = p.to_compute - p.computed;
             let mut run = *p;
-            if let Some(b) = before {
-                run.to_compute += b.to_compute;
-                run.computed += b.computed;
-                run.reused += b.reused;
-                run.infeasible += b.infeasible;
-                run.failed += b.failed;
-                run.elapsed_s += b.elapsed_s;
+            if let Some(b) = &before {
+                run.add(b);
             }
             let done = done_before + designs.len() - waiting;
             on_progress(&OptimizeProgress { stage, done, total, run });
@@ -244,13 +239,7 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         self.totals = Some(match self.totals.take() {
             None => summary,
             Some(mut t) => {
-                let (a, b) = (&mut t.progress, &summary.progress);
-                a.to_compute += b.to_compute;
-                a.computed += b.computed;
-                a.reused += b.reused;
-                a.infeasible += b.infeasible;
-                a.failed += b.failed;
-                a.elapsed_s += b.elapsed_s;
+                t.progress.add(&summary.progress);
                 t.evaluation_s += summary.evaluation_s;
                 t.store_s += summary.store_s;
                 t

@@ -37,6 +37,18 @@ pub struct Progress {
     pub elapsed_s: f64,
 }
 
+impl Progress {
+    /// Adds the counts and time of `other` (a later run's) to these.
+    pub fn add(&mut self, other: &Progress) {
+        self.to_compute += other.to_compute;
+        self.computed += other.computed;
+        self.reused += other.reused;
+        self.infeasible += other.infeasible;
+        self.failed += other.failed;
+        self.elapsed_s += other.elapsed_s;
+    }
+}
+
 /// What a run did.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSummary {
