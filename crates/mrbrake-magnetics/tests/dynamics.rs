@@ -69,21 +69,22 @@ fn cylinder(
     drive: Drive,
     waveform: Waveform,
 ) -> Dynamics {
-    cylinder_on(&radial_lines(cells), SolverOptions::default(), core, sigma, drive, waveform)
+    let z = graded_lines(0.0, H, 2, 1.0);
+    cylinder_on(&radial_lines(cells), &z, SolverOptions::default(), core, sigma, drive, waveform)
 }
 
-/// [`cylinder`] on the radial grid lines `r` with the solver `options` (element order).
+/// [`cylinder`] on the grid lines `r`, `z` with the solver `options` (element order).
 fn cylinder_on(
     r: &[f64],
+    z: &[f64],
     options: SolverOptions,
     core: Magnetic,
     sigma: f64,
     drive: Drive,
     waveform: Waveform,
 ) -> Dynamics {
-    let z = graded_lines(0.0, H, 2, 1.0);
     let sides = SideTags { r_min: 10, r_max: 11, z_min: 12, z_max: 13 };
-    let mesh = rectangle_mesh(r, &z, |r, _| band(r), sides).unwrap();
+    let mesh = rectangle_mesh(r, z, |r, _| band(r), sides).unwrap();
     let region = |tag, material| Region { tag, material, source: None };
     let problem = Problem {
         mesh: Arc::new(mesh),
@@ -180,8 +181,12 @@ fn harmonic_skin_effect_matches_the_bessel_solution() {
 fn skin_errors(cells: usize, order: ElementOrder, ratio: f64) -> (f64, f64) {
     let options = SolverOptions { order, ..SolverOptions::default() };
     let r = radial_lines_refined(cells, cells / 10);
+    // The z cells shrink with the radial ones: with two z cells throughout, the triangles grow
+    // flat (a 1 mm by 10 µm cell at 80 radial cells) and P2's flux error falls at order 2 only.
+    let z = graded_lines(0.0, H, 8 * cells / 10, 1.0);
     let waveform = Waveform::Step { initial: 0.0 };
-    let mut dynamics = cylinder_on(&r, options, Magnetic::air(), SIGMA, current_drive(), waveform);
+    let mut dynamics =
+        cylinder_on(&r, &z, options, Magnetic::air(), SIGMA, current_drive(), waveform);
     let omega = 2.0 * ratio * ratio / (MU_0 * SIGMA * A * A);
     let frequency = omega / (2.0 * std::f64::consts::PI);
     // The direct solve: the reduced-basis sweep's tolerance would floor the P2 errors.
@@ -202,17 +207,12 @@ fn skin_errors(cells: usize, order: ElementOrder, ratio: f64) -> (f64, f64) {
 #[test]
 fn skin_effect_converges_in_space() {
     // a/δ = 5: the field decays over a fifth of the radius, resolved by the graded cells. Every
-    // cell halves from one mesh to the next. P1 shows order 2 in the flux at the surface (the
-    // potential's L2 order) and about 3.8 in the loss. P2 is 100x more accurate on the same mesh
-    // but its flux error falls at order 2 only on the finer meshes (4, 2.9, 2.0 at a/δ = 0.05;
-    // the loss at 3.4–4): the asserted bound is order 1.8; why P2 loses its third order here is
-    // open (the static P2 studies in tests/validation.rs show > 2.8).
+    // cell halves from one mesh to the next, in r and in z. Measured: P1 flux at the surface
+    // orders 2.06, 2.02, 2.01 (the potential's L2 order), loss 2.50, 2.40, 2.26; P2 flux 4.53,
+    // 4.00, 2.93, loss 3.70, 3.68, 3.83.
     let meshes = [10, 20, 40, 80];
-    let p1: Vec<(f64, f64)> =
-        meshes.iter().map(|&n| skin_errors(n, ElementOrder::P1, 5.0)).collect();
-    let p2: Vec<(f64, f64)> =
-        meshes.iter().map(|&n| skin_errors(n, ElementOrder::P2, 5.0)).collect();
-    for (order, runs) in [(ElementOrder::P1, &p1), (ElementOrder::P2, &p2)] {
+    for (order, expected) in [(ElementOrder::P1, 2.0), (ElementOrder::P2, 3.0)] {
+        let runs: Vec<(f64, f64)> = meshes.iter().map(|&n| skin_errors(n, order, 5.0)).collect();
         let rate = |e: fn(&(f64, f64)) -> f64| -> Vec<f64> {
             runs.windows(2).map(|w| (e(&w[0]) / e(&w[1])).log2()).collect()
         };
@@ -221,11 +221,9 @@ fn skin_effect_converges_in_space() {
             "skin effect a/δ = 5, {order:?}, 10/20/40/80 conductor cells: errors (flux, loss) \
              {runs:?}, orders flux {flux_orders:?}, loss {loss_orders:?}"
         );
-        assert!(flux_orders.iter().all(|&o| o > 1.8), "{order:?} flux orders {flux_orders:?}");
-        assert!(loss_orders.iter().all(|&o| o > 0.7), "{order:?} loss orders {loss_orders:?}");
-    }
-    for (a, b) in p1.iter().zip(&p2) {
-        assert!(b.0 < 0.05 * a.0 && b.1 < 0.05 * a.1, "P2 {b:?} not far below P1 {a:?}");
+        let low = expected - 0.2;
+        assert!(flux_orders.iter().all(|&o| o > low), "{order:?} flux orders {flux_orders:?}");
+        assert!(loss_orders.iter().all(|&o| o > low), "{order:?} loss orders {loss_orders:?}");
     }
 }
 
