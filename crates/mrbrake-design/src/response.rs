@@ -115,6 +115,14 @@ impl Default for ResponseOptions {
     }
 }
 
+impl ResponseOptions {
+    /// The instant of the eddy-current map when none is given: a fiftieth of the duration (2 ms
+    /// of the default 100 ms, while the flux is still diffusing into the steel).
+    pub fn default_eddy_at_s(&self) -> f64 {
+        self.duration_s / 50.0
+    }
+}
+
 /// `per_decade` log-spaced points from `from` to `to` inclusive.
 pub fn decades(from: f64, to: f64, per_decade: usize) -> Vec<f64> {
     let n = ((to / from).log10() * per_decade as f64).round() as usize;

@@ -12,7 +12,7 @@ use crate::ReportError;
 use crate::atomic::write_atomic;
 use crate::bode::{BodeCurve, save_bode};
 use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
-use crate::field_map::{ENERGISED_FRACTION, ScalarMap, Window, energised_window, save_scalar_map};
+use crate::field_map::{ScalarMap, Window, save_scalar_map, window_above};
 
 /// The thesis's measured transfer functions `1/(a s² + b s + 1)` scaled by `k`: (5.5) first brake,
 /// (5.6) second brake (Karabulut 2017, 5.3.2).
@@ -141,9 +141,10 @@ pub const BODE_TITLE: &str = "torque per current, normalised";
 /// eddy-current field; PNG copies too with `png`.
 pub fn write_plots(r: &Response, dir: &Path, thesis: bool, png: bool) -> Result<(), ReportError> {
     let eddy = r.eddy.as_ref().map(EddyMap::new).transpose()?;
+    let (step, bode) = (step_figure(r), bode_curves(r, thesis));
     for ext in if png { &["svg", "png"][..] } else { &["svg"][..] } {
-        step_figure(r).save(&dir.join(format!("step_response.{ext}")))?;
-        save_bode(&dir.join(format!("bode.{ext}")), BODE_TITLE, &bode_curves(r, thesis))?;
+        step.save(&dir.join(format!("step_response.{ext}")))?;
+        save_bode(&dir.join(format!("bode.{ext}")), BODE_TITLE, &bode)?;
         if let Some(map) = &eddy {
             save_scalar_map(&map.scalar_map(), &dir.join(format!("eddy_current.{ext}")))?;
         }
@@ -166,7 +167,7 @@ pub struct EddyMap {
     /// `J_φ` (A/mm²) per node.
     pub j_a_per_mm2: Vec<f64>,
     /// The window shown: the triangles where `|J|` is at least [`EDDY_FRACTION`] of its largest,
-    /// with the field map's margins ([`energised_window`]).
+    /// with the field map's margins ([`window_above`]).
     pub window: Window,
 }
 
@@ -211,12 +212,7 @@ impl EddyMap {
         if map.triangles.is_empty() {
             return Err(ReportError::Data("eddy-current map: no conducting part".into()));
         }
-        // The window of the triangles above the threshold (energised_window's rule with its own
-        // fraction: scale the magnitudes so that EDDY_FRACTION lands on its threshold).
-        let scale = ENERGISED_FRACTION / EDDY_FRACTION;
-        let largest = magnitude.iter().copied().fold(0.0, f64::max);
-        let scaled: Vec<f64> = magnitude.iter().map(|m| (m * scale).min(largest)).collect();
-        map.window = energised_window(&map.nodes, &map.triangles, &scaled);
+        map.window = window_above(&map.nodes, &map.triangles, &magnitude, EDDY_FRACTION);
         Ok(map)
     }
 

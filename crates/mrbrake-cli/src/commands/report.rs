@@ -259,13 +259,12 @@ fn extra_sections(
 ) -> CommandResult<Vec<mrbrake_report::html::Section>> {
     let mut sections = Vec::new();
     if a.response {
-        let defaults = mrbrake_design::response::ResponseOptions::default();
-        let options = mrbrake_design::response::ResponseOptions {
+        let mut options = mrbrake_design::response::ResponseOptions {
             mesh: mrbrake_design::mesh_build::MeshLevel::parse(&a.mesh)?,
-            // The eddy-current map at the instant `mrbrake response --plot-dir` draws by default.
-            eddy_at_s: Some(defaults.duration_s / 50.0),
-            ..defaults
+            ..Default::default()
         };
+        // The eddy-current map at the instant `mrbrake response --plot-dir` draws by default.
+        options.eddy_at_s = Some(options.default_eddy_at_s());
         let r = mrbrake_design::response::response(spec, &options)?;
         sections.push(mrbrake_report::html::response::section(&r, a.spec.is_none())?);
     }

@@ -103,7 +103,7 @@ fn options(a: &ResponseArgs) -> Result<ResponseOptions, InputError> {
     }
     o.eddy_at_s = match (&a.eddy_at, &a.plot_dir) {
         (Some(text), _) => Some(quantity("eddy-at", text, Dimension::Time)?),
-        (None, Some(_)) => Some(o.duration_s / 50.0),
+        (None, Some(_)) => Some(o.default_eddy_at_s()),
         (None, None) => None,
     };
     Ok(o)

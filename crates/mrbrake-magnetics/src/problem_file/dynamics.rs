@@ -87,8 +87,9 @@ pub enum Analysis {
         frequencies_hz: Vec<f64>,
         /// Bias current of each coil (A), in the order of [`DynamicsSpec::coils`].
         bias_a: Option<Vec<f64>>,
-        /// The frequencies whose phasors `fem solve --vtu` writes (members of `frequencies_hz`).
-        vtu_frequencies_hz: Vec<f64>,
+        /// The frequencies whose phasors `fem solve --vtu` writes, as indices into
+        /// `frequencies_hz` (the file's `vtu_frequencies_Hz`; default every frequency).
+        vtu_frequencies: Vec<usize>,
     },
 }
 
@@ -257,24 +258,21 @@ fn conductors_of(
     let mut out = Vec::with_capacity(raw.len());
     for (k, r) in raw.iter().enumerate() {
         let field = format!("{file}: region[{k}] (physical = {})", r.physical);
-        let is_coil = matches!(
-            problem.region(r.physical).and_then(|region| region.source),
-            Some(Source::Coil { .. })
-        );
+        let coil = is_coil(problem, r.physical);
         let (sigma, source) = match r.conductivity {
             Some(s) if !(s >= 0.0 && s.is_finite()) => {
                 return Err(input(format!(
                     "{field}: conductivity_S_per_m = {s} must be finite and >= 0"
                 )));
             }
-            Some(s) if s > 0.0 && is_coil => {
+            Some(s) if s > 0.0 && coil => {
                 return Err(input(format!(
                     "{field}: conductivity_S_per_m = {s}: a coil region is a stranded winding \
                      (no eddy currents); it cannot conduct (remove the key or set 0)"
                 )));
             }
             Some(s) => (s, "given in the problem file".to_string()),
-            None => library_conductivity(r.material.as_ref(), is_coil)?,
+            None => library_conductivity(r.material.as_ref(), coil)?,
         };
         out.push(ConductorReport { physical: r.physical, conductivity_s_per_m: sigma, source });
     }
@@ -497,12 +495,12 @@ fn read_waveform_csv(
 
 /// The physical tags of the driven coils, in the order [`coils_of`] builds them.
 fn coil_tags(raw: &[RawRegion], problem: &Problem) -> Vec<u32> {
-    raw.iter()
-        .filter(|r| {
-            matches!(problem.region(r.physical).and_then(|x| x.source), Some(Source::Coil { .. }))
-        })
-        .map(|r| r.physical)
-        .collect()
+    raw.iter().filter(|r| is_coil(problem, r.physical)).map(|r| r.physical).collect()
+}
+
+/// True for a region with a coil (turns) source: a stranded winding.
+fn is_coil(problem: &Problem, physical: u32) -> bool {
+    matches!(problem.region(physical).and_then(|x| x.source), Some(Source::Coil { .. }))
 }
 
 fn harmonic_of(raw: &RawHarmonic, coils: &[u32], file: &str) -> Result<Analysis, MagneticsError> {
@@ -521,30 +519,29 @@ fn harmonic_of(raw: &RawHarmonic, coils: &[u32], file: &str) -> Result<Analysis,
         )));
     }
     let bias_a = raw.bias.as_ref().map(|b| bias_of(b, coils, file)).transpose()?;
-    let vtu_frequencies_hz = match &raw.vtu_frequencies_hz {
-        None => raw.frequencies_hz.clone(),
+    let vtu_frequencies = match &raw.vtu_frequencies_hz {
+        None => (0..raw.frequencies_hz.len()).collect(),
         Some(chosen) if chosen.is_empty() => {
             return Err(input(format!(
                 "{file}: harmonic.vtu_frequencies_Hz is empty (omit it for every frequency)"
             )));
         }
         Some(chosen) => {
-            for (k, f) in chosen.iter().enumerate() {
-                if !raw.frequencies_hz.iter().any(|g| (g - f).abs() <= 1e-12 * g.abs().max(1.0)) {
-                    return Err(input(format!(
-                        "{file}: harmonic.vtu_frequencies_Hz[{k}] = {f} Hz is not one of \
+            let index_of = |(k, f): (usize, &f64)| {
+                raw.frequencies_hz
+                    .iter()
+                    .position(|g| (g - f).abs() <= 1e-12 * g.abs().max(1.0))
+                    .ok_or_else(|| {
+                        input(format!(
+                            "{file}: harmonic.vtu_frequencies_Hz[{k}] = {f} Hz is not one of \
                          frequencies_Hz"
-                    )));
-                }
-            }
-            chosen.clone()
+                        ))
+                    })
+            };
+            chosen.iter().enumerate().map(index_of).collect::<Result<Vec<_>, _>>()?
         }
     };
-    Ok(Analysis::Harmonic {
-        frequencies_hz: raw.frequencies_hz.clone(),
-        bias_a,
-        vtu_frequencies_hz,
-    })
+    Ok(Analysis::Harmonic { frequencies_hz: raw.frequencies_hz.clone(), bias_a, vtu_frequencies })
 }
 
 /// The most frequencies one `[harmonic]` table may list (every one's potential is kept while the
@@ -634,7 +631,7 @@ pub(super) fn run(
             let result = dynamics.transient(&options).map_err(|e| named(e, &file))?;
             report.transient = Some(TransientReport { scheme: options.scheme, result });
         }
-        Analysis::Harmonic { frequencies_hz, bias_a, vtu_frequencies_hz } => {
+        Analysis::Harmonic { frequencies_hz, bias_a, vtu_frequencies } => {
             let potentials = dynamics
                 .harmonic_potentials(frequencies_hz, bias_a.as_deref())
                 .map_err(|e| named(e, &file))?;
@@ -644,14 +641,10 @@ pub(super) fn run(
                 .collect::<Result<Vec<_>, _>>()
                 .map_err(|e| named(e, &file))?;
             report.harmonic = Some(points);
-            report.harmonic_potentials = potentials
-                .into_iter()
-                .filter(|p| {
-                    vtu_frequencies_hz
-                        .iter()
-                        .any(|f| (f - p.frequency_hz).abs() <= 1e-12 * f.abs().max(1.0))
-                })
-                .collect();
+            let mut keep = vec![false; potentials.len()];
+            vtu_frequencies.iter().for_each(|&k| keep[k] = true);
+            report.harmonic_potentials =
+                potentials.into_iter().zip(keep).filter_map(|(p, k)| k.then_some(p)).collect();
             if let Some(bias) = bias_a {
                 match bias.split_first() {
                     Some((first, rest)) if rest.iter().all(|b| b.to_bits() == first.to_bits()) => {

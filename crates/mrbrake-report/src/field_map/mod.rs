@@ -96,15 +96,25 @@ pub fn bounds(nodes: &[[f64; 2]]) -> Window {
 /// the flux path show), reaching to the
 /// mesh's smallest r (the axis), inside the mesh's bounds. The whole mesh if no field.
 pub fn energised_window(nodes: &[[f64; 2]], triangles: &[[usize; 3]], b_abs_t: &[f64]) -> Window {
+    window_above(nodes, triangles, b_abs_t, ENERGISED_FRACTION)
+}
+
+/// [`energised_window`] for any per-triangle magnitude and share `fraction` of its largest.
+pub fn window_above(
+    nodes: &[[f64; 2]],
+    triangles: &[[usize; 3]],
+    magnitude: &[f64],
+    fraction: f64,
+) -> Window {
     let whole = bounds(nodes);
-    let b_max = b_abs_t.iter().copied().filter(|b| b.is_finite()).fold(0.0, f64::max);
+    let b_max = magnitude.iter().copied().filter(|b| b.is_finite()).fold(0.0, f64::max);
     if b_max <= 0.0 {
         return whole;
     }
     let strong: Vec<[f64; 2]> = triangles
         .iter()
-        .zip(b_abs_t)
-        .filter(|(_, b)| **b >= ENERGISED_FRACTION * b_max)
+        .zip(magnitude)
+        .filter(|(_, b)| **b >= fraction * b_max)
         .flat_map(|(t, _)| t.iter().map(|&v| nodes[v]))
         .collect();
     let (lo, hi) = bounds(&strong);
