@@ -29,6 +29,8 @@
 //! - [`control`]: the `no_std` real-time directional brake controller.
 //! - [`sim`]: the virtual test rig and the haptic simulation.
 //! - [`report`]: plots and report composition shared by the front ends.
+//! - [`observe`]: the one observer shape (per step, point, generation or design, with a stop
+//!   request) of every iterative algorithm.
 //! - [`error`]: the [`ErrorKind`] every library error reports ([`Kind`]), from which front ends
 //!   choose exit codes and exceptions.
 //!
@@ -50,6 +52,7 @@ pub use mrbrake_fem as fem;
 pub use mrbrake_heat as heat;
 pub use mrbrake_magnetics as magnetics;
 pub use mrbrake_materials as materials;
+pub use mrbrake_observe as observe;
 pub use mrbrake_optim as optim;
 pub use mrbrake_report as report;
 pub use mrbrake_sim as sim;
