@@ -24,7 +24,9 @@
 //!   smooth in A). The magnitude is normalised by the zero-frequency gain (as the thesis's (5.5),
 //!   (5.6) are, DC gain ≈ 1); the bandwidth is the first frequency where it falls 3 dB below
 //!   (log-log interpolation between the computed points, 0.1–1000 rad/s, ten a decade as in the
-//!   thesis, 5.3.2).
+//!   thesis, 5.3.2). The response is sysid's frequency-response data
+//!   ([`mrbrake_sysid::frd::Frd`]), the type of a measured response too: `mrbrake tfest` fits it
+//!   and a Bode plot overlays it on a measurement as it is.
 //!
 //! Default fluid lag: MRF-132DG's measured response time T90 ≈ 0.8–1.4 ms (Kubík et al., Sci.
 //! Rep. 12:10612, 2022); a first-order lag with T90 = 1.1 ms has `τ_f = 1.1 ms / ln 10 = 0.48 ms`.
@@ -36,6 +38,7 @@ use mrbrake_magnetics::dynamics::transient::{Scheme, TimeStep, TransientOptions}
 use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use mrbrake_magnetics::{Solution, Solver, SolverOptions};
 use mrbrake_materials::{CopperWire, MrFluid, library};
+use mrbrake_sysid::frd::{Frd, FrequencyPoint, MINUS_3_DB};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -150,22 +153,6 @@ pub struct StepResponse {
     pub steps: [usize; 2],
 }
 
-/// One point of the frequency response (torque per current, normalised by the DC gain).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct FrequencyPoint {
-    /// Angular frequency (rad/s).
-    pub omega_rad_s: f64,
-    /// `20 log10 |G/G0|` (dB).
-    #[serde(rename = "magnitude_dB")]
-    pub magnitude_db: f64,
-    /// Phase (degrees).
-    pub phase_deg: f64,
-    /// `G/G0`, real part.
-    pub re: f64,
-    /// `G/G0`, imaginary part.
-    pub im: f64,
-}
-
 /// The predicted dynamics of a brake.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Response {
@@ -181,8 +168,9 @@ pub struct Response {
     /// Small-signal gain `dT/dI` at zero frequency (N·m/A).
     #[serde(rename = "dc_gain_Nm_per_A")]
     pub dc_gain_nm_per_a: f64,
-    /// Frequency response of direction 1.
-    pub frequency_response: Vec<FrequencyPoint>,
+    /// Frequency response of direction 1: torque per current normalised by the DC gain, `G/G0`
+    /// (in JSON the list of points, `omega_rad_s`, `magnitude_dB`, `phase_deg`, `re`, `im`).
+    pub frequency_response: Frd,
     /// −3 dB bandwidth (rad/s), `None` above the highest frequency.
     pub bandwidth_rad_s: Option<f64>,
     /// Conductivity of the flux-path steel used (S/m), and where it comes from.
@@ -276,7 +264,7 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
         step,
         bias_a: bias,
         dc_gain_nm_per_a: dc_gain,
-        bandwidth_rad_s: bandwidth(&frequency_response),
+        bandwidth_rad_s: frequency_response.bandwidth_rad_s(MINUS_3_DB),
         frequency_response,
         flux_path_conductivity_s_per_m: model.flux_path_sigma.0,
         conductivity_source: model.flux_path_sigma.1.clone(),
@@ -499,7 +487,7 @@ impl Model<'_> {
 
     /// The small-signal torque per current of direction 1 about `bias` amperes: the DC gain and
     /// the normalised response at the options' frequencies.
-    fn frequency_response(&self, bias: f64) -> Result<(f64, Vec<FrequencyPoint>), DesignError> {
+    fn frequency_response(&self, bias: f64) -> Result<(f64, Frd), DesignError> {
         let unit = 0;
         let drive = |sign: f64, _| Drive::Current { amplitude_a: sign };
         let mut dynamics = self.dynamics(unit, drive, Waveform::Step { initial: 0.0 })?;
@@ -531,18 +519,9 @@ impl Model<'_> {
             .omegas_rad_s
             .iter()
             .zip(&gains[1..])
-            .map(|(&omega, g)| {
-                let g = g / dc;
-                FrequencyPoint {
-                    omega_rad_s: omega,
-                    magnitude_db: 20.0 * g.norm().log10(),
-                    phase_deg: g.arg().to_degrees(),
-                    re: g.re,
-                    im: g.im,
-                }
-            })
+            .map(|(&omega, g)| FrequencyPoint::new(omega, g / dc))
             .collect();
-        Ok((dc.re, points))
+        Ok((dc.re, Frd::new(points)))
     }
 
     /// `dT/dA · x` by a central difference about `a0` (module docs).
@@ -634,18 +613,6 @@ pub fn rise_time(time: &[f64], y: &[f64], fraction: f64) -> Option<f64> {
     Some(time[k - 1] + s * (time[k] - time[k - 1]))
 }
 
-/// The −3 dB bandwidth: the first frequency where the magnitude falls to −3 dB (log-log
-/// interpolation), or `None`.
-pub fn bandwidth(points: &[FrequencyPoint]) -> Option<f64> {
-    let k = points.iter().position(|p| p.magnitude_db <= -3.0)?;
-    if k == 0 {
-        return Some(points[0].omega_rad_s);
-    }
-    let (a, b) = (points[k - 1], points[k]);
-    let s = (-3.0 - a.magnitude_db) / (b.magnitude_db - a.magnitude_db);
-    Some((a.omega_rad_s.ln() + s * (b.omega_rad_s.ln() - a.omega_rad_s.ln())).exp())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -659,20 +626,10 @@ mod tests {
         let t63 = rise_time(&time, &y, 1.0 - (-1.0f64).exp()).unwrap();
         assert!((t63 - 5e-3).abs() < 2e-5, "t63 = {t63}");
         // |1/(1 + jω/ω_c)| is −3.01 dB at ω_c.
-        let points: Vec<FrequencyPoint> = decades(1.0, 1000.0, 20)
-            .into_iter()
-            .map(|w| {
-                let g = Complex64::new(1.0, 0.0) / Complex64::new(1.0, w / 50.0);
-                FrequencyPoint {
-                    omega_rad_s: w,
-                    magnitude_db: 20.0 * g.norm().log10(),
-                    phase_deg: g.arg().to_degrees(),
-                    re: g.re,
-                    im: g.im,
-                }
-            })
-            .collect();
-        let bw = bandwidth(&points).unwrap();
+        let response = Frd::sample(&decades(1.0, 1000.0, 20), |w| {
+            Complex64::new(1.0, 0.0) / Complex64::new(1.0, w / 50.0)
+        });
+        let bw = response.bandwidth_rad_s(MINUS_3_DB).unwrap();
         assert!((bw / 50.0 - 1.0).abs() < 0.01, "bandwidth {bw}");
     }
 }

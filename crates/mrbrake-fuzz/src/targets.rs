@@ -252,13 +252,8 @@ fn frd_seed() -> Vec<u8> {
         vec![1.791e-5, 0.01702, 1.0],
     )
     .expect("the thesis model");
-    let mut csv = String::from("omega_rad_s,magnitude_dB,phase_deg,re,im\n");
-    for w in mrbrake_sysid::tfest::logspace(0.1, 1000.0, 21) {
-        let r = g.response(w);
-        let (db, deg) = (20.0 * r.norm().log10(), r.arg().to_degrees());
-        csv.push_str(&format!("{w},{db},{deg},{},{}\n", r.re, r.im));
-    }
-    csv.into_bytes()
+    let omegas = mrbrake_sysid::tfest::logspace(0.1, 1000.0, 21);
+    mrbrake_sysid::frd::Frd::sample(&omegas, |w| g.response(w)).to_csv().into_bytes()
 }
 
 /// FRD: read, then a second-order estimate.

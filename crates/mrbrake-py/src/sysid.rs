@@ -7,7 +7,7 @@ use std::path::Path;
 
 use mrbrake::report::identification::CharacterizationReport;
 use mrbrake::sysid::characterize::{CharacterizeOptions, characterize};
-use mrbrake::sysid::frd::Frd;
+use mrbrake::sysid::frd::{Frd, FrequencyPoint};
 use mrbrake::sysid::freqresp::{FreqRespOptions, analyse_test};
 use mrbrake::sysid::log::{check_columns, mean_sample_rate_hz};
 use mrbrake::sysid::tfest::{TfestOptions, TfestResult, Weighting, tfest};
@@ -36,7 +36,13 @@ fn slice<'a>(array: &'a PyReadonlyArray1<'_, f64>, name: &str) -> PyResult<&'a [
 /// The characterisation of a repeated-ramp log; returns the dict of `mrbrake characterize
 /// --json` (`log` is `"<arrays>"`).
 #[pyfunction]
-#[pyo3(signature = (time, current, torque, order=5, bins=200))]
+#[pyo3(signature = (
+    time,
+    current,
+    torque,
+    order = mrbrake::sysid::characterize::DEFAULT_ORDER,
+    bins = mrbrake::sysid::characterize::DEFAULT_BINS
+))]
 fn sysid_characterize<'py>(
     py: Python<'py>,
     time: PyReadonlyArray1<'py, f64>,
@@ -137,11 +143,16 @@ fn sysid_tfest(
             )));
         }
     };
-    let frd = Frd {
-        omega_rad_s: omega.as_array().to_vec(),
-        response: response.as_array().to_vec(),
-        weight: weight.map(|w| w.as_array().to_vec()),
-    };
+    let (omega, response) = (omega.as_array(), response.as_array());
+    if omega.len() != response.len() {
+        return Err(error::input(format!(
+            "omega and response have {} and {} values: one response per frequency",
+            omega.len(),
+            response.len()
+        )));
+    }
+    let points = omega.iter().zip(response).map(|(w, g)| FrequencyPoint::new(*w, *g)).collect();
+    let frd = Frd { weight: weight.map(|w| w.as_array().to_vec()), ..Frd::new(points) };
     let fit = py.detach(|| tfest(&frd, &options)).map_err(error::to_py)?;
     Ok(PyTfestFit { fit })
 }

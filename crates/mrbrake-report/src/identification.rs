@@ -10,8 +10,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use mrbrake_sysid::characterize::Characterization;
-use mrbrake_sysid::frd::{Frd, unwrap_deg};
-use mrbrake_sysid::freqresp::FrequencyPoint;
+use mrbrake_sysid::frd::Frd;
+use mrbrake_sysid::freqresp::{self, MeasuredPoint};
 use mrbrake_sysid::polynomial::Polynomial;
 use mrbrake_sysid::tfest::{TfestResult, TfestSummary, logspace};
 use serde_json::{Value, json};
@@ -125,14 +125,14 @@ impl CharacterizationReport<'_> {
 
 /// The JSON report of a frequency response: the FRD file written and the points.
 pub fn frequency_response_json(
-    points: &[FrequencyPoint],
+    points: &[MeasuredPoint],
     frd_file: &Path,
 ) -> Result<Value, ReportError> {
     Ok(json!({ "frd_file": frd_file, "points": serde_json::to_value(points)? }))
 }
 
 /// The text report of a frequency response: one row per test frequency.
-pub fn frequency_response_text(points: &[FrequencyPoint], frd_file: &Path) -> String {
+pub fn frequency_response_text(points: &[MeasuredPoint], frd_file: &Path) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "frequency response of {} tests → {}", points.len(), frd_file.display());
     let _ = writeln!(
@@ -144,9 +144,9 @@ pub fn frequency_response_text(points: &[FrequencyPoint], frd_file: &Path) -> St
         let _ = writeln!(
             out,
             "{:>12.4} {:>10.3} {:>10.2} {:>9.2} {:>10.4} {:>8.2}",
-            p.omega_rad_s,
-            p.magnitude_db,
-            p.phase_deg,
+            p.point.omega_rad_s,
+            p.point.magnitude_db(),
+            p.point.phase_deg(),
             p.quality_percent,
             p.tracking.rmse_nm,
             p.tracking.rmse_percent_of_range
@@ -158,13 +158,10 @@ pub fn frequency_response_text(points: &[FrequencyPoint], frd_file: &Path) -> St
 /// Writes the measured Bode diagram of a frequency response to `path`.
 pub fn save_frequency_response_plot(
     path: &Path,
-    points: &[FrequencyPoint],
+    points: &[MeasuredPoint],
 ) -> Result<(), ReportError> {
-    let curve = BodeCurve {
-        label: "measured".into(),
-        points: points.iter().map(|p| (p.omega_rad_s, p.magnitude_db, p.phase_deg)).collect(),
-        markers: true,
-    };
+    let curve =
+        BodeCurve { label: "measured".into(), response: freqresp::frd(points), markers: true };
     save_bode(path, "Frequency response", &[curve])
 }
 
@@ -200,26 +197,15 @@ pub fn tfest_text(summary: &TfestSummary) -> String {
 /// The measured points and the fitted model's response (delay included) as Bode curves; the
 /// model's phase is unwrapped and put on the data's branch at the lowest frequency.
 pub fn tfest_bode_curves(frd: &Frd, fit: &TfestResult) -> Vec<BodeCurve> {
-    let mag = frd.magnitude_db();
-    let ph = frd.phase_deg_unwrapped();
-    let measured: Vec<(f64, f64, f64)> =
-        frd.omega_rad_s.iter().enumerate().map(|(k, w)| (*w, mag[k], ph[k])).collect();
-    let w_lo = frd.omega_rad_s[0];
-    let w_hi = frd.omega_rad_s[frd.omega_rad_s.len() - 1];
-    let omega = logspace(w_lo, w_hi, MODEL_PLOT_POINTS);
-    let raw_phase: Vec<f64> = omega.iter().map(|w| fit.response(*w).arg().to_degrees()).collect();
-    let mut phase = unwrap_deg(&raw_phase);
-    // Align the model's phase branch with the data at the lowest frequency.
-    let shift = 360.0 * ((ph[0] - phase[0]) / 360.0).round();
-    phase.iter_mut().for_each(|p| *p += shift);
-    let model: Vec<(f64, f64, f64)> = omega
-        .iter()
-        .zip(&phase)
-        .map(|(w, p)| (*w, 20.0 * fit.response(*w).norm().log10(), *p))
-        .collect();
+    let mut model = Frd::default();
+    if let (Some(first), Some(last)) = (frd.points.first(), frd.points.last()) {
+        let omega = logspace(first.omega_rad_s, last.omega_rad_s, MODEL_PLOT_POINTS);
+        model = Frd::sample(&omega, |w| fit.response(w));
+        model.align_phase(first.phase_deg());
+    }
     vec![
-        BodeCurve { label: "measured".into(), points: measured, markers: true },
-        BodeCurve { label: "model".into(), points: model, markers: false },
+        BodeCurve { label: "measured".into(), response: frd.clone(), markers: true },
+        BodeCurve { label: "model".into(), response: model, markers: false },
     ]
 }
 
@@ -231,7 +217,7 @@ pub fn save_tfest_plot(
     poles: usize,
     zeros: usize,
 ) -> Result<(), ReportError> {
-    if frd.omega_rad_s.is_empty() {
+    if frd.is_empty() {
         return Err(ReportError::Data("Bode plot: no frequency point".into()));
     }
     let title = format!(
@@ -250,24 +236,21 @@ mod tests {
     #[test]
     fn tfest_report_and_curves_follow_the_model() {
         let g = TransferFunction::new(vec![1.0], vec![0.01, 1.0]).unwrap();
-        let omega = logspace(1.0, 1000.0, 21);
-        let frd = Frd {
-            response: omega.iter().map(|w| g.response(*w)).collect(),
-            omega_rad_s: omega,
-            weight: None,
-        };
+        let frd = Frd::sample(&logspace(1.0, 1000.0, 21), |w| g.response(w));
         let fit = tfest(&frd, &TfestOptions::new(1, 0)).unwrap();
         let text = tfest_text(&fit.summary().unwrap());
         assert!(text.starts_with("G(s) = N(s)/D(s), highest power first\n"), "{text}");
         assert!(text.contains("  pole: -100.000000 +0.000000j rad/s"), "{text}");
         let curves = tfest_bode_curves(&frd, &fit);
-        assert_eq!(curves[1].points.len(), MODEL_PLOT_POINTS);
+        assert_eq!(curves[1].response.len(), MODEL_PLOT_POINTS);
         // At the corner: −3 dB and −45°.
         let corner = curves[1]
+            .response
             .points
             .iter()
-            .min_by(|a, b| (a.0 - 100.0).abs().total_cmp(&(b.0 - 100.0).abs()))
+            .min_by(|a, b| (a.omega_rad_s - 100.0).abs().total_cmp(&(b.omega_rad_s - 100.0).abs()))
             .unwrap();
-        assert!((corner.1 + 3.0).abs() < 0.1 && (corner.2 + 45.0).abs() < 1.0, "{corner:?}");
+        let (db, deg) = (corner.magnitude_db(), corner.phase_deg());
+        assert!((db + 3.0).abs() < 0.1 && (deg + 45.0).abs() < 1.0, "{corner:?}");
     }
 }

@@ -26,7 +26,6 @@
 pub mod analysis;
 pub mod atomic;
 pub mod bode;
-pub mod brake_model;
 pub mod chart;
 pub mod field_map;
 pub mod formula;
@@ -90,12 +89,9 @@ pub enum ReportError {
     /// Records of a results store could not be written as CSV.
     #[error(transparent)]
     Store(#[from] mrbrake_store::StoreError),
-    /// A design could not be keyed (brake model provenance).
+    /// A model drawn beside the data (a transfer function) could not be built.
     #[error(transparent)]
-    Explore(#[from] mrbrake_explore::ExploreError),
-    /// A brake model could not be built or checked.
-    #[error(transparent)]
-    Sim(#[from] mrbrake_sim::SimError),
+    Model(#[from] mrbrake_sysid::SysidError),
 }
 
 impl mrbrake_error::Kind for ReportError {
@@ -109,8 +105,7 @@ impl mrbrake_error::Kind for ReportError {
             Self::Data(_) | Self::PlotFormat { .. } => ErrorKind::Input,
             Self::Backend(_) | Self::Json(_) => ErrorKind::Internal,
             Self::Store(e) => e.kind(),
-            Self::Explore(e) => e.kind(),
-            Self::Sim(e) => e.kind(),
+            Self::Model(e) => e.kind(),
         }
     }
 }

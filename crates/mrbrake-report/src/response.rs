@@ -1,25 +1,25 @@
-//! Presentation of a brake's predicted dynamics ([`mrbrake_design::response`]): the text summary,
-//! the frequency response as an FRD CSV file (`mrbrake tfest` reads it), and the plots (step
-//! response; Bode diagram with, for the embedded thesis brake, its measured transfer functions
-//! (5.5) and (5.6); the eddy-current density map at a chosen instant).
+//! Presentation of a brake's predicted dynamics ([`mrbrake_design::response`]): the text summary
+//! and the plots (step response; Bode diagram with, for the embedded thesis brake, its measured
+//! transfer functions (5.5) and (5.6); the eddy-current density map at a chosen instant). The
+//! frequency response's FRD CSV file (`mrbrake tfest` reads it) is sysid's one writer,
+//! [`mrbrake_sysid::frd::Frd::to_csv`].
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use mrbrake_design::response::{EddyField, Response};
+use mrbrake_sim::haptic::TorqueLag;
+use mrbrake_sysid::frd::Frd;
 
 use crate::ReportError;
-use crate::atomic::write_atomic;
 use crate::bode::{BodeCurve, save_bode};
 use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
 use crate::field_map::{ScalarMap, Window, save_scalar_map, window_above};
 
-/// The thesis's measured transfer functions `1/(a s² + b s + 1)` scaled by `k`: (5.5) first brake,
-/// (5.6) second brake (Karabulut 2017, 5.3.2).
-pub const THESIS_TRANSFER_FUNCTIONS: [(&str, f64, f64, f64); 2] = [
-    ("thesis (5.5), brake 1", 1.0, 1.791e-5, 0.01702),
-    ("thesis (5.6), brake 2", 0.9818, 2.309e-5, 0.01726),
-];
+/// The thesis's measured transfer functions `k/(a s² + b s + 1)` with their labels: (5.5) first
+/// brake, (5.6) second brake (Karabulut 2017, 5.3.2), the haptic plant's lags.
+pub const THESIS_TRANSFER_FUNCTIONS: [(&str, TorqueLag); 2] =
+    [("thesis (5.5), brake 1", TorqueLag::BRAKE_1), ("thesis (5.6), brake 2", TorqueLag::BRAKE_2)];
 
 /// The text summary.
 pub fn text(r: &Response, source: &str) -> String {
@@ -61,11 +61,13 @@ pub fn text(r: &Response, source: &str) -> String {
         r.bandwidth_rad_s.map_or("above the highest frequency".into(), |w| format!("{w:.1} rad/s"))
     );
     let _ = writeln!(s, "  omega [rad/s]  magnitude [dB]  phase [deg]");
-    for p in r.frequency_response.iter().step_by(5) {
+    for p in r.frequency_response.points.iter().step_by(5) {
         let _ = writeln!(
             s,
             "  {:>13.3}  {:>14.2}  {:>11.2}",
-            p.omega_rad_s, p.magnitude_db, p.phase_deg
+            p.omega_rad_s,
+            p.magnitude_db(),
+            p.phase_deg()
         );
     }
     let _ = writeln!(s, "  (every 5th point; --json or --frd for all)");
@@ -79,28 +81,6 @@ pub fn text(r: &Response, source: &str) -> String {
 
 fn ms(t: Option<f64>) -> String {
     t.map_or("not reached".into(), |t| format!("{:.2} ms", t * 1e3))
-}
-
-/// The frequency response as FRD CSV (`omega_rad_s,re,im,magnitude_dB,phase_deg`), atomically.
-pub fn write_frd(r: &Response, path: &Path) -> Result<(), ReportError> {
-    let mut csv = String::from("omega_rad_s,re,im,magnitude_dB,phase_deg\n");
-    for p in &r.frequency_response {
-        let _ =
-            writeln!(csv, "{},{},{},{},{}", p.omega_rad_s, p.re, p.im, p.magnitude_db, p.phase_deg);
-    }
-    write_atomic(path, csv.as_bytes())
-}
-
-/// `(ω, dB, deg)` of `k/(a s² + b s + 1)` at `omegas`.
-pub fn second_order_points(k: f64, a: f64, b: f64, omegas: &[f64]) -> Vec<(f64, f64, f64)> {
-    omegas
-        .iter()
-        .map(|&w| {
-            let (re, im) = (1.0 - a * w * w, b * w);
-            let magnitude = k / re.hypot(im);
-            (w, 20.0 * magnitude.log10(), -im.atan2(re).to_degrees())
-        })
-        .collect()
 }
 
 /// The step-response figure (torque against time, each direction; the second dashed, as the
@@ -117,20 +97,21 @@ pub fn step_figure(r: &Response) -> Figure {
     Figure::new("predicted torque step response").panel(panel)
 }
 
-/// The Bode curves: the prediction, and the thesis's measured transfer functions when `thesis`.
-pub fn bode_curves(r: &Response, thesis: bool) -> Vec<BodeCurve> {
-    let predicted: Vec<(f64, f64, f64)> =
-        r.frequency_response.iter().map(|p| (p.omega_rad_s, p.magnitude_db, p.phase_deg)).collect();
-    let omegas: Vec<f64> = predicted.iter().map(|p| p.0).collect();
+/// The Bode curves: the prediction, and the thesis's measured transfer functions at the same
+/// frequencies when `thesis`.
+pub fn bode_curves(r: &Response, thesis: bool) -> Result<Vec<BodeCurve>, ReportError> {
+    let predicted = r.frequency_response.clone();
+    let omegas: Vec<f64> = predicted.omegas().collect();
     let mut curves =
-        vec![BodeCurve { label: "predicted".into(), points: predicted, markers: false }];
+        vec![BodeCurve { label: "predicted".into(), response: predicted, markers: false }];
     if thesis {
-        for (label, k, a, b) in THESIS_TRANSFER_FUNCTIONS {
-            let points = second_order_points(k, a, b, &omegas);
-            curves.push(BodeCurve { label: label.into(), points, markers: false });
+        for (label, lag) in THESIS_TRANSFER_FUNCTIONS {
+            let g = lag.transfer_function()?;
+            let response = Frd::sample(&omegas, |w| g.response(w));
+            curves.push(BodeCurve { label: label.into(), response, markers: false });
         }
     }
-    curves
+    Ok(curves)
 }
 
 /// The Bode title.
@@ -141,7 +122,7 @@ pub const BODE_TITLE: &str = "torque per current, normalised";
 /// eddy-current field; PNG copies too with `png`.
 pub fn write_plots(r: &Response, dir: &Path, thesis: bool, png: bool) -> Result<(), ReportError> {
     let eddy = r.eddy.as_ref().map(EddyMap::new).transpose()?;
-    let (step, bode) = (step_figure(r), bode_curves(r, thesis));
+    let (step, bode) = (step_figure(r), bode_curves(r, thesis)?);
     for ext in if png { &["svg", "png"][..] } else { &["svg"][..] } {
         step.save(&dir.join(format!("step_response.{ext}")))?;
         save_bode(&dir.join(format!("bode.{ext}")), BODE_TITLE, &bode)?;

@@ -9,7 +9,7 @@ use std::path::Path;
 
 use mrbrake_sim::rig::{self, RigConfig};
 use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
-use mrbrake_sysid::freqresp::{FreqRespOptions, analyse_test, finish, to_frd};
+use mrbrake_sysid::freqresp::{FreqRespOptions, analyse_test, finish, frd};
 use mrbrake_sysid::log::read_log_from;
 use mrbrake_sysid::polynomial::Polynomial;
 use mrbrake_sysid::tfest::{TfestOptions, tfest};
@@ -100,7 +100,7 @@ fn identify(config: &RigConfig, delay_s: f64) -> (TransferFunction, Vec<f64>) {
     let points = finish(points);
     let mut o = TfestOptions::new(2, 0);
     o.delay_s = delay_s;
-    let fit = tfest(&to_frd(&points), &o).unwrap();
+    let fit = tfest(&frd(&points), &o).unwrap();
     let corners = fit.model.corner_frequencies_rad_s().unwrap();
     println!("fit {:.3} %, model {:?}, corners {corners:?}", fit.fit_percent, fit.model);
     (fit.model, corners)

@@ -21,6 +21,11 @@ use mrbrake_control::{ControlError, InverseModel};
 use crate::SysidError;
 use crate::polynomial::{Polynomial, fit};
 
+/// The branches' default polynomial order: quintic, as the thesis (§5.3.1).
+pub const DEFAULT_ORDER: usize = 5;
+/// The default number of current bins the repetitions are averaged in.
+pub const DEFAULT_BINS: usize = 200;
+
 /// Settings of the characterisation.
 #[derive(Debug, Clone, Copy)]
 pub struct CharacterizeOptions {
@@ -32,7 +37,7 @@ pub struct CharacterizeOptions {
 
 impl Default for CharacterizeOptions {
     fn default() -> Self {
-        Self { order: 5, bins: 200 }
+        Self { order: DEFAULT_ORDER, bins: DEFAULT_BINS }
     }
 }
 

@@ -7,6 +7,11 @@
 //! U = a_u − j b_u and Y = a_y − j b_y the response is G(jω) = Y/U, i.e. gain |T_o/T_i| (5.3) and the
 //! phase difference. The quality figure of a point is the fit percentage of the output sine,
 //! 100·(1 − ‖y − ŷ‖/‖y − mean y‖): near 100 % for a clean sinusoid, lower with noise or distortion.
+//!
+//! Each test gives a [`MeasuredPoint`]: the one frequency-response point ([`FrequencyPoint`],
+//! G(jω) at ω) with the quality, tracking error and log it was measured with; [`frd`] is the
+//! points as data for the estimator, [`frd_csv`] their FRD file (the one writer,
+//! [`crate::frd::write_csv`]).
 
 use std::path::{Path, PathBuf};
 
@@ -15,7 +20,7 @@ use num_complex::Complex64;
 use crate::SysidError;
 use crate::characterize::fit_percent;
 use crate::complex::div;
-use crate::frd::{Frd, unwrap_deg};
+use crate::frd::{Column, Frd, FrequencyPoint, unwrap_phase, write_csv};
 use crate::linalg::{Matrix, least_squares};
 use crate::log::read_log;
 use crate::tracking::{TrackingError, tracking_error};
@@ -88,20 +93,14 @@ pub fn sine_fit(time_s: &[f64], y: &[f64], omega_rad_s: f64) -> Result<SineFit, 
     })
 }
 
-/// The result at one test frequency.
+/// The result at one test frequency: the measured response G(jω) = Y/U and how well it was
+/// measured. In JSON the point's keys ([`FrequencyPoint`]: `omega_rad_s`, `magnitude_dB`,
+/// `phase_deg`, `re`, `im`) sit beside the measurement's.
 #[derive(Debug, Clone, serde::Serialize)]
-pub struct FrequencyPoint {
-    /// Test frequency, rad/s.
-    pub omega_rad_s: f64,
-    /// 20·log10|G| (5.4), dB.
-    #[serde(rename = "magnitude_dB")]
-    pub magnitude_db: f64,
-    /// Phase of G in degrees (unwrapped along frequency in a full analysis).
-    pub phase_deg: f64,
-    /// Real part of G(jω).
-    pub re: f64,
-    /// Imaginary part of G(jω).
-    pub im: f64,
+pub struct MeasuredPoint {
+    /// The response at the test frequency (phase unwrapped along frequency in a full analysis).
+    #[serde(flatten)]
+    pub point: FrequencyPoint,
     /// Output sine-fit percentage (quality of the point).
     pub quality_percent: f64,
     /// Input sine-fit percentage (how sinusoidal the demand was).
@@ -153,7 +152,7 @@ pub fn analyse_test(
     input: &[f64],
     output: &[f64],
     options: &FreqRespOptions,
-) -> Result<FrequencyPoint, SysidError> {
+) -> Result<MeasuredPoint, SysidError> {
     let file_err =
         |message: String| SysidError::File { file: source.to_path_buf(), line: None, message };
     if !(omega_rad_s > 0.0 && omega_rad_s.is_finite()) {
@@ -202,12 +201,8 @@ pub fn analyse_test(
             "the output has no component at {omega_rad_s} rad/s: gain and phase are undefined"
         )));
     }
-    Ok(FrequencyPoint {
-        omega_rad_s,
-        magnitude_db: 20.0 * g.norm().log10(),
-        phase_deg: g.arg().to_degrees(),
-        re: g.re,
-        im: g.im,
+    Ok(MeasuredPoint {
+        point: FrequencyPoint::new(omega_rad_s, g),
         quality_percent: fy.fit_percent,
         input_fit_percent: fu.fit_percent,
         tracking: tracking_error(u, y)?,
@@ -288,7 +283,7 @@ pub fn read_manifest(path: &Path) -> Result<Vec<ManifestEntry>, SysidError> {
 pub fn frequency_response(
     manifest: &Path,
     options: &FreqRespOptions,
-) -> Result<Vec<FrequencyPoint>, SysidError> {
+) -> Result<Vec<MeasuredPoint>, SysidError> {
     let entries = read_manifest(manifest)?;
     let mut points = Vec::with_capacity(entries.len());
     for e in &entries {
@@ -307,43 +302,27 @@ pub fn frequency_response(
 }
 
 /// Sorts points by frequency and unwraps their phase.
-pub fn finish(mut points: Vec<FrequencyPoint>) -> Vec<FrequencyPoint> {
-    points.sort_by(|a, b| a.omega_rad_s.total_cmp(&b.omega_rad_s));
-    let unwrapped = unwrap_deg(&points.iter().map(|p| p.phase_deg).collect::<Vec<_>>());
-    for (p, ph) in points.iter_mut().zip(unwrapped) {
-        p.phase_deg = ph;
-    }
+pub fn finish(mut points: Vec<MeasuredPoint>) -> Vec<MeasuredPoint> {
+    points.sort_by(|a, b| a.point.omega_rad_s.total_cmp(&b.point.omega_rad_s));
+    unwrap_phase(points.iter_mut().map(|p| &mut p.point));
     points
 }
 
-/// The points as frequency-response data for the estimator.
-pub fn to_frd(points: &[FrequencyPoint]) -> Frd {
-    Frd {
-        omega_rad_s: points.iter().map(|p| p.omega_rad_s).collect(),
-        response: points.iter().map(|p| Complex64::new(p.re, p.im)).collect(),
-        weight: None,
-    }
+/// The measured responses as frequency-response data (the points themselves, without their
+/// quality), e.g. for [`crate::tfest`].
+pub fn frd(points: &[MeasuredPoint]) -> Frd {
+    Frd { points: points.iter().map(|p| p.point).collect(), weight: None }
 }
 
-/// The points as an FRD CSV text (readable by [`crate::frd::read_frd`]).
-pub fn frd_csv(points: &[FrequencyPoint]) -> String {
-    let mut s = String::from(
-        "omega_rad_s,magnitude_dB,phase_deg,re,im,quality_percent,rmse_Nm,rmse_percent\n",
-    );
-    for p in points {
-        s.push_str(&format!(
-            "{},{},{},{},{},{},{},{}\n",
-            p.omega_rad_s,
-            p.magnitude_db,
-            p.phase_deg,
-            p.re,
-            p.im,
-            p.quality_percent,
-            p.tracking.rmse_nm,
-            p.tracking.rmse_percent_of_range
-        ));
-    }
-    s
+/// The points as an FRD CSV text ([`crate::frd::write_csv`]), with each point's
+/// `quality_percent,rmse_Nm,rmse_percent` after the response.
+pub fn frd_csv(points: &[MeasuredPoint]) -> String {
+    let quality: Vec<f64> = points.iter().map(|p| p.quality_percent).collect();
+    let rmse: Vec<f64> = points.iter().map(|p| p.tracking.rmse_nm).collect();
+    let percent: Vec<f64> = points.iter().map(|p| p.tracking.rmse_percent_of_range).collect();
+    let extra: [Column<'_>; 3] =
+        [("quality_percent", &quality), ("rmse_Nm", &rmse), ("rmse_percent", &percent)];
+    write_csv(points.iter().map(|p| &p.point), &extra)
 }
 
 #[cfg(test)]
@@ -363,9 +342,30 @@ mod tests {
             .collect();
         let p =
             analyse_test(Path::new("x.csv"), w, &t, &u, &y, &FreqRespOptions::default()).unwrap();
-        assert!((p.magnitude_db - 20.0 * 0.5f64.log10()).abs() < 1e-6, "{}", p.magnitude_db);
-        assert!((p.phase_deg + 60.0).abs() < 1e-4, "{}", p.phase_deg);
+        let (db, deg) = (p.point.magnitude_db(), p.point.phase_deg());
+        assert!((db - 20.0 * 0.5f64.log10()).abs() < 1e-6, "{db}");
+        assert!((deg + 60.0).abs() < 1e-4, "{deg}");
         assert!(p.quality_percent > 99.99);
+    }
+
+    /// A measured point's JSON keeps the keys of `freqresp --json` (the response's beside the
+    /// measurement's), and its FRD file the columns `tfest` and a spreadsheet read.
+    #[test]
+    fn measured_points_keep_their_keys_and_columns() {
+        let (t, u, y) = sine_test(7.0);
+        let p =
+            analyse_test(Path::new("x.csv"), 7.0, &t, &u, &y, &FreqRespOptions::default()).unwrap();
+        let v = serde_json::to_value(&p).unwrap();
+        let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
+        for key in ["omega_rad_s", "magnitude_dB", "phase_deg", "re", "im", "quality_percent"] {
+            assert!(keys.iter().any(|k| *k == key), "{key} missing in {keys:?}");
+        }
+        let csv = frd_csv(std::slice::from_ref(&p));
+        let header =
+            "omega_rad_s,magnitude_dB,phase_deg,re,im,quality_percent,rmse_Nm,rmse_percent";
+        assert!(csv.starts_with(header), "{csv}");
+        let back = crate::frd::read_frd_from(Path::new("f.csv"), &csv, None).unwrap();
+        assert_eq!(back, frd(&[p]));
     }
 
     #[test]

@@ -266,10 +266,11 @@ pub fn tfest(frd: &Frd, options: &TfestOptions) -> Result<TfestResult, SysidErro
         sk_history,
         lm_history,
     };
-    let fitted: Vec<Complex64> = frd.omega_rad_s.iter().map(|w| result.response(*w)).collect();
-    result.fit_percent = complex_fit_percent(&frd.response, &fitted);
-    result.mse = frd.response.iter().zip(&fitted).map(|(g, h)| (*g - *h).norm_sqr()).sum::<f64>()
-        / frd.omega_rad_s.len() as f64;
+    let data: Vec<Complex64> = frd.responses().collect();
+    let fitted: Vec<Complex64> = frd.omegas().map(|w| result.response(w)).collect();
+    result.fit_percent = complex_fit_percent(&data, &fitted);
+    result.mse =
+        data.iter().zip(&fitted).map(|(g, h)| (*g - *h).norm_sqr()).sum::<f64>() / frd.len() as f64;
     Ok(result)
 }
 
@@ -281,13 +282,13 @@ fn with_data_summary(error: SysidError, frd: &Frd) -> SysidError {
             let range = |v: &mut dyn Iterator<Item = f64>| {
                 v.fold((f64::INFINITY, 0.0f64), |(lo, hi), x| (lo.min(x), hi.max(x)))
             };
-            let (w_lo, w_hi) = range(&mut frd.omega_rad_s.iter().copied());
-            let (g_lo, g_hi) = range(&mut frd.response.iter().map(|g| g.norm()));
+            let (w_lo, w_hi) = range(&mut frd.omegas());
+            let (g_lo, g_hi) = range(&mut frd.responses().map(|g| g.norm()));
             SysidError::Numerical {
                 message: format!(
                     "{message}; the data: {} points from {w_lo:e} to {w_hi:e} rad/s, |G| from \
                      {g_lo:e} to {g_hi:e}",
-                    frd.omega_rad_s.len()
+                    frd.len()
                 ),
                 history,
             }
@@ -309,8 +310,14 @@ fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
             "tfest: need at least one pole and no more zeros than poles (got {n} poles, {m} zeros)"
         )));
     }
-    let count = frd.omega_rad_s.len();
-    if 2 * count < m + 1 + n || count != frd.response.len() {
+    let count = frd.len();
+    if let Some(w) = frd.weight.as_ref().filter(|w| w.len() != count) {
+        return Err(SysidError::Input(format!(
+            "tfest: {} weights for {count} frequency points (one weight per point)",
+            w.len()
+        )));
+    }
+    if 2 * count < m + 1 + n {
         return Err(SysidError::Input(format!(
             "tfest: {count} frequency points cannot determine {} parameters (need at least {})",
             m + 1 + n,
@@ -323,18 +330,17 @@ fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
             options.delay_s
         )));
     }
-    if frd.response.iter().any(|g| !g.is_finite())
-        || frd.omega_rad_s.iter().any(|w| !(w.is_finite() && *w > 0.0))
+    if frd.responses().any(|g| !g.is_finite()) || frd.omegas().any(|w| !(w.is_finite() && w > 0.0))
     {
         return Err(SysidError::Input(
             "tfest: frequencies must be positive and responses finite".into(),
         ));
     }
-    if frd.response.iter().all(|g| g.norm() <= 0.0) {
+    if frd.responses().all(|g| g.norm() <= 0.0) {
         return Err(SysidError::Input("tfest: every response is zero: nothing to fit".into()));
     }
-    let w_min = frd.omega_rad_s.iter().copied().fold(f64::INFINITY, f64::min);
-    let w_max = frd.omega_rad_s.iter().copied().fold(0.0, f64::max);
+    let w_min = frd.omegas().fold(f64::INFINITY, f64::min);
+    let w_max = frd.omegas().fold(0.0, f64::max);
     let decades = (w_max / w_min).log10();
     let span = decades * m.max(n) as f64;
     if span.is_nan() || span > MAX_DECADES_TIMES_DEGREE {
@@ -352,13 +358,12 @@ impl Problem {
     /// The problem of a checked request, and the frequency scale ω_s = √(ω_min ω_max).
     fn new(frd: &Frd, options: &TfestOptions) -> (Self, f64) {
         let (m, n) = (options.zeros, options.poles);
-        let w_min = frd.omega_rad_s.iter().copied().fold(f64::INFINITY, f64::min);
-        let w_max = frd.omega_rad_s.iter().copied().fold(0.0, f64::max);
+        let w_min = frd.omegas().fold(f64::INFINITY, f64::min);
+        let w_max = frd.omegas().fold(0.0, f64::max);
         let omega_scale = (w_min * w_max).sqrt();
         let degree = m.max(n);
         let powers: Vec<Vec<Complex64>> = frd
-            .omega_rad_s
-            .iter()
+            .omegas()
             .map(|w| {
                 let p = Complex64::new(0.0, w / omega_scale);
                 let mut v = vec![Complex64::new(1.0, 0.0)];
@@ -370,17 +375,16 @@ impl Problem {
             })
             .collect();
         let data: Vec<Complex64> = frd
-            .omega_rad_s
+            .points
             .iter()
-            .zip(&frd.response)
-            .map(|(w, g)| *g * Complex64::from_polar(1.0, w * options.delay_s))
+            .map(|p| p.response * Complex64::from_polar(1.0, p.omega_rad_s * options.delay_s))
             .collect();
-        let weight: Vec<f64> = (0..frd.omega_rad_s.len())
+        let weight: Vec<f64> = (0..frd.len())
             .map(|k| {
                 let base = match options.weighting {
                     Weighting::Uniform => 1.0,
                     Weighting::InverseMagnitude => {
-                        1.0 / frd.response[k].norm().max(f64::MIN_POSITIVE)
+                        1.0 / frd.points[k].response.norm().max(f64::MIN_POSITIVE)
                     }
                 };
                 base * frd.weight.as_ref().map_or(1.0, |w| w[k])
@@ -537,11 +541,7 @@ mod tests {
     use mrbrake_error::Kind as _;
 
     fn frd_of(g: &TransferFunction, omega: &[f64]) -> Frd {
-        Frd {
-            omega_rad_s: omega.to_vec(),
-            response: omega.iter().map(|w| g.response(*w)).collect(),
-            weight: None,
-        }
+        Frd::sample(omega, |w| g.response(w))
     }
 
     #[test]
@@ -572,14 +572,7 @@ mod tests {
         let truth = TransferFunction::new(vec![2.0], vec![0.01, 1.0]).unwrap();
         let omega = logspace(1.0, 1000.0, 31);
         let tau = 5e-4;
-        let frd = Frd {
-            omega_rad_s: omega.clone(),
-            response: omega
-                .iter()
-                .map(|w| truth.response(*w) * Complex64::from_polar(1.0, -w * tau))
-                .collect(),
-            weight: None,
-        };
+        let frd = Frd::sample(&omega, |w| truth.response(w) * Complex64::from_polar(1.0, -w * tau));
         let mut o = TfestOptions::new(1, 0);
         o.delay_s = tau;
         let r = tfest(&frd, &o).unwrap();
@@ -593,8 +586,9 @@ mod tests {
         let truth = TransferFunction::new(vec![1.0], vec![1.791e-5, 0.01702, 1.0]).unwrap();
         let omega = logspace(0.1, 1000.0, 41);
         let mut frd = frd_of(&truth, &omega);
-        for (k, g) in frd.response.iter_mut().enumerate() {
-            *g += Complex64::new((k as f64).sin(), (k as f64 * 1.3).cos()).scale(0.05 * g.norm());
+        for (k, p) in frd.points.iter_mut().enumerate() {
+            let noise = Complex64::new((k as f64).sin(), (k as f64 * 1.3).cos());
+            p.response += noise.scale(0.05 * p.response.norm());
         }
         let mut o = TfestOptions::new(2, 0);
         o.max_sk_iterations = 0;
@@ -609,11 +603,7 @@ mod tests {
 
     #[test]
     fn improper_request_is_an_input_error() {
-        let frd = Frd {
-            omega_rad_s: vec![1.0, 2.0],
-            response: vec![Complex64::new(1.0, 0.0); 2],
-            weight: None,
-        };
+        let frd = Frd::sample(&[1.0, 2.0], |_| Complex64::new(1.0, 0.0));
         assert!(tfest(&frd, &TfestOptions::new(1, 2)).unwrap_err().is_input_error());
         assert!(tfest(&frd, &TfestOptions::new(3, 1)).unwrap_err().is_input_error());
     }
@@ -625,18 +615,10 @@ mod tests {
         let g = TransferFunction::new(vec![1.0], vec![1.791e-5, 0.01702, 1.0]).unwrap();
         let mut omega = logspace(1.0, 100.0, 10);
         omega[0] = 5e-324;
-        let frd = Frd {
-            response: omega.iter().map(|w| g.response(*w)).collect(),
-            omega_rad_s: omega.clone(),
-            weight: None,
-        };
+        let frd = frd_of(&g, &omega);
         let e = tfest(&frd, &TfestOptions::new(2, 0)).unwrap_err();
         assert!(e.is_input_error() && e.to_string().contains("decades"), "{e}");
-        let zero = Frd {
-            response: vec![Complex64::new(0.0, 0.0); 10],
-            omega_rad_s: logspace(1.0, 100.0, 10),
-            weight: None,
-        };
+        let zero = Frd::sample(&logspace(1.0, 100.0, 10), |_| Complex64::new(0.0, 0.0));
         let e = tfest(&zero, &TfestOptions::new(2, 0)).unwrap_err();
         assert!(e.to_string().contains("every response is zero"), "{e}");
         let summary = with_data_summary(SysidError::numerical("tfest: x", vec![1.0]), &zero);

@@ -9,6 +9,7 @@ use num_complex::Complex64;
 
 use crate::SysidError;
 use crate::complex::div;
+use crate::frd::HALF_POWER;
 use crate::polynomial::roots_descending;
 
 /// G(s) = N(s)/D(s), coefficients in descending powers of s, proper (deg N ≤ deg D), no leading zeros.
@@ -112,38 +113,22 @@ impl TransferFunction {
             .collect())
     }
 
-    /// −3 dB bandwidth: the lowest frequency at which |G(jω)| falls to |G(0)|/√2 (None when the DC gain
-    /// is zero or infinite, or the magnitude never falls that low below 10⁶ times the highest corner).
+    /// −3 dB bandwidth: the lowest frequency at which |G(jω)| falls to |G(0)|/√2
+    /// ([`crate::frd::HALF_POWER`]), by the one bandwidth search ([`crate::frd::bandwidth_rad_s`])
+    /// on a 1 % log grid from 10⁻⁴ times the lowest corner to 10⁶ times the highest, bisected on
+    /// the model; `None` when the DC gain is zero or infinite, or the magnitude never falls that
+    /// low on the grid.
     pub fn bandwidth_rad_s(&self) -> Option<f64> {
         let dc = self.dc_gain().abs();
         if !(dc.is_finite() && dc > 0.0) {
             return None;
         }
-        let target = dc / std::f64::consts::SQRT_2;
         let corners = self.corner_frequencies_rad_s().ok()?;
         let lo = corners.first().copied().unwrap_or(1.0).max(1e-12) * 1e-4;
         let hi = corners.last().copied().unwrap_or(1.0).max(1e-12) * 1e6;
-        let factor: f64 = 1.01;
-        let mut w_prev = lo;
-        let mut w = lo;
-        while w < hi {
-            if self.response(w).norm() < target {
-                // Bisection in log ω between w_prev and w.
-                let (mut a, mut b) = (w_prev.ln(), w.ln());
-                for _ in 0..100 {
-                    let m = 0.5 * (a + b);
-                    if self.response(m.exp()).norm() < target {
-                        b = m;
-                    } else {
-                        a = m;
-                    }
-                }
-                return Some((0.5 * (a + b)).exp());
-            }
-            w_prev = w;
-            w *= factor;
-        }
-        None
+        let grid = std::iter::successors(Some(lo), |w| Some(w * 1.01)).take_while(|w| *w < hi);
+        let magnitude = |w: f64| self.response(w).norm();
+        crate::frd::bandwidth_rad_s(grid.map(|w| (w, magnitude(w))), magnitude, dc * HALF_POWER)
     }
 }
 

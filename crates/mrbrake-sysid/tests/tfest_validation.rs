@@ -24,16 +24,11 @@ impl Normal {
 
 /// 41 points of `g` with 1 % relative complex noise (each of re and im perturbed by 1 % of |G|).
 fn noisy_frd(g: &TransferFunction, seed: u64) -> Frd {
-    let omega = logspace(0.1, 1000.0, 41);
     let mut rng = Normal(SplitMix64::new(seed));
-    let response = omega
-        .iter()
-        .map(|w| {
-            let r = g.response(*w);
-            r + Complex64::new(rng.sample(), rng.sample()).scale(0.01 * r.norm())
-        })
-        .collect();
-    Frd { omega_rad_s: omega, response, weight: None }
+    Frd::sample(&logspace(0.1, 1000.0, 41), |w| {
+        let r = g.response(w);
+        r + Complex64::new(rng.sample(), rng.sample()).scale(0.01 * r.norm())
+    })
 }
 
 /// Relative error of the estimated pole nearest to each true pole, for many noise seeds: returns the
@@ -68,12 +63,7 @@ fn thesis_corner_frequencies_are_reproduced() {
         (vec![2.309e-5, 0.01726, 1.0], 0.9818, [63.3, 684.4]),
     ] {
         let g = TransferFunction::new(vec![num], den).unwrap();
-        let omega = logspace(0.1, 1000.0, 41);
-        let frd = Frd {
-            response: omega.iter().map(|w| g.response(*w)).collect(),
-            omega_rad_s: omega,
-            weight: None,
-        };
+        let frd = Frd::sample(&logspace(0.1, 1000.0, 41), |w| g.response(w));
         let fit = tfest(&frd, &TfestOptions::new(2, 0)).unwrap();
         let s = fit.summary().unwrap();
         for (got, want) in s.corner_frequencies_rad_s.iter().zip(corners) {

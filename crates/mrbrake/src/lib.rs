@@ -28,6 +28,7 @@
 //! - [`sysid`]: characterisation logs, hysteresis fits, frequency responses, transfer functions.
 //! - [`control`]: the `no_std` real-time directional brake controller.
 //! - [`sim`]: the virtual test rig and the haptic simulation.
+//! - [`device`]: a designed brake as a device: the brake model file its analyses predict.
 //! - [`report`]: plots and report composition shared by the front ends.
 //! - [`observe`]: the one observer shape (per step, point, generation or design, with a stop
 //!   request) of every iterative algorithm.
@@ -46,6 +47,7 @@
 
 pub use mrbrake_control as control;
 pub use mrbrake_design as design;
+pub use mrbrake_device as device;
 pub use mrbrake_error as error;
 pub use mrbrake_explore as explore;
 pub use mrbrake_fem as fem;

@@ -110,7 +110,7 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
             a.order,
             a.points
         );
-        let model = mrbrake_report::brake_model::from_analysis(&analysis, &spec, &options, &how)?;
+        let model = mrbrake_device::brake_model::from_analysis(&analysis, &spec, &options, &how)?;
         mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if a.json {

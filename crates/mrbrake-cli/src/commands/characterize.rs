@@ -21,10 +21,10 @@ pub struct CharacterizeArgs {
     /// Log file (CSV with a header row) of the repeated current ramps.
     log: PathBuf,
     /// Polynomial order of each branch (the thesis uses 5).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = mrbrake_sysid::characterize::DEFAULT_ORDER)]
     order: usize,
     /// Number of current bins used to average the repetitions.
-    #[arg(long, default_value_t = 200)]
+    #[arg(long, default_value_t = mrbrake_sysid::characterize::DEFAULT_BINS)]
     bins: usize,
     /// Name of the time column (seconds).
     #[arg(long, default_value = "time_s")]

@@ -40,13 +40,13 @@ pub struct ReportArgs {
     #[arg(long, value_name = "FRD.csv", requires = "log")]
     frd: Option<PathBuf>,
     /// Poles of the fitted transfer function (with --frd).
-    #[arg(long, default_value_t = 2, requires = "frd")]
+    #[arg(long, default_value_t = mrbrake_sysid::request::DEFAULT_POLES, requires = "frd")]
     poles: usize,
     /// Zeros of the fitted transfer function (with --frd).
-    #[arg(long, default_value_t = 0, requires = "frd")]
+    #[arg(long, default_value_t = mrbrake_sysid::request::DEFAULT_ZEROS, requires = "frd")]
     zeros: usize,
     /// Polynomial order of the hysteresis branch fits (with --log).
-    #[arg(long, default_value_t = 5, requires = "log")]
+    #[arg(long, default_value_t = mrbrake_sysid::characterize::DEFAULT_ORDER, requires = "log")]
     fit_order: usize,
     /// Mesh density of a design report: coarse, default or fine.
     #[arg(long, default_value = "default")]
@@ -192,12 +192,11 @@ mod study {
 mod characterization {
     use std::path::Path;
 
-    use mrbrake_report::html::characterization::{CharacterizationPage, FrequencyFit};
+    use mrbrake_report::html::characterization::CharacterizationPage;
     use mrbrake_report::identification::CharacterizationReport;
-    use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
-    use mrbrake_sysid::frd::read_frd;
-    use mrbrake_sysid::log::read_log;
-    use mrbrake_sysid::tfest::{TfestOptions, tfest};
+    use mrbrake_sysid::characterize::CharacterizeOptions;
+    use mrbrake_sysid::request::CharacterizationRequest;
+    use mrbrake_sysid::tfest::TfestOptions;
 
     use crate::error::{CommandResult, InputError};
 
@@ -219,34 +218,24 @@ mod characterization {
             ))
             .into());
         }
-        let log = read_log(log_path, "time_s", &["current_A", "torque_Nm"], 2 * (order + 1))?;
-        let (current, torque) = (&log.channels[0], &log.channels[1]);
-        let c = characterize(current, torque, CharacterizeOptions { order, bins: 200 })?;
+        let request = CharacterizationRequest {
+            options: CharacterizeOptions { order, ..CharacterizeOptions::default() },
+            frd: frd_path.map(Path::to_path_buf),
+            tfest: TfestOptions::new(poles, zeros),
+            ..CharacterizationRequest::new(log_path)
+        };
+        let run = request.run()?;
         let report = CharacterizationReport {
-            characterization: &c,
+            characterization: &run.characterization,
             log: log_path,
-            samples: log.len(),
-            sample_rate_hz: log.mean_sample_rate_hz(),
+            samples: run.log.len(),
+            sample_rate_hz: run.log.mean_sample_rate_hz(),
         };
-        let Some(frd_path) = frd_path else {
-            let page = CharacterizationPage {
-                report,
-                current_a: current,
-                torque_nm: torque,
-                frequency: None,
-            };
-            return Ok(page.html()?);
-        };
-        let frd = read_frd(frd_path, None)?;
-        let fit = tfest(&frd, &TfestOptions::new(poles, zeros))?;
-        let summary = fit.summary()?;
-        let frequency =
-            FrequencyFit { frd_path, frd: &frd, fit: &fit, summary: &summary, poles, zeros };
         let page = CharacterizationPage {
             report,
-            current_a: current,
-            torque_nm: torque,
-            frequency: Some(frequency),
+            current_a: run.current_a(),
+            torque_nm: run.torque_nm(),
+            frequency: run.transfer_function.as_ref(),
         };
         Ok(page.html()?)
     }

@@ -117,7 +117,7 @@ pub fn run(a: ResponseArgs) -> CommandResult {
     };
     let r = response(&spec, &options(&a)?)?;
     if let Some(path) = &a.frd {
-        report::write_frd(&r, path)?;
+        mrbrake_report::write_atomic(path, r.frequency_response.to_csv().as_bytes())?;
     }
     if let Some(dir) = &a.plot_dir {
         std::fs::create_dir_all(dir).map_err(|e| {
@@ -131,7 +131,7 @@ pub fn run(a: ResponseArgs) -> CommandResult {
         let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
         let word = super::analyze::command_word(a.spec.as_deref(), &source);
         let how = format!("mrbrake response {word} (--mesh {} --drive {})", a.mesh, a.drive);
-        mrbrake_report::brake_model::add_dynamics(&mut model, &r, &how)?;
+        mrbrake_device::brake_model::add_dynamics(&mut model, &r, &how)?;
         mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if a.json {

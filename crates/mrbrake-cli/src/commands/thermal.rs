@@ -166,7 +166,7 @@ pub fn run(a: ThermalArgs) -> CommandResult {
         let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
         let word = super::analyze::command_word(a.spec.as_deref(), &source);
         let how = format!("mrbrake thermal {word} (--mesh {} --h {})", a.mesh, a.h);
-        mrbrake_report::brake_model::add_thermal(&mut model, &result, &spec.name, &how)?;
+        mrbrake_device::brake_model::add_thermal(&mut model, &result, &spec.name, &how)?;
         mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if a.json {

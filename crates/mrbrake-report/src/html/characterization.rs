@@ -7,11 +7,8 @@
 //! `{"characterization": …, "transfer_function": …}`, the documents `mrbrake characterize --json`
 //! and `mrbrake tfest --json` print for the same inputs.
 
-use std::path::Path;
-
 use mrbrake_control::Branch;
-use mrbrake_sysid::frd::Frd;
-use mrbrake_sysid::tfest::{TfestResult, TfestSummary};
+use mrbrake_sysid::request::TransferFunctionFit;
 use serde_json::{Value, json};
 
 use super::writer::{Cell, Table};
@@ -22,23 +19,6 @@ use crate::chart::{Figure, Panel, Series, SeriesLabelPosition};
 use crate::hysteresis::hysteresis_figure;
 use crate::identification::{CharacterizationReport, tfest_bode_curves};
 
-/// A transfer function fitted to frequency-response data.
-#[derive(Debug, Clone, Copy)]
-pub struct FrequencyFit<'a> {
-    /// The FRD file.
-    pub frd_path: &'a Path,
-    /// Its data.
-    pub frd: &'a Frd,
-    /// The fit.
-    pub fit: &'a TfestResult,
-    /// The fit's summary (`mrbrake tfest --json`).
-    pub summary: &'a TfestSummary,
-    /// Poles and zeros asked for.
-    pub poles: usize,
-    /// Zeros asked for.
-    pub zeros: usize,
-}
-
 /// A characterisation to report.
 #[derive(Debug, Clone, Copy)]
 pub struct CharacterizationPage<'a> {
@@ -48,8 +28,9 @@ pub struct CharacterizationPage<'a> {
     pub current_a: &'a [f64],
     /// The log's torque samples, N·m.
     pub torque_nm: &'a [f64],
-    /// The frequency response and its fitted transfer function, if given.
-    pub frequency: Option<FrequencyFit<'a>>,
+    /// The frequency response and its fitted transfer function, if given
+    /// ([`mrbrake_sysid::request`]).
+    pub frequency: Option<&'a TransferFunctionFit>,
 }
 
 /// Points of the inverse-model curves.
@@ -59,7 +40,7 @@ impl CharacterizationPage<'_> {
     /// The JSON document the page's numbers point into.
     pub fn json(&self) -> Result<Value, ReportError> {
         let tf = match &self.frequency {
-            Some(f) => serde_json::to_value(f.summary)?,
+            Some(f) => serde_json::to_value(&f.summary)?,
             None => Value::Null,
         };
         Ok(json!({ "characterization": self.report.json()?, "transfer_function": tf }))
@@ -78,7 +59,7 @@ impl CharacterizationPage<'_> {
             facts.push(format!(
                 "Frequency response {} ({} frequencies).",
                 f.frd_path.display(),
-                f.frd.omega_rad_s.len()
+                f.frd.len()
             ));
         }
         let mut sections = vec![self.loop_section()?, self.fits_section(), self.inverse_section()?];
@@ -229,14 +210,14 @@ impl CharacterizationPage<'_> {
 }
 
 /// The Bode diagram of the data and the fitted model, and the model's table.
-fn frequency_section(f: &FrequencyFit<'_>) -> Result<Section, ReportError> {
-    let sm = f.summary;
+fn frequency_section(f: &TransferFunctionFit) -> Result<Section, ReportError> {
+    let sm = &f.summary;
     let mut s = Section::new("bode", "Frequency response and transfer function");
     let title = format!(
         "Estimated transfer function ({} poles, {} zeros, fit {:.2} %)",
         f.poles, f.zeros, f.fit.fit_percent
     );
-    let fig = bode_figure(&title, &tfest_bode_curves(f.frd, f.fit));
+    let fig = bode_figure(&title, &tfest_bode_curves(&f.frd, &f.fit));
     figure(
         &mut s.body,
         &inline_svg(&fig.to_svg()?, "Bode diagram")?,

@@ -66,7 +66,7 @@ pub fn section(r: &Response, thesis: bool) -> Result<Section, ReportError> {
         "Torque after a current step (yield torque from B(t) in the gaps, then the fluid lag).",
     );
     let bode =
-        inline_svg(&bode_figure(BODE_TITLE, &bode_curves(r, thesis)).to_svg()?, "Bode diagram")?;
+        inline_svg(&bode_figure(BODE_TITLE, &bode_curves(r, thesis)?).to_svg()?, "Bode diagram")?;
     let caption = if thesis {
         "Predicted small-signal response against the thesis's measured transfer functions (5.5), (5.6)."
     } else {

@@ -3,11 +3,13 @@
 //!
 //! One type, [`BrakeModel`], serialised as JSON with a versioned schema ([`SCHEMA`],
 //! [`SCHEMA_VERSION`]). `mrbrake analyze --save-model` writes it from a design's finite-element
-//! analysis (the builder is `mrbrake_report::brake_model`, which can reach the design key and the
-//! model revision); `mrbrake response --save-model` and `mrbrake thermal --save-model` add the
-//! predicted dynamics and hot coil, `mrbrake characterize LOG --brake-model` a unit's identified
-//! branches ([`BrakeModel::set_identified_branches`]); `mrbrake rig … --brake-model` and
-//! `mrbrake haptic … --brake-model` read it.
+//! analysis (the builder is `mrbrake_device::brake_model`, which can reach the design's results,
+//! its design key and the model revision); `mrbrake response --save-model` and `mrbrake thermal
+//! --save-model` add the predicted dynamics (fitted here, [`fit`], to any frequency-response data)
+//! and hot coil, `mrbrake characterize LOG --brake-model` a unit's identified branches
+//! ([`BrakeModel::set_identified_branches`]); `mrbrake rig … --brake-model` and `mrbrake haptic …
+//! --brake-model` read it, [`apply`] turning each unit into the simulators' runtime forms (the
+//! haptic plant's [`crate::haptic::BrakePlant`]).
 //! The built-in prototype-like brakes are shipped as model files in `examples/brake-models/`.
 //!
 //! # Schema (version 1)
@@ -59,6 +61,7 @@
 //! the device's viscous friction (one rotor turns with the shaft in each direction, thesis §4.3).
 
 pub mod apply;
+pub mod fit;
 pub mod prototype;
 
 use std::path::Path;
@@ -293,6 +296,16 @@ impl BrakeModel {
         serde_json::to_string_pretty(self).unwrap_or_default() + "\n"
     }
 
+    /// [`BrakeModel::validate`] as an error naming `origin` (the file, or how a model in memory
+    /// was made, e.g. `"(amended with dynamics)"`) and the field.
+    pub fn check(&self, origin: &str) -> Result<(), SimError> {
+        self.validate().map_err(|(field, message)| SimError::BrakeModel {
+            file: origin.to_string(),
+            field,
+            message,
+        })
+    }
+
     /// Checks every value; `Err((field, message))` for the first bad one.
     pub fn validate(&self) -> Result<(), (String, String)> {
         if self.units.is_empty() || self.units.len() > 2 {
@@ -352,11 +365,7 @@ impl BrakeModel {
             source: format!("identified: {source}"),
         };
         self.provenance.amended.push(format!("hysteresis of unit {unit}: identified, {source}"));
-        self.validate().map_err(|(field, message)| SimError::BrakeModel {
-            file: "(with identified branches)".into(),
-            field,
-            message,
-        })
+        self.check("(with identified branches)")
     }
 }
 

@@ -16,6 +16,8 @@
 //! [`super::bearing`]).
 
 use mrbrake_control::{Branch, InverseModel};
+use mrbrake_sysid::SysidError;
+use mrbrake_sysid::transfer_function::TransferFunction;
 
 use crate::lti::expm;
 
@@ -35,6 +37,13 @@ impl TorqueLag {
     pub const BRAKE_1: Self = Self { gain: 1.0, a_s2: 1.791e-5, b_s: 0.01702 };
     /// Brake 2 of the prototype, thesis (5.6).
     pub const BRAKE_2: Self = Self { gain: 0.9818, a_s2: 2.309e-5, b_s: 0.01726 };
+
+    /// The lag as a transfer function, `k / (a s² + b s + 1)` in descending powers of s (the one
+    /// continuous-time model type, evaluated at jω by
+    /// [`TransferFunction::response`](mrbrake_sysid::transfer_function::TransferFunction::response)).
+    pub fn transfer_function(&self) -> Result<TransferFunction, SysidError> {
+        TransferFunction::new(vec![self.gain], vec![self.a_s2, self.b_s, 1.0])
+    }
 
     /// Exact ZOH discretisation over `dt_s`: `x⁺ = Φ x + Γ u` with `x = [y, ẏ]`.
     pub fn discretise(&self, dt_s: f64) -> DiscreteLag {
@@ -69,9 +78,11 @@ impl DiscreteLag {
     }
 }
 
-/// One MR brake: forward hysteresis branches and torque lag.
+/// One MR brake as the haptic plant runs it: forward hysteresis branches and torque lag (the
+/// runtime form of a unit of a [`crate::brake_model::BrakeModel`] file, built by
+/// [`crate::brake_model::apply::apply_to_haptic`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BrakeModel {
+pub struct BrakePlant {
     /// The hysteresis branches (the same polynomials the identification produces).
     pub branches: InverseModel,
     /// The torque lag.
@@ -87,7 +98,7 @@ pub struct BrakeState {
     pub lag: [f64; 2],
 }
 
-impl BrakeModel {
+impl BrakePlant {
     /// The state at rest with zero current for a long time: `T_s = C = T(0)`.
     pub fn rest_state(&self) -> BrakeState {
         let t0 = self.branches.torque_nm(Branch::Rising, self.branches.current_min_a());
@@ -135,7 +146,7 @@ mod tests {
 
     #[test]
     fn hysteresis_follows_the_rising_then_the_falling_branch() {
-        let model = BrakeModel {
+        let model = BrakePlant {
             branches: super::super::prototype::prototype_model(),
             lag: TorqueLag::BRAKE_1,
         };

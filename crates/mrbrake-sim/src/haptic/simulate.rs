@@ -19,7 +19,7 @@ use mrbrake_control::{
 };
 
 use super::bearing::friction_step;
-use super::brake::{BrakeModel, BrakeState, DiscreteLag, TorqueLag};
+use super::brake::{BrakePlant, BrakeState, DiscreteLag, TorqueLag};
 use super::check_range;
 use super::device::{DeviceKind, DeviceParameters, encoder_counts};
 use super::hand::HandModel;
@@ -46,7 +46,7 @@ pub struct HapticConfig {
     /// Virtual wall damping `B`, Nm·s/rad.
     pub wall_damping_nms_per_rad: f64,
     /// The plant's brakes (brake 1 resists positive motion, brake 2 negative).
-    pub brakes: [BrakeModel; 2],
+    pub brakes: [BrakePlant; 2],
     /// The inverse models the controller uses (normally the same branches as the plant).
     pub controller_models: [InverseModel; 2],
     /// Control period `T`, s.
@@ -73,8 +73,8 @@ impl HapticConfig {
             wall_stiffness_nm_per_rad: 30.0,
             wall_damping_nms_per_rad: 0.02,
             brakes: [
-                BrakeModel { branches: model, lag: TorqueLag::BRAKE_1 },
-                BrakeModel { branches: model, lag: TorqueLag::BRAKE_2 },
+                BrakePlant { branches: model, lag: TorqueLag::BRAKE_1 },
+                BrakePlant { branches: model, lag: TorqueLag::BRAKE_2 },
             ],
             controller_models: [model, model],
             control_period_s: 1e-3,

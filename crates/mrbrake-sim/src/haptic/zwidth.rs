@@ -29,7 +29,7 @@ use mrbrake_control::{
 };
 use serde::Serialize;
 
-use super::brake::BrakeModel;
+use super::brake::BrakePlant;
 use super::check_range;
 use super::device::encoder_counts;
 use super::prototype::prototype_model;
@@ -201,7 +201,7 @@ pub fn brake_test_energy(
     b_virtual: f64,
     b_physical: f64,
     period_s: f64,
-    brakes: &[BrakeModel; 2],
+    brakes: &[BrakePlant; 2],
 ) -> f64 {
     let wall = wall(k, b_virtual);
     let controller = DirectionalController::new(
@@ -323,8 +323,8 @@ pub fn sweep_with_progress(
     check("inertia_kg_m2", config.inertia_kg_m2, 1e-12, 1e3)?;
     let model = prototype_model();
     let brakes = [
-        BrakeModel { branches: model, lag: super::brake::TorqueLag::BRAKE_1 },
-        BrakeModel { branches: model, lag: super::brake::TorqueLag::BRAKE_2 },
+        BrakePlant { branches: model, lag: super::brake::TorqueLag::BRAKE_1 },
+        BrakePlant { branches: model, lag: super::brake::TorqueLag::BRAKE_2 },
     ];
     let t = config.sample_period_s;
     let b = config.physical_damping_nms_per_rad;

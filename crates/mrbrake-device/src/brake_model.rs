@@ -1,9 +1,7 @@
 //! The brake model predicted from a design: [`from_analysis`] turns a finite-element
-//! [`Analysis`] into the simulators' [`BrakeModel`] file (schema in [`mrbrake_sim::brake_model`]).
-//!
-//! It lives here, not in `mrbrake-design`, because the provenance needs the design key and the
-//! model revision of `mrbrake-explore` (which depends on the design crate), and the model type lives
-//! in `mrbrake-sim`; this crate already depends on all three.
+//! [`Analysis`] into the simulators' [`BrakeModel`] file (schema in [`mrbrake_sim::brake_model`]);
+//! [`add_dynamics`] and [`add_thermal`] amend it with the design's predicted response and hot coil.
+//! (Why here and not in the design, the report or the simulator crate: the crate docs.)
 //!
 //! What is predicted and what is assumed, per unit:
 //! - the static curve of unit 1 is the analysis's sweep of the local Bingham yield torque (FEA);
@@ -14,7 +12,8 @@
 //! - unit 2 of a bidirectional brake is solved only at the maximum current, so its curve is unit 1's
 //!   scaled by the ratio of the two yield torques there (assumed shape, predicted end point);
 //! - no hysteresis (anhysteretic B–H curves), no dynamics, no thermal data: stated as such;
-//!   `response --save-model` and `thermal --save-model` add the last two.
+//!   `response --save-model` ([`add_dynamics`]) and `thermal --save-model` ([`add_thermal`]) add
+//!   the last two.
 
 use mrbrake_design::analysis::{Analysis, AnalysisOptions};
 use mrbrake_design::response::Response;
@@ -22,17 +21,13 @@ use mrbrake_design::spec::BrakeSpec;
 use mrbrake_design::thermal::ThermalResult;
 use mrbrake_explore::design::{MODEL_REVISION, design_key};
 use mrbrake_explore::evaluate::EvaluationSettings;
-use mrbrake_sim::SimError;
+use mrbrake_sim::brake_model::fit::{DYNAMICS_POLES, fit_dynamics};
 use mrbrake_sim::brake_model::{
     BrakeModel, Dynamics, Hysteresis, OffState, Provenance, SCHEMA, SCHEMA_VERSION, StaticCurve,
     Thermal, UnitModel,
 };
-use mrbrake_sysid::frd::Frd;
-use mrbrake_sysid::tfest::{TfestOptions, complex_fit_percent, tfest};
-use mrbrake_sysid::transfer_function::TransferFunction;
-use num_complex::Complex64;
 
-use crate::ReportError;
+use crate::DeviceError;
 
 /// Why a predicted model has no hysteresis.
 pub const NO_HYSTERESIS_NOTE: &str = "the finite-element analysis uses anhysteretic B–H curves: it predicts no loop; identify one on a rig (mrbrake characterize --save-model)";
@@ -51,7 +46,7 @@ pub fn from_analysis(
     spec: &BrakeSpec,
     options: &AnalysisOptions,
     source: &str,
-) -> Result<BrakeModel, ReportError> {
+) -> Result<BrakeModel, DeviceError> {
     let settings = EvaluationSettings {
         mesh: options.mesh,
         speed_rad_s: options.speed_rad_s,
@@ -113,11 +108,7 @@ pub fn from_analysis(
         units,
     };
     // A curve the reader would refuse (e.g. a torque that drops with the current) is not written.
-    model.validate().map_err(|(field, message)| SimError::BrakeModel {
-        file: "(predicted from the analysis)".into(),
-        field,
-        message,
-    })?;
+    model.check("(predicted from the analysis)")?;
     Ok(model)
 }
 
@@ -151,63 +142,42 @@ fn unit_model(
     }
 }
 
-/// Poles of the transfer function fitted to a predicted frequency response: two, like the thesis's
-/// identified lags (5.5)/(5.6), and the form the haptic simulation runs (`k / (a s² + b s + 1)`).
-pub const DYNAMICS_POLES: usize = 2;
-
 /// Adds the predicted dynamics of `response` (the same design) to every unit of `model`: a
-/// two-pole, no-zero transfer function fitted by sysid's `tfest` (Sanathanan–Koerner iterations,
-/// then Levenberg–Marquardt) to the predicted small-signal frequency response normalised by its DC
-/// gain (torque per current ÷ dT/dI at 0 Hz: static torque → brake torque), then scaled to a DC
-/// gain of exactly 1. Unit 2 gets unit 1's (only direction 1's frequency response is predicted;
-/// stated in the model). Returns the fit's `fit_percent`.
+/// [`DYNAMICS_POLES`]-pole, no-zero transfer function fitted to the predicted small-signal
+/// frequency response, which is already normalised by its DC gain (torque per current ÷ dT/dI at
+/// 0 Hz: static torque → brake torque), scaled to a DC gain of exactly 1
+/// ([`mrbrake_sim::brake_model::fit`]). Unit 2 gets unit 1's (only direction 1's frequency
+/// response is predicted; stated in the model). Returns the fit's `fit_percent`.
 pub fn add_dynamics(
     model: &mut BrakeModel,
     response: &Response,
     source: &str,
-) -> Result<f64, ReportError> {
+) -> Result<f64, DeviceError> {
     if model.name != response.name {
-        return Err(SimError::Input(format!(
+        return Err(DeviceError::Input(format!(
             "the brake model is of '{}', the response of '{}': analyse and respond the same design",
             model.name, response.name
-        ))
-        .into());
+        )));
     }
-    let frd = Frd {
-        omega_rad_s: response.frequency_response.iter().map(|p| p.omega_rad_s).collect(),
-        response: response.frequency_response.iter().map(|p| Complex64::new(p.re, p.im)).collect(),
-        weight: None,
+    let frd = &response.frequency_response;
+    let fitted = fit_dynamics(frd)?;
+    let omegas: Vec<f64> = frd.omegas().collect();
+    let dynamics = Dynamics {
+        numerator: fitted.transfer_function.numerator.clone(),
+        denominator: fitted.transfer_function.denominator.clone(),
+        source: format!(
+            "predicted: {DYNAMICS_POLES}-pole tfest fit ({:.2} % fit{}) to the small-signal frequency response of direction 1 at {} A bias, {} drive, {} points {:.3}–{:.1} rad/s ({source})",
+            fitted.fit_percent,
+            fitted.reflection_note(),
+            response.bias_a,
+            format!("{:?}", response.drive).to_lowercase(),
+            omegas.len(),
+            omegas.first().copied().unwrap_or(0.0),
+            omegas.last().copied().unwrap_or(0.0),
+        ),
     };
-    let mut fit = tfest(&frd, &TfestOptions::new(DYNAMICS_POLES, 0))
-        .map_err(|source| SimError::Model { what: "predicted dynamics (tfest)", source })?;
-    let reflected = reflect_unstable_poles(&mut fit.model)?;
-    let mut note = String::new();
-    if !reflected.is_empty() {
-        let fitted: Vec<Complex64> =
-            frd.omega_rad_s.iter().map(|w| fit.model.response(*w)).collect();
-        fit.fit_percent = complex_fit_percent(&frd.response, &fitted);
-        let at: Vec<String> = reflected.iter().map(|re| format!("+{re:.4e}")).collect();
-        note = format!(
-            "; the fit's unstable pole(s) at {} rad/s (real part), beyond the band, reflected into the left half-plane (same magnitude response; Gustavsen & Semlyen 1999), fit after reflection",
-            at.join(", ")
-        );
-    }
-    let gain = fit.model.dc_gain();
-    let numerator: Vec<f64> = fit.model.numerator.iter().map(|c| c / gain).collect();
     for unit in &mut model.units {
-        unit.dynamics = Some(Dynamics {
-            numerator: numerator.clone(),
-            denominator: fit.model.denominator.clone(),
-            source: format!(
-                "predicted: {DYNAMICS_POLES}-pole tfest fit ({:.2} % fit{note}) to the small-signal frequency response of direction 1 at {} A bias, {} drive, {} points {:.3}–{:.1} rad/s ({source})",
-                fit.fit_percent,
-                response.bias_a,
-                format!("{:?}", response.drive).to_lowercase(),
-                frd.omega_rad_s.len(),
-                frd.omega_rad_s.first().copied().unwrap_or(0.0),
-                frd.omega_rad_s.last().copied().unwrap_or(0.0),
-            ),
-        });
+        unit.dynamics = Some(dynamics.clone());
     }
     let p = &mut model.provenance;
     p.amended.push(format!("dynamics: {source}"));
@@ -216,44 +186,8 @@ pub fn add_dynamics(
             .push("unit 2's dynamics: unit 1's (direction 1's frequency response only)".into());
     }
     p.assumed.retain(|a| !a.starts_with("no dynamics"));
-    model.validate().map_err(|(field, message)| SimError::BrakeModel {
-        file: "(amended with dynamics)".into(),
-        field,
-        message,
-    })?;
-    Ok(fit.fit_percent)
-}
-
-/// Moves every pole of `tf` with a non-negative real part to the left half-plane (`p → −p̄`),
-/// keeping `D(0) = 1`, and returns the real parts of the poles moved. An unconstrained rational fit
-/// to a band that ends below a fast pole can put that pole on the wrong side (a two-pole fit with a
-/// negative s² coefficient); reflecting it leaves |G(jω)| unchanged at every ω and the phase nearly
-/// so in the band, the pole flipping of vector fitting (Gustavsen & Semlyen 1999, IEEE Trans. Power
-/// Delivery 14(3), 1052–1061, §III-B).
-fn reflect_unstable_poles(tf: &mut TransferFunction) -> Result<Vec<f64>, ReportError> {
-    let poles = tf
-        .poles()
-        .map_err(|source| SimError::Model { what: "predicted dynamics (poles)", source })?;
-    let moved: Vec<f64> = poles.iter().filter(|p| p.re >= 0.0).map(|p| p.re).collect();
-    if moved.is_empty() {
-        return Ok(moved);
-    }
-    // Π (s − p), descending powers, from the reflected poles.
-    let mut coefficients = vec![Complex64::new(1.0, 0.0)];
-    for p in &poles {
-        let p = if p.re >= 0.0 { Complex64::new(-p.re, p.im) } else { *p };
-        let mut next = coefficients.clone();
-        next.push(Complex64::new(0.0, 0.0));
-        for (k, c) in coefficients.iter().enumerate() {
-            next[k + 1] -= p * c;
-        }
-        coefficients = next;
-    }
-    let constant = coefficients.last().map_or(1.0, |c| c.re);
-    let denominator: Vec<f64> = coefficients.iter().map(|c| c.re / constant).collect();
-    *tf = TransferFunction::new(tf.numerator.clone(), denominator)
-        .map_err(|source| SimError::Model { what: "predicted dynamics (reflected)", source })?;
-    Ok(moved)
+    model.check("(amended with dynamics)")?;
+    Ok(fitted.fit_percent)
 }
 
 /// Adds the hot coil of `thermal` (a thermal analysis of the design called `spec_name`) to every
@@ -265,20 +199,18 @@ pub fn add_thermal(
     thermal: &ThermalResult,
     spec_name: &str,
     source: &str,
-) -> Result<(), ReportError> {
+) -> Result<(), DeviceError> {
     if model.name != spec_name {
-        return Err(SimError::Input(format!(
+        return Err(DeviceError::Input(format!(
             "the brake model is of '{}', the thermal analysis of '{spec_name}': use the same design",
             model.name
-        ))
-        .into());
+        )));
     }
     let Some(steady) = thermal.steady else {
-        return Err(SimError::Input(format!(
+        return Err(DeviceError::Input(format!(
             "no steady state at {} A (thermal runaway): no hot resistance to save",
             thermal.current_a
-        ))
-        .into());
+        )));
     };
     let data = Thermal {
         hot_temperature_c: steady.coil_mean_t_c,
@@ -304,36 +236,56 @@ pub fn add_thermal(
             .assumed
             .push("unit 2's thermal data: unit 1's (one coil energised)".into());
     }
-    model.validate().map_err(|(field, message)| SimError::BrakeModel {
-        file: "(amended with thermal data)".into(),
-        field,
-        message,
-    })?;
+    model.check("(amended with thermal data)")?;
     Ok(())
 }
 
 #[cfg(test)]
 mod tests {
+    use mrbrake_design::response::{ResponseDrive, ResponseTimings};
+    use mrbrake_error::Kind as _;
+    use mrbrake_sim::brake_model::prototype::haptic_prototype;
+    use mrbrake_sysid::frd::Frd;
+    use mrbrake_sysid::tfest::logspace;
+    use mrbrake_sysid::transfer_function::TransferFunction;
+
     use super::*;
 
-    #[test]
-    fn an_unstable_fast_pole_is_reflected_keeping_the_magnitude_and_dc_gain() {
-        // The front design's fit: −6.2968e-8 s² + 0.0095125 s + 1, poles ≈ −107 and +1.51e5 rad/s.
-        let mut tf = TransferFunction::new(vec![0.64], vec![-6.2968e-8, 0.0095125, 1.0]).unwrap();
-        let before = tf.clone();
-        let moved = reflect_unstable_poles(&mut tf).unwrap();
-        assert_eq!(moved.len(), 1);
-        assert!((moved[0] - 1.5117e5).abs() < 1e2, "{moved:?}");
-        assert!(tf.poles().unwrap().iter().all(|p| p.re < 0.0));
-        assert!(tf.denominator.iter().all(|c| *c > 0.0), "{:?}", tf.denominator);
-        assert!((tf.dc_gain() - 0.64).abs() < 1e-12);
-        for w in [0.1, 10.0, 100.0, 1e3, 1e5] {
-            let (a, b) = (before.response(w).norm(), tf.response(w).norm());
-            assert!((a - b).abs() <= 1e-9 * a, "{w} rad/s: {a} vs {b}");
+    /// A response whose frequency response is the thesis's lag (5.6) normalised to DC gain 1.
+    fn response(name: &str) -> Response {
+        let lag = TransferFunction::new(vec![1.0], vec![2.309e-5, 0.01726, 1.0]).unwrap();
+        Response {
+            name: name.into(),
+            drive: ResponseDrive::Current,
+            step: Vec::new(),
+            bias_a: 1.0,
+            dc_gain_nm_per_a: 1.3,
+            frequency_response: Frd::sample(&logspace(0.1, 1000.0, 41), |w| lag.response(w)),
+            bandwidth_rad_s: None,
+            flux_path_conductivity_s_per_m: 2e6,
+            conductivity_source: "test".into(),
+            fluid_lag_s: 0.0,
+            nodes: 0,
+            timings_s: ResponseTimings { step: 0.0, frequency: 0.0, total: 0.0 },
+            eddy: None,
         }
-        // A stable model is left as it is.
-        let mut stable = TransferFunction::new(vec![1.0], vec![1.0157e-6, 0.0075757, 1.0]).unwrap();
-        assert!(reflect_unstable_poles(&mut stable).unwrap().is_empty());
-        assert_eq!(stable.denominator, vec![1.0157e-6, 0.0075757, 1.0]);
+    }
+
+    #[test]
+    fn predicted_dynamics_go_to_every_unit_with_their_provenance() {
+        let mut model = haptic_prototype();
+        model.provenance.assumed.push("no dynamics (test)".into());
+        let predicted = response(&model.name);
+        let fit = add_dynamics(&mut model, &predicted, "test run").unwrap();
+        assert!(fit > 99.99, "{fit}");
+        for unit in &model.units {
+            let d = unit.dynamics.as_ref().unwrap();
+            assert!((d.denominator[0] / 2.309e-5 - 1.0).abs() < 1e-6, "{d:?}");
+            assert!(d.source.contains("2-pole tfest fit") && d.source.contains("(test run)"));
+        }
+        assert!(model.provenance.amended.iter().any(|a| a == "dynamics: test run"));
+        assert!(!model.provenance.assumed.iter().any(|a| a.starts_with("no dynamics")));
+        let e = add_dynamics(&mut model, &response("another brake"), "x").unwrap_err();
+        assert!(e.is_input_error() && e.to_string().contains("another brake"), "{e}");
     }
 }

@@ -1,0 +1,40 @@
+//! A designed MR brake as a device: [`brake_model`] turns what the design's analyses predict (the
+//! finite-element torque–current sweep, the step and frequency response, the hot coil) into the
+//! brake model file the virtual rig and the haptic simulation run
+//! ([`mrbrake_sim::brake_model::BrakeModel`]), each number with its provenance.
+//!
+//! Why a crate of its own: building the model needs the design's results (`mrbrake-design`), the
+//! design key and model revision that identify the design (`mrbrake-explore`, above the design
+//! crate) and the file type (`mrbrake-sim`, which holds no finite-element code and should not
+//! pull it in). No crate below all three could hold it, and the report crate only presents. What
+//! does not depend on a design — the dynamics fitted to any frequency-response data, predicted or
+//! measured — lives next to the file type ([`mrbrake_sim::brake_model::fit`]).
+
+pub mod brake_model;
+
+/// Errors of this crate.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum DeviceError {
+    /// A result the model cannot be amended with: of another design (names both), or a thermal
+    /// analysis without a steady state.
+    #[error("{0}")]
+    Input(String),
+    /// The design key of the spec (its settings, materials).
+    #[error(transparent)]
+    Explore(#[from] mrbrake_explore::ExploreError),
+    /// The brake model: a fit, an invalid predicted value (names the field), a refused model.
+    #[error(transparent)]
+    Sim(#[from] mrbrake_sim::SimError),
+}
+
+impl mrbrake_error::Kind for DeviceError {
+    /// Input for a result that does not fit the model; wrapped errors keep their own kind.
+    fn kind(&self) -> mrbrake_error::ErrorKind {
+        match self {
+            Self::Input(_) => mrbrake_error::ErrorKind::Input,
+            Self::Explore(e) => e.kind(),
+            Self::Sim(e) => e.kind(),
+        }
+    }
+}
