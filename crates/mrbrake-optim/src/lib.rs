@@ -55,6 +55,7 @@ mod problem;
 pub mod rng;
 pub mod sampling;
 pub mod space;
+pub mod surrogate;
 
 pub use error::{OptimError, RunError};
 pub use problem::{FnProblem, Problem};

@@ -1,0 +1,3 @@
+//! Surrogate-assisted (Bayesian) optimisation (work in progress).
+pub mod gp;
+mod local;
