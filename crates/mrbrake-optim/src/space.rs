@@ -130,7 +130,9 @@ impl Bounds {
         let clamped = x.clamp(lo.min(hi), hi.max(lo));
         match self.kind {
             VariableKind::Continuous => clamped,
-            VariableKind::Integer | VariableKind::Categorical => clamped.round().clamp(lo, hi.max(lo)),
+            VariableKind::Integer | VariableKind::Categorical => {
+                clamped.round().clamp(lo, hi.max(lo))
+            }
         }
     }
 

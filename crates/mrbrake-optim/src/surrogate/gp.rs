@@ -49,11 +49,11 @@ use faer::{Mat, Par};
 use super::local::minimise_in_box;
 use crate::sampling::sobol_unit;
 
-/// Bounds of `log ℓ` (length scales 0.01 to 20 on the unit box: from a feature that changes the
+/// Bounds of `log ℓ` (length scales 0.01 to 100 on the unit box: from a feature that changes the
 /// response within 1 % of its range to one whose effect is nearly linear over it).
-const LOG_LENGTH: (f64, f64) = (-4.605_170_185_988_091, 2.995_732_273_553_991);
-/// Bounds of `log η` (nugget 1e-6 to 1 of the process variance).
-const LOG_NUGGET: (f64, f64) = (-13.815_510_557_964_274, 0.0);
+const LOG_LENGTH: (f64, f64) = (-4.605_170_185_988_091, 4.605_170_185_988_091);
+/// Bounds of `log η` (nugget 1e-8 to 1 of the process variance).
+const LOG_NUGGET: (f64, f64) = (-18.420_680_743_952_367, 0.0);
 /// The default start: every length scale 0.5, nugget 1e-4.
 const START: (f64, f64) = (-0.693_147_180_559_945_3, -9.210_340_371_976_183);
 
@@ -182,7 +182,9 @@ impl GaussianProcess {
         if settings.restarts > 0 {
             // Dimension d + 1 <= 33 fits the Sobol' table for up to 31 features; beyond, no restarts.
             for u in sobol_unit(settings.restarts, d + 1).unwrap_or_default() {
-                starts.push(u.iter().zip(&lower).zip(&upper).map(|((u, l), h)| l + u * (h - l)).collect());
+                starts.push(
+                    u.iter().zip(&lower).zip(&upper).map(|((u, l), h)| l + u * (h - l)).collect(),
+                );
             }
         }
         let mut objective = |p: &[f64]| negative_log_likelihood(&pairs, &y, p);
@@ -299,8 +301,8 @@ impl GaussianProcess {
                 let column = cross.col(c);
                 let explained: f64 = (0..n).map(|i| column[i] * column[i]).sum();
                 let ones: f64 = (0..n).map(|i| column[i] * self.whitened_ones[i]).sum();
-                let variance = self.variance
-                    * (1.0 - explained + (1.0 - ones).powi(2) / self.ones_precision);
+                let variance =
+                    self.variance * (1.0 - explained + (1.0 - ones).powi(2) / self.ones_precision);
                 Prediction {
                     mean: self.offset + self.scale * mean,
                     sd: self.scale * variance.max(0.0).sqrt(),
@@ -313,7 +315,8 @@ impl GaussianProcess {
     pub fn loo_residuals(&self) -> Vec<f64> {
         let n = self.inputs.len();
         let inverse = cholesky_inverse(&self.factor);
-        let inverse_ones: Vec<f64> = (0..n).map(|i| (0..n).map(|k| inverse[(i, k)]).sum()).collect();
+        let inverse_ones: Vec<f64> =
+            (0..n).map(|i| (0..n).map(|k| inverse[(i, k)]).sum()).collect();
         (0..n)
             .map(|i| {
                 let q = inverse[(i, i)] - inverse_ones[i].powi(2) / self.ones_precision;
@@ -433,16 +436,13 @@ impl Concentrated {
         let solved_y = cholesky_solve(factor, y.to_vec());
         let solved_ones = cholesky_solve(factor, vec![1.0; n]);
         let beta = solved_y.iter().sum::<f64>() / solved_ones.iter().sum::<f64>();
-        let alpha: Vec<f64> = solved_y.iter().zip(&solved_ones).map(|(a, o)| a - beta * o).collect();
+        let alpha: Vec<f64> =
+            solved_y.iter().zip(&solved_ones).map(|(a, o)| a - beta * o).collect();
         let variance = y.iter().zip(&alpha).map(|(v, a)| (v - beta) * a).sum::<f64>() / n as f64;
         let log_det = 2.0 * (0..n).map(|i| factor[(i, i)].ln()).sum::<f64>();
         let negative_log_likelihood = 0.5 * (n as f64 * variance.ln() + log_det);
-        (variance > 0.0 && negative_log_likelihood.is_finite() && beta.is_finite()).then_some(Self {
-            beta,
-            alpha,
-            variance,
-            negative_log_likelihood,
-        })
+        (variance > 0.0 && negative_log_likelihood.is_finite() && beta.is_finite())
+            .then_some(Self { beta, alpha, variance, negative_log_likelihood })
     }
 }
 
@@ -476,8 +476,11 @@ fn negative_log_likelihood(pairs: &PairDistances, y: &[f64], p: &[f64]) -> Optio
 /// The lower Cholesky factor of a symmetric matrix, or `None` if it is not positive definite.
 fn cholesky(mut matrix: Mat<f64>) -> Option<Mat<f64>> {
     let n = matrix.nrows();
-    let mut memory =
-        MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(n, Par::Seq, Default::default()));
+    let mut memory = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(
+        n,
+        Par::Seq,
+        Default::default(),
+    ));
     let stack = MemStack::new(&mut memory);
     llt::factor::cholesky_in_place(
         matrix.as_mut(),
@@ -506,7 +509,8 @@ fn lower_solve(factor: &Mat<f64>, b: Vec<f64>) -> Vec<f64> {
 /// `R⁻¹ b` from `R = L Lᵀ`.
 fn cholesky_solve(factor: &Mat<f64>, b: Vec<f64>) -> Vec<f64> {
     let mut rhs = Mat::<f64>::from_fn(b.len(), 1, |i, _| b[i]);
-    let mut memory = MemBuffer::new(llt::solve::solve_in_place_scratch::<f64>(b.len(), 1, Par::Seq));
+    let mut memory =
+        MemBuffer::new(llt::solve::solve_in_place_scratch::<f64>(b.len(), 1, Par::Seq));
     llt::solve::solve_in_place(factor.as_ref(), rhs.as_mut(), Par::Seq, MemStack::new(&mut memory));
     (0..b.len()).map(|i| rhs[(i, 0)]).collect()
 }
@@ -544,8 +548,9 @@ mod tests {
     #[test]
     fn interpolates_noiseless_data_and_predicts_between_points() {
         let (inputs, outputs) = data(30, 1);
-        let gp = GaussianProcess::fit(&inputs, &outputs, &[false; 2], &FitSettings::default(), None)
-            .unwrap();
+        let gp =
+            GaussianProcess::fit(&inputs, &outputs, &[false; 2], &FitSettings::default(), None)
+                .unwrap();
         assert!(gp.hyperparameters().nugget < 1e-3, "{:?}", gp.hyperparameters());
         for (p, y) in gp.predict(&inputs).iter().zip(&outputs) {
             assert!((p.mean - y).abs() < 2e-3, "{} vs {y}", p.mean);
@@ -553,9 +558,10 @@ mod tests {
         }
         let (test_inputs, test_outputs) = data(200, 2);
         let predictions = gp.predict(&test_inputs);
-        let rmse = (predictions.iter().zip(&test_outputs).map(|(p, y)| (p.mean - y).powi(2)).sum::<f64>()
-            / 200.0)
-            .sqrt();
+        let rmse =
+            (predictions.iter().zip(&test_outputs).map(|(p, y)| (p.mean - y).powi(2)).sum::<f64>()
+                / 200.0)
+                .sqrt();
         assert!(rmse < 0.05, "test RMSE {rmse}");
         assert!(predictions.iter().all(|p| p.sd.is_finite() && p.sd >= 0.0));
     }
@@ -565,8 +571,9 @@ mod tests {
         let (inputs, outputs) = data(15, 3);
         let categorical = [false, false];
         let hyper = Hyperparameters { length_scales: vec![0.3, 0.6], nugget: 1e-3 };
-        let gp = GaussianProcess::with_hyperparameters(&inputs, &outputs, &categorical, hyper.clone())
-            .unwrap();
+        let gp =
+            GaussianProcess::with_hyperparameters(&inputs, &outputs, &categorical, hyper.clone())
+                .unwrap();
         for (i, residual) in gp.loo_residuals().iter().enumerate() {
             let mut rest_in = inputs.clone();
             let mut rest_out = outputs.clone();
@@ -610,7 +617,11 @@ mod tests {
             let fd = (negative_log_likelihood(&pairs, &y, &up).unwrap().0
                 - negative_log_likelihood(&pairs, &y, &down).unwrap().0)
                 / (2.0 * h);
-            assert!((fd - gradient[j]).abs() < 1e-5 * (1.0 + fd.abs()), "{j}: {fd} vs {}", gradient[j]);
+            assert!(
+                (fd - gradient[j]).abs() < 1e-5 * (1.0 + fd.abs()),
+                "{j}: {fd} vs {}",
+                gradient[j]
+            );
         }
     }
 
@@ -620,13 +631,20 @@ mod tests {
         let settings = FitSettings::default();
         let constant = GaussianProcess::fit(&inputs, &[2.0; 5], &[false; 2], &settings, None);
         assert!(matches!(constant, Err(FitFailure::ConstantOutput { points: 5, .. })));
-        let nan = GaussianProcess::fit(&inputs, &[1.0, f64::NAN, 2.0, 3.0, 4.0], &[false; 2], &settings, None);
+        let nan = GaussianProcess::fit(
+            &inputs,
+            &[1.0, f64::NAN, 2.0, 3.0, 4.0],
+            &[false; 2],
+            &settings,
+            None,
+        );
         assert!(matches!(nan, Err(FitFailure::NotFinite)));
         let one = GaussianProcess::fit(&inputs[..1], &[1.0], &[false; 2], &settings, None);
         assert!(matches!(one, Err(FitFailure::TooFewPoints { .. })));
         // Duplicated inputs with different outputs: the nugget absorbs them.
         let twice = [vec![0.5, 0.5], vec![0.5, 0.5], vec![0.1, 0.9]];
-        let gp = GaussianProcess::fit(&twice, &[1.0, 1.1, 3.0], &[false; 2], &settings, None).unwrap();
+        let gp =
+            GaussianProcess::fit(&twice, &[1.0, 1.1, 3.0], &[false; 2], &settings, None).unwrap();
         assert!(gp.predict(&[vec![0.5, 0.5]])[0].mean.is_finite());
     }
 }

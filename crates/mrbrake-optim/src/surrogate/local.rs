@@ -137,8 +137,8 @@ mod tests {
             let g = vec![-2.0 * (1.0 - a) - 400.0 * a * (b - a * a), 200.0 * (b - a * a)];
             Some((f, g))
         };
-        let free = minimise_in_box(&mut rosenbrock, &[-1.2, 1.0], &[-5.0; 2], &[5.0; 2], 500)
-            .unwrap();
+        let free =
+            minimise_in_box(&mut rosenbrock, &[-1.2, 1.0], &[-5.0; 2], &[5.0; 2], 500).unwrap();
         assert!((free.x[0] - 1.0).abs() < 1e-4 && (free.x[1] - 1.0).abs() < 1e-4, "{free:?}");
         // With b <= 0.5 the minimum lies on the bound b = 0.5, at a ≈ 0.7070.
         let bounded =
