@@ -28,8 +28,8 @@
 //! theorem), its gradient (R&W eq. 5.9 with `α = R⁻¹(y − β̂1)`):
 //! `∂ℓ/∂θ_j = ½ Σ_ik (α_i α_k / σ̂² − [R⁻¹]_ik) ∂R_ik/∂θ_j`, with
 //! `∂R_ik/∂log ℓ_j = (5/3)(1 + √5 r) exp(−√5 r) δ_j² / ℓ_j²` and `∂R/∂log η = η I`.
-//! It is maximised by projected L-BFGS ([`super::local`]) from several starts (the previous
-//! iteration's optimum when given, a default, then points of a Sobol' sequence over the box).
+//! It is maximised by projected L-BFGS ([`super::local`]): from the previous iteration's optimum
+//! when given (warm start), else from a default start and points of a Sobol' sequence over the box.
 //!
 //! Prediction at `z` (R&W eqs. 2.25–2.26 with the estimated-mean term of universal Kriging,
 //! Santner, Williams & Notz, *The Design and Analysis of Computer Experiments*, 2003, eq. 3.4.4):
@@ -111,15 +111,20 @@ impl Hyperparameters {
 /// How hard the likelihood is maximised.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitSettings {
-    /// Starts besides the warm start and the default (Sobol' points over the box).
+    /// Starts besides the default one (Sobol' points over the box) when there is no warm start;
+    /// a warm-started fit runs one local search from the warm start.
     pub restarts: usize,
     /// Quasi-Newton iterations per start.
     pub max_iterations: usize,
+    /// Relative growth of a model's training set since its hyper-parameters were last optimised
+    /// below which the optimiser keeps them and only refactors (`0` re-optimises every iteration;
+    /// the likelihood changes little when a few designs join many). Default 0.05.
+    pub reoptimise_growth: f64,
 }
 
 impl Default for FitSettings {
     fn default() -> Self {
-        Self { restarts: 2, max_iterations: 60 }
+        Self { restarts: 2, max_iterations: 60, reoptimise_growth: 0.05 }
     }
 }
 
@@ -159,8 +164,8 @@ pub struct GaussianProcess {
 
 impl GaussianProcess {
     /// Fits a model to `outputs` at `inputs` (features on the unit box; `categorical[k]` marks a
-    /// feature compared by equality), maximising the likelihood from `warm` (if any), the default
-    /// start and `settings.restarts` Sobol' starts.
+    /// feature compared by equality), maximising the likelihood from `warm` if given, else from
+    /// the default start and `settings.restarts` Sobol' starts.
     pub fn fit(
         inputs: &[Vec<f64>],
         outputs: &[f64],
@@ -175,26 +180,34 @@ impl GaussianProcess {
         let mut lower = vec![LOG_LENGTH.0; d + 1];
         let mut upper = vec![LOG_LENGTH.1; d + 1];
         (lower[d], upper[d]) = LOG_NUGGET;
-        let mut starts: Vec<Vec<f64>> = warm.map(Hyperparameters::to_log).into_iter().collect();
-        let mut default = vec![START.0; d + 1];
-        default[d] = START.1;
-        starts.push(default);
-        if settings.restarts > 0 {
-            // Dimension d + 1 <= 33 fits the Sobol' table for up to 31 features; beyond, no restarts.
-            for u in sobol_unit(settings.restarts, d + 1).unwrap_or_default() {
-                starts.push(
-                    u.iter().zip(&lower).zip(&upper).map(|((u, l), h)| l + u * (h - l)).collect(),
-                );
+        let mut objective =
+            |p: &[f64], gradient: bool| negative_log_likelihood(&pairs, &y, p, gradient);
+        let mut search = |start: &[f64]| {
+            minimise_in_box(&mut objective, start, &lower, &upper, settings.max_iterations)
+        };
+        // A warm start (the previous iteration's optimum, a few designs ago) is near the new
+        // optimum: one local search suffices. Cold: the default start and the Sobol' restarts.
+        let warm_best = warm.and_then(|h| search(&h.to_log()));
+        let best = match warm_best {
+            Some(best) => best,
+            None => {
+                let mut default = vec![START.0; d + 1];
+                default[d] = START.1;
+                // d + 1 <= 32 fits the Sobol' table; beyond, the default start only.
+                let restarts = sobol_unit(settings.restarts, d + 1).unwrap_or_default();
+                std::iter::once(default)
+                    .chain(restarts.iter().map(|u| {
+                        u.iter()
+                            .zip(&lower)
+                            .zip(&upper)
+                            .map(|((u, l), h)| l + u * (h - l))
+                            .collect()
+                    }))
+                    .filter_map(|start| search(&start))
+                    .min_by(|a, b| a.value.total_cmp(&b.value))
+                    .ok_or(FitFailure::Singular)?
             }
-        }
-        let mut objective = |p: &[f64]| negative_log_likelihood(&pairs, &y, p);
-        let best = starts
-            .iter()
-            .filter_map(|s| {
-                minimise_in_box(&mut objective, s, &lower, &upper, settings.max_iterations)
-            })
-            .min_by(|a, b| a.value.total_cmp(&b.value))
-            .ok_or(FitFailure::Singular)?;
+        };
         let hyper = Hyperparameters::from_log(&best.x);
         Self::build(inputs.to_vec(), categorical.to_vec(), y, (offset, scale), hyper)
     }
@@ -280,13 +293,29 @@ impl GaussianProcess {
     /// Mean and standard deviation at each point (features on the unit box).
     pub fn predict(&self, points: &[Vec<f64>]) -> Vec<Prediction> {
         let n = self.inputs.len();
+        let d = self.categorical.len();
+        // Features divided by their length scales once, so each pair costs a plain sum of squares.
+        let scale = |z: &[f64]| -> Vec<f64> {
+            z.iter()
+                .zip(&self.inverse_squared_lengths)
+                .zip(&self.categorical)
+                .map(|((v, s), &c)| if c { *v } else { v * s.sqrt() })
+                .collect()
+        };
+        let training: Vec<f64> = self.inputs.iter().flat_map(|z| scale(z)).collect();
         let mut cross = Mat::<f64>::zeros(n, points.len());
-        let mut deltas = vec![0.0; self.categorical.len()];
         for (c, point) in points.iter().enumerate() {
-            for (i, input) in self.inputs.iter().enumerate() {
-                squared_differences(input, point, &self.categorical, &mut deltas);
-                let r2: f64 =
-                    deltas.iter().zip(&self.inverse_squared_lengths).map(|(d, s)| d * s).sum();
+            let point = scale(point);
+            for (i, input) in training.chunks_exact(d.max(1)).enumerate() {
+                let mut r2 = 0.0;
+                for k in 0..d {
+                    let delta = input[k] - point[k];
+                    r2 += if self.categorical[k] {
+                        f64::from(u8::from(delta.abs() > 0.5)) * self.inverse_squared_lengths[k]
+                    } else {
+                        delta * delta
+                    };
+                }
                 cross[(i, c)] = matern52(r2.sqrt());
             }
         }
@@ -446,14 +475,23 @@ impl Concentrated {
     }
 }
 
-/// `−ℓ(θ)` and its gradient (module docs), or `None` where `R` is not positive definite.
-fn negative_log_likelihood(pairs: &PairDistances, y: &[f64], p: &[f64]) -> Option<(f64, Vec<f64>)> {
+/// `−ℓ(θ)` and, if `with_gradient`, its gradient (module docs; else an empty vector), or `None`
+/// where `R` is not positive definite.
+fn negative_log_likelihood(
+    pairs: &PairDistances,
+    y: &[f64],
+    p: &[f64],
+    with_gradient: bool,
+) -> Option<(f64, Vec<f64>)> {
     let d = pairs.d;
     let inverse_squared_lengths: Vec<f64> = p[..d].iter().map(|l| (-2.0 * l).exp()).collect();
     let nugget = p[d].exp();
     let (matrix, distances) = pairs.correlation(&inverse_squared_lengths, nugget);
     let factor = cholesky(matrix)?;
     let fit = Concentrated::new(&factor, y)?;
+    if !with_gradient {
+        return Some((fit.negative_log_likelihood, Vec::new()));
+    }
     let inverse = cholesky_inverse(&factor);
     // M = α αᵀ/σ̂² − R⁻¹; dℓ/dθ_j = ½ Σ M ∂R/∂θ_j (upper-triangle pairs counted twice).
     let weight = |i: usize, k: usize| fit.alpha[i] * fit.alpha[k] / fit.variance - inverse[(i, k)];
@@ -607,15 +645,15 @@ mod tests {
         let y: Vec<f64> = outputs.iter().map(|v| (v - offset) / scale).collect();
         let pairs = PairDistances::new(&inputs, &categorical);
         let p = [-1.0, 0.2, -0.5, -6.0];
-        let (_, gradient) = negative_log_likelihood(&pairs, &y, &p).unwrap();
+        let (_, gradient) = negative_log_likelihood(&pairs, &y, &p, true).unwrap();
         for j in 0..p.len() {
             let h = 1e-6;
             let mut up = p;
             let mut down = p;
             up[j] += h;
             down[j] -= h;
-            let fd = (negative_log_likelihood(&pairs, &y, &up).unwrap().0
-                - negative_log_likelihood(&pairs, &y, &down).unwrap().0)
+            let fd = (negative_log_likelihood(&pairs, &y, &up, false).unwrap().0
+                - negative_log_likelihood(&pairs, &y, &down, false).unwrap().0)
                 / (2.0 * h);
             assert!(
                 (fd - gradient[j]).abs() < 1e-5 * (1.0 + fd.abs()),

@@ -7,7 +7,10 @@
 //! active-set idea of L-BFGS-B, Byrd, Lu, Nocedal & Zhu 1995, without its Cauchy-point search —
 //! hyper-parameter fitting has a handful of variables and bounds that only keep the search in a
 //! sensible region). Backtracking Armijo line search along the projected path (Nocedal & Wright
-//! 2006, Algorithm 3.1, with the sufficient-decrease test on the projected step, Bertsekas 1982).
+//! 2006, Algorithm 3.1, with the sufficient-decrease test on the projected step, Bertsekas 1982),
+//! the step cut by quadratic interpolation (Nocedal & Wright 2006, eq. 3.57, safeguarded to
+//! `[0.1, 0.5]` of the rejected step). Trial points are evaluated without the gradient, which
+//! costs the likelihood three times as much as its value.
 
 use std::collections::VecDeque;
 
@@ -23,11 +26,18 @@ pub(crate) struct LocalMinimum {
 /// Curvature pairs kept (the "m" of L-BFGS; 5 to 10 is the usual advice).
 const MEMORY: usize = 6;
 
-/// Minimises `objective` (value and gradient, `None` where it is undefined) over the box
-/// `[lower, upper]` from `start`, for at most `max_iterations` quasi-Newton steps. `None` when the
-/// objective is undefined at the (projected) start.
+/// The function minimised: its value at `x` and, when the flag asks, its gradient (else an empty
+/// vector); `None` where it is undefined.
+pub(crate) type Objective<'a> = dyn FnMut(&[f64], bool) -> Option<(f64, Vec<f64>)> + 'a;
+
+/// Relative decrease of the objective under which the search stops.
+const TOLERANCE: f64 = 1e-9;
+
+/// Minimises `objective` over the box `[lower, upper]` from `start`, for at most
+/// `max_iterations` quasi-Newton steps. `None` when the objective is undefined at the (projected)
+/// start.
 pub(crate) fn minimise_in_box(
-    objective: &mut dyn FnMut(&[f64]) -> Option<(f64, Vec<f64>)>,
+    objective: &mut Objective<'_>,
     start: &[f64],
     lower: &[f64],
     upper: &[f64],
@@ -40,7 +50,7 @@ pub(crate) fn minimise_in_box(
     };
     let mut x = start.to_vec();
     project(&mut x);
-    let (mut value, mut gradient) = objective(&x).filter(|(f, g)| finite(*f, g))?;
+    let (mut value, mut gradient) = objective(&x, true).filter(|(f, g)| finite(*f, g))?;
     let mut memory: VecDeque<(Vec<f64>, Vec<f64>)> = VecDeque::new();
     for _ in 0..max_iterations {
         let free: Vec<bool> = (0..x.len())
@@ -61,21 +71,12 @@ pub(crate) fn minimise_in_box(
             direction = masked.iter().map(|g| -g).collect();
         }
         // The first step (no curvature known yet) moves at most one unit.
-        let mut step = if memory.is_empty() { 1.0 / norm(&direction).max(1.0) } else { 1.0 };
-        let mut accepted = None;
-        for _ in 0..30 {
-            let mut trial: Vec<f64> = x.iter().zip(&direction).map(|(a, d)| a + step * d).collect();
-            project(&mut trial);
-            let moved: Vec<f64> = trial.iter().zip(&x).map(|(t, a)| t - a).collect();
-            if let Some((f, g)) = objective(&trial).filter(|(f, g)| finite(*f, g)) {
-                if f <= value + 1e-4 * dot(&gradient, &moved) {
-                    accepted = Some((trial, moved, f, g));
-                    break;
-                }
-            }
-            step *= 0.5;
-        }
-        let Some((trial, moved, f, g)) = accepted else { break };
+        let step = if memory.is_empty() { 1.0 / norm(&direction).max(1.0) } else { 1.0 };
+        let Some((trial, moved, f, g)) =
+            line_search(objective, &x, value, &gradient, &direction, step, &project)
+        else {
+            break;
+        };
         let change: Vec<f64> = g.iter().zip(&gradient).map(|(a, b)| a - b).collect();
         if dot(&moved, &change) > 1e-12 {
             memory.push_back((moved, change));
@@ -83,13 +84,45 @@ pub(crate) fn minimise_in_box(
                 memory.pop_front();
             }
         }
-        let converged = value - f <= 1e-10 * (1.0 + value.abs());
+        let converged = value - f <= TOLERANCE * (1.0 + value.abs());
         (x, value, gradient) = (trial, f, g);
         if converged {
             break;
         }
     }
     Some(LocalMinimum { x, value })
+}
+
+/// A step along `direction` from `x` that decreases the objective enough (Armijo), evaluated
+/// without the gradient until accepted: `(point, displacement, value, gradient)`.
+fn line_search(
+    objective: &mut Objective<'_>,
+    x: &[f64],
+    value: f64,
+    gradient: &[f64],
+    direction: &[f64],
+    mut step: f64,
+    project: &dyn Fn(&mut [f64]),
+) -> Option<(Vec<f64>, Vec<f64>, f64, Vec<f64>)> {
+    for _ in 0..30 {
+        let mut trial: Vec<f64> = x.iter().zip(direction).map(|(a, d)| a + step * d).collect();
+        project(&mut trial);
+        let moved: Vec<f64> = trial.iter().zip(x).map(|(t, a)| t - a).collect();
+        let slope = dot(gradient, &moved);
+        match objective(&trial, false).map(|(f, _)| f).filter(|f| f.is_finite()) {
+            Some(f) if f <= value + 1e-4 * slope => {
+                let (f, g) = objective(&trial, true).filter(|(f, g)| finite(*f, g))?;
+                return Some((trial, moved, f, g));
+            }
+            // Minimum of the quadratic through value, slope and f, kept within [0.1, 0.5] step.
+            Some(f) if slope < 0.0 => {
+                let fraction = -slope / (2.0 * (f - value - slope));
+                step *= fraction.clamp(0.1, 0.5);
+            }
+            _ => step *= 0.5,
+        }
+    }
+    None
 }
 
 /// The quasi-Newton direction `−H g` by the two-loop recursion (Nocedal & Wright 2006,
@@ -131,7 +164,7 @@ mod tests {
 
     #[test]
     fn finds_the_rosenbrock_minimum_and_stops_at_an_active_bound() {
-        let mut rosenbrock = |x: &[f64]| {
+        let mut rosenbrock = |x: &[f64], _: bool| {
             let (a, b) = (x[0], x[1]);
             let f = (1.0 - a).powi(2) + 100.0 * (b - a * a).powi(2);
             let g = vec![-2.0 * (1.0 - a) - 400.0 * a * (b - a * a), 200.0 * (b - a * a)];
@@ -147,7 +180,7 @@ mod tests {
         assert!((bounded.x[1] - 0.5).abs() < 1e-12, "{bounded:?}");
         assert!((bounded.x[0] - 0.7071).abs() < 2e-3, "{bounded:?}");
         // Undefined at the start: no result.
-        let mut undefined = |_: &[f64]| None;
+        let mut undefined = |_: &[f64], _: bool| None;
         assert!(minimise_in_box(&mut undefined, &[0.0], &[-1.0], &[1.0], 10).is_none());
     }
 }

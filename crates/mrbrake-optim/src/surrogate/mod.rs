@@ -7,8 +7,9 @@
 //!
 //! 1. **Initial design**: a space-filling plan ([`InitialPlan`]: shifted Sobol' by default, or a
 //!    Latin hypercube) of [`SurrogateOptions::initial_size`] designs (default 10 × variables, at
-//!    least variables + 1), evaluated in one batch. Designs already in the data given to [`run`]
-//!    (a resumed study) are not evaluated again.
+//!    least variables + 1), evaluated in one batch. Designs given to [`run`] (a resumed study's
+//!    records) count towards it: only the plan's designs not among them are evaluated, as many as
+//!    it takes to reach the plan's size.
 //! 2. **Iterations**: fit one Gaussian process per objective, one per constraint and, where
 //!    needed, a feasibility classifier ([`models`](ModelRole)); choose a **batch** of
 //!    [`SurrogateOptions::batch`] designs (the study's parallelism) that maximise the expected
@@ -311,7 +312,7 @@ impl<'o> Driver<'o> {
             data,
             reference,
             trace: Vec::new(),
-            warm: WarmStarts::new(),
+            warm: WarmStarts::default(),
         }
     }
 
@@ -320,16 +321,20 @@ impl<'o> Driver<'o> {
         Rng::new(self.options.seed ^ (self.data.len() as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15))
     }
 
-    /// The initial plan's designs not yet in the data, cut to the budget.
+    /// The initial plan's designs not yet in the data, as many as it takes to bring the data to
+    /// the plan's size (the given designs count towards it), cut to the budget.
     fn initial_design(&self) -> Vec<Vec<f64>> {
         let size = self.options.initial_design_size(self.bounds.len());
+        if self.data.len() >= size {
+            return Vec::new();
+        }
         let plan = match self.options.initial_plan {
             InitialPlan::Sobol if self.bounds.len() <= MAX_SOBOL_DIMENSION => {
                 self.sobol_designs(size)
             }
             _ => latin_hypercube(size, &self.bounds, &mut Rng::new(self.options.seed)),
         };
-        let room = self.options.max_evaluations.saturating_sub(self.data.len());
+        let room = self.options.max_evaluations.min(size).saturating_sub(self.data.len());
         self.unseen(plan).into_iter().take(room).collect()
     }
 

@@ -21,6 +21,8 @@
 use std::collections::HashMap;
 use std::fmt;
 
+use rayon::prelude::*;
+
 use super::EvaluatedDesign;
 use super::encoding::Encoding;
 use super::gp::{FitFailure, FitSettings, GaussianProcess, Hyperparameters, Prediction};
@@ -93,11 +95,71 @@ pub(crate) struct Models {
     classifier: Option<GaussianProcess>,
 }
 
-/// Hyper-parameters of the previous fit of each model, to start the next search from.
-pub(crate) type WarmStarts = HashMap<ModelRole, Hyperparameters>;
+/// Hyper-parameters of the previous fit of each model, with the training-set sizes of its last
+/// cold (multi-start) search and of its last optimisation: what the next fit starts from.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct WarmStarts {
+    previous: HashMap<ModelRole, Previous>,
+}
+
+#[derive(Debug, Clone)]
+struct Previous {
+    hyper: Hyperparameters,
+    cold_points: usize,
+    optimised_points: usize,
+}
+
+/// How a model's hyper-parameters are found this iteration.
+enum Start<'a> {
+    /// Multi-start likelihood search (first fit, or the data grew by [`COLD_AGAIN`]).
+    Cold,
+    /// One local search from the previous optimum.
+    Warm(&'a Hyperparameters),
+    /// The previous optimum as it is (the data grew by less than `reoptimise_growth`).
+    Kept(&'a Hyperparameters),
+}
+
+/// A model is searched cold again (multi-start) once its data has grown by this factor since the
+/// last cold search, so an early local optimum is not kept for the whole run.
+const COLD_AGAIN: f64 = 1.25;
+
+impl WarmStarts {
+    fn start(&self, role: ModelRole, points: usize, settings: &FitSettings) -> Start<'_> {
+        let Some(previous) = self.previous.get(&role) else { return Start::Cold };
+        let grown = |since: usize, factor: f64| points as f64 > factor * since as f64;
+        if grown(previous.cold_points, COLD_AGAIN) {
+            Start::Cold
+        } else if grown(previous.optimised_points, 1.0 + settings.reoptimise_growth) {
+            Start::Warm(&previous.hyper)
+        } else {
+            Start::Kept(&previous.hyper)
+        }
+    }
+
+    /// Keeps a fit's hyper-parameters and the sizes at which they were searched.
+    fn record(
+        &mut self,
+        role: ModelRole,
+        hyper: &Hyperparameters,
+        points: usize,
+        settings: &FitSettings,
+    ) {
+        let previous = self.previous.get(&role);
+        let (cold_points, optimised_points) = match self.start(role, points, settings) {
+            Start::Cold => (points, points),
+            Start::Warm(_) => (previous.map_or(points, |p| p.cold_points), points),
+            Start::Kept(_) => {
+                previous.map_or((points, points), |p| (p.cold_points, p.optimised_points))
+            }
+        };
+        self.previous
+            .insert(role, Previous { hyper: hyper.clone(), cold_points, optimised_points });
+    }
+}
 
 impl Models {
-    /// Fits every model to `data` (at most `max_training` designs, chosen by [`training_subset`]).
+    /// Fits every model to `data` (at most `max_training` designs, chosen by [`training_subset`]),
+    /// the models in parallel (the cores are idle between batches).
     pub fn fit(
         data: &[EvaluatedDesign],
         objectives: usize,
@@ -109,75 +171,64 @@ impl Models {
         let chosen = training_subset(data, max_training);
         let features: Vec<Vec<f64>> = chosen.iter().map(|d| encoding.encode(&d.x)).collect();
         let evaluations: Vec<&Evaluation> = chosen.iter().map(|d| &d.evaluation).collect();
-        let constraint_count = evaluations.iter().map(|e| e.constraints.len()).find(|&c| c > 0);
-        let mut fits = Vec::new();
-        let mut fit_one = |role: ModelRole, rows: Vec<(usize, f64)>| {
-            let inputs: Vec<Vec<f64>> = rows.iter().map(|&(i, _)| features[i].clone()).collect();
-            let outputs: Vec<f64> = rows.iter().map(|&(_, v)| v).collect();
-            let fallback = |reason| Fallback { role, reason };
-            let gp = GaussianProcess::fit(
-                &inputs,
-                &outputs,
-                encoding.categorical(),
-                settings,
-                warm.get(&role),
-            )
-            .map_err(fallback)?;
-            let loo_error = gp.loo_error();
-            if !loo_error.is_finite() {
-                return Err(fallback(FitFailure::Singular));
-            }
-            warm.insert(role, gp.hyperparameters().clone());
-            fits.push(ModelFit {
-                role,
-                points: gp.len(),
-                loo_error,
-                hyperparameters: gp.hyperparameters().clone(),
-            });
-            Ok(gp)
-        };
-        let evaluated = |e: &Evaluation| e.objectives.iter().all(|v| v.is_finite());
-        let objective_models = (0..objectives)
-            .map(|j| {
-                let rows = evaluations.iter().enumerate().filter(|(_, e)| evaluated(e));
-                fit_one(ModelRole::Objective(j), rows.map(|(i, e)| (i, e.objectives[j])).collect())
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let constraint_models = (0..constraint_count.unwrap_or(0))
-            .map(|k| {
-                let rows = evaluations.iter().enumerate().filter_map(|(i, e)| {
-                    let value = *e.constraints.get(k)?;
-                    (e.constraints.len() == constraint_count.unwrap_or(0) && value.is_finite())
-                        .then_some((i, value))
-                });
-                fit_one(ModelRole::Constraint(k), rows.collect())
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let labels: Vec<(usize, f64)> = evaluations
-            .iter()
-            .enumerate()
-            .map(|(i, e)| {
-                let bad = if constraint_count.is_some() {
-                    !e.violation.is_finite() || e.constraints.is_empty() || !evaluated(e)
-                } else {
-                    !e.feasible()
-                };
-                (i, if bad { 1.0 } else { -1.0 })
+        let jobs = training_sets(&evaluations, objectives);
+        let fitted: Vec<Result<(GaussianProcess, f64), Fallback>> = jobs
+            .par_iter()
+            .map(|(role, rows)| {
+                let inputs: Vec<Vec<f64>> =
+                    rows.iter().map(|&(i, _)| features[i].clone()).collect();
+                let outputs: Vec<f64> = rows.iter().map(|&(_, v)| v).collect();
+                let categorical = encoding.categorical();
+                match warm.start(*role, rows.len(), settings) {
+                    Start::Cold => {
+                        GaussianProcess::fit(&inputs, &outputs, categorical, settings, None)
+                    }
+                    Start::Warm(h) => {
+                        GaussianProcess::fit(&inputs, &outputs, categorical, settings, Some(h))
+                    }
+                    Start::Kept(h) => GaussianProcess::with_hyperparameters(
+                        &inputs,
+                        &outputs,
+                        categorical,
+                        h.clone(),
+                    ),
+                }
+                .and_then(|gp| {
+                    let loo = gp.loo_error();
+                    if loo.is_finite() { Ok((gp, loo)) } else { Err(FitFailure::Singular) }
+                })
+                .map_err(|reason| Fallback { role: *role, reason })
             })
             .collect();
-        let both = labels.iter().any(|l| l.1 > 0.0) && labels.iter().any(|l| l.1 < 0.0);
-        let classifier = if both { Some(fit_one(ModelRole::Feasibility, labels)?) } else { None };
-        let models =
-            Self { objectives: objective_models, constraints: constraint_models, classifier };
+        let mut models = Self { objectives: Vec::new(), constraints: Vec::new(), classifier: None };
+        let mut fits = Vec::with_capacity(jobs.len());
+        for ((role, _), gp) in jobs.iter().zip(fitted) {
+            let (gp, loo_error) = gp?;
+            warm.record(*role, gp.hyperparameters(), gp.len(), settings);
+            let hyperparameters = gp.hyperparameters().clone();
+            fits.push(ModelFit { role: *role, points: gp.len(), loo_error, hyperparameters });
+            match role {
+                ModelRole::Objective(_) => models.objectives.push(gp),
+                ModelRole::Constraint(_) => models.constraints.push(gp),
+                ModelRole::Feasibility => models.classifier = Some(gp),
+            }
+        }
         Ok((models, fits))
     }
 
-    /// Every model's prediction at each candidate (features).
+    /// Every model's prediction at each candidate (features), in parallel over blocks of
+    /// candidates.
     pub fn predict(&self, points: &[Vec<f64>]) -> Vec<CandidatePrediction> {
-        let objectives: Vec<Vec<Prediction>> =
-            self.objectives.iter().map(|gp| gp.predict(points)).collect();
-        let constraints: Vec<Vec<Prediction>> =
-            self.constraints.iter().map(|gp| gp.predict(points)).collect();
+        const BLOCK: usize = 128;
+        points.par_chunks(BLOCK).flat_map_iter(|block| self.predict_block(block)).collect()
+    }
+
+    fn predict_block(&self, points: &[Vec<f64>]) -> Vec<CandidatePrediction> {
+        let predict_all = |models: &[GaussianProcess]| -> Vec<Vec<Prediction>> {
+            models.iter().map(|gp| gp.predict(points)).collect()
+        };
+        let objectives = predict_all(&self.objectives);
+        let constraints = predict_all(&self.constraints);
         let classifier = self.classifier.as_ref().map(|gp| gp.predict(points));
         (0..points.len())
             .map(|c| {
@@ -222,6 +273,45 @@ impl Models {
             },
         })
     }
+}
+
+/// Each model's training rows `(index into evaluations, output)`: objectives, constraints, then the
+/// classifier's labels (only when both labels occur; module docs).
+fn training_sets(
+    evaluations: &[&Evaluation],
+    objectives: usize,
+) -> Vec<(ModelRole, Vec<(usize, f64)>)> {
+    let evaluated = |e: &Evaluation| e.objectives.iter().all(|v| v.is_finite());
+    let constraint_count = evaluations.iter().map(|e| e.constraints.len()).find(|&c| c > 0);
+    let mut jobs = Vec::new();
+    for j in 0..objectives {
+        let rows = evaluations.iter().enumerate().filter(|(_, e)| evaluated(e));
+        jobs.push((ModelRole::Objective(j), rows.map(|(i, e)| (i, e.objectives[j])).collect()));
+    }
+    let count = constraint_count.unwrap_or(0);
+    for k in 0..count {
+        let rows = evaluations.iter().enumerate().filter_map(|(i, e)| {
+            let value = *e.constraints.get(k)?;
+            (e.constraints.len() == count && value.is_finite()).then_some((i, value))
+        });
+        jobs.push((ModelRole::Constraint(k), rows.collect()));
+    }
+    let labels: Vec<(usize, f64)> = evaluations
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            let bad = if count > 0 {
+                !e.violation.is_finite() || e.constraints.len() != count || !evaluated(e)
+            } else {
+                !e.feasible()
+            };
+            (i, if bad { 1.0 } else { -1.0 })
+        })
+        .collect();
+    if labels.iter().any(|l| l.1 > 0.0) && labels.iter().any(|l| l.1 < 0.0) {
+        jobs.push((ModelRole::Feasibility, labels));
+    }
+    jobs
 }
 
 /// `P(Y <= 0)` for `Y ~ N(μ, s²)`; a step when `s = 0`.

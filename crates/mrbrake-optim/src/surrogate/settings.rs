@@ -85,12 +85,13 @@ pub struct SurrogateOptions {
     /// 26(3)).
     pub reference: Option<Vec<f64>>,
     /// Space-filling candidates the acquisition is screened on per iteration (plus as many local
-    /// ones around the current front); 1 to 100 000. Default 1 000.
+    /// ones around the current front); 1 to 100 000. Default 500.
     pub candidates: usize,
     /// Largest training set of a model: beyond it the best designs by constrained non-dominated
     /// rank are kept (module docs). At least variables + 1, at most 2 000. Default 300.
     pub max_training: usize,
-    /// Hyper-parameter search effort (restarts up to 100, iterations 1 to 1 000).
+    /// Hyper-parameter search effort (restarts up to 100, iterations 1 to 1 000, re-optimisation
+    /// growth 0 to 10).
     pub fit: FitSettings,
     /// Seed of every random choice. Default 0.
     pub seed: u64,
@@ -107,7 +108,7 @@ impl Default for SurrogateOptions {
             stall_tolerance: 1e-3,
             acquisition: Acquisition::ExpectedHypervolumeImprovement,
             reference: None,
-            candidates: 1000,
+            candidates: 500,
             max_training: 300,
             fit: FitSettings::default(),
             seed: 0,
@@ -156,6 +157,14 @@ impl SurrogateOptions {
         count("fit.restarts", self.fit.restarts, self.fit.restarts <= 100, "0 to 100")?;
         let iterations = (1..=1000).contains(&self.fit.max_iterations);
         count("fit.max_iterations", self.fit.max_iterations, iterations, "1 to 1000")?;
+        let growth = self.fit.reoptimise_growth;
+        if !(growth.is_finite() && (0.0..=10.0).contains(&growth)) {
+            return Err(OptimError::InvalidOption {
+                name: "fit.reoptimise_growth",
+                value: growth,
+                allowed: "a relative growth from 0 to 10",
+            });
+        }
         if !(self.stall_tolerance.is_finite() && self.stall_tolerance >= 0.0) {
             return Err(OptimError::InvalidOption {
                 name: "stall_tolerance",
