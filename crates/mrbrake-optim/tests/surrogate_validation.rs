@@ -106,6 +106,7 @@ struct Outcome {
 /// Runs both optimisers with the same budget and returns their hypervolume fractions.
 fn compare(
     name: &str,
+    batch: usize,
     bounds: Vec<Bounds>,
     function: fn(&[f64]) -> Evaluation,
     front: &[Vec<f64>],
@@ -117,6 +118,7 @@ fn compare(
         reference: Some(reference.clone()),
         stall_iterations: 0,
         seed: 1,
+        batch,
         ..Default::default()
     };
     let mut problem = FnProblem::new(bounds.clone(), 2, function);
@@ -143,15 +145,27 @@ fn compare(
         result.designs.iter().map(|d| d.evaluation.clone()).collect();
     assert_eq!(result.front, pareto_front(&evaluations));
 
-    let nsga2_options =
-        Nsga2Options { population: 30, generations: 4, seed: 1, ..Default::default() };
-    let mut nsga2_problem = FnProblem::new(bounds, 2, function);
-    let nsga2_result = nsga2::run(&mut nsga2_problem, &nsga2_options, &mut |_| {}).unwrap();
-    let nsga2_points: Vec<Vec<f64>> =
-        nsga2_result.front.iter().map(|i| i.evaluation.objectives.clone()).collect();
+    let nsga2_fraction = |generations: usize| {
+        let settings = Nsga2Options { population: 30, generations, seed: 1, ..Default::default() };
+        let mut nsga2_problem = FnProblem::new(bounds.clone(), 2, function);
+        let nsga2_result = nsga2::run(&mut nsga2_problem, &settings, &mut |_| {}).unwrap();
+        let points: Vec<Vec<f64>> =
+            nsga2_result.front.iter().map(|i| i.evaluation.objectives.clone()).collect();
+        hypervolume(&points, &reference) / exact
+    };
+    // NSGA-II at the same budget (30 × 5 = 150), then at larger ones for the evaluations it needs.
+    let longer: Vec<String> = [9, 19, 39, 79, 159]
+        .iter()
+        .map(|&g| format!("{}: {:.1} %", 30 * (g + 1), 100.0 * nsga2_fraction(g)))
+        .collect();
+    let to_target = result
+        .trace
+        .iter()
+        .find(|p| p.hypervolume >= 0.95 * exact)
+        .map_or("not reached".into(), |p| format!("{} evaluations", p.evaluations));
     let outcome = Outcome {
         surrogate: result.hypervolume / exact,
-        nsga2: hypervolume(&nsga2_points, &reference) / exact,
+        nsga2: nsga2_fraction(4),
         evaluations: result.designs.len(),
     };
     for line in lines.iter().filter(|l| !l.is_empty()) {
@@ -159,11 +173,12 @@ fn compare(
     }
     println!(
         "{name}: true-front hypervolume {exact:.5} (reference {reference:?}); after {} evaluations: \
-         surrogate {:.1} %, NSGA-II ({} evaluations) {:.1} %",
+         surrogate {:.1} % (95 % after {to_target}), NSGA-II {:.1} %; NSGA-II with more \
+         evaluations: {}",
         outcome.evaluations,
         100.0 * outcome.surrogate,
-        nsga2_problem.evaluations(),
-        100.0 * outcome.nsga2
+        100.0 * outcome.nsga2,
+        longer.join(", ")
     );
     outcome
 }
@@ -176,7 +191,7 @@ fn six_unit_variables() -> Vec<Bounds> {
 #[cfg_attr(debug_assertions, ignore = "release only: 150-evaluation Bayesian optimisation runs")]
 fn zdt1_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
     let front = true_front(|t| Some(1.0 - t.sqrt()), (0.0, 1.0));
-    let outcome = compare("ZDT1", six_unit_variables(), zdt1, &front);
+    let outcome = compare("ZDT1", 1, six_unit_variables(), zdt1, &front);
     assert!(outcome.surrogate >= 0.95, "ZDT1: {:.4}", outcome.surrogate);
 }
 
@@ -184,7 +199,7 @@ fn zdt1_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
 #[cfg_attr(debug_assertions, ignore = "release only: 150-evaluation Bayesian optimisation runs")]
 fn zdt2_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
     let front = true_front(|t| Some(1.0 - t * t), (0.0, 1.0));
-    let outcome = compare("ZDT2", six_unit_variables(), zdt2, &front);
+    let outcome = compare("ZDT2", 1, six_unit_variables(), zdt2, &front);
     assert!(outcome.surrogate >= 0.95, "ZDT2: {:.4}", outcome.surrogate);
 }
 
@@ -193,8 +208,22 @@ fn zdt2_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
 fn zdt3_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
     let f2 = |t: f64| 1.0 - t.sqrt() - t * (10.0 * std::f64::consts::PI * t).sin();
     let front = true_front(|t| Some(f2(t)), (0.0, 1.0));
-    let outcome = compare("ZDT3", six_unit_variables(), zdt3, &front);
+    let outcome = compare("ZDT3", 1, six_unit_variables(), zdt3, &front);
     assert!(outcome.surrogate >= 0.95, "ZDT3: {:.4}", outcome.surrogate);
+}
+
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release only: 150-evaluation Bayesian optimisation runs")]
+fn batches_of_four_still_reach_95_percent_on_zdt1_and_tnk() {
+    // Four designs per iteration (a study on four cores or a Slurm array): the kriging believer
+    // spreads them, at some cost in evaluations.
+    let front = true_front(|t| Some(1.0 - t.sqrt()), (0.0, 1.0));
+    let outcome = compare("ZDT1 q=4", 4, six_unit_variables(), zdt1, &front);
+    assert!(outcome.surrogate >= 0.95, "ZDT1, batches of 4: {:.4}", outcome.surrogate);
+    let front = true_front(tnk_lowest, (0.0, 1.2));
+    let bounds = vec![Bounds::continuous(0.0, std::f64::consts::PI); 2];
+    let outcome = compare("TNK q=4", 4, bounds, tnk, &front);
+    assert!(outcome.surrogate >= 0.95, "TNK, batches of 4: {:.4}", outcome.surrogate);
 }
 
 #[test]
@@ -202,6 +231,6 @@ fn zdt3_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
 fn constrained_tnk_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
     let front = true_front(tnk_lowest, (0.0, 1.2));
     let bounds = vec![Bounds::continuous(0.0, std::f64::consts::PI); 2];
-    let outcome = compare("TNK", bounds, tnk, &front);
+    let outcome = compare("TNK", 1, bounds, tnk, &front);
     assert!(outcome.surrogate >= 0.95, "TNK: {:.4}", outcome.surrogate);
 }
