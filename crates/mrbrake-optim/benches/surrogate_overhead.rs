@@ -7,6 +7,9 @@
 //!   of a run, or of a resumed run, costs.
 //! * `surrogate_ten_iterations/n`: ten iterations from `n` designs (the first cold, the others
 //!   warm-started, as in a run); `(ten − cold) / 9` is the cost of a warm iteration.
+//! * `surrogate_study_60_to_200`: a whole study's overhead: the 60-design initial plan (10 × 6
+//!   variables), then batches of 2 up to 200 evaluations. Compare with the evaluations' wall time,
+//!   `100 × t_eval` on two cores (30 initial rounds and 70 iterations).
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use mrbrake_observe::Silent;
@@ -56,6 +59,19 @@ fn bench(c: &mut Criterion) {
             });
         }
     }
+    group.bench_function("study_60_to_200", |b| {
+        let options = SurrogateOptions {
+            batch: 2,
+            max_evaluations: 200,
+            stall_iterations: 0,
+            reference: Some(vec![1.1, 10.0]),
+            ..Default::default()
+        };
+        b.iter(|| {
+            let mut problem = FnProblem::new(bounds.clone(), 2, evaluate);
+            surrogate::run(&mut problem, &options, &[], &mut Silent).map(|r| r.iterations)
+        })
+    });
     group.finish();
 }
 

@@ -28,7 +28,7 @@
 //! theorem), its gradient (R&W eq. 5.9 with `α = R⁻¹(y − β̂1)`):
 //! `∂ℓ/∂θ_j = ½ Σ_ik (α_i α_k / σ̂² − [R⁻¹]_ik) ∂R_ik/∂θ_j`, with
 //! `∂R_ik/∂log ℓ_j = (5/3)(1 + √5 r) exp(−√5 r) δ_j² / ℓ_j²` and `∂R/∂log η = η I`.
-//! It is maximised by projected L-BFGS ([`super::local`]): from the previous iteration's optimum
+//! It is maximised by projected L-BFGS (`local.rs`): from the previous iteration's optimum
 //! when given (warm start), else from a default start and points of a Sobol' sequence over the box.
 //!
 //! Prediction at `z` (R&W eqs. 2.25–2.26 with the estimated-mean term of universal Kriging,
@@ -55,7 +55,7 @@ const LOG_LENGTH: (f64, f64) = (-4.605_170_185_988_091, 4.605_170_185_988_091);
 /// Bounds of `log η` (nugget 1e-8 to 1 of the process variance).
 const LOG_NUGGET: (f64, f64) = (-18.420_680_743_952_367, 0.0);
 /// The default start: every length scale 0.5, nugget 1e-4.
-const START: (f64, f64) = (-0.693_147_180_559_945_3, -9.210_340_371_976_183);
+const START: (f64, f64) = (-std::f64::consts::LN_2, -9.210_340_371_976_183);
 
 /// Why a Gaussian process could not be fitted. The optimiser does not stop on it: it evaluates a
 /// space-filling design instead that iteration and reports the reason.
@@ -381,7 +381,8 @@ fn standardisation(
     }
     let mean = outputs.iter().sum::<f64>() / n as f64;
     let sd = (outputs.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
-    if !(sd > 1e-12 * mean.abs()) || sd < f64::MIN_POSITIVE {
+    let varies = sd > 1e-12 * mean.abs() && sd >= f64::MIN_POSITIVE;
+    if !varies {
         return Err(FitFailure::ConstantOutput { points: n, value: mean });
     }
     Ok((mean, sd))
