@@ -207,6 +207,21 @@ fn mixed_integer_and_categorical_designs_are_legal_and_reach_the_optimum() {
 }
 
 #[test]
+fn a_small_discrete_space_is_exhausted_not_evaluated_twice() {
+    // Two integer variables with 2 and 3 levels: 6 designs in all, a budget of 30.
+    let bounds = vec![Bounds::integer(0.0, 1.0), Bounds::integer(1.0, 3.0)];
+    let mut problem = FnProblem::new(bounds, 2, |x: &[f64]| {
+        Evaluation::new(vec![x[0] + x[1], (2.0 - x[0]) * (4.0 - x[1])], 0.0)
+    });
+    let settings =
+        SurrogateOptions { max_evaluations: 30, stall_iterations: 0, ..Default::default() };
+    let result = surrogate::run(&mut problem, &settings, &[], &mut Silent).unwrap();
+    assert_eq!(result.stop, StopReason::Exhausted);
+    assert_eq!(problem.evaluations(), 6);
+    assert_eq!(result.designs.len(), 6);
+}
+
+#[test]
 fn constraint_values_train_one_model_each_and_three_objectives_work() {
     let bounds = vec![Bounds::continuous(0.0, 1.0); 3];
     let mut problem = FnProblem::new(bounds.clone(), 3, |x: &[f64]| {

@@ -211,6 +211,8 @@ pub enum StopReason {
     Stall,
     /// The observer returned [`mrbrake_observe::Flow::Stop`].
     Observer,
+    /// Every design the search could propose has been evaluated (a small discrete space).
+    Exhausted,
 }
 
 /// The hypervolume after an iteration.
@@ -281,9 +283,16 @@ pub fn run<P: Problem>(
         }
         iteration += 1;
         let batch = options.batch.min(options.max_evaluations - driver.data.len());
-        let step = driver.propose(batch);
-        let designs = step.proposals.iter().map(|p| p.x.clone()).collect();
-        report = driver.evaluate(problem, iteration, designs)?;
+        let mut step = driver.propose(batch);
+        // A small discrete space can run out of designs: never evaluate one twice.
+        let fresh = driver.unseen(step.proposals.iter().map(|p| p.x.clone()).collect());
+        step.proposals.retain(|p| fresh.contains(&p.x));
+        step.proposals.dedup_by(|a, b| a.x == b.x);
+        if step.proposals.is_empty() {
+            iteration -= 1;
+            break StopReason::Exhausted;
+        }
+        report = driver.evaluate(problem, iteration, fresh)?;
         report.acquisition = step.proposals.iter().map(|p| p.acquisition).collect();
         (report.models, report.fallback) = (step.models, step.fallback);
         (report.fit_seconds, report.acquisition_seconds) =
@@ -429,7 +438,7 @@ impl<'o> Driver<'o> {
                 };
             }
         };
-        let evaluations: Vec<Evaluation> = self.data.iter().map(|d| d.evaluation.clone()).collect();
+        let evaluations = self.evaluations();
         let front: Vec<usize> = pareto_front(&evaluations);
         let front_objectives: Vec<Vec<f64>> =
             front.iter().map(|&i| evaluations[i].objectives.clone()).collect();
@@ -466,15 +475,9 @@ impl<'o> Driver<'o> {
         if front.is_empty() {
             return None;
         }
-        Some(
-            (0..self.objectives)
-                .map(|j| {
-                    let worst = front.iter().map(|p| p[j]).fold(f64::NEG_INFINITY, f64::max);
-                    let best = front.iter().map(|p| p[j]).fold(f64::INFINITY, f64::min);
-                    reference[j].max(worst + 0.1 * (worst - best).max(margin(worst)))
-                })
-                .collect(),
-        )
+        let points: Vec<&[f64]> = front.iter().map(Vec::as_slice).collect();
+        let beyond = beyond_worst(&points, self.objectives);
+        Some(reference.iter().zip(beyond).map(|(r, b)| r.max(b)).collect())
     }
 
     /// Evaluates `designs` (in one batch), adds them to the data and reports the iteration.
@@ -515,32 +518,28 @@ impl<'o> Driver<'o> {
         if self.reference.is_some() {
             return;
         }
-        let feasible: Vec<&Vec<f64>> = self
+        let feasible: Vec<&[f64]> = self
             .data
             .iter()
             .filter(|d| {
                 d.evaluation.feasible() && d.evaluation.objectives.iter().all(|v| v.is_finite())
             })
-            .map(|d| &d.evaluation.objectives)
+            .map(|d| d.evaluation.objectives.as_slice())
             .collect();
-        if feasible.is_empty() {
-            return;
+        if !feasible.is_empty() {
+            self.reference = Some(beyond_worst(&feasible, self.objectives));
         }
-        self.reference = Some(
-            (0..self.objectives)
-                .map(|j| {
-                    let worst = feasible.iter().map(|p| p[j]).fold(f64::NEG_INFINITY, f64::max);
-                    let best = feasible.iter().map(|p| p[j]).fold(f64::INFINITY, f64::min);
-                    worst + 0.1 * (worst - best).max(margin(worst))
-                })
-                .collect(),
-        );
+    }
+
+    /// The evaluations of the data, in order.
+    fn evaluations(&self) -> Vec<Evaluation> {
+        self.data.iter().map(|d| d.evaluation.clone()).collect()
     }
 
     /// The hypervolume of the evaluated front (0 without a reference).
     fn hypervolume(&self) -> f64 {
         let Some(reference) = &self.reference else { return 0.0 };
-        let evaluations: Vec<Evaluation> = self.data.iter().map(|d| d.evaluation.clone()).collect();
+        let evaluations = self.evaluations();
         let points: Vec<Vec<f64>> =
             pareto_front(&evaluations).iter().map(|&i| evaluations[i].objectives.clone()).collect();
         hypervolume(&points, reference)
@@ -559,7 +558,7 @@ impl<'o> Driver<'o> {
     }
 
     fn finish(self, iterations: usize, stop: StopReason) -> SurrogateResult {
-        let evaluations: Vec<Evaluation> = self.data.iter().map(|d| d.evaluation.clone()).collect();
+        let evaluations = self.evaluations();
         let front = pareto_front(&evaluations);
         let hypervolume = self.hypervolume();
         SurrogateResult {
@@ -574,7 +573,14 @@ impl<'o> Driver<'o> {
     }
 }
 
-/// A small positive width for a degenerate range at `value` (all designs equal in one objective).
-fn margin(value: f64) -> f64 {
-    (value.abs() * 1e-3).max(1e-12)
+/// In each objective, 10 % of the points' range beyond their worst value (a small positive width
+/// when the range is degenerate): the reference-point rule of Ishibuchi et al. (2018).
+fn beyond_worst(points: &[&[f64]], objectives: usize) -> Vec<f64> {
+    (0..objectives)
+        .map(|j| {
+            let worst = points.iter().map(|p| p[j]).fold(f64::NEG_INFINITY, f64::max);
+            let best = points.iter().map(|p| p[j]).fold(f64::INFINITY, f64::min);
+            worst + 0.1 * (worst - best).max((worst.abs() * 1e-3).max(1e-12))
+        })
+        .collect()
 }
