@@ -58,8 +58,8 @@
 //! 10 times the prediction time; it brings a second linear-algebra stack and ~40 crates into a
 //! workspace that already has faer, fixes the nugget (a finite-element response with mesh noise
 //! needs it fitted), panics on some malformed inputs (theta dimensions), and leaves mixed variables,
-//! leave-one-out and batch conditioning to the caller. The Kriging it implements is ~500 lines
-//! here once a Cholesky factorisation is at hand, so the project keeps its own.
+//! leave-one-out and batch conditioning to the caller. The Kriging it implements is a few hundred
+//! lines here once a Cholesky factorisation is at hand, so the project keeps its own.
 //!
 //! **Acquisition** (`acquisition.rs`): expected hypervolume improvement (EHVI; Emmerich, Giannakoglou
 //! & Naujoks 2006) rather than ParEGO's random Chebyshev scalarisations (Knowles 2006). EHVI
