@@ -46,6 +46,16 @@ pub enum OptimError {
         /// The allowed range, in words.
         allowed: &'static str,
     },
+    /// A named choice (an acquisition function, a sampling plan) is not one the method knows.
+    #[error("option `{name}` = \"{value}\" is unknown: allowed {allowed}")]
+    UnknownChoice {
+        /// The option's field name.
+        name: &'static str,
+        /// The given value.
+        value: String,
+        /// The known values, in words.
+        allowed: &'static str,
+    },
     /// A design supplied by the caller (an initial design or a start point) is unusable.
     #[error("{which}: {reason}")]
     InvalidDesign {

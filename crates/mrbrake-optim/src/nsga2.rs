@@ -19,6 +19,11 @@
 //!    repaired (rounded and clamped, [`crate::space::Bounds::repair`]), so every integer value has an
 //!    equal share of the real line; a mutated integer variable moves by at least one unit (creep
 //!    mutation), so a variable with few levels keeps all of them within reach.
+//!    A categorical variable (unordered levels, [`crate::space::VariableKind::Categorical`]) is
+//!    never interpolated: crossover passes each parent's level to one child or the other with equal
+//!    probability (uniform crossover, Syswerda 1989, "Uniform crossover in genetic algorithms",
+//!    ICGA 3, 2–9) and mutation resets it to another level drawn uniformly (random resetting, Eiben &
+//!    Smith, *Introduction to Evolutionary Computing*, 2nd ed. 2015, §4.3.1).
 //! 4. The offspring (as many as the population) are evaluated in **one** `evaluate_batch` call; parents
 //!    and offspring are merged and the best `population` survive by front, the last front cut by
 //!    descending crowding distance ((μ+λ) elitism, Deb et al. 2002, Sec. III-C).
@@ -358,6 +363,13 @@ fn sbx_crossover(
         if !rng.bernoulli(0.5) {
             continue;
         }
+        if b.is_categorical() {
+            // Uniform crossover: each child takes either parent's level with probability 1/2.
+            if rng.bernoulli(0.5) {
+                std::mem::swap(&mut child1[i], &mut child2[i]);
+            }
+            continue;
+        }
         let (yl, yu) = operator_range(b);
         let (y1, y2) = if parent1[i] < parent2[i] {
             (parent1[i], parent2[i])
@@ -396,6 +408,7 @@ fn sbx_crossover(
 /// `δ2 = (y_u − y)/(y_u − y_l)` and `u` uniform,
 /// `δ_q = [2u + (1 − 2u)(1 − δ1)^(η+1)]^(1/(η+1)) − 1` if `u <= ½`, else
 /// `δ_q = 1 − [2(1 − u) + 2(u − ½)(1 − δ2)^(η+1)]^(1/(η+1))`, and `y ← y + δ_q (y_u − y_l)`.
+/// A categorical variable is reset to another level instead ([`random_reset`]).
 fn polynomial_mutation(
     x: &mut [f64],
     bounds: &[Bounds],
@@ -406,6 +419,10 @@ fn polynomial_mutation(
     let exponent = 1.0 / (eta + 1.0);
     for (value, b) in x.iter_mut().zip(bounds) {
         if !rng.bernoulli(probability) {
+            continue;
+        }
+        if b.is_categorical() {
+            *value = random_reset(b, *value, rng);
             continue;
         }
         let (yl, yu) = operator_range(b);
@@ -446,6 +463,19 @@ fn integer_step(b: &Bounds, start: f64, mutated: f64, direction: f64) -> f64 {
     let step = if direction >= 0.0 { 1.0 } else { -1.0 };
     let forward = b.repair(before + step);
     if (forward - before).abs() >= 0.5 { forward } else { b.repair(before - step) }
+}
+
+/// A categorical variable's new level: one of the *other* levels, uniformly (random resetting,
+/// Eiben & Smith 2015, §4.3.1); a variable with a single level keeps it.
+fn random_reset(b: &Bounds, level: f64, rng: &mut Rng) -> f64 {
+    let levels = b.levels().unwrap_or(1);
+    if levels < 2 {
+        return b.repair(level);
+    }
+    let current = b.repair(level);
+    let draw = rng.index(levels - 1) as f64;
+    // Skip the current level: draws at or above it move up by one.
+    if draw >= current { draw + 1.0 } else { draw }
 }
 
 /// The feasible rank-0 individuals, each distinct design once, sorted by objectives.
@@ -515,6 +545,43 @@ mod tests {
         let mut x = vec![2.0];
         polynomial_mutation(&mut x, &bounds, 20.0, 0.0, &mut rng);
         assert!((x[0] - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn categorical_variables_are_swapped_or_reset_never_interpolated() {
+        // A material choice of four levels beside a continuous variable.
+        let bounds = vec![Bounds::categorical(4), Bounds::continuous(0.0, 1.0)];
+        let mut rng = Rng::new(17);
+        let (mut kept, mut swapped) = (0usize, 0usize);
+        for _ in 0..4000 {
+            let (c1, c2) = sbx_crossover(&[0.0, 0.2], &[3.0, 0.8], &bounds, 15.0, &mut rng);
+            let levels = (c1[0] as i32, c2[0] as i32);
+            if levels == (0, 3) {
+                kept += 1;
+            } else if levels == (3, 0) {
+                swapped += 1;
+            } else {
+                panic!("crossover made level {levels:?} from levels 0 and 3");
+            }
+        }
+        // Swapped with probability 1/4 (recombined 1/2, then a fair coin): 1000 ± 27 (1 σ).
+        assert!((swapped as f64 - 1000.0).abs() < 150.0, "kept {kept}, swapped {swapped}");
+        let mut reached = [0usize; 4];
+        for _ in 0..3000 {
+            let mut x = vec![2.0, 0.5];
+            polynomial_mutation(&mut x, &bounds, 20.0, 1.0, &mut rng);
+            assert!((x[0] - 2.0).abs() >= 1.0, "mutation kept level 2");
+            assert!((x[0] - x[0].round()).abs() < 1e-15 && (0.0..=3.0).contains(&x[0]));
+            reached[x[0] as usize] += 1;
+        }
+        // The other three levels, 1000 each (± 26 at 1 σ).
+        assert_eq!(reached[2], 0);
+        for level in [0, 1, 3] {
+            assert!((reached[level] as f64 - 1000.0).abs() < 150.0, "{reached:?}");
+        }
+        let mut single = vec![0.0, 0.5];
+        polynomial_mutation(&mut single, &[Bounds::categorical(1), bounds[1]], 20.0, 1.0, &mut rng);
+        assert!(single[0].abs() < 1e-15);
     }
 
     #[test]

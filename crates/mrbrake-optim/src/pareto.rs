@@ -1,5 +1,5 @@
-//! Evaluations, constrained Pareto dominance, non-dominated sorting, crowding distance and the 2-D
-//! hypervolume.
+//! Evaluations, constrained Pareto dominance, non-dominated sorting, crowding distance and the
+//! hypervolume (exact, any number of objectives).
 //!
 //! All objectives are **minimised** (negate a quantity to maximise it). Constraints enter through one
 //! number, the total normalised violation (0 for a feasible design), and are handled by the
@@ -19,18 +19,40 @@ pub struct Evaluation {
     /// `f64::INFINITY` when the design could not be evaluated at all (invalid geometry, solver
     /// failure). Never NaN or negative.
     pub violation: f64,
+    /// Optional: each constraint's signed, normalised value `g_j / scale_j`, satisfied when `<= 0`
+    /// (so `violation` is usually `Σ_j max(0, g_j / scale_j)`). Empty when the evaluator reports
+    /// only the total violation, and for a failed design. Dominance and sorting never read it; the
+    /// surrogate optimiser models each constraint from it ([`crate::surrogate`]), which learns far
+    /// more from a margin than from a violation that is 0 everywhere in the feasible region.
+    pub constraints: Vec<f64>,
 }
 
 impl Evaluation {
-    /// An evaluation with the given objectives and violation.
+    /// An evaluation with the given objectives and violation (no per-constraint values).
     pub fn new(objectives: Vec<f64>, violation: f64) -> Self {
-        Self { objectives, violation }
+        Self { objectives, violation, constraints: Vec::new() }
+    }
+
+    /// The same evaluation carrying each constraint's signed normalised value (see
+    /// [`Evaluation::constraints`]).
+    ///
+    /// ```
+    /// use mrbrake_optim::pareto::{Evaluation, normalised_violation};
+    /// // torque 2.7 Nm against a 3 Nm minimum; diameter 78 mm against an 80 mm maximum.
+    /// let g = [(3.0 - 2.7) / 3.0, (0.078 - 0.080) / 0.080];
+    /// let e = Evaluation::new(vec![0.2], normalised_violation(&[(g[0], 1.0), (g[1], 1.0)]))
+    ///     .with_constraints(g.to_vec());
+    /// assert!(!e.feasible() && e.constraints.len() == 2);
+    /// ```
+    pub fn with_constraints(mut self, constraints: Vec<f64>) -> Self {
+        self.constraints = constraints;
+        self
     }
 
     /// A design that could not be evaluated: infinite violation and `objectives` infinite
     /// objective values, so it loses every comparison with an evaluated design.
     pub fn failed(objectives: usize) -> Self {
-        Self { objectives: vec![f64::INFINITY; objectives], violation: f64::INFINITY }
+        Self::new(vec![f64::INFINITY; objectives], f64::INFINITY)
     }
 
     /// True when the design satisfies every constraint (`violation <= 0`).
@@ -229,6 +251,67 @@ pub fn hypervolume_2d(points: &[(f64, f64)], reference: (f64, f64)) -> f64 {
     volume
 }
 
+/// The hypervolume indicator (Zitzler & Thiele 1998) of `points` (minimised objective vectors)
+/// bounded by `reference`: the volume of the region each point dominates inside the box below the
+/// reference, for any number of objectives.
+///
+/// Computed exactly: one objective is the distance from the best value to the reference, two are
+/// [`hypervolume_2d`], and more are sliced along the last objective (the "hypervolume by slicing
+/// objectives" algorithm of While, Hingston, Barone & Huband 2006, "A faster algorithm for
+/// calculating hypervolume", IEEE Trans. Evol. Comput. 10(1), 29–38): between consecutive values
+/// of the last objective the slab's volume is its thickness times the (m − 1)-objective
+/// hypervolume of the points at or below it. Cost `O(n^(m−1) log n)`, ample for fronts of a few
+/// hundred designs in three or four objectives.
+///
+/// Points with a non-finite value, a length different from the reference's, or not strictly better
+/// than the reference in every objective contribute nothing.
+///
+/// ```
+/// use mrbrake_optim::pareto::hypervolume;
+/// // Two cubes of side 1 overlapping in a 1 x 1 x 0.5 slab, below reference (2, 2, 2).
+/// let hv = hypervolume(&[vec![1.0, 1.0, 1.0], vec![1.0, 1.0, 1.5]], &[2.0, 2.0, 2.0]);
+/// assert!((hv - 1.0).abs() < 1e-12);
+/// ```
+pub fn hypervolume(points: &[Vec<f64>], reference: &[f64]) -> f64 {
+    let inside: Vec<&[f64]> = points
+        .iter()
+        .map(Vec::as_slice)
+        .filter(|p| {
+            p.len() == reference.len()
+                && p.iter().zip(reference).all(|(&v, &r)| v.is_finite() && v < r)
+        })
+        .collect();
+    sliced_hypervolume(inside, reference)
+}
+
+/// [`hypervolume`] of points already known to lie inside the reference box.
+fn sliced_hypervolume(mut points: Vec<&[f64]>, reference: &[f64]) -> f64 {
+    let m = reference.len();
+    if points.is_empty() || m == 0 {
+        return 0.0;
+    }
+    match m {
+        1 => reference[0] - points.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min),
+        2 => {
+            let pairs: Vec<(f64, f64)> = points.iter().map(|p| (p[0], p[1])).collect();
+            hypervolume_2d(&pairs, (reference[0], reference[1]))
+        }
+        _ => {
+            points.sort_by(|a, b| a[m - 1].total_cmp(&b[m - 1]));
+            let mut volume = 0.0;
+            for k in 0..points.len() {
+                let top = points.get(k + 1).map_or(reference[m - 1], |p| p[m - 1]);
+                let thickness = top - points[k][m - 1];
+                if thickness > 0.0 {
+                    let slab: Vec<&[f64]> = points[..=k].iter().map(|p| &p[..m - 1]).collect();
+                    volume += thickness * sliced_hypervolume(slab, &reference[..m - 1]);
+                }
+            }
+            volume
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -294,6 +377,25 @@ mod tests {
         // Reference (4, 4): columns [1,2]x[3,4] + [2,3]x[2,4] + [3,4]x[1,4] = 1 + 2 + 3.
         assert!((hypervolume_2d(&pts, (4.0, 4.0)) - 6.0).abs() < 1e-12);
         assert!(hypervolume_2d(&[], (1.0, 1.0)).abs() < 1e-300);
+    }
+
+    #[test]
+    fn hypervolume_agrees_with_the_2d_sweep_and_with_boxes_in_3d() {
+        let pts = [(1.0, 3.0), (2.0, 2.0), (3.0, 1.0), (2.5, 2.5)];
+        let as_vectors: Vec<Vec<f64>> = pts.iter().map(|&(a, b)| vec![a, b]).collect();
+        assert!((hypervolume(&as_vectors, &[4.0, 4.0]) - 6.0).abs() < 1e-12);
+        // One objective: distance from the best to the reference.
+        assert!((hypervolume(&[vec![3.0], vec![1.0]], &[4.0]) - 3.0).abs() < 1e-12);
+        // Three objectives: union of [1,3]x[0,3]x[0,3]... as inclusion-exclusion of two boxes.
+        // a = (0, 1, 1) dominates [0,3]x[1,3]x[1,3] = 3*2*2 = 12; b = (1, 0, 2): 2*3*1 = 6;
+        // overlap [1,3]x[1,3]x[2,3] = 2*2*1 = 4; union 14.
+        let three = [vec![0.0, 1.0, 1.0], vec![1.0, 0.0, 2.0]];
+        assert!((hypervolume(&three, &[3.0, 3.0, 3.0]) - 14.0).abs() < 1e-12);
+        // A point outside the reference box, a NaN and a wrong length add nothing.
+        let mut noisy = three.to_vec();
+        noisy.extend([vec![0.0, 0.0, 3.5], vec![f64::NAN, 0.0, 0.0], vec![0.0, 0.0]]);
+        assert!((hypervolume(&noisy, &[3.0, 3.0, 3.0]) - 14.0).abs() < 1e-12);
+        assert!(hypervolume(&[], &[1.0, 1.0, 1.0]).abs() < 1e-300);
     }
 
     #[test]

@@ -1,29 +1,38 @@
-//! The design space: one [`Bounds`] per variable, continuous or integer.
+//! The design space: one [`Bounds`] per variable, continuous, integer or categorical.
 //!
 //! Optimisers work on real numbers; an integer variable (number of discs, wire gauge, turns) is varied
 //! like a continuous one and then *repaired* ([`Bounds::repair`]): clamped into its bounds and rounded
 //! to the nearest integer, the usual treatment of integer variables in evolutionary and pattern
 //! methods (Deb & Goyal 1996 apply the same rounding after polynomial mutation).
+//!
+//! A categorical variable (a material out of a list) takes one of `n` unordered levels, stored as
+//! the level's index `0, 1, …, n − 1`. Sampling plans and repair treat the index like an integer (so
+//! every level is equally represented and a design always holds a valid index), but the order of the
+//! indices means nothing: variation operators must not interpolate between levels. NSGA-II recombines
+//! a categorical by uniform choice and mutates it by random reset ([`crate::nsga2`]); the surrogate's
+//! Gaussian processes measure only whether two levels differ ([`crate::surrogate`]).
 
 use crate::OptimError;
 
-/// Whether a variable takes any real value or only integers.
+/// Whether a variable takes any real value, only integers, or one of a few unordered levels.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum VariableKind {
     /// Any real value within the bounds.
     Continuous,
     /// Only integers within the bounds.
     Integer,
+    /// One of `upper + 1` unordered levels, stored as the index `0 ..= upper` (`lower` is 0).
+    Categorical,
 }
 
 /// The closed interval `[lower, upper]` of one design variable and its kind.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bounds {
-    /// Smallest allowed value.
+    /// Smallest allowed value (0 for a categorical variable).
     pub lower: f64,
-    /// Largest allowed value.
+    /// Largest allowed value (the last level's index for a categorical variable).
     pub upper: f64,
-    /// Continuous or integer.
+    /// Continuous, integer or categorical.
     pub kind: VariableKind,
 }
 
@@ -38,9 +47,32 @@ impl Bounds {
         Self { lower, upper, kind: VariableKind::Integer }
     }
 
+    /// A categorical variable with `levels` unordered levels, indexed `0 .. levels` (at least one
+    /// level; [`Bounds::validate`] rejects `levels == 0`).
+    pub fn categorical(levels: usize) -> Self {
+        Self { lower: 0.0, upper: levels as f64 - 1.0, kind: VariableKind::Categorical }
+    }
+
     /// True for an integer variable.
     pub fn is_integer(&self) -> bool {
         self.kind == VariableKind::Integer
+    }
+
+    /// True for a categorical variable.
+    pub fn is_categorical(&self) -> bool {
+        self.kind == VariableKind::Categorical
+    }
+
+    /// True for a variable that takes whole numbers only (integer or categorical).
+    pub fn is_discrete(&self) -> bool {
+        self.kind != VariableKind::Continuous
+    }
+
+    /// The number of levels of a categorical variable (`None` for the other kinds).
+    pub fn levels(&self) -> Option<usize> {
+        let (lo, hi) = self.feasible_range();
+        // Validated bounds hold whole numbers from 0 here, so the conversion is exact.
+        self.is_categorical().then(|| (hi - lo + 1.0).max(0.0) as usize)
     }
 
     /// Checks that both bounds are finite, `lower <= upper`, and that an integer variable's interval
@@ -61,6 +93,12 @@ impl Bounds {
         if self.is_integer() && self.lower.ceil() > self.upper.floor() {
             return Err(reject("an integer variable's interval must contain an integer"));
         }
+        let whole = |v: f64| (v - v.round()).abs() <= 0.0;
+        if self.is_categorical() && !(self.lower.abs() <= 0.0 && whole(self.upper)) {
+            return Err(reject(
+                "a categorical variable's levels are indexed 0 to (levels - 1), at least one level",
+            ));
+        }
         Ok(())
     }
 
@@ -69,7 +107,9 @@ impl Bounds {
     pub fn feasible_range(&self) -> (f64, f64) {
         match self.kind {
             VariableKind::Continuous => (self.lower, self.upper),
-            VariableKind::Integer => (self.lower.ceil(), self.upper.floor()),
+            VariableKind::Integer | VariableKind::Categorical => {
+                (self.lower.ceil(), self.upper.floor())
+            }
         }
     }
 
@@ -79,8 +119,8 @@ impl Bounds {
         hi - lo
     }
 
-    /// `x` clamped into the bounds and, for an integer variable, rounded to the nearest integer
-    /// inside them. A NaN becomes the lower end of the range (a defined, in-bounds value: the
+    /// `x` clamped into the bounds and, for an integer or categorical variable, rounded to the
+    /// nearest integer inside them. A NaN becomes the lower end of the range (a defined, in-bounds value: the
     /// evaluator then sees a legal design rather than NaN).
     pub fn repair(&self, x: f64) -> f64 {
         let (lo, hi) = self.feasible_range();
@@ -90,30 +130,36 @@ impl Bounds {
         let clamped = x.clamp(lo.min(hi), hi.max(lo));
         match self.kind {
             VariableKind::Continuous => clamped,
-            VariableKind::Integer => clamped.round().clamp(lo, hi.max(lo)),
+            VariableKind::Integer | VariableKind::Categorical => {
+                clamped.round().clamp(lo, hi.max(lo))
+            }
         }
     }
 
-    /// Maps `u` in `[0, 1)` onto the variable. Continuous: `lower + u (upper − lower)`. Integer: the
-    /// interval is widened by half a unit on each side before rounding, so every integer in range gets
-    /// the same share of `[0, 1)` (plain rounding would give the two end integers half a share).
+    /// Maps `u` in `[0, 1)` onto the variable. Continuous: `lower + u (upper − lower)`. Integer (and
+    /// categorical, by level index): the interval is widened by half a unit on each side before
+    /// rounding, so every integer in range gets the same share of `[0, 1)` (plain rounding would give
+    /// the two end integers half a share).
     pub fn from_unit(&self, u: f64) -> f64 {
         let (lo, hi) = self.feasible_range();
         match self.kind {
             VariableKind::Continuous => self.repair(lo + u * (hi - lo)),
-            VariableKind::Integer => {
+            VariableKind::Integer | VariableKind::Categorical => {
                 let count = hi - lo + 1.0;
                 self.repair(lo + (u * count).floor())
             }
         }
     }
 
-    /// True when `x` is inside the bounds (and integral for an integer variable, within 1e-9).
+    /// True when `x` is inside the bounds (and integral for an integer or categorical variable,
+    /// within 1e-9).
     pub fn contains(&self, x: f64) -> bool {
         let inside = x >= self.lower && x <= self.upper;
         match self.kind {
             VariableKind::Continuous => inside,
-            VariableKind::Integer => inside && (x - x.round()).abs() <= 1e-9,
+            VariableKind::Integer | VariableKind::Categorical => {
+                inside && (x - x.round()).abs() <= 1e-9
+            }
         }
     }
 }
@@ -148,7 +194,11 @@ pub fn validate_design(bounds: &[Bounds], x: &[f64], which: &str) -> Result<(), 
     }
     for (index, (&value, b)) in x.iter().zip(bounds).enumerate() {
         if !b.contains(value) {
-            let kind = if b.is_integer() { "an integer " } else { "" };
+            let kind = match b.kind {
+                VariableKind::Continuous => "",
+                VariableKind::Integer => "an integer ",
+                VariableKind::Categorical => "a level index ",
+            };
             return Err(OptimError::InvalidDesign {
                 which: which.to_owned(),
                 reason: format!(
@@ -205,6 +255,27 @@ mod tests {
             counts[(x - 1.0) as usize] += 1;
         }
         assert_eq!(counts, [100, 100, 100, 100]);
+    }
+
+    #[test]
+    fn categorical_levels_are_indices_sampled_evenly_and_validated() {
+        let material = Bounds::categorical(3);
+        assert!(material.validate(0).is_ok());
+        assert_eq!(material.levels(), Some(3));
+        assert_eq!(Bounds::integer(0.0, 2.0).levels(), None);
+        assert!(material.is_categorical() && material.is_discrete() && !material.is_integer());
+        approx::assert_abs_diff_eq!(material.repair(1.6), 2.0);
+        approx::assert_abs_diff_eq!(material.repair(7.0), 2.0);
+        let mut counts = [0usize; 3];
+        for k in 0..300 {
+            counts[material.from_unit((k as f64 + 0.5) / 300.0) as usize] += 1;
+        }
+        assert_eq!(counts, [100, 100, 100]);
+        assert!(Bounds::categorical(0).validate(4).is_err());
+        let shifted = Bounds { lower: 1.0, ..Bounds::categorical(3) };
+        assert!(shifted.validate(0).is_err());
+        let e = validate_design(&[material], &[0.5], "start").unwrap_err();
+        assert!(e.to_string().contains("level index"), "{e}");
     }
 
     #[test]

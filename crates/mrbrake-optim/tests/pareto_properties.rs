@@ -1,8 +1,9 @@
 //! Property tests of the Pareto utilities: fronts of the fast non-dominated sort (Deb et al. 2002)
-//! and the 2-D hypervolume.
+//! and the hypervolume (2-D sweep, and the slicing algorithm in 3 and 4 objectives against a
+//! count of unit cells).
 
 use mrbrake_optim::pareto::{
-    Evaluation, constrained_dominates, crowding_distance, dominates, hypervolume_2d,
+    Evaluation, constrained_dominates, crowding_distance, dominates, hypervolume, hypervolume_2d,
     non_dominated_sort, pareto_front,
 };
 use proptest::prelude::*;
@@ -123,5 +124,25 @@ proptest! {
         let grid = covered as f64 * cell * cell;
         // Each staircase edge can misclassify at most one row/column of cells.
         prop_assert!((grid - hv).abs() <= 2.0 * 10.0 * cell * points.len() as f64 + 1e-9);
+    }
+
+    #[test]
+    fn hypervolume_in_three_and_four_objectives_counts_dominated_unit_cells(
+        m in 3usize..=4,
+        raw in proptest::collection::vec(proptest::collection::vec(0i32..5, 4), 0..12),
+    ) {
+        // Integer points below reference (5, ..., 5): the dominated region is a union of unit
+        // cells, each dominated exactly when some point is <= its lower corner.
+        let points: Vec<Vec<f64>> =
+            raw.iter().map(|p| p[..m].iter().map(|&v| f64::from(v)).collect()).collect();
+        let reference = vec![5.0; m];
+        let mut cells = 0usize;
+        for index in 0..5usize.pow(m as u32) {
+            let corner: Vec<f64> = (0..m).map(|k| ((index / 5usize.pow(k as u32)) % 5) as f64).collect();
+            if points.iter().any(|p| p.iter().zip(&corner).all(|(a, c)| a <= c)) {
+                cells += 1;
+            }
+        }
+        prop_assert!((hypervolume(&points, &reference) - cells as f64).abs() < 1e-9);
     }
 }
