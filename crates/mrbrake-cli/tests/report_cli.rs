@@ -10,7 +10,7 @@ mod common;
 use std::path::Path;
 
 use common::{expect_input_error, json, mrbrake, path_str};
-use mrbrake_report::html::check::numbers_agree;
+use mrbrake::report::html::check::numbers_agree;
 
 /// Parses the page as XML (the pages are polyglot HTML5) and returns the number of `svg` and
 /// `img` elements.

@@ -390,6 +390,23 @@ pub struct FieldRegion {
     pub name: String,
     /// Library material of the part.
     pub material: String,
+    /// What the part does (from the geometry, so a report never guesses it from the name);
+    /// serialised in snake case (`"flux_path"`, `"fluid"`, `"coil"`, …).
+    #[serde(serialize_with = "part_kind_name")]
+    pub kind: PartKind,
+}
+
+/// Serialises a [`PartKind`] as its snake-case name.
+fn part_kind_name<S: serde::Serializer>(kind: &PartKind, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(match kind {
+        PartKind::Shaft => "shaft",
+        PartKind::FluxPath => "flux_path",
+        PartKind::NonMagnetic => "non_magnetic",
+        PartKind::Coil => "coil",
+        PartKind::Fluid => "fluid",
+        PartKind::Spacer => "spacer",
+        PartKind::Air => "air",
+    })
 }
 
 impl FieldAtMaxCurrent {
@@ -400,7 +417,12 @@ impl FieldAtMaxCurrent {
             .geometry
             .regions
             .iter()
-            .map(|r| FieldRegion { tag: r.tag, name: r.name.clone(), material: r.material.clone() })
+            .map(|r| FieldRegion {
+                tag: r.tag,
+                name: r.name.clone(),
+                material: r.material.clone(),
+                kind: r.kind,
+            })
             .collect();
         Self {
             current_a: model.max_current,
@@ -1131,7 +1153,8 @@ mod tests {
     fn the_field_at_max_current_is_plain_data_of_the_last_solve() {
         let spec = crate::spec::default_spec();
         let options = AnalysisOptions { mesh: MeshLevel::Coarse, points: 2, ..Default::default() };
-        let (analysis, field) = AnalysisRequest::of(&spec).options(options).run_with_field().unwrap();
+        let (analysis, field) =
+            AnalysisRequest::of(&spec).options(options).run_with_field().unwrap();
         let alone = AnalysisRequest::of(&spec).options(options).run().unwrap();
         assert_eq!(
             alone.torque.at_max_current_nm.to_bits(),

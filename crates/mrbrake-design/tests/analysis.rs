@@ -114,7 +114,12 @@ fn a_stop_ends_the_sweep_after_the_observed_current() {
 fn torque_converges_under_mesh_refinement() {
     let at = |mesh| {
         let options = AnalysisOptions { mesh, points: 2, ..AnalysisOptions::default() };
-        AnalysisRequest::of(&default_spec()).options(options).run().unwrap().torque.at_max_current_nm
+        AnalysisRequest::of(&default_spec())
+            .options(options)
+            .run()
+            .unwrap()
+            .torque
+            .at_max_current_nm
     };
     let (coarse, default, fine) =
         (at(MeshLevel::Coarse), at(MeshLevel::Default), at(MeshLevel::Fine));

@@ -39,7 +39,8 @@ fn a_stopped_run_keeps_what_it_stored_and_resumes() {
     assert_eq!(progress.to_compute, 4);
     assert_eq!(seen, 1 + progress.computed, "the start and every stored design are observed");
     assert_eq!(store.len().unwrap(), progress.computed);
-    let (records, summary) = Runner::new(&mut store, coarse(), 1).run(&designs, &mut Silent).unwrap();
+    let (records, summary) =
+        Runner::new(&mut store, coarse(), 1).run(&designs, &mut Silent).unwrap();
     assert_eq!(records.len(), 4);
     assert_eq!(summary.progress.reused, progress.computed);
     assert_eq!(summary.progress.computed, 4 - progress.computed);

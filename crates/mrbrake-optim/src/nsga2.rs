@@ -158,7 +158,8 @@ pub fn run<P: Problem>(
             .collect(),
         options.population,
     );
-    let first = GenerationReport { generation: 0, evaluations: evaluation_count, population: &population };
+    let first =
+        GenerationReport { generation: 0, evaluations: evaluation_count, population: &population };
     let mut flow = observer.observe(&first);
     let mut generations = 0;
 

@@ -196,7 +196,15 @@ pub fn run<P: Problem>(
         }
     }
     let Search { x, best, evaluations, iterations, history, .. } = search;
-    Ok(PatternSearchResult { best_x: x, best, evaluations, iterations, history, converged, stopped })
+    Ok(PatternSearchResult {
+        best_x: x,
+        best,
+        evaluations,
+        iterations,
+        history,
+        converged,
+        stopped,
+    })
 }
 
 /// The state of a search: the incumbent, the counts, the step fraction and the random generator

@@ -51,11 +51,12 @@ fn zdt1_reaches_the_true_front_hypervolume() {
     for seed in [1, 2, 3] {
         let mut problem = zdt1(10);
         let mut generations_seen = 0;
-        let result = nsga2::run(&mut problem, &zdt1_options(seed), &mut |report: &GenerationReport<'_>| {
-            generations_seen = report.generation;
-            Flow::Continue
-        })
-        .unwrap();
+        let result =
+            nsga2::run(&mut problem, &zdt1_options(seed), &mut |report: &GenerationReport<'_>| {
+                generations_seen = report.generation;
+                Flow::Continue
+            })
+            .unwrap();
         assert_eq!(result.evaluations, 40 * 101);
         assert_eq!(generations_seen, 100);
         let hv = hypervolume_2d(&front_points(&result), reference);
@@ -410,9 +411,10 @@ fn an_interrupted_run_resumes_through_a_cache_without_recomputation() {
 fn a_stop_ends_the_run_after_the_observed_generation() {
     let options = Nsga2Options { population: 8, generations: 20, seed: 4, ..Default::default() };
     for stop_at in [0, 3] {
-        let mut problem = FnProblem::new(vec![Bounds::continuous(0.0, 1.0); 2], 2, |x: &[f64]| {
-            Evaluation::new(vec![x[0], 1.0 - x[0] + x[1]], 0.0)
-        });
+        let mut problem =
+            FnProblem::new(vec![Bounds::continuous(0.0, 1.0); 2], 2, |x: &[f64]| {
+                Evaluation::new(vec![x[0], 1.0 - x[0] + x[1]], 0.0)
+            });
         let mut seen = Vec::new();
         let result = nsga2::run(&mut problem, &options, &mut |report: &GenerationReport<'_>| {
             seen.push(report.generation);

@@ -231,7 +231,11 @@ mod tests {
             points: 3,
             ..AnalysisOptions::default()
         };
-        let sweep = crate::analysis::AnalysisRequest::of(&spec).options(options).run().unwrap().torque_current_curve;
+        let sweep = crate::analysis::AnalysisRequest::of(&spec)
+            .options(options)
+            .run()
+            .unwrap()
+            .torque_current_curve;
         let currents: Vec<f64> = sweep.iter().rev().map(|p| p.current_a).collect();
         let points = direction1_points(&spec, &options, &currents).unwrap();
         for (p, s) in points.iter().zip(sweep.iter().rev()) {
