@@ -224,6 +224,13 @@ fn corrupt_and_foreign_stores_are_refused_and_left_untouched() {
         ],
         &["g=1mm..0.5mm:3"],
     );
+    // A negative speed is the library's input error, before any store is created.
+    let z = dir.path().join("z.sqlite");
+    expect_input_error(
+        &["sweep", SPEC, "--vary", "g=1mm", "--speed=-1rad/s", "--store", path_str(&z)],
+        &["speed", ">= 0"],
+    );
+    assert!(!z.exists(), "a refused sweep leaves no store");
 }
 
 #[test]

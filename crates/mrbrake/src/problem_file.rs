@@ -114,7 +114,7 @@ pub enum Solved {
     /// A magnetic solve: its report, and the solver and solution of the (final) static state.
     Magnetics {
         /// The report (`fem solve --json`).
-        report: SolveReport,
+        report: Box<SolveReport>,
         /// The solver (mesh, basis, materials).
         solver: Box<Solver>,
         /// The potential.
@@ -123,7 +123,7 @@ pub enum Solved {
     /// A heat solve: its report, the solver and the temperature (K) at every degree of freedom.
     Heat {
         /// The report (`fem solve --json`).
-        report: HeatReport,
+        report: Box<HeatReport>,
         /// The solver (mesh, problem).
         solver: Box<HeatSolver>,
         /// Temperature (K) per degree of freedom: the mesh nodes first.
@@ -165,12 +165,12 @@ pub fn solve(path: &Path, order: Option<ElementOrder>) -> Result<Solved, Problem
         Physics::Magnetics => {
             let (report, solver, solution) =
                 mrbrake_magnetics::problem_file::solve_file_with_order(path, order)?;
-            Solved::Magnetics { report, solver: Box::new(solver), solution }
+            Solved::Magnetics { report: Box::new(report), solver: Box::new(solver), solution }
         }
         Physics::Heat => {
             let (report, solver, temperature_k) =
                 mrbrake_heat::problem_file::solve_file(path, order)?;
-            Solved::Heat { report, solver: Box::new(solver), temperature_k }
+            Solved::Heat { report: Box::new(report), solver: Box::new(solver), temperature_k }
         }
     })
 }
