@@ -12,7 +12,7 @@
 //! [`run`] returns every evaluated design, the feasible Pareto front and the reference design.
 //!
 //! The caller's [`Observer`] sees an [`OptimizeProgress`] after every stored evaluation; a
-//! [`Flow::Stop`](mrbrake_observe::Flow::Stop) ends the optimisation once the designs in flight
+//! [`Flow::Stop`] ends the optimisation once the designs in flight
 //! are stored, and [`run`] returns what was evaluated until then with
 //! [`OptimizationResult::stopped`] set (running it again on the same store resumes it).
 
