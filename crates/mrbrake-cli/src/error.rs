@@ -10,7 +10,7 @@
 
 use std::fmt::Display;
 
-use mrbrake_error::{ErrorKind, Kind};
+use mrbrake::error::{ErrorKind, Kind};
 
 /// An error the command itself found in its arguments (a flag out of range): kind input, exit
 /// code 2.
@@ -59,7 +59,7 @@ impl CommandError {
 /// its source and also returns it would repeat it), with echoed source lines cut to a readable width.
 impl Display for CommandError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        use mrbrake_error::message::{clip_excerpts, join_causes};
+        use mrbrake::error::message::{clip_excerpts, join_causes};
         let message = join_causes(self.error.chain().map(|cause| cause.to_string()));
         f.write_str(&clip_excerpts(&message))
     }
@@ -113,7 +113,8 @@ mod tests {
 
     #[test]
     fn the_exit_code_follows_the_kind_through_context() {
-        let unit = mrbrake_units::parse("5 parsecs", mrbrake_units::Dimension::Length).unwrap_err();
+        let unit =
+            mrbrake::units::parse("5 parsecs", mrbrake::units::Dimension::Length).unwrap_err();
         let e = failing(unit).context("--speed").unwrap_err();
         assert_eq!((e.kind, e.exit_code()), (ErrorKind::Input, 2));
         assert!(e.to_string().starts_with("--speed: "), "{e}");
@@ -131,13 +132,13 @@ mod tests {
     /// in the message.
     #[test]
     fn a_numerical_failure_exits_1_with_its_history() {
-        let newton = mrbrake_fem::newton::NewtonError {
+        let newton = mrbrake::fem::newton::NewtonError {
             reason: "no convergence in 2 Newton iterations".into(),
             history: Vec::new(),
             residual_scale: 1.0,
         };
         let design =
-            mrbrake_design::DesignError::from(mrbrake_magnetics::MagneticsError::from(newton));
+            mrbrake::design::DesignError::from(mrbrake::magnetics::MagneticsError::from(newton));
         let e = failing(design).context("analysing spec.toml").unwrap_err();
         assert_eq!((e.kind, e.exit_code()), (ErrorKind::Numerical, 1));
         assert!(e.to_string().contains("residual history"), "{e}");

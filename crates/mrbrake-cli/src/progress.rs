@@ -14,8 +14,8 @@ use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
-use mrbrake_explore::Progress;
-use mrbrake_explore::optimize::{OptimizeProgress, Stage};
+use mrbrake::explore::Progress;
+use mrbrake::explore::optimize::{OptimizeProgress, Stage};
 
 /// Work that ends sooner than this prints no progress lines.
 pub const QUIET_FOR: Duration = Duration::from_secs(2);

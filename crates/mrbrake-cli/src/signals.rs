@@ -1,5 +1,5 @@
 //! Clean exit on SIGINT, SIGTERM and SIGHUP: the temporary files of writes in flight
-//! ([`mrbrake_report::atomic`]) are removed, then the process dies of the same signal (so a shell or
+//! ([`mrbrake::report::atomic`]) are removed, then the process dies of the same signal (so a shell or
 //! a batch system sees the usual "killed by SIGTERM" status).
 //!
 //! The handler itself only wakes a watcher thread (signal-hook's self-pipe); the file removal runs
@@ -16,7 +16,7 @@ pub fn install() {
     };
     let watcher = std::thread::Builder::new().name("signals".into()).spawn(move || {
         if let Some(signal) = signals.forever().next() {
-            mrbrake_report::atomic::remove_pending_temp_files();
+            mrbrake::report::atomic::remove_pending_temp_files();
             // Restores the default action and raises the signal again.
             let _ = signal_hook::low_level::emulate_default_handler(signal);
             std::process::exit(128 + signal);

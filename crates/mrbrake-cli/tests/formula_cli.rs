@@ -158,11 +158,25 @@ fn bad_input_exits_2_with_a_clear_message() {
         &["formula", "single-disc", "--r1", "30mm", "--r2", "27.5mm", "--tau-y", "1kPa"],
         &["r2", "r1"],
     );
-    expect_input_error(&["formula", "single-disc", "--r1", "3mm", "--r2", "27.5mm"], &["--tau-y"]);
+    expect_input_error(
+        &["formula", "single-disc", "--r1", "3mm", "--r2", "27.5mm"],
+        &["tau_y or b", "yield stress"],
+    );
     expect_input_error(
         &["formula", "drum", "--r", "25mm", "--h", "9mm", "--tau-y", "1kPa", "--speed", "10rad/s"],
-        &["--gap"],
+        &["speed needs gap"],
     );
+    // The library's rules, whether or not a speed uses the value (the CLI once took a
+    // viscosity the Python binding refused).
+    expect_input_error(
+        &["formula", "drum", "--r", "25mm", "--h", "9mm", "--tau-y", "1kPa", "--eta=-0.1Pa.s"],
+        &["eta (viscosity", ">= 0"],
+    );
+    expect_input_error(
+        &["formula", "drum", "--r", "25mm", "--h", "9mm", "--tau-y=-1kPa"],
+        &["tau_y", ">= 0"],
+    );
+    expect_input_error(&["formula", "drum", "--r", "25mm", "--h", "9mm", "--b", "4T"], &["3 T"]);
     expect_input_error(
         &["formula", "coil", "--window-width", "6mm", "--window-height", "10mm", "--awg", "40"],
         &["40"],

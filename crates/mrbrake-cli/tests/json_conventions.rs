@@ -169,12 +169,12 @@ fn the_rule_accepts_the_contract_keys_and_refuses_miscased_units() {
 
 #[test]
 fn store_metric_names_follow_the_convention() {
-    for metric in mrbrake_explore::evaluate::METRICS {
+    for metric in mrbrake::explore::evaluate::METRICS {
         assert_eq!(check_key(metric.name), Ok(()), "metric {}", metric.name);
     }
-    for (old, new) in mrbrake_explore::evaluate::LEGACY_METRIC_NAMES {
+    for (old, new) in mrbrake::explore::evaluate::LEGACY_METRIC_NAMES {
         assert!(check_key(old).is_err(), "legacy name {old} follows the rule: why renamed?");
-        assert!(mrbrake_explore::evaluate::metric_info(new).is_some(), "{old} → {new}: no metric");
+        assert!(mrbrake::explore::evaluate::metric_info(new).is_some(), "{old} → {new}: no metric");
     }
 }
 

@@ -224,6 +224,13 @@ fn corrupt_and_foreign_stores_are_refused_and_left_untouched() {
         ],
         &["g=1mm..0.5mm:3"],
     );
+    // A negative speed is the library's input error, before any store is created.
+    let z = dir.path().join("z.sqlite");
+    expect_input_error(
+        &["sweep", SPEC, "--vary", "g=1mm", "--speed=-1rad/s", "--store", path_str(&z)],
+        &["speed", ">= 0"],
+    );
+    assert!(!z.exists(), "a refused sweep leaves no store");
 }
 
 #[test]
@@ -359,7 +366,7 @@ fn assert_current_names(designs: &serde_json::Value) {
     for design in designs.as_array().expect("an array of designs") {
         let metrics = design["metrics"].as_object().expect("metrics");
         assert!(metrics.contains_key("torque_max_Nm"), "{design}");
-        for (old, _) in mrbrake_explore::evaluate::LEGACY_METRIC_NAMES {
+        for (old, _) in mrbrake::explore::evaluate::LEGACY_METRIC_NAMES {
             assert!(!metrics.contains_key(*old), "legacy {old} in {design}");
         }
     }
@@ -377,11 +384,11 @@ fn a_store_with_the_old_metric_names_exports_merges_and_resumes() {
     // computes each record's checksum, as the old version did).
     let old = dir.path().join("old.sqlite");
     {
-        let source = mrbrake_store::Store::open_read_only(&new).expect("new store");
-        let mut target = mrbrake_store::Store::create(&old).expect("old store");
+        let source = mrbrake::store::Store::open_read_only(&new).expect("new store");
+        let mut target = mrbrake::store::Store::create(&old).expect("old store");
         for mut record in source.records().expect("records") {
             for (name, _) in &mut record.metrics {
-                let legacy = mrbrake_explore::evaluate::LEGACY_METRIC_NAMES.iter();
+                let legacy = mrbrake::explore::evaluate::LEGACY_METRIC_NAMES.iter();
                 if let Some((old_name, _)) = legacy.clone().find(|(_, current)| current == name) {
                     *name = (*old_name).to_string();
                 }

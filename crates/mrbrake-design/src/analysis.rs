@@ -1,13 +1,14 @@
 //! Brake analysis, end to end: spec → geometry → mesh → non-linear field at each current of a sweep →
 //! torque (local Bingham integration and the thesis's mean-B method), coil, mechanics.
 //!
-//! Brief overview: [`analyze`] takes a validated [`BrakeSpec`] and [`AnalysisOptions`] and returns an
-//! [`Analysis`]: the torque–current curve, per-gap results at the maximum current, per-direction
-//! torque for the bidirectional brake, the coil's electrical figures and inductance, and the
-//! mechanical figures (mass, volume, rotor inertia, torque density). [`analyze_with_field`] also
+//! Brief overview: an [`AnalysisRequest`] of a validated [`BrakeSpec`] with [`AnalysisOptions`]
+//! (and, if wanted, an observer of the sweep) runs to an [`Analysis`]: the torque–current curve,
+//! per-gap results at the maximum current, per-direction torque for the bidirectional brake, the
+//! coil's electrical figures and inductance, and the mechanical figures (mass, volume, rotor
+//! inertia, torque density). Run with the field ([`AnalysisRequest::run_with_field`]) it also
 //! returns the field at the maximum current as plain data ([`FieldAtMaxCurrent`]: mesh, region
-//! names, B per triangle, flux function per node) for field maps and other front ends; the solver
-//! itself stays inside.
+//! names and roles, B per triangle, flux function per node) for field maps and other front ends;
+//! the solver itself stays inside.
 //!
 //! # Torque models
 //! * **Local Bingham torque** (beyond the thesis): the yield stress follows the local flux density,
@@ -46,6 +47,7 @@ pub use mrbrake_magnetics::ElementOrder;
 use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 use mrbrake_magnetics::{Solution, Solver, SolverOptions};
 use mrbrake_materials::{CopperWire, MrFluid, library};
+use mrbrake_observe::{Count, Observer, Silent};
 use serde::Serialize;
 
 use crate::DesignError;
@@ -76,6 +78,30 @@ pub struct AnalysisOptions {
     /// Finite-element order of the field solution: linear (P1) or quadratic (P2, 6-node)
     /// triangles on the same mesh (about four times the unknowns; B converges one order faster).
     pub order: ElementOrder,
+}
+
+impl AnalysisOptions {
+    /// Checks every option's range (the one place these rules live; front ends only parse):
+    /// at least 2 points, a speed and a seal friction that are finite and not negative.
+    pub fn check(&self) -> Result<(), DesignError> {
+        if self.points < 2 {
+            return Err(DesignError::Input(format!(
+                "points = {}: the torque–current sweep needs at least 2 points (0 A and the \
+                 maximum current)",
+                self.points
+            )));
+        }
+        self.check_torque_terms()
+    }
+
+    /// The rules of the viscous and friction terms (all that [`direction1_points`] uses).
+    fn check_torque_terms(&self) -> Result<(), DesignError> {
+        // The viscous torque opposes the motion whichever way it turns: the speed is its
+        // magnitude, and a negative one is a mistake rather than a direction.
+        formula::non_negative("speed (rad/s)", self.speed_rad_s)?;
+        formula::non_negative("seal friction (N·m)", self.seal_friction_nm)?;
+        Ok(())
+    }
 }
 
 impl Default for AnalysisOptions {
@@ -284,7 +310,7 @@ pub struct Timings {
     pub total: f64,
 }
 
-/// Everything [`analyze`] computes.
+/// Everything an analysis computes ([`AnalysisRequest::run`]).
 #[derive(Debug, Clone, Serialize)]
 pub struct Analysis {
     /// Spec name.
@@ -319,8 +345,8 @@ pub struct Analysis {
 
 /// The magnetic field at the maximum current (unit 1 energised) as owned plain data, with no solver
 /// attached: what a field map, a matplotlib `tripcolor` of a future Python `.field()` or an HTML
-/// report needs. [`analyze_with_field`] returns it; [`analyze`] does not build it (design studies
-/// run thousands of analyses and never draw the field).
+/// report needs. [`AnalysisRequest::run_with_field`] returns it; [`AnalysisRequest::run`] does not
+/// build it (design studies run thousands of analyses and never draw the field).
 ///
 /// The triangles are those of the mesh's vertices for both element orders: with quadratic (P2)
 /// elements `A_phi` and the flux function are given at the vertices and B at the centroids, so a
@@ -364,6 +390,23 @@ pub struct FieldRegion {
     pub name: String,
     /// Library material of the part.
     pub material: String,
+    /// What the part does (from the geometry, so a report never guesses it from the name);
+    /// serialised in snake case (`"flux_path"`, `"fluid"`, `"coil"`, …).
+    #[serde(serialize_with = "part_kind_name")]
+    pub kind: PartKind,
+}
+
+/// Serialises a [`PartKind`] as its snake-case name.
+fn part_kind_name<S: serde::Serializer>(kind: &PartKind, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(match kind {
+        PartKind::Shaft => "shaft",
+        PartKind::FluxPath => "flux_path",
+        PartKind::NonMagnetic => "non_magnetic",
+        PartKind::Coil => "coil",
+        PartKind::Fluid => "fluid",
+        PartKind::Spacer => "spacer",
+        PartKind::Air => "air",
+    })
 }
 
 impl FieldAtMaxCurrent {
@@ -374,7 +417,12 @@ impl FieldAtMaxCurrent {
             .geometry
             .regions
             .iter()
-            .map(|r| FieldRegion { tag: r.tag, name: r.name.clone(), material: r.material.clone() })
+            .map(|r| FieldRegion {
+                tag: r.tag,
+                name: r.name.clone(),
+                material: r.material.clone(),
+                kind: r.kind,
+            })
             .collect();
         Self {
             current_a: model.max_current,
@@ -396,36 +444,67 @@ impl FieldAtMaxCurrent {
     }
 }
 
-/// Runs the whole analysis of `spec`.
-pub fn analyze(spec: &BrakeSpec, options: &AnalysisOptions) -> Result<Analysis, DesignError> {
-    analyze_with_progress(spec, options, &mut |_, _| ())
+/// The analysis of one spec, as a request: [`AnalysisRequest::of`] the spec, with its
+/// [`options`](AnalysisRequest::options) ([`AnalysisOptions::default`] unless given) and an
+/// [`observer`](AnalysisRequest::observe) of the torque–current sweep (none unless given), then
+/// [`run`](AnalysisRequest::run) for the [`Analysis`] or
+/// [`run_with_field`](AnalysisRequest::run_with_field) for the field at the maximum current too.
+///
+/// ```no_run
+/// use mrbrake_design::analysis::{AnalysisOptions, AnalysisRequest};
+/// use mrbrake_observe::{Count, Flow};
+/// let spec = mrbrake_design::spec::default_spec();
+/// let options = AnalysisOptions { points: 5, ..AnalysisOptions::default() };
+/// let (analysis, field) = AnalysisRequest::of(&spec)
+///     .options(options)
+///     .observe(|c: &Count| {
+///         eprintln!("{}/{} currents", c.done, c.total);
+///         Flow::Continue
+///     })
+///     .run_with_field()?;
+/// assert_eq!(field.current_a, analysis.max_current_a);
+/// # Ok::<(), mrbrake_design::DesignError>(())
+/// ```
+#[derive(Debug, Clone)]
+#[must_use = "a request does nothing until it is run"]
+pub struct AnalysisRequest<'s, O = Silent> {
+    spec: &'s BrakeSpec,
+    options: AnalysisOptions,
+    observer: O,
 }
 
-/// Runs the analysis and also returns the field at the maximum current (for field maps).
-pub fn analyze_with_field(
-    spec: &BrakeSpec,
-    options: &AnalysisOptions,
-) -> Result<(Analysis, FieldAtMaxCurrent), DesignError> {
-    analyze_with_field_and_progress(spec, options, &mut |_, _| ())
+impl<'s> AnalysisRequest<'s, Silent> {
+    /// The analysis of `spec` with the default options and no observer.
+    pub fn of(spec: &'s BrakeSpec) -> Self {
+        Self { spec, options: AnalysisOptions::default(), observer: Silent }
+    }
 }
 
-/// [`analyze`], calling `progress(done, total)` after each current of the torque–current sweep
-/// (for a front end's progress display on long sweeps, e.g. `--points 2000`).
-pub fn analyze_with_progress(
-    spec: &BrakeSpec,
-    options: &AnalysisOptions,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<Analysis, DesignError> {
-    run_analysis(spec, options, progress, |_, _| ()).map(|(analysis, ())| analysis)
-}
+impl<'s, O: Observer<Count>> AnalysisRequest<'s, O> {
+    /// Analyses with `options`.
+    pub fn options(self, options: AnalysisOptions) -> Self {
+        Self { options, ..self }
+    }
 
-/// [`analyze_with_field`] with the progress of [`analyze_with_progress`].
-pub fn analyze_with_field_and_progress(
-    spec: &BrakeSpec,
-    options: &AnalysisOptions,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<(Analysis, FieldAtMaxCurrent), DesignError> {
-    run_analysis(spec, options, progress, FieldAtMaxCurrent::new)
+    /// Calls `observer` with the currents done ([`Count`]) after each current of the
+    /// torque–current sweep (for a front end's progress display on long sweeps, e.g.
+    /// `--points 2000`). [`Flow::Stop`](mrbrake_observe::Flow::Stop) ends the analysis after that
+    /// current with [`DesignError::Stopped`], which keeps the curve points solved so far.
+    pub fn observe<P: Observer<Count>>(self, observer: P) -> AnalysisRequest<'s, P> {
+        AnalysisRequest { spec: self.spec, options: self.options, observer }
+    }
+
+    /// Runs the whole analysis.
+    pub fn run(mut self) -> Result<Analysis, DesignError> {
+        run_analysis(self.spec, &self.options, &mut self.observer, |_, _| ())
+            .map(|(analysis, ())| analysis)
+    }
+
+    /// Runs the analysis and also returns the field at the maximum current (for field maps;
+    /// studies, which never draw it, use [`run`](Self::run)).
+    pub fn run_with_field(mut self) -> Result<(Analysis, FieldAtMaxCurrent), DesignError> {
+        run_analysis(self.spec, &self.options, &mut self.observer, FieldAtMaxCurrent::new)
+    }
 }
 
 /// Direction 1's curve points (unit 1 energised) at the given `currents` (A, each in
@@ -438,8 +517,7 @@ pub fn direction1_points(
     options: &AnalysisOptions,
     currents: &[f64],
 ) -> Result<Vec<CurvePoint>, DesignError> {
-    formula::non_negative("speed", options.speed_rad_s.abs())?;
-    formula::non_negative("seal friction", options.seal_friction_nm)?;
+    options.check_torque_terms()?;
     let geometry = spec.validate()?.geometry;
     let mesh = Arc::new(mesh_build::mesh_spec(spec, &geometry, options.mesh)?);
     let mut model = Model::new(spec, geometry, mesh, options)?;
@@ -464,18 +542,11 @@ pub fn direction1_points(
 fn run_analysis<F>(
     spec: &BrakeSpec,
     options: &AnalysisOptions,
-    progress: &mut dyn FnMut(usize, usize),
+    observer: &mut dyn Observer<Count>,
     keep_field: impl FnOnce(&Model, &Solution) -> F,
 ) -> Result<(Analysis, F), DesignError> {
     let t_start = Instant::now();
-    if options.points < 2 {
-        return Err(DesignError::Input(format!(
-            "the sweep needs at least 2 points, got {}",
-            options.points
-        )));
-    }
-    formula::non_negative("speed", options.speed_rad_s.abs())?;
-    formula::non_negative("seal friction", options.seal_friction_nm)?;
+    options.check()?;
     let validated = spec.validate()?;
     let warnings: Vec<String> =
         validated.warnings.iter().map(|w| format!("{}: {}", w.field, w.message)).collect();
@@ -488,7 +559,7 @@ fn run_analysis<F>(
     let t_setup = t0.elapsed().as_secs_f64();
 
     let t0 = Instant::now();
-    let sweep = model.sweep(options, progress)?;
+    let sweep = model.sweep(options, observer)?;
     let solved = model.direction2(sweep, options)?;
     let t_solve = t0.elapsed().as_secs_f64();
 
@@ -606,11 +677,11 @@ impl Model {
     }
 
     /// The torque–current sweep: unit 1 energised, warm-started from the previous current.
-    /// `progress(done, total)` is called after each current.
+    /// `observer` sees each current done and may stop the sweep ([`DesignError::Stopped`]).
     fn sweep(
         &mut self,
         options: &AnalysisOptions,
-        progress: &mut dyn FnMut(usize, usize),
+        observer: &mut dyn Observer<Count>,
     ) -> Result<Sweep, DesignError> {
         let mut curve = Vec::with_capacity(options.points);
         let mut previous: Option<Solution> = None;
@@ -624,7 +695,11 @@ impl Model {
                 gaps_at_max = gaps;
             }
             previous = Some(solution);
-            progress(k + 1, options.points);
+            let done = k + 1;
+            let flow = observer.observe(&Count { done, total: options.points });
+            if flow.is_stop() && done < options.points {
+                return Err(DesignError::Stopped { curve, total: options.points });
+            }
         }
         let solution_at_max = previous.expect("the sweep has at least two points");
         Ok(Sweep { curve, gaps_at_max, solution_at_max })
@@ -1078,8 +1153,9 @@ mod tests {
     fn the_field_at_max_current_is_plain_data_of_the_last_solve() {
         let spec = crate::spec::default_spec();
         let options = AnalysisOptions { mesh: MeshLevel::Coarse, points: 2, ..Default::default() };
-        let (analysis, field) = analyze_with_field(&spec, &options).unwrap();
-        let alone = analyze(&spec, &options).unwrap();
+        let (analysis, field) =
+            AnalysisRequest::of(&spec).options(options).run_with_field().unwrap();
+        let alone = AnalysisRequest::of(&spec).options(options).run().unwrap();
         assert_eq!(
             alone.torque.at_max_current_nm.to_bits(),
             analysis.torque.at_max_current_nm.to_bits()

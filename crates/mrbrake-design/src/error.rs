@@ -89,6 +89,15 @@ pub enum DesignError {
         /// The TOML writer's error.
         source: toml::ser::Error,
     },
+    /// The caller's observer stopped the analysis's current sweep
+    /// ([`crate::analysis::AnalysisRequest::observe`]); the curve points solved so far are kept.
+    #[error("the analysis was stopped after {} of {total} currents", curve.len())]
+    Stopped {
+        /// Direction 1's curve points solved before the stop, in sweep order.
+        curve: Vec<crate::analysis::CurvePoint>,
+        /// Currents the sweep would have solved.
+        total: usize,
+    },
     /// A broken internal contract (a bug in mrbrake: please report it).
     #[error("internal error: {0}")]
     Internal(String),
@@ -101,10 +110,13 @@ fn list(errors: &FieldErrors) -> String {
 
 impl Kind for DesignError {
     /// Input for specs and arguments; the kind of the wrapped error for the field solution, the
-    /// mesher, materials, study rows and unreadable files; internal for defects.
+    /// mesher, materials, study rows and unreadable files; internal for defects. A stop is the
+    /// caller's own request, not a failure: input, the kind a caller can act on by asking again.
     fn kind(&self) -> ErrorKind {
         match self {
-            Self::Parse { .. } | Self::Spec { .. } | Self::Input(_) => ErrorKind::Input,
+            Self::Parse { .. } | Self::Spec { .. } | Self::Input(_) | Self::Stopped { .. } => {
+                ErrorKind::Input
+            }
             Self::Read { source, .. } => Kind::kind(source),
             Self::FieldSolution(e) => e.kind(),
             Self::Mesh(e) => e.kind(),

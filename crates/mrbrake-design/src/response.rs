@@ -289,6 +289,21 @@ fn check_options(options: &ResponseOptions) -> Result<(), DesignError> {
     };
     positive("duration", options.duration_s)?;
     positive("rtol", options.rtol)?;
+    // Currents are magnitudes of one unit's drive (the other direction is the other unit's coil).
+    for (name, current) in [("step FROM", Some(options.step_from_a)), ("bias", options.bias_a)] {
+        if let Some(i) = current
+            && !(i.is_finite() && i >= 0.0)
+        {
+            return Err(DesignError::Input(format!(
+                "response: {name} = {i} A must be finite and >= 0"
+            )));
+        }
+    }
+    if let Some(to) = options.step_to_a
+        && !to.is_finite()
+    {
+        return Err(DesignError::Input(format!("response: step TO = {to} A must be finite")));
+    }
     if !(options.fluid_lag_s >= 0.0 && options.fluid_lag_s.is_finite()) {
         return Err(DesignError::Input(format!(
             "response: fluid lag = {} s must be finite and >= 0",

@@ -13,7 +13,7 @@
 use serde::Serialize;
 
 use crate::DesignError;
-use crate::analysis::{AnalysisOptions, analyze};
+use crate::analysis::{AnalysisOptions, AnalysisRequest};
 use crate::spec::{BrakeSpec, CoilPlacement, Configuration, Current, Disc, Drum, Length};
 
 /// The base design of the thesis-table study (single disc, outer coil).
@@ -76,7 +76,7 @@ fn run_row(
     label: String,
     thesis: (f64, f64, f64),
 ) -> Result<StudyRow, DesignError> {
-    let a = match analyze(spec, options) {
+    let a = match AnalysisRequest::of(spec).options(*options).run() {
         Ok(a) => a,
         Err(e) => return Err(DesignError::StudyRow { label, source: Box::new(e) }),
     };

@@ -5,7 +5,7 @@
 use mrbrake_error::Kind as _;
 use std::path::PathBuf;
 
-use mrbrake_design::analysis::{AnalysisOptions, analyze};
+use mrbrake_design::analysis::{AnalysisOptions, AnalysisRequest};
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::{BrakeSpec, default_spec};
 
@@ -21,7 +21,7 @@ fn quick() -> AnalysisOptions {
 #[test]
 fn every_configuration_brakes_more_with_more_current() {
     for name in ["single-disc.toml", "multi-disc.toml", "drum.toml"] {
-        let a = analyze(&example(name), &quick()).unwrap();
+        let a = AnalysisRequest::of(&example(name)).options(quick()).run().unwrap();
         let c = &a.torque_current_curve;
         assert_eq!(c.len(), 3, "{name}");
         assert!(
@@ -49,7 +49,7 @@ fn every_configuration_brakes_more_with_more_current() {
 
 #[test]
 fn bidirectional_brake_brakes_each_direction_with_its_own_coil() {
-    let a = analyze(&default_spec(), &quick()).unwrap();
+    let a = AnalysisRequest::of(&default_spec()).options(quick()).run().unwrap();
     let t1 = a.torque.at_max_current_nm;
     let t2 = a.torque.direction2_at_max_current_nm.expect("two directions");
     // The two units are identical (mirror images): their torques agree to the mesh's asymmetry.
@@ -69,8 +69,42 @@ fn bidirectional_brake_brakes_each_direction_with_its_own_coil() {
 #[test]
 fn bad_sweep_is_an_input_error() {
     let options = AnalysisOptions { points: 1, ..quick() };
-    let e = analyze(&default_spec(), &options).unwrap_err();
+    let e = AnalysisRequest::of(&default_spec()).options(options).run().unwrap_err();
     assert!(e.is_input_error(), "{e}");
+    assert!(e.to_string().contains("points = 1"), "{e}");
+}
+
+/// The observer sees every current of the sweep, and a stop ends the analysis after the current
+/// it saw with the points solved so far.
+#[test]
+fn a_stop_ends_the_sweep_after_the_observed_current() {
+    use mrbrake_design::DesignError;
+    use mrbrake_observe::{Count, Flow};
+    let spec = example("single-disc.toml");
+    let options = AnalysisOptions { points: 4, ..quick() };
+    let mut seen = Vec::new();
+    let e = AnalysisRequest::of(&spec)
+        .options(options)
+        .observe(|c: &Count| {
+            seen.push((c.done, c.total));
+            Flow::stop_if(c.done == 2)
+        })
+        .run()
+        .unwrap_err();
+    assert_eq!(seen, [(1, 4), (2, 4)]);
+    let DesignError::Stopped { curve, total } = e else { panic!("not a stop: {e}") };
+    assert_eq!((curve.len(), total), (2, 4));
+    let full = AnalysisRequest::of(&spec).options(options).run().unwrap();
+    for (stopped, whole) in curve.iter().zip(&full.torque_current_curve) {
+        assert_eq!(stopped.torque_nm.to_bits(), whole.torque_nm.to_bits());
+    }
+    // A stop asked at the last current comes too late to change anything.
+    let last = AnalysisRequest::of(&spec)
+        .options(options)
+        .observe(|c: &Count| Flow::stop_if(c.done == c.total))
+        .run()
+        .unwrap();
+    assert_eq!(last.torque.at_max_current_nm.to_bits(), full.torque.at_max_current_nm.to_bits());
 }
 
 /// Mesh convergence of the torque at the maximum current: default → fine changes it by < 1 %
@@ -80,7 +114,12 @@ fn bad_sweep_is_an_input_error() {
 fn torque_converges_under_mesh_refinement() {
     let at = |mesh| {
         let options = AnalysisOptions { mesh, points: 2, ..AnalysisOptions::default() };
-        analyze(&default_spec(), &options).unwrap().torque.at_max_current_nm
+        AnalysisRequest::of(&default_spec())
+            .options(options)
+            .run()
+            .unwrap()
+            .torque
+            .at_max_current_nm
     };
     let (coarse, default, fine) =
         (at(MeshLevel::Coarse), at(MeshLevel::Default), at(MeshLevel::Fine));
@@ -122,7 +161,7 @@ fn mirror_image_gaps_carry_the_same_torque() {
     use mrbrake_design::analysis::ElementOrder;
     for order in [ElementOrder::P1, ElementOrder::P2] {
         let options = AnalysisOptions { points: 2, order, ..quick() };
-        let a = analyze(&default_spec(), &options).unwrap();
+        let a = AnalysisRequest::of(&default_spec()).options(options).run().unwrap();
         let (unit1, unit2): (Vec<_>, Vec<_>) = a.gaps.iter().partition(|g| g.unit == 0);
         assert_eq!(unit1.len(), 4);
         for (g1, g2) in unit1.iter().zip(&unit2) {

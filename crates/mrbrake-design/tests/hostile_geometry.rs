@@ -4,7 +4,7 @@
 
 use std::time::Instant;
 
-use mrbrake_design::analysis::{AnalysisOptions, analyze};
+use mrbrake_design::analysis::{AnalysisOptions, AnalysisRequest};
 use mrbrake_design::mesh_build::{self, MAX_EDGE_RATIO, MeshLevel};
 use mrbrake_design::spec::BrakeSpec;
 use mrbrake_error::Kind as _;
@@ -25,7 +25,7 @@ fn edited(name: &str, from: &str, to: &str) -> BrakeSpec {
 fn refused(spec: &BrakeSpec, level: MeshLevel) -> String {
     let start = Instant::now();
     let options = AnalysisOptions { mesh: level, ..AnalysisOptions::default() };
-    let e = analyze(spec, &options).unwrap_err();
+    let e = AnalysisRequest::of(spec).options(options).run().unwrap_err();
     assert!(e.is_input_error(), "{e}");
     assert!(start.elapsed().as_secs_f64() < 5.0, "refused only after {:?}", start.elapsed());
     e.to_string()

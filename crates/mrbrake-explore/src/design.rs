@@ -74,6 +74,7 @@ impl DesignSpace {
         variable_names: &[String],
         settings: EvaluationSettings,
     ) -> Result<Self, ExploreError> {
+        settings.check()?;
         // Parse once to learn the configuration and to report a broken base spec early (with its
         // file and line); text the spec reader accepts is a TOML table.
         let spec = BrakeSpec::from_toml_str(base_toml, origin)?;

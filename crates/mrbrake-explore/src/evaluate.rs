@@ -3,18 +3,20 @@
 //!
 //! Brief overview: [`EvaluationSettings`] fixes what every evaluation of a study shares (mesh level,
 //! speed for the viscous torque, friction, copper temperature, convection coefficient);
-//! [`evaluate`] runs [`mrbrake_design::analysis::analyze`] with a two-point sweep (off state and
+//! [`evaluate`] runs [`mrbrake_design::analysis::AnalysisRequest`] with a two-point sweep (off state and
 //! maximum current) and returns an [`Outcome`]: `ok` with [`METRICS`], `infeasible` with the reason
 //! (the spec breaks a rule: overlapping parts, a coil that does not fit, …), or `failed` with the
 //! numerical error (e.g. Newton not converging, with its history). Nothing is approximated by a
 //! surrogate: every number comes from the field solution and the thesis's formulas.
 
-use mrbrake_design::analysis::{Analysis, AnalysisOptions, ElementOrder, analyze};
+use mrbrake_design::analysis::{Analysis, AnalysisOptions, AnalysisRequest, ElementOrder};
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::{BrakeSpec, WorkingSurfaces};
 use mrbrake_error::Kind as _;
 use mrbrake_store::Status;
 use serde_json::{Value, json};
+
+use crate::ExploreError;
 
 /// What all evaluations of a study share.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,6 +80,20 @@ impl EvaluationSettings {
         .into_iter()
         .map(|(name, value)| (name.to_string(), value))
         .collect()
+    }
+
+    /// Checks the ranges of the settings (the analysis options' own rules, and a positive,
+    /// finite convection coefficient), so a study with a bad setting stops before its first
+    /// design instead of storing every design as infeasible.
+    pub fn check(&self) -> Result<(), ExploreError> {
+        self.analysis_options().check()?;
+        let h = self.convection_w_m2k;
+        if !(h.is_finite() && h > 0.0) {
+            return Err(ExploreError::Input(format!(
+                "convection = {h} W/(m²·K) must be finite and > 0"
+            )));
+        }
+        Ok(())
     }
 
     fn analysis_options(&self) -> AnalysisOptions {
@@ -191,14 +207,15 @@ pub fn current_metric_name(name: &str) -> (&str, bool) {
 }
 
 /// Renames a stored record's legacy metric names to the current ones (see
-/// [`LEGACY_METRIC_NAMES`]), so a store written before the convention reads like a new one.
-pub fn upgrade_metric_names(record: &mut mrbrake_store::Record) {
+/// [`LEGACY_METRIC_NAMES`]), so a store written before the convention reads like a new one; every
+/// reader goes through [`crate::stored`].
+pub(crate) fn upgrade_metric_names(record: &mut mrbrake_store::Record) {
     upgrade_metric_list(&mut record.metrics);
 }
 
 /// Renames the legacy metric names of a `(name, value)` list to the current ones (see
 /// [`upgrade_metric_names`]); the form `mrbrake_store::Store::merge_from_upgrading` takes.
-pub fn upgrade_metric_list(metrics: &mut [(String, f64)]) {
+pub(crate) fn upgrade_metric_list(metrics: &mut [(String, f64)]) {
     for (name, _) in metrics {
         if let (new, true) = current_metric_name(name) {
             *name = new.to_string();
@@ -241,7 +258,7 @@ pub fn evaluate(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
 }
 
 fn evaluate_unguarded(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
-    match analyze(spec, &settings.analysis_options()) {
+    match AnalysisRequest::of(spec).options(settings.analysis_options()).run() {
         Ok(analysis) => {
             let metrics = metrics_of(spec, &analysis, settings);
             if let Some((name, value)) = metrics.iter().find(|(_, v)| v.is_nan()) {

@@ -11,9 +11,14 @@
 //!   design is infeasible or failed;
 //! * [`runner`]: evaluates a batch of designs in parallel, storing each result in the
 //!   [`mrbrake_store::Store`] the moment it completes and never recomputing a stored design;
+//! * [`stored`]: reading and merging stores under the current metric names;
 //! * [`plan`]: sweep plans (lists, ranges, Latin hypercube, Sobol') and deterministic shards;
 //! * [`problem`] and [`optimize`]: optimisation problem files (variables, constraints, objectives)
 //!   solved by NSGA-II or pattern search from [`mrbrake_optim`], every evaluation through the store.
+//!
+//! Runs and optimisations report to an [`mrbrake_observe::Observer`] ([`Progress`] per stored
+//! design, [`optimize::OptimizeProgress`] over a whole optimisation), which may stop them; every
+//! evaluation finished before a stop stays in the store.
 
 pub mod design;
 pub mod evaluate;
@@ -21,6 +26,7 @@ pub mod optimize;
 pub mod plan;
 pub mod problem;
 pub mod runner;
+pub mod stored;
 pub mod variable;
 
 pub use design::{Design, DesignSpace};
@@ -55,17 +61,29 @@ pub enum ExploreError {
     /// The optimiser's set-up.
     #[error(transparent)]
     Optim(#[from] mrbrake_optim::OptimError),
+    /// The caller's observer stopped a run before every design was evaluated; every evaluation
+    /// finished before the stop (and those in flight then) is in the store.
+    #[error(
+        "the study was stopped after {} of {} evaluations (each finished one is stored)",
+        progress.computed,
+        progress.to_compute
+    )]
+    Stopped {
+        /// Where the run stood when it stopped.
+        progress: Progress,
+    },
     /// A defect or an unexpected internal state.
     #[error("internal error: {0}")]
     Internal(String),
 }
 
 impl mrbrake_error::Kind for ExploreError {
-    /// Input for bad variables, values and problem files; wrapped errors keep their own kind.
+    /// Input for bad variables, values and problem files; wrapped errors keep their own kind. A
+    /// stop is the caller's own request, not a failure: input, as for the design crate's stop.
     fn kind(&self) -> mrbrake_error::ErrorKind {
         use mrbrake_error::ErrorKind;
         match self {
-            Self::Input(_) => ErrorKind::Input,
+            Self::Input(_) | Self::Stopped { .. } => ErrorKind::Input,
             Self::Design(e) => e.kind(),
             Self::InvalidBase { source, .. } => source.kind(),
             Self::Material(e) => e.kind(),

@@ -10,7 +10,13 @@
 //! Because the algorithms are seeded and deterministic, re-running an interrupted optimisation on
 //! the same store replays the same designs: stored ones are read back, the rest are computed.
 //! [`run`] returns every evaluated design, the feasible Pareto front and the reference design.
+//!
+//! The caller's [`Observer`] sees an [`OptimizeProgress`] after every stored evaluation; a
+//! [`Flow::Stop`] ends the optimisation once the designs in flight
+//! are stored, and [`run`] returns what was evaluated until then with
+//! [`OptimizationResult::stopped`] set (running it again on the same store resumes it).
 
+use mrbrake_observe::{Flow, Observer, Silent};
 use mrbrake_optim::pareto::{Evaluation, pareto_front};
 use mrbrake_optim::space::Bounds;
 use mrbrake_optim::{Problem, RunError, nsga2, pattern_search};
@@ -54,6 +60,9 @@ pub struct OptimizationResult {
     /// Pattern search: whether the step fell below its minimum (converged) rather than the
     /// evaluation budget running out. `None` for NSGA-II, which runs its generations.
     pub converged: Option<bool>,
+    /// True when the observer stopped the optimisation: `evaluated` holds the designs stored
+    /// until then, `iterations` the generations or polls completed.
+    pub stopped: bool,
 }
 
 /// Which batch of an optimisation is being evaluated.
@@ -107,16 +116,17 @@ pub struct StudyProblem<'s, 'p> {
     totals: Option<RunSummary>,
     /// Batches the algorithm asked for (the reference design not counted).
     algorithm_batches: usize,
-    on_progress: &'p mut dyn FnMut(&OptimizeProgress),
+    observer: &'p mut dyn Observer<OptimizeProgress>,
 }
 
 impl<'s, 'p> StudyProblem<'s, 'p> {
-    /// Sets up the problem: reads the base spec, resolves the variables and their bounds.
+    /// Sets up the problem: reads the base spec, resolves the variables and their bounds;
+    /// `observer` sees the progress of every batch.
     pub fn new(
         problem: &'p OptimizationProblem,
         store: &'s mut Store,
         jobs: usize,
-        on_progress: &'p mut dyn FnMut(&OptimizeProgress),
+        observer: &'p mut dyn Observer<OptimizeProgress>,
     ) -> Result<Self, ExploreError> {
         let (space, bounds) = space_and_bounds(problem)?;
         Ok(Self {
@@ -130,7 +140,7 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             requested: 0,
             totals: None,
             algorithm_batches: 0,
-            on_progress,
+            observer,
         })
     }
 
@@ -221,8 +231,8 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         let done_before = self.requested;
         let before = self.totals.as_ref().map(|t| t.progress);
         let total = self.planned_designs().max(done_before + designs.len());
-        let on_progress = &mut *self.on_progress;
-        let mut relay = |p: &Progress| {
+        let observer = &mut *self.observer;
+        let mut relay = |p: &Progress| -> Flow {
             // Everything of the batch not waiting to be computed is done (reused, computed, or a
             // repeat of a design earlier in the batch).
             let waiting = p.to_compute - p.computed;
@@ -231,11 +241,29 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
                 run.add(b);
             }
             let done = done_before + designs.len() - waiting;
-            on_progress(&OptimizeProgress { stage, done, total, run });
+            observer.observe(&OptimizeProgress { stage, done, total, run })
         };
-        let (records, summary) = self.runner.run(designs, &mut relay)?;
+        let outcome = self.runner.run(designs, &mut relay);
         self.batches += 1;
         self.requested += designs.len();
+        let (records, summary) = match outcome {
+            Ok(done) => done,
+            Err(ExploreError::Stopped { progress }) => {
+                if stage != Stage::Reference {
+                    self.keep_stored(designs)?;
+                }
+                let summary = RunSummary { progress, evaluation_s: 0.0, store_s: 0.0 };
+                self.add_totals(summary);
+                return Err(ExploreError::Stopped { progress });
+            }
+            Err(e) => return Err(e),
+        };
+        self.add_totals(summary);
+        Ok(records)
+    }
+
+    /// Adds a batch's run summary to the totals.
+    fn add_totals(&mut self, summary: RunSummary) {
         self.totals = Some(match self.totals.take() {
             None => summary,
             Some(mut t) => {
@@ -245,7 +273,27 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
                 t
             }
         });
-        Ok(records)
+    }
+
+    /// Keeps the designs of a stopped batch that are in the store (those finished before the
+    /// stop) among the evaluated ones.
+    fn keep_stored(&mut self, designs: &[Design]) -> Result<(), ExploreError> {
+        for design in designs {
+            if let Some(record) = crate::stored::read_record(self.runner.store(), &design.key)? {
+                self.keep(record);
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds `record` to the evaluated designs (once per key) and returns what the optimiser sees.
+    fn keep(&mut self, record: Record) -> Evaluation {
+        let evaluation = self.evaluation_of(&record);
+        if !self.seen.contains_key(&record.key) {
+            self.seen.insert(record.key.clone(), self.evaluated.len());
+            self.evaluated.push(Evaluated { record, evaluation: evaluation.clone() });
+        }
+        evaluation
     }
 }
 
@@ -266,16 +314,7 @@ impl Problem for StudyProblem<'_, '_> {
         let stage = self.next_algorithm_stage();
         self.algorithm_batches += 1;
         let records = self.run_batch(&designs, stage)?;
-        let mut evaluations = Vec::with_capacity(records.len());
-        for record in records {
-            let evaluation = self.evaluation_of(&record);
-            if !self.seen.contains_key(&record.key) {
-                self.seen.insert(record.key.clone(), self.evaluated.len());
-                self.evaluated.push(Evaluated { record, evaluation: evaluation.clone() });
-            }
-            evaluations.push(evaluation);
-        }
-        Ok(evaluations)
+        Ok(records.into_iter().map(|record| self.keep(record)).collect())
     }
 }
 
@@ -360,26 +399,76 @@ pub fn open_problem_store(
     Ok(store)
 }
 
-/// Runs the optimisation of `problem` with results in `store`, `jobs` analyses at a time.
+/// Runs the optimisation of `problem` with results in `store`, `jobs` analyses at a time,
+/// showing `observer` the progress after every stored evaluation (see the module docs for a
+/// stop).
 pub fn run(
     problem: &OptimizationProblem,
     store: &mut Store,
     jobs: usize,
-    on_progress: &mut dyn FnMut(&OptimizeProgress),
+    observer: &mut dyn Observer<OptimizeProgress>,
 ) -> Result<OptimizationResult, ExploreError> {
-    let mut study = StudyProblem::new(problem, store, jobs, on_progress)?;
+    let mut study = StudyProblem::new(problem, store, jobs, observer)?;
     let reference = if problem.reference {
         let base = study.space.base_design()?;
-        let record = study
-            .run_batch(std::slice::from_ref(&base), Stage::Reference)?
-            .pop()
-            .ok_or_else(|| ExploreError::Internal("the reference design was not stored".into()))?;
-        let evaluation = study.evaluation_of(&record);
-        Some(Evaluated { record, evaluation })
+        match study.run_batch(std::slice::from_ref(&base), Stage::Reference) {
+            Ok(mut records) => {
+                let record = records.pop().ok_or_else(|| {
+                    ExploreError::Internal("the reference design was not stored".into())
+                })?;
+                let evaluation = study.evaluation_of(&record);
+                Ok(Some(Evaluated { record, evaluation }))
+            }
+            Err(e) => Err(e),
+        }
     } else {
-        None
+        Ok(None)
     };
-    let (iterations, converged) = match problem.algorithm {
+    let (reference, algorithm) = match reference {
+        Ok(reference) => (reference, run_algorithm(&mut study, problem)),
+        Err(e) => (None, Err(e)),
+    };
+    let (iterations, converged, stopped) = match algorithm {
+        Ok((iterations, converged)) => (iterations, converged, false),
+        Err(ExploreError::Stopped { .. }) => {
+            // The batches that finished: the start (initial population or start point) is not an
+            // iteration, and the stopped batch did not finish.
+            (study.algorithm_batches.saturating_sub(2), None, true)
+        }
+        Err(e) => return Err(e),
+    };
+    let evaluations: Vec<Evaluation> =
+        study.evaluated.iter().map(|e| e.evaluation.clone()).collect();
+    let front = if problem.objectives.len() == 1 {
+        best_feasible(&evaluations).into_iter().collect()
+    } else {
+        pareto_front(&evaluations)
+    };
+    let totals = match study.totals.clone() {
+        Some(totals) => totals,
+        None => return Err(ExploreError::Internal("the optimiser evaluated no design".into())),
+    };
+    Ok(OptimizationResult {
+        iterations,
+        converged,
+        stopped,
+        variables: study.space.variables().to_vec(),
+        evaluated: study.evaluated,
+        front,
+        reference,
+        batches: study.batches,
+        requested: study.requested,
+        totals,
+    })
+}
+
+/// Runs the problem's algorithm on `study`: the generations (NSGA-II) or polls (pattern search)
+/// run, and whether a pattern search converged.
+fn run_algorithm(
+    study: &mut StudyProblem<'_, '_>,
+    problem: &OptimizationProblem,
+) -> Result<(usize, Option<bool>), ExploreError> {
+    match problem.algorithm {
         Algorithm::Nsga2 { population, generations, seed } => {
             let options = nsga2::Nsga2Options {
                 population,
@@ -387,8 +476,8 @@ pub fn run(
                 seed,
                 ..nsga2::Nsga2Options::default()
             };
-            let result = nsga2::run(&mut study, &options, &mut |_| {}).map_err(run_error)?;
-            (result.generations, None)
+            let result = nsga2::run(study, &options, &mut Silent).map_err(run_error)?;
+            Ok((result.generations, None))
         }
         Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base } => {
             let start = if start_at_base { Some(study.base_point()?) } else { None };
@@ -403,33 +492,10 @@ pub fn run(
                 },
                 ..pattern_search::PatternSearchOptions::default()
             };
-            let result =
-                pattern_search::run(&mut study, &options, &mut |_, _| {}).map_err(run_error)?;
-            (result.iterations, Some(result.converged))
+            let result = pattern_search::run(study, &options, &mut Silent).map_err(run_error)?;
+            Ok((result.iterations, Some(result.converged)))
         }
-    };
-    let evaluations: Vec<Evaluation> =
-        study.evaluated.iter().map(|e| e.evaluation.clone()).collect();
-    let front = if problem.objectives.len() == 1 {
-        best_feasible(&evaluations).into_iter().collect()
-    } else {
-        pareto_front(&evaluations)
-    };
-    let totals = study
-        .totals
-        .clone()
-        .ok_or_else(|| ExploreError::Internal("the optimiser evaluated no design".into()))?;
-    Ok(OptimizationResult {
-        iterations,
-        converged,
-        variables: study.space.variables().to_vec(),
-        evaluated: study.evaluated,
-        front,
-        reference,
-        batches: study.batches,
-        requested: study.requested,
-        totals,
-    })
+    }
 }
 
 /// The feasible design with the smallest objective.

@@ -308,6 +308,7 @@ fn settings_of(raw: &RawProblem) -> Result<EvaluationSettings, String> {
         settings.speed_rad_s =
             parse(speed, Dimension::AngularVelocity).map_err(|e| format!("speed: {e}"))?;
     }
+    settings.check().map_err(|e| e.to_string())?;
     Ok(settings)
 }
 

@@ -4,15 +4,20 @@
 //! already holds (and duplicates within the batch), records invalid designs as `infeasible`
 //! without analysis, and analyses the rest on a pool of `jobs` worker threads (rayon). Workers send
 //! each outcome over a channel to the calling thread, the store's single writer, which inserts it
-//! in its own durable transaction before reporting [`Progress`]. A run that is killed at any point
-//! therefore loses at most the evaluations in flight; re-running the same batch recomputes only
-//! those. The records of the whole batch are returned in batch order.
+//! in its own durable transaction before showing the caller's [`Observer`] the [`Progress`]. A
+//! run that is killed at any point therefore loses at most the evaluations in flight; re-running
+//! the same batch recomputes only those. The records of the whole batch are returned in batch
+//! order. An observer's [`Flow::Stop`] stops the workers from taking new designs; the designs in
+//! flight finish and are stored, and the run ends with [`ExploreError::Stopped`].
+//!
+//! [`Flow::Stop`]: mrbrake_observe::Flow::Stop
 
 use std::collections::HashSet;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
 
+use mrbrake_observe::Observer;
 use mrbrake_store::{Record, Status, Store};
 use rayon::prelude::*;
 
@@ -92,12 +97,14 @@ impl<'a> Runner<'a> {
         self.store
     }
 
-    /// Evaluates `designs` (see the module docs), calling `on_progress` after each stored result,
-    /// and returns every design's record, in order, with the run's summary.
+    /// Evaluates `designs` (see the module docs), showing `observer` the [`Progress`] before the
+    /// first evaluation and after each stored result, and returns every design's record, in
+    /// order, with the run's summary. A stop asked for before every design is stored ends the
+    /// run with [`ExploreError::Stopped`] once the designs in flight are stored.
     pub fn run(
         &mut self,
         designs: &[Design],
-        on_progress: &mut dyn FnMut(&Progress),
+        observer: &mut impl Observer<Progress>,
     ) -> Result<(Vec<Record>, RunSummary), ExploreError> {
         let start = Instant::now();
         let (todo, reused) = self.to_compute(designs)?;
@@ -109,17 +116,21 @@ impl<'a> Runner<'a> {
             failed: 0,
             elapsed_s: 0.0,
         };
-        on_progress(&progress);
         let mut timing = Timing { start, evaluation_s: 0.0, store_s: 0.0 };
-        self.evaluate_into_store(&todo, &mut timing, &mut progress, on_progress)?;
+        if !observer.observe(&progress).is_stop() {
+            self.evaluate_into_store(&todo, &mut timing, &mut progress, observer)?;
+        }
         progress.elapsed_s = start.elapsed().as_secs_f64();
+        if progress.computed < progress.to_compute {
+            return Err(ExploreError::Stopped { progress });
+        }
         let mut records = Vec::with_capacity(designs.len());
         for design in designs {
-            let mut record = self.store.get(&design.key)?.ok_or_else(|| {
+            // A record reused from a store written before the unit convention reads under the
+            // current metric names.
+            let record = crate::stored::read_record(self.store, &design.key)?.ok_or_else(|| {
                 ExploreError::Internal(format!("design {} missing from the store", design.key))
             })?;
-            // A record reused from a store written before the unit convention.
-            crate::evaluate::upgrade_metric_names(&mut record);
             records.push(record);
         }
         let summary =
@@ -148,13 +159,15 @@ impl<'a> Runner<'a> {
     }
 
     /// Analyses `todo` on the worker pool while this thread stores each outcome as it arrives;
-    /// after a store error the workers stop taking new designs and the error is returned.
+    /// after a store error the workers stop taking new designs and the error is returned. After
+    /// the observer asks to stop they stop taking new designs too, and the ones in flight are
+    /// still stored.
     fn evaluate_into_store(
         &mut self,
         todo: &[&Design],
         timing: &mut Timing,
         progress: &mut Progress,
-        on_progress: &mut dyn FnMut(&Progress),
+        observer: &mut impl Observer<Progress>,
     ) -> Result<(), ExploreError> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(self.jobs)
@@ -194,7 +207,9 @@ impl<'a> Runner<'a> {
                     first_error = Some(e);
                     continue;
                 }
-                on_progress(progress);
+                if observer.observe(progress).is_stop() {
+                    stop.store(true, Ordering::Relaxed);
+                }
             }
         });
         first_error.map_or(Ok(()), Err)

@@ -115,8 +115,8 @@ fn voltage_step_in_a_file_follows_the_lr_closed_form() {
     }
     assert!(json["transient"]["probes"][0].get("B_z_T").is_some());
     assert!(json.get("harmonic").is_none());
-    let text = report.text("p.toml");
-    assert!(text.contains("transient (BDF2): 300 steps"), "{text}");
+    // (Its text is `mrbrake_report::fem`'s, tested there and by the CLI.)
+    assert_eq!(json["transient"]["scheme"], "bdf2");
 }
 
 #[test]
@@ -153,7 +153,6 @@ fn harmonic_file_tends_to_the_inductance_at_low_frequency() {
     for key in ["frequency_Hz", "coils", "probes", "eddy_loss_W"] {
         assert!(first.get(key).is_some(), "missing harmonic[0].{key}");
     }
-    assert!(report.text("p.toml").contains("exp(+jωt)"));
 }
 
 /// An input error naming `needle` (and the file) for the problem with core `core`, coil source
@@ -348,8 +347,6 @@ fn per_coil_bias_matches_the_uniform_bias_and_is_reported_per_coil() {
     assert_eq!(listed.len(), 2);
     assert!(listed[0].0 == 3 && (listed[0].1 - 0.5).abs() < 1e-15, "{listed:?}");
     assert!(listed[1].0 == 4 && listed[1].1.abs() < 1e-15, "{listed:?}");
-    let text = c.text("p.toml");
-    assert!(text.contains("coil 3 at 0.5 A, coil 4 at 0 A"), "{text}");
 }
 
 #[test]

@@ -30,7 +30,7 @@ fn bench(c: &mut Criterion) {
                     Evaluation::new(vec![x[0], g * (1.0 - (x[0] / g).sqrt())], 0.0)
                 });
             let options = Nsga2Options { population: 100, generations: 1, ..Default::default() };
-            nsga2::run(&mut problem, &options, &mut |_| {}).map(|r| r.evaluations)
+            nsga2::run(&mut problem, &options, &mut mrbrake_observe::Silent).map(|r| r.evaluations)
         })
     });
 }

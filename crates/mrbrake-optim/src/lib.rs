@@ -47,7 +47,7 @@
 //!     Evaluation::new(vec![(x[0] - 1.0).powi(2) + (x[1] + 2.0).powi(2)], 0.0)
 //! });
 //! let options = pattern_search::PatternSearchOptions::default();
-//! let result = pattern_search::run(&mut problem, &options, &mut |_, _| {}).unwrap();
+//! let result = pattern_search::run(&mut problem, &options, &mut mrbrake_observe::Silent).unwrap();
 //! assert!(result.converged);
 //! assert!((result.best_x[0] - 1.0).abs() < 0.01 && (result.best_x[1] + 2.0).abs() < 0.01);
 //! ```

@@ -33,8 +33,14 @@
 //!
 //! Every random choice comes from one [`Rng`] seeded by [`Nsga2Options::seed`], in a fixed order: the
 //! same seed and evaluator give the same result bit for bit.
+//!
+//! The caller's [`Observer`] sees a [`GenerationReport`] after the initial population and after
+//! every generation; [`Flow::Stop`](mrbrake_observe::Flow::Stop) ends the run after that generation, with its population as the
+//! result ([`Nsga2Result::stopped`]).
 
 use std::cmp::Ordering;
+
+use mrbrake_observe::Observer;
 
 use crate::pareto::{Evaluation, crowding_distance, non_dominated_sort};
 use crate::problem::evaluate_checked;
@@ -117,12 +123,15 @@ pub struct Nsga2Result {
     pub front: Vec<Individual>,
     /// Designs evaluated in total.
     pub evaluations: usize,
-    /// Generations run after the initial population.
+    /// Generations run after the initial population (fewer than asked for when stopped).
     pub generations: usize,
+    /// True when the observer asked to stop before the last generation.
+    pub stopped: bool,
 }
 
 /// Runs NSGA-II on `problem`, calling `observer` after the initial population and after each
-/// generation (for progress bars and checkpoints).
+/// generation (for progress bars and checkpoints); [`Flow::Stop`](mrbrake_observe::Flow::Stop) ends the run after that
+/// generation, with [`Nsga2Result::stopped`] set.
 ///
 /// Errors: [`RunError::Optim`] for invalid options, bounds or initial designs, or an evaluator that
 /// breaks the [`Problem::evaluate_batch`] contract; [`RunError::Problem`] with the evaluator's own
@@ -130,7 +139,7 @@ pub struct Nsga2Result {
 pub fn run<P: Problem>(
     problem: &mut P,
     options: &Nsga2Options,
-    observer: &mut dyn FnMut(&GenerationReport<'_>),
+    observer: &mut impl for<'a> Observer<GenerationReport<'a>>,
 ) -> Result<Nsga2Result, RunError<P::Error>> {
     let bounds = problem.bounds().to_vec();
     let objectives = problem.objectives();
@@ -154,13 +163,15 @@ pub fn run<P: Problem>(
             .collect(),
         options.population,
     );
-    observer(&GenerationReport {
-        generation: 0,
-        evaluations: evaluation_count,
-        population: &population,
-    });
+    let first =
+        GenerationReport { generation: 0, evaluations: evaluation_count, population: &population };
+    let mut flow = observer.observe(&first);
+    let mut generations = 0;
 
     for generation in 1..=options.generations {
+        if flow.is_stop() {
+            break;
+        }
         let offspring_x =
             make_offspring(&population, &bounds, options, mutation_probability, &mut rng);
         let offspring_evaluations = evaluate_checked(problem, &offspring_x)?;
@@ -175,7 +186,8 @@ pub fn run<P: Problem>(
             }),
         );
         population = rank_and_select(combined, options.population);
-        observer(&GenerationReport {
+        generations = generation;
+        flow = observer.observe(&GenerationReport {
             generation,
             evaluations: evaluation_count,
             population: &population,
@@ -183,12 +195,8 @@ pub fn run<P: Problem>(
     }
 
     let front = final_front(&population);
-    Ok(Nsga2Result {
-        population,
-        front,
-        evaluations: evaluation_count,
-        generations: options.generations,
-    })
+    let stopped = flow.is_stop() && generations < options.generations;
+    Ok(Nsga2Result { population, front, evaluations: evaluation_count, generations, stopped })
 }
 
 /// Checks bounds, objective count and options before anything is evaluated.
@@ -608,7 +616,7 @@ mod tests {
             Nsga2Options { initial: vec![vec![2.0]], ..Default::default() },
         ];
         for options in &bad {
-            let error = run(&mut problem, options, &mut |_| {}).unwrap_err();
+            let error = run(&mut problem, options, &mut mrbrake_observe::Silent).unwrap_err();
             assert!(error.is_input_error(), "{error}");
         }
         assert_eq!(problem.evaluations(), 0);

@@ -39,6 +39,8 @@
 //! the convergence theory would call for a sufficient-decrease test (Kolda et al. 2003, Sec. 3.7.1);
 //! simple decrease is kept here, which is what the tests measure.
 
+use mrbrake_observe::Observer;
+
 use crate::pareto::{Evaluation, feasibility_order};
 use crate::problem::evaluate_checked;
 use crate::rng::Rng;
@@ -115,12 +117,32 @@ pub struct PatternSearchResult {
     /// violation).
     pub history: Vec<(usize, f64, f64)>,
     /// True when the step fell below the minimum (a mesh-local optimum), false when the budget ran
-    /// out first.
+    /// out first or the observer stopped the search.
     pub converged: bool,
+    /// True when the observer asked to stop before the search converged or spent its budget.
+    pub stopped: bool,
 }
 
-/// Runs compass search on `problem` (exactly one objective), calling `observer` with the evaluation
-/// count and the incumbent after the start point and after every poll.
+/// What an observer sees after the start point and after every poll.
+#[derive(Debug, Clone, Copy)]
+pub struct PollReport<'a> {
+    /// 0 for the start point, then the polls performed so far.
+    pub iteration: usize,
+    /// Designs evaluated so far (the start point included).
+    pub evaluations: usize,
+    /// The incumbent design.
+    pub best_x: &'a [f64],
+    /// Its evaluation.
+    pub best: &'a Evaluation,
+    /// The current step as a fraction of each variable's range (before this poll's update).
+    pub step_fraction: f64,
+}
+
+/// Runs compass search on `problem` (exactly one objective), calling `observer` with a
+/// [`PollReport`] after the start point and after every poll; [`Flow::Stop`] ends the search
+/// after that poll with [`PatternSearchResult::stopped`] set.
+///
+/// [`Flow::Stop`]: mrbrake_observe::Flow::Stop
 ///
 /// Errors: [`RunError::Optim`] for invalid options, bounds or start point, a problem with other than
 /// one objective, or an evaluator that breaks the [`Problem::evaluate_batch`] contract;
@@ -128,12 +150,12 @@ pub struct PatternSearchResult {
 pub fn run<P: Problem>(
     problem: &mut P,
     options: &PatternSearchOptions,
-    observer: &mut dyn FnMut(usize, &Evaluation),
+    observer: &mut impl for<'a> Observer<PollReport<'a>>,
 ) -> Result<PatternSearchResult, RunError<P::Error>> {
     let bounds = problem.bounds().to_vec();
     validate(&bounds, problem.objectives(), options)?;
 
-    let mut x: Vec<f64> = match &options.start {
+    let x: Vec<f64> = match &options.start {
         Some(start) => start.iter().zip(&bounds).map(|(&v, b)| b.repair(v)).collect(),
         None => bounds
             .iter()
@@ -143,32 +165,95 @@ pub fn run<P: Problem>(
             })
             .collect(),
     };
-    let mut best = evaluate_checked(problem, std::slice::from_ref(&x))?
+    let best = evaluate_checked(problem, std::slice::from_ref(&x))?
         .pop()
         .ok_or(OptimError::WrongEvaluationCount { expected: 1, got: 0 })?;
-    let mut evaluations = 1;
-    let mut iterations = 0;
-    let mut history = vec![(evaluations, objective(&best), best.violation)];
-    observer(evaluations, &best);
-
-    let mut rng = Rng::new(options.seed);
-    let mut fraction = options.initial_step_fraction;
+    let mut search = Search {
+        history: vec![(1, objective(&best), best.violation)],
+        x,
+        best,
+        evaluations: 1,
+        iterations: 0,
+        fraction: options.initial_step_fraction,
+        rng: Rng::new(options.seed),
+    };
+    let mut stopped = observer.observe(&search.report(options.initial_step_fraction)).is_stop();
     let mut converged = false;
-    while evaluations < options.max_evaluations {
+    while !stopped && search.evaluations < options.max_evaluations {
+        let fraction = search.fraction;
         let steps: Vec<f64> = bounds.iter().map(|b| step(b, fraction)).collect();
+        let polled = search.poll(problem, &bounds, &steps, options)?;
+        if polled {
+            stopped = observer.observe(&search.report(fraction)).is_stop();
+        }
+        if search.fraction < fraction {
+            let integers_at_unit_step =
+                bounds.iter().zip(&steps).all(|(b, &s)| !b.is_integer() || s <= 1.0);
+            if search.fraction < options.min_step_fraction && integers_at_unit_step {
+                converged = true;
+                break;
+            }
+        }
+    }
+    let Search { x, best, evaluations, iterations, history, .. } = search;
+    Ok(PatternSearchResult {
+        best_x: x,
+        best,
+        evaluations,
+        iterations,
+        history,
+        converged,
+        stopped,
+    })
+}
+
+/// The state of a search: the incumbent, the counts, the step fraction and the random generator
+/// of the poll bases.
+struct Search {
+    x: Vec<f64>,
+    best: Evaluation,
+    evaluations: usize,
+    iterations: usize,
+    history: Vec<(usize, f64, f64)>,
+    fraction: f64,
+    rng: Rng,
+}
+
+impl Search {
+    /// The observer's view of the search, whose last poll used step fraction `fraction`.
+    fn report(&self, fraction: f64) -> PollReport<'_> {
+        PollReport {
+            iteration: self.iterations,
+            evaluations: self.evaluations,
+            best_x: &self.x,
+            best: &self.best,
+            step_fraction: fraction,
+        }
+    }
+
+    /// One poll (within the evaluation budget) and the step update: the best poll point replaces
+    /// the incumbent when strictly better and the step doubles, otherwise the step contracts.
+    /// Returns whether any point was evaluated.
+    fn poll<P: Problem>(
+        &mut self,
+        problem: &mut P,
+        bounds: &[Bounds],
+        steps: &[f64],
+        options: &PatternSearchOptions,
+    ) -> Result<bool, RunError<P::Error>> {
         let mut poll = match options.poll {
-            PollDirections::Compass => poll_points(&x, &steps, &bounds),
+            PollDirections::Compass => poll_points(&self.x, steps, bounds),
             PollDirections::RandomOrthogonal => {
-                rotated_poll_points(&x, fraction, &bounds, &mut rng)
+                rotated_poll_points(&self.x, self.fraction, bounds, &mut self.rng)
             }
         };
-        poll.truncate(options.max_evaluations - evaluations);
-
+        poll.truncate(options.max_evaluations - self.evaluations);
         let mut improved = false;
-        if !poll.is_empty() {
+        let polled = !poll.is_empty();
+        if polled {
             let results = evaluate_checked(problem, &poll)?;
-            evaluations += poll.len();
-            iterations += 1;
+            self.evaluations += poll.len();
+            self.iterations += 1;
             // The earliest of the best poll points: `min_by` keeps the first of equal elements.
             let winner = results
                 .iter()
@@ -176,33 +261,25 @@ pub fn run<P: Problem>(
                 .min_by(|a, b| feasibility_order(a.1, b.1))
                 .map(|(k, _)| k);
             if let Some(k) = winner
-                && feasibility_order(&results[k], &best).is_lt()
+                && feasibility_order(&results[k], &self.best).is_lt()
             {
-                x = poll.swap_remove(k);
-                best = results[k].clone();
+                self.x = poll.swap_remove(k);
+                self.best = results[k].clone();
                 improved = true;
             }
-            history.push((evaluations, objective(&best), best.violation));
-            observer(evaluations, &best);
+            self.history.push((self.evaluations, objective(&self.best), self.best.violation));
         }
-
-        if improved {
-            fraction = (2.0 * fraction).min(1.0);
+        self.fraction = if improved {
+            (2.0 * self.fraction).min(1.0)
         } else {
-            let integers_at_unit_step =
-                bounds.iter().zip(&steps).all(|(b, &s)| !b.is_integer() || s <= 1.0);
-            fraction *= match options.poll {
-                PollDirections::Compass => 0.5,
-                PollDirections::RandomOrthogonal => RANDOM_POLL_CONTRACTION,
-            };
-            if fraction < options.min_step_fraction && integers_at_unit_step {
-                converged = true;
-                break;
-            }
-        }
+            self.fraction
+                * match options.poll {
+                    PollDirections::Compass => 0.5,
+                    PollDirections::RandomOrthogonal => RANDOM_POLL_CONTRACTION,
+                }
+        };
+        Ok(polled)
     }
-
-    Ok(PatternSearchResult { best_x: x, best, evaluations, iterations, history, converged })
 }
 
 /// The single objective of an evaluation (infinity if absent, which the contract check prevents).
@@ -345,6 +422,7 @@ mod tests {
     use super::*;
     use crate::FnProblem;
     use mrbrake_error::Kind as _;
+    use mrbrake_observe::Silent;
 
     #[test]
     fn poll_set_is_clamped_and_deduplicated() {
@@ -367,7 +445,7 @@ mod tests {
         let mut two = FnProblem::new(vec![Bounds::continuous(0.0, 1.0)], 2, |x: &[f64]| {
             Evaluation::new(vec![x[0], -x[0]], 0.0)
         });
-        let e = run(&mut two, &PatternSearchOptions::default(), &mut |_, _| {}).unwrap_err();
+        let e = run(&mut two, &PatternSearchOptions::default(), &mut Silent).unwrap_err();
         assert!(e.is_input_error());
         let mut one = FnProblem::new(vec![Bounds::continuous(0.0, 1.0)], 1, |x: &[f64]| {
             Evaluation::new(vec![x[0]], 0.0)
@@ -378,7 +456,7 @@ mod tests {
             PatternSearchOptions { max_evaluations: 0, ..Default::default() },
             PatternSearchOptions { start: Some(vec![3.0]), ..Default::default() },
         ] {
-            assert!(run(&mut one, &options, &mut |_, _| {}).unwrap_err().is_input_error());
+            assert!(run(&mut one, &options, &mut Silent).unwrap_err().is_input_error());
         }
         assert_eq!(one.evaluations(), 0);
     }
@@ -390,7 +468,7 @@ mod tests {
                 Evaluation::new(vec![x.iter().map(|v| (v - 0.123).powi(2)).sum()], 0.0)
             });
         let options = PatternSearchOptions { max_evaluations: 20, ..Default::default() };
-        let result = run(&mut problem, &options, &mut |_, _| {}).unwrap();
+        let result = run(&mut problem, &options, &mut Silent).unwrap();
         assert_eq!(result.evaluations, 20);
         assert_eq!(problem.evaluations(), 20);
         assert!(!result.converged);

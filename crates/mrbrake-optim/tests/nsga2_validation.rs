@@ -4,7 +4,8 @@
 //! reproducibility and resume-through-a-cache checks.
 
 use mrbrake_error::Kind as _;
-use mrbrake_optim::nsga2::{self, Nsga2Options, Nsga2Result};
+use mrbrake_observe::{Flow, Silent};
+use mrbrake_optim::nsga2::{self, GenerationReport, Nsga2Options, Nsga2Result};
 use mrbrake_optim::pareto::{Evaluation, hypervolume_2d, normalised_violation};
 use mrbrake_optim::space::Bounds;
 use mrbrake_optim::{FnProblem, Problem};
@@ -50,10 +51,12 @@ fn zdt1_reaches_the_true_front_hypervolume() {
     for seed in [1, 2, 3] {
         let mut problem = zdt1(10);
         let mut generations_seen = 0;
-        let result = nsga2::run(&mut problem, &zdt1_options(seed), &mut |report| {
-            generations_seen = report.generation;
-        })
-        .unwrap();
+        let result =
+            nsga2::run(&mut problem, &zdt1_options(seed), &mut |report: &GenerationReport<'_>| {
+                generations_seen = report.generation;
+                Flow::Continue
+            })
+            .unwrap();
         assert_eq!(result.evaluations, 40 * 101);
         assert_eq!(generations_seen, 100);
         let hv = hypervolume_2d(&front_points(&result), reference);
@@ -73,7 +76,7 @@ fn zdt1_classic_setting_of_deb_et_al_2002() {
     // n = 30, population 100, 250 generations (25 100 evaluations), as in Deb et al. 2002, Sec. V.
     let options =
         Nsga2Options { population: 100, generations: 250, seed: 2002, ..Default::default() };
-    let result = nsga2::run(&mut zdt1(30), &options, &mut |_| {}).unwrap();
+    let result = nsga2::run(&mut zdt1(30), &options, &mut Silent).unwrap();
     let reference = (1.1, 1.1);
     let ratio = hypervolume_2d(&front_points(&result), reference) / zdt1_true_hypervolume(1.1);
     // Convergence: the front's g − 1 (0 on the true front) from f2 = g (1 − sqrt(f1/g)).
@@ -133,7 +136,7 @@ fn constr_front_is_feasible_and_on_the_known_front() {
     let reference = (1.1, 10.0);
     for seed in 1..=5 {
         let options = Nsga2Options { population: 40, generations: 60, seed, ..Default::default() };
-        let result = nsga2::run(&mut constr(), &options, &mut |_| {}).unwrap();
+        let result = nsga2::run(&mut constr(), &options, &mut Silent).unwrap();
         assert!(result.front.len() >= 30, "front size {}", result.front.len());
         let mut distances = Vec::new();
         let mut on_constrained_part = 0;
@@ -204,13 +207,14 @@ fn integer_variables_stay_integral_and_reach_their_optimum() {
     let mut problem = mixed();
     let bounds = problem.bounds().to_vec();
     let mut members_checked = 0;
-    let result = nsga2::run(&mut problem, &options, &mut |report| {
+    let result = nsga2::run(&mut problem, &options, &mut |report: &GenerationReport<'_>| {
         for individual in report.population {
             for (value, b) in individual.x.iter().zip(&bounds) {
                 assert!(b.contains(*value), "{value} outside {b:?}");
             }
             members_checked += 1;
         }
+        Flow::Continue
     })
     .unwrap();
     assert_eq!(members_checked, 20 * 31);
@@ -228,14 +232,14 @@ fn initial_designs_enter_the_first_population() {
         ..Default::default()
     };
     let mut problem = zdt1(10);
-    let result = nsga2::run(&mut problem, &options, &mut |_| {}).unwrap();
+    let result = nsga2::run(&mut problem, &options, &mut Silent).unwrap();
     assert_eq!(result.evaluations, 8);
     assert!(result.population.iter().any(|i| i.x == baseline));
 }
 
 fn run_zdt1(seed: u64) -> Nsga2Result {
     let options = Nsga2Options { population: 12, generations: 10, seed, ..Default::default() };
-    nsga2::run(&mut zdt1(5), &options, &mut |_| {}).unwrap()
+    nsga2::run(&mut zdt1(5), &options, &mut Silent).unwrap()
 }
 
 fn bits(result: &Nsga2Result) -> Vec<u64> {
@@ -278,7 +282,7 @@ fn each_generation_is_one_batch_of_population_size() {
     }
     let mut problem = Counting { bounds: vec![Bounds::continuous(0.0, 1.0)], batches: Vec::new() };
     let options = Nsga2Options { population: 10, generations: 4, ..Default::default() };
-    nsga2::run(&mut problem, &options, &mut |_| {}).unwrap();
+    nsga2::run(&mut problem, &options, &mut Silent).unwrap();
     assert_eq!(problem.batches, vec![10; 5]);
 }
 
@@ -306,14 +310,14 @@ fn evaluator_errors_pass_through_unchanged_and_bad_counts_are_caught() {
     }
     let options = Nsga2Options::default();
     let mut failing = Failing { bounds: vec![Bounds::continuous(0.0, 1.0)], short: false };
-    match nsga2::run(&mut failing, &options, &mut |_| {}) {
+    match nsga2::run(&mut failing, &options, &mut Silent) {
         Err(mrbrake_optim::RunError::Problem(message)) => {
             assert_eq!(message, "mesh generation failed")
         }
         other => panic!("unexpected {other:?}"),
     }
     failing.short = true;
-    match nsga2::run(&mut failing, &options, &mut |_| {}) {
+    match nsga2::run(&mut failing, &options, &mut Silent) {
         Err(mrbrake_optim::RunError::Optim(e)) => {
             assert!(!e.is_input_error());
             assert!(e.to_string().contains("39 evaluations for a batch of 40"), "{e}");
@@ -334,7 +338,7 @@ fn failed_designs_never_reach_the_front() {
         }
     });
     let options = Nsga2Options { population: 16, generations: 20, seed: 5, ..Default::default() };
-    let result = nsga2::run(&mut problem, &options, &mut |_| {}).unwrap();
+    let result = nsga2::run(&mut problem, &options, &mut Silent).unwrap();
     assert!(!result.front.is_empty());
     assert!(result.front.iter().all(|i| i.x[0] <= 0.7 && i.evaluation.feasible()));
 }
@@ -385,18 +389,50 @@ fn an_interrupted_run_resumes_through_a_cache_without_recomputation() {
     let bounds = vec![Bounds::continuous(0.0, 1.0); 6];
     let mut reference =
         Cached { bounds: bounds.clone(), store: Default::default(), fresh: 0, fail_after: None };
-    let uninterrupted = nsga2::run(&mut reference, &options, &mut |_| {}).unwrap();
+    let uninterrupted = nsga2::run(&mut reference, &options, &mut Silent).unwrap();
 
     let mut resumed = Cached { bounds, store: Default::default(), fresh: 0, fail_after: Some(137) };
     assert!(matches!(
-        nsga2::run(&mut resumed, &options, &mut |_| {}),
+        nsga2::run(&mut resumed, &options, &mut Silent),
         Err(mrbrake_optim::RunError::Problem(_))
     ));
     let before_restart = resumed.fresh;
     resumed.fail_after = None;
-    let result = nsga2::run(&mut resumed, &options, &mut |_| {}).unwrap();
+    let result = nsga2::run(&mut resumed, &options, &mut Silent).unwrap();
     assert_eq!(result, uninterrupted);
     // Every design was computed once: the restart only computed what the killed run had not.
     assert_eq!(resumed.fresh, reference.fresh);
     assert_eq!(before_restart, 137);
+}
+
+/// An observer's stop ends the run after the generation it saw: no further design is evaluated,
+/// and the result is that generation's population, marked as stopped.
+#[test]
+fn a_stop_ends_the_run_after_the_observed_generation() {
+    let options = Nsga2Options { population: 8, generations: 20, seed: 4, ..Default::default() };
+    for stop_at in [0, 3] {
+        let mut problem =
+            FnProblem::new(vec![Bounds::continuous(0.0, 1.0); 2], 2, |x: &[f64]| {
+                Evaluation::new(vec![x[0], 1.0 - x[0] + x[1]], 0.0)
+            });
+        let mut seen = Vec::new();
+        let result = nsga2::run(&mut problem, &options, &mut |report: &GenerationReport<'_>| {
+            seen.push(report.generation);
+            Flow::stop_if(report.generation == stop_at)
+        })
+        .unwrap();
+        assert_eq!(seen, (0..=stop_at).collect::<Vec<_>>());
+        assert!(result.stopped);
+        assert_eq!(result.generations, stop_at);
+        assert_eq!(result.evaluations, 8 * (stop_at + 1));
+        assert_eq!(problem.evaluations(), result.evaluations, "nothing evaluated after the stop");
+        assert_eq!(result.population.len(), 8);
+    }
+    // A stop at the last generation changes nothing: the run was complete.
+    let full = nsga2::run(&mut zdt1(5), &options, &mut |r: &GenerationReport<'_>| {
+        Flow::stop_if(r.generation == 20)
+    })
+    .unwrap();
+    assert!(!full.stopped);
+    assert_eq!(full.generations, 20);
 }

@@ -13,7 +13,7 @@ fn run<P: Problem>(problem: &mut P, options: &PatternSearchOptions) -> PatternSe
 where
     P::Error: std::fmt::Debug,
 {
-    pattern_search::run(problem, options, &mut |_, _| {}).unwrap()
+    pattern_search::run(problem, options, &mut mrbrake_observe::Silent).unwrap()
 }
 
 #[test]
@@ -258,4 +258,33 @@ fn failed_designs_are_avoided() {
     let result = run(&mut problem, &PatternSearchOptions::default());
     assert!(result.best.feasible());
     assert!((result.best_x[0] - 0.5).abs() <= 2e-3 && result.best_x[1].abs() <= 2e-3);
+}
+
+/// An observer's stop ends the search after the poll it saw, keeping the incumbent found so far.
+#[test]
+fn a_stop_ends_the_search_after_the_observed_poll() {
+    use mrbrake_observe::Flow;
+    use mrbrake_optim::pattern_search::PollReport;
+    let make = || {
+        FnProblem::new(vec![Bounds::continuous(-5.0, 5.0); 2], 1, |x: &[f64]| {
+            Evaluation::new(vec![(x[0] - 1.0).powi(2) + (x[1] + 2.0).powi(2)], 0.0)
+        })
+    };
+    let options = PatternSearchOptions::default();
+    for stop_at in [0, 2] {
+        let mut problem = make();
+        let mut last = None;
+        let result = pattern_search::run(&mut problem, &options, &mut |r: &PollReport<'_>| {
+            last = Some((r.iteration, r.evaluations, r.best.objectives[0]));
+            Flow::stop_if(r.iteration == stop_at)
+        })
+        .unwrap();
+        assert!(result.stopped && !result.converged);
+        assert_eq!(result.iterations, stop_at);
+        assert_eq!(problem.evaluations(), result.evaluations, "nothing evaluated after the stop");
+        assert_eq!(last, Some((stop_at, result.evaluations, result.best.objectives[0])));
+        assert_eq!(result.history.len(), stop_at + 1);
+    }
+    let full = pattern_search::run(&mut make(), &options, &mut mrbrake_observe::Silent).unwrap();
+    assert!(full.converged && !full.stopped && full.iterations > 2);
 }

@@ -1,7 +1,10 @@
 //! `mrbrake.analyze`: the main job (field, torque–current curve, gaps, coil, mechanics of a
-//! brake design), the library's `design::analysis::analyze_with_field` without the GIL.
+//! brake design), the library's `design::analysis::AnalysisRequest` (with the field) without the
+//! GIL.
 
-use mrbrake::design::analysis::{self, Analysis, AnalysisOptions, ElementOrder, FieldAtMaxCurrent};
+use mrbrake::design::analysis::{
+    Analysis, AnalysisOptions, AnalysisRequest, CurvePoint, ElementOrder, FieldAtMaxCurrent,
+};
 use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::units::Dimension;
 use numpy::{IntoPyArray, PyArray1};
@@ -11,16 +14,14 @@ use pyo3::types::PyTuple;
 use crate::convert::{SpecInput, json_to_py, mesh_arrays, quantity};
 use crate::error;
 
-/// Default number of currents of the sweep (the CLI's `--points`).
-const DEFAULT_POINTS: usize = 21;
-
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analyze, m)?)?;
     m.add_class::<PyAnalysis>()?;
     Ok(())
 }
 
-/// The analysis options from `analyze`'s keyword arguments, checked as the CLI checks its flags.
+/// The analysis options from `analyze`'s keyword arguments (their ranges are the library's rules,
+/// checked when it runs).
 fn options(
     mesh: &str,
     order: u8,
@@ -29,10 +30,7 @@ fn options(
     seal_friction: Option<&Bound<'_, PyAny>>,
     temperature: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<AnalysisOptions> {
-    let points = currents.unwrap_or(DEFAULT_POINTS);
-    if points < 2 {
-        return Err(error::input(format!("currents must be at least 2, got {points}")));
-    }
+    let points = currents.unwrap_or(AnalysisOptions::default().points);
     let order = ElementOrder::from_degree(order.into())
         .ok_or_else(|| error::input(format!("order must be 1 or 2, got {order}")))?;
     Ok(AnalysisOptions {
@@ -64,7 +62,7 @@ fn analyze(
     let (analysis, field) = py
         .detach(|| {
             let spec = input.load()?;
-            analysis::analyze_with_field(&spec, &options)
+            AnalysisRequest::of(&spec).options(options).run_with_field()
         })
         .map_err(error::to_py)?;
     Ok(PyAnalysis { analysis, field })
@@ -82,7 +80,7 @@ impl PyAnalysis {
     fn column<'py>(
         &self,
         py: Python<'py>,
-        f: impl Fn(&analysis::CurvePoint) -> f64,
+        f: impl Fn(&CurvePoint) -> f64,
     ) -> Bound<'py, PyArray1<f64>> {
         self.analysis.torque_current_curve.iter().map(f).collect::<Vec<_>>().into_pyarray(py)
     }

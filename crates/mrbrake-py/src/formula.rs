@@ -1,15 +1,14 @@
 //! `mrbrake.formula`: the thesis's closed-form models (`mrbrake::design::formula`) as the CLI's
 //! `mrbrake formula … --json` documents (composed by `mrbrake::report::formula`).
 //!
-//! Quantities are floats in SI or strings with a unit (`"22.5mm"`, `"60rpm"`); argument names in
-//! error messages are the Python ones.
+//! Quantities are floats in SI or strings with a unit (`"22.5mm"`, `"60rpm"`). The binding only
+//! translates its arguments into the library's requests (`formula::torque`, `formula::coil`),
+//! which hold every range rule; their messages name the fields as the Python arguments do.
 
-use mrbrake::design::formula::{self, BrakeTorque, Viscous};
-use mrbrake::materials::{CopperWire, library};
-use mrbrake::report::formula::{BrakeFormulaReport, CoilReport, FluidSource, YieldStress};
+use mrbrake::design::formula::{self, ClosedFormBrake, CoilRequest, TorqueRequest, WireChoice};
+use mrbrake::report::formula::{BrakeFormulaReport, CoilReport};
 use mrbrake::units::Dimension;
 use pyo3::prelude::*;
-use serde_json::{Value, json};
 
 use crate::convert::{json_to_py, quantity};
 use crate::error;
@@ -34,69 +33,35 @@ fn optional(
     }
 }
 
-/// The fluid arguments shared by the torque formulas, resolved as the CLI does.
-struct Fluid {
-    source: FluidSource,
-    eta_pa_s: f64,
-    speed: Option<f64>,
+/// A required length.
+fn length(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
+    quantity(Some(value), "", Dimension::Length, name)
 }
 
-impl Fluid {
-    fn from_py(
-        tau_y: Option<&Bound<'_, PyAny>>,
-        b: Option<&Bound<'_, PyAny>>,
-        fluid: &str,
-        speed: Option<&Bound<'_, PyAny>>,
-        eta: Option<&Bound<'_, PyAny>>,
-    ) -> PyResult<Self> {
-        let mr_fluid = library::fluid(fluid).map_err(error::to_py)?;
-        let tau_y = optional(tau_y, Dimension::Stress, "tau_y")?;
-        let b = optional(b, Dimension::FluxDensity, "b")?;
-        let yield_stress = match (tau_y, b) {
-            (Some(_), Some(_)) => return Err(error::input("give tau_y or b, not both")),
-            (Some(t), None) if t >= 0.0 => YieldStress::Given(t),
-            (Some(t), None) => return Err(error::input(format!("tau_y must be >= 0, got {t}"))),
-            (None, Some(b)) if (0.0..=3.0).contains(&b) => YieldStress::AtFluxDensity(b),
-            (None, Some(b)) => {
-                return Err(error::input(format!("b must be between 0 T and 3 T, got {b}")));
-            }
-            (None, None) => return Err(error::input("give tau_y or b")),
-        };
-        let eta = optional(eta, Dimension::Viscosity, "eta")?;
-        if let Some(e) = eta.filter(|e| e.is_nan() || *e < 0.0) {
-            return Err(error::input(format!("eta must be >= 0, got {e}")));
-        }
-        let speed = optional(speed, Dimension::AngularVelocity, "speed")?;
-        let (source, eta_pa_s) = FluidSource::resolve(mr_fluid, yield_stress, eta);
-        Ok(Self { source, eta_pa_s, speed })
-    }
+/// The fluid and viscous-term arguments shared by the torque formulas, translated.
+struct FluidArgs<'a, 'py> {
+    tau_y: Option<&'a Bound<'py, PyAny>>,
+    b: Option<&'a Bound<'py, PyAny>>,
+    fluid: &'a str,
+    speed: Option<&'a Bound<'py, PyAny>>,
+    eta: Option<&'a Bound<'py, PyAny>>,
+    gap: Option<&'a Bound<'py, PyAny>>,
+}
 
-    /// The viscous term of a disc or drum brake, whose gap is needed only with a speed.
-    fn viscous(&self, gap: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Viscous>> {
-        let Some(omega_rad_s) = self.speed else { return Ok(None) };
-        let gap_m = optional(gap, Dimension::Length, "gap")?
-            .ok_or_else(|| error::input("speed needs gap (the fluid gap sheared at that speed)"))?;
-        Ok(Some(Viscous { eta_pa_s: self.eta_pa_s, omega_rad_s, gap_m }))
-    }
-
-    fn report<'py>(
-        &self,
-        py: Python<'py>,
-        names: (&str, &str),
-        inputs: Value,
-        viscous: Option<Viscous>,
-        torque: BrakeTorque,
-    ) -> PyResult<Bound<'py, PyAny>> {
-        let (configuration, equation) = names;
-        let report = BrakeFormulaReport {
-            configuration,
-            equation,
-            inputs,
-            fluid: &self.source,
-            viscous,
-            torque,
+impl FluidArgs<'_, '_> {
+    /// The library's request for `brake` (which checks every value) and its JSON document.
+    fn torque<'py>(&self, py: Python<'py>, brake: ClosedFormBrake) -> PyResult<Bound<'py, PyAny>> {
+        let request = TorqueRequest {
+            brake,
+            tau_y_pa: optional(self.tau_y, Dimension::Stress, "tau_y")?,
+            b_t: optional(self.b, Dimension::FluxDensity, "b")?,
+            fluid: Some(self.fluid.to_string()),
+            speed_rad_s: optional(self.speed, Dimension::AngularVelocity, "speed")?,
+            eta_pa_s: optional(self.eta, Dimension::Viscosity, "eta")?,
+            gap_m: optional(self.gap, Dimension::Length, "gap")?,
         };
-        json_to_py(py, &report.json())
+        let answer = formula::torque(&request).map_err(error::to_py)?;
+        json_to_py(py, &BrakeFormulaReport(&answer).json())
     }
 }
 
@@ -117,15 +82,8 @@ fn formula_disc<'py>(
     eta: Option<&Bound<'py, PyAny>>,
     gap: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let r1 = quantity(Some(r1), "", Dimension::Length, "r1")?;
-    let r2 = quantity(Some(r2), "", Dimension::Length, "r2")?;
-    let fluid = Fluid::from_py(tau_y, b, fluid, speed, eta)?;
-    let viscous = fluid.viscous(gap)?;
-    let torque =
-        formula::multi_disc(discs, r1, r2, fluid.source.tau_y_pa, viscous).map_err(error::to_py)?;
-    let names = if discs == 1 { ("single-disc", "(3.6)/(3.7)") } else { ("multi-disc", "(3.8)") };
-    let inputs = json!({ "discs": discs, "r1_m": r1, "r2_m": r2 });
-    fluid.report(py, names, inputs, viscous, torque)
+    let brake = ClosedFormBrake::Discs { discs, r1_m: length(r1, "r1")?, r2_m: length(r2, "r2")? };
+    FluidArgs { tau_y, b, fluid, speed, eta, gap }.torque(py, brake)
 }
 
 /// Drum brake torque, thesis (3.9); the `formula drum --json` document.
@@ -143,12 +101,8 @@ fn formula_drum<'py>(
     eta: Option<&Bound<'py, PyAny>>,
     gap: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let r = quantity(Some(r), "", Dimension::Length, "r")?;
-    let h = quantity(Some(h), "", Dimension::Length, "h")?;
-    let fluid = Fluid::from_py(tau_y, b, fluid, speed, eta)?;
-    let viscous = fluid.viscous(gap)?;
-    let torque = formula::drum(r, h, fluid.source.tau_y_pa, viscous).map_err(error::to_py)?;
-    fluid.report(py, ("drum", "(3.9)"), json!({ "r_m": r, "h_m": h }), viscous, torque)
+    let brake = ClosedFormBrake::Drum { r_m: length(r, "r")?, h_m: length(h, "h")? };
+    FluidArgs { tau_y, b, fluid, speed, eta, gap }.torque(py, brake)
 }
 
 /// Multi-drum brake torque, thesis (4.4)/(4.5); the `formula multi-drum --json` document.
@@ -168,20 +122,14 @@ fn formula_multi_drum<'py>(
     speed: Option<&Bound<'py, PyAny>>,
     eta: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let [r0, h, d, g] = [(r0, "r0"), (h, "h"), (d, "d"), (g, "g")]
-        .map(|(v, name)| quantity(Some(v), "", Dimension::Length, name));
-    let (r0, h, d, g) = (r0?, h?, d?, g?);
-    let fluid = Fluid::from_py(tau_y, b, fluid, speed, eta)?;
-    let eta_omega = fluid.speed.map(|w| (fluid.eta_pa_s, w));
-    let torque = formula::multi_drum(r0, h, d, g, surfaces, fluid.source.tau_y_pa, eta_omega)
-        .map_err(error::to_py)?;
-    let radii = formula::multi_drum_radii(r0, d, g, surfaces);
-    let inputs = json!({
-        "r0_m": r0, "h_m": h, "d_m": d, "g_m": g, "surfaces": surfaces, "radii_m": radii,
-    });
-    let viscous =
-        fluid.speed.map(|w| Viscous { eta_pa_s: fluid.eta_pa_s, omega_rad_s: w, gap_m: g });
-    fluid.report(py, ("multi-drum", "(4.4)/(4.5)"), inputs, viscous, torque)
+    let brake = ClosedFormBrake::MultiDrum {
+        r0_m: length(r0, "r0")?,
+        h_m: length(h, "h")?,
+        d_m: length(d, "d")?,
+        g_m: length(g, "g")?,
+        surfaces,
+    };
+    FluidArgs { tau_y, b, fluid, speed, eta, gap: None }.torque(py, brake)
 }
 
 /// A coil in a winding window, thesis (4.1)–(4.3); the `formula coil --json` document.
@@ -199,34 +147,21 @@ fn formula_coil<'py>(
     current: Option<&Bound<'py, PyAny>>,
     temperature: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let cw = quantity(Some(window_width), "", Dimension::Length, "window_width")?;
-    let ch = quantity(Some(window_height), "", Dimension::Length, "window_height")?;
-    let inner = quantity(inner_radius, "5mm", Dimension::Length, "inner_radius")?;
-    let current_a = quantity(current, "2A", Dimension::Current, "current")?;
-    let temperature_c = quantity(temperature, "20C", Dimension::TemperatureCelsius, "temperature")?;
     let wire = match (awg, optional(wire_diameter, Dimension::Length, "wire_diameter")?) {
         (Some(_), Some(_)) => return Err(error::input("give awg or wire_diameter, not both")),
-        (Some(awg), None) => CopperWire::awg(awg),
-        (None, Some(d)) => CopperWire::from_diameter(d),
-        (None, None) => return Err(error::input("give awg or wire_diameter")),
-    }
-    .map_err(error::to_py)?;
-    let window = formula::turns_in_window(cw, ch, wire.diameter_m / 2.0).map_err(error::to_py)?;
-    let turns = turns.unwrap_or(window.turns);
-    let mean_radius_m = formula::coil_mean_radius(inner, cw);
-    let electrics = formula::coil_electrics(turns, mean_radius_m, &wire, current_a, temperature_c)
-        .map_err(error::to_py)?;
-    let report = CoilReport {
-        window_width_m: cw,
-        window_height_m: ch,
-        inner_radius_m: inner,
-        wire: &wire,
-        current_a,
-        temperature_c,
-        window,
-        turns,
-        mean_radius_m,
-        electrics,
+        (Some(awg), None) => Some(WireChoice::Awg(awg)),
+        (None, Some(d)) => Some(WireChoice::Diameter(d)),
+        (None, None) => None,
     };
-    json_to_py(py, &report.json())
+    let request = CoilRequest {
+        window_width_m: length(window_width, "window_width")?,
+        window_height_m: length(window_height, "window_height")?,
+        wire,
+        inner_radius_m: optional(inner_radius, Dimension::Length, "inner_radius")?,
+        turns,
+        current_a: optional(current, Dimension::Current, "current")?,
+        temperature_c: optional(temperature, Dimension::TemperatureCelsius, "temperature")?,
+    };
+    let answer = formula::coil(&request).map_err(error::to_py)?;
+    json_to_py(py, &CoilReport(&answer).json())
 }

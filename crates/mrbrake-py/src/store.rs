@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 
+use mrbrake::explore::stored;
 use mrbrake::store::{Store, to_json};
 use pyo3::prelude::*;
 
@@ -18,10 +19,12 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// Every record of the store at `path`, read-only, as `mrbrake export STORE --json` lists them.
 #[pyfunction]
 fn store_records(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyAny>> {
-    let mut records = py
-        .detach(|| Store::open_read_only(&path).and_then(|store| store.records()))
-        .map_err(error::to_py)?;
     // A store written before the unit convention reads under the current metric names.
-    records.iter_mut().for_each(mrbrake::explore::evaluate::upgrade_metric_names);
+    let records = py
+        .detach(|| -> Result<_, mrbrake::explore::ExploreError> {
+            let store = Store::open_read_only(&path)?;
+            stored::read_records(&store)
+        })
+        .map_err(error::to_py)?;
     json_to_py(py, &to_json(&records))
 }

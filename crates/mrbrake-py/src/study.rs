@@ -9,6 +9,7 @@ use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::explore::plan::{self, Sampling, Shard, SweepRequest};
 use mrbrake::explore::problem::OptimizationProblem;
 use mrbrake::explore::{EvaluationSettings, ExploreError, Runner, optimize, runner};
+use mrbrake::observe::Silent;
 use mrbrake::report::study::{OptimizationReport, SweepReport};
 use mrbrake::units::Dimension;
 use pyo3::prelude::*;
@@ -23,7 +24,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The evaluation settings of every analysis of a sweep, checked as the CLI checks its flags.
+/// The evaluation settings of every analysis of a sweep (their ranges are the library's rules).
 fn settings(
     mesh: &str,
     order: u8,
@@ -67,7 +68,7 @@ impl SweepJob {
         let created_by = format!("mrbrake {}", env!("CARGO_PKG_VERSION"));
         let mut store = runner::open_sweep_store(&self.store, self.resume, &created_by)?;
         let mut runner = Runner::new(&mut store, *sweep.space.settings(), self.jobs);
-        let (records, summary) = runner.run(&sweep.designs, &mut |_| {})?;
+        let (records, summary) = runner.run(&sweep.designs, &mut Silent)?;
         let report = SweepReport {
             name: "",
             variables: sweep.space.variables(),
@@ -138,7 +139,7 @@ fn optimize_problem(
         let store_path = store.unwrap_or_else(|| optimize::default_store_path(&problem));
         let mut store =
             optimize::open_problem_store(&parsed, &store_path, resume).map_err(error::to_py)?;
-        let result = optimize::run(&parsed, &mut store, jobs, &mut |_| {}).map_err(error::to_py)?;
+        let result = optimize::run(&parsed, &mut store, jobs, &mut Silent).map_err(error::to_py)?;
         let report = OptimizationReport {
             problem: &parsed,
             result: &result,

@@ -254,7 +254,7 @@ pub fn write_plots(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mrbrake_design::analysis::{AnalysisOptions, analyze_with_field};
+    use mrbrake_design::analysis::{AnalysisOptions, AnalysisRequest};
     use mrbrake_design::mesh_build::MeshLevel;
     use mrbrake_design::spec::default_spec;
 
@@ -263,7 +263,8 @@ mod tests {
     #[test]
     fn text_and_plots_of_the_thesis_brake() {
         let options = AnalysisOptions { mesh: MeshLevel::Coarse, points: 3, ..Default::default() };
-        let (analysis, field) = analyze_with_field(&default_spec(), &options).unwrap();
+        let (analysis, field) =
+            AnalysisRequest::of(&default_spec()).options(options).run_with_field().unwrap();
         let text = text(&analysis, "embedded default");
         let lines: Vec<&str> = text.lines().collect();
         assert!(lines[0].ends_with("(bidirectional, embedded default)"), "{}", lines[0]);

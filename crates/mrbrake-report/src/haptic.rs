@@ -451,7 +451,7 @@ mod tests {
     fn zwidth_summary_counts_every_cell_once_per_device() {
         let config =
             ZWidthConfig { stiffness_points: 3, damping_points: 2, ..ZWidthConfig::default() };
-        let map = sweep(&config).unwrap();
+        let map = sweep(&config, &mut mrbrake_observe::Silent).unwrap();
         let summary = zwidth_summary(&map);
         assert_eq!(summary["cells"], 6);
         for device in ["motor", "hybrid", "brake"] {

@@ -14,6 +14,7 @@
 //! * [`identification`]: characterisation, frequency response, transfer-function estimate;
 //! * [`rig`]: the virtual rig's output folder;
 //! * [`haptic`]: the haptic simulation (wall runs, Z-width map);
+//! * [`fem`]: magnetic solves of problem files (`fem solve`: static, transient, harmonic);
 //! * [`heat`]: heat solves (`fem solve` with `physics = "heat"`);
 //! * [`response`]: a brake's predicted step and frequency response (`mrbrake response`);
 //! * [`thermal`]: a brake's temperatures, warm-up and current rating (`mrbrake thermal`);
@@ -27,6 +28,7 @@ pub mod analysis;
 pub mod atomic;
 pub mod bode;
 pub mod chart;
+pub mod fem;
 pub mod field_map;
 pub mod formula;
 pub mod geometry;

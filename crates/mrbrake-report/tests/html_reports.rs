@@ -1,7 +1,7 @@
 //! The HTML reports are well-formed (parsed by an XML parser: the pages are polyglot HTML5), hold
 //! every section they promise, load nothing from outside, and show the numbers of their JSON.
 
-use mrbrake_design::analysis::{AnalysisOptions, analyze_with_field};
+use mrbrake_design::analysis::{AnalysisOptions, AnalysisRequest};
 use mrbrake_design::geometry::build;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::{DEFAULT_SPEC_TOML, default_spec};
@@ -43,7 +43,7 @@ fn check_page(page: &str) -> roxmltree::Document<'_> {
 fn design_report_of_the_thesis_brake() {
     let spec = default_spec();
     let options = AnalysisOptions { mesh: MeshLevel::Coarse, points: 3, ..Default::default() };
-    let (analysis, field) = analyze_with_field(&spec, &options).unwrap();
+    let (analysis, field) = AnalysisRequest::of(&spec).options(options).run_with_field().unwrap();
     let geometry = build(&spec).unwrap();
     let report = DesignReport {
         analysis: &analysis,

@@ -21,7 +21,11 @@ fn bench_zwidth(c: &mut Criterion) {
     group.sample_size(10);
     let config = ZWidthConfig::default();
     group.bench_function("map_50x50", |b| {
-        b.iter(|| black_box(sweep(black_box(&config)).expect("valid config")))
+        b.iter(|| {
+            black_box(
+                sweep(black_box(&config), &mut mrbrake_observe::Silent).expect("valid config"),
+            )
+        })
     });
     group.finish();
 }

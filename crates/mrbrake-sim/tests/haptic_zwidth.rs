@@ -8,7 +8,7 @@ use mrbrake_sim::haptic::zwidth::*;
 fn passivity_map_agrees_with_2_2_and_2_4_away_from_the_boundary() {
     let config =
         ZWidthConfig { stiffness_points: 12, damping_points: 8, ..ZWidthConfig::default() };
-    let map = sweep(&config).unwrap();
+    let map = sweep(&config, &mut mrbrake_observe::Silent).unwrap();
     let t = config.sample_period_s;
     let b = config.physical_damping_nms_per_rad;
     let bc = config.controllable_damping_nms_per_rad;
@@ -128,4 +128,26 @@ fn stability_classification_matches_the_exact_sampled_data_eigenvalues() {
     }
     println!("{agree}/{checked} free responses agree with the exact spectral radius");
     assert_eq!(agree, checked);
+}
+
+/// An observer's stop ends the sweep after the row it saw; the finished rows are those of the
+/// whole map.
+#[test]
+fn a_stop_keeps_the_finished_rows() {
+    use mrbrake_observe::{Count, Flow};
+    let config = ZWidthConfig { stiffness_points: 5, damping_points: 3, ..ZWidthConfig::default() };
+    let mut seen = Vec::new();
+    let stopped = sweep(&config, &mut |c: &Count| {
+        seen.push((c.done, c.total));
+        Flow::stop_if(c.done == 2)
+    })
+    .unwrap();
+    assert_eq!(seen, [(1, 5), (2, 5)]);
+    assert!(stopped.stopped);
+    assert_eq!(stopped.cells.len(), 2 * 3);
+    let full = sweep(&config, &mut mrbrake_observe::Silent).unwrap();
+    assert!(!full.stopped);
+    assert_eq!(full.cells.len(), 5 * 3);
+    assert_eq!(stopped.cells[..], full.cells[..6]);
+    assert!(serde_json::to_value(&full).unwrap().get("stopped").is_none());
 }

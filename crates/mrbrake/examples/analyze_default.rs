@@ -7,12 +7,13 @@
 //! Asserts the key number: 5.384 N·m at 2 A (direction 1, default mesh, linear elements), as the
 //! README's `mrbrake analyze` output shows.
 
-use mrbrake::design::analysis::{AnalysisOptions, analyze};
+use mrbrake::design::analysis::{AnalysisOptions, AnalysisRequest};
 use mrbrake::design::spec::default_spec;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let spec = default_spec();
-    let analysis = analyze(&spec, &AnalysisOptions { points: 3, ..AnalysisOptions::default() })?;
+    let options = AnalysisOptions { points: 3, ..AnalysisOptions::default() };
+    let analysis = AnalysisRequest::of(&spec).options(options).run()?;
     let torque = analysis.torque.at_max_current_nm;
     println!(
         "{}: {:.4} N·m at {} A (mean B in the gaps {:.4} T), {:.4} N·m off",

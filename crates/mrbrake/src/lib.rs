@@ -1,8 +1,10 @@
 //! mrbrake: design, simulate and characterise magnetorheological (MR) fluid brakes for haptic
 //! devices — the one crate a Rust program (and the Python binding) depends on.
 //!
-//! This crate holds no code of its own: it re-exports mrbrake's library crates under short names,
-//! as ripgrep's `grep` crate does for its parts. Each module's own documentation is the reference.
+//! This crate re-exports mrbrake's library crates under short names, as ripgrep's `grep` crate
+//! does for its parts; each module's own documentation is the reference. Its own code is what
+//! needs several of them at once: [`problem_file`] picks the physics of a `fem solve` problem
+//! file (magnetics or heat) and solves it, for the CLI and the Python package alike.
 //!
 //! # Brief overview
 //!
@@ -30,6 +32,7 @@
 //! - [`sim`]: the virtual test rig and the haptic simulation.
 //! - [`device`]: a designed brake as a device: the brake model file its analyses predict.
 //! - [`report`]: plots and report composition shared by the front ends.
+//! - [`problem_file`]: any problem file of `mrbrake fem solve`, solved by its physics.
 //! - [`observe`]: the one observer shape (per step, point, generation or design, with a stop
 //!   request) of every iterative algorithm.
 //! - [`error`]: the [`ErrorKind`] every library error reports ([`Kind`]), from which front ends
@@ -44,6 +47,8 @@
 //! assert!(curve.initial_relative_permeability() > 100.0);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+
+pub mod problem_file;
 
 pub use mrbrake_control as control;
 pub use mrbrake_design as design;

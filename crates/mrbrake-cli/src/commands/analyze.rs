@@ -4,15 +4,16 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake_design::analysis::{self, AnalysisOptions, ElementOrder};
-use mrbrake_design::mesh_build::MeshLevel;
-use mrbrake_design::spec::{BrakeSpec, default_spec};
-use mrbrake_report::analysis as report;
-use mrbrake_units::{Dimension, parse};
+use mrbrake::design::analysis::{AnalysisOptions, AnalysisRequest, ElementOrder};
+use mrbrake::design::mesh_build::MeshLevel;
+use mrbrake::design::spec::{BrakeSpec, default_spec};
+use mrbrake::observe::{Count, Flow};
+use mrbrake::report::analysis as report;
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
 use crate::error::InputError;
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
 
 /// Arguments of `mrbrake analyze`.
@@ -58,7 +59,7 @@ pub struct AnalyzeArgs {
 /// The spec as a word of a printed command: the path quoted for a shell (a path with spaces
 /// pastes as one word), or `source` ("embedded default") when no spec was given.
 pub fn command_word(spec: Option<&std::path::Path>, source: &str) -> String {
-    spec.map_or_else(|| source.to_string(), mrbrake_report::wording::shell_quote)
+    spec.map_or_else(|| source.to_string(), mrbrake::report::wording::shell_quote)
 }
 
 /// Runs `mrbrake analyze`.
@@ -78,17 +79,16 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
             .map_err(|e| InputError(format!("--temperature: {e}")))?,
         order: ElementOrder::from_degree(a.order.into()).expect("clap accepts only 1 and 2"),
     };
-    if a.points < 2 {
-        return Err(InputError(format!("--points must be at least 2, got {}", a.points)).into());
-    }
     let mut display = ProgressDisplay::steps("analyze", "currents", a.json);
-    let mut progress = |done, total| display.step(done, total);
+    let request = AnalysisRequest::of(&spec).options(options).observe(|c: &Count| {
+        display.step(c.done, c.total);
+        Flow::Continue
+    });
     let (analysis, field) = if a.plot_dir.is_some() {
-        let (analysis, field) =
-            analysis::analyze_with_field_and_progress(&spec, &options, &mut progress)?;
+        let (analysis, field) = request.run_with_field()?;
         (analysis, Some(field))
     } else {
-        (analysis::analyze_with_progress(&spec, &options, &mut progress)?, None)
+        (request.run()?, None)
     };
     display.finish();
     for w in &analysis.warnings {
@@ -110,12 +110,11 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
             a.order,
             a.points
         );
-        let model = mrbrake_device::brake_model::from_analysis(&analysis, &spec, &options, &how)?;
-        mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
+        let model = mrbrake::device::brake_model::from_analysis(&analysis, &spec, &options, &how)?;
+        mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if a.json {
         return print_json(&analysis);
     }
-    crate::out!("{}", report::text(&analysis, &source));
-    Ok(())
+    print_text(&report::text(&analysis, &source))
 }

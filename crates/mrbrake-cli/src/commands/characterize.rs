@@ -4,16 +4,16 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake_report::identification::CharacterizationReport;
-use mrbrake_report::operator::{operator_fit_json, operator_fit_text};
-use mrbrake_sysid::characterize::{CharacterizeOptions, characterize};
-use mrbrake_sysid::log::read_log;
-use mrbrake_sysid::operator_fit::{OperatorOptions, fit_operator_model};
-use mrbrake_sysid::outliers::check_outliers;
+use mrbrake::report::identification::CharacterizationReport;
+use mrbrake::report::operator::{operator_fit_json, operator_fit_text};
+use mrbrake::sysid::characterize::{CharacterizeOptions, characterize};
+use mrbrake::sysid::log::read_log;
+use mrbrake::sysid::operator_fit::{OperatorOptions, fit_operator_model};
+use mrbrake::sysid::outliers::check_outliers;
 
 use crate::error::InputError;
 use crate::error::{CommandResult, Context as _};
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 
 /// Arguments of `mrbrake characterize`.
 #[derive(Debug, Args)]
@@ -21,10 +21,10 @@ pub struct CharacterizeArgs {
     /// Log file (CSV with a header row) of the repeated current ramps.
     log: PathBuf,
     /// Polynomial order of each branch (the thesis uses 5).
-    #[arg(long, default_value_t = mrbrake_sysid::characterize::DEFAULT_ORDER)]
+    #[arg(long, default_value_t = mrbrake::sysid::characterize::DEFAULT_ORDER)]
     order: usize,
     /// Number of current bins used to average the repetitions.
-    #[arg(long, default_value_t = mrbrake_sysid::characterize::DEFAULT_BINS)]
+    #[arg(long, default_value_t = mrbrake::sysid::characterize::DEFAULT_BINS)]
     bins: usize,
     /// Name of the time column (seconds).
     #[arg(long, default_value = "time_s")]
@@ -54,7 +54,7 @@ pub struct CharacterizeArgs {
     /// The unit of `--brake-model` the log is of: 1 or 2.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=2), requires = "brake_model")]
     unit: u32,
-    /// Fit samples the outlier screen refuses (mrbrake_sysid::outliers: a sample more than ten
+    /// Fit samples the outlier screen refuses (mrbrake::sysid::outliers: a sample more than ten
     /// times the channel's 1st–99th percentile spread beyond them).
     #[arg(long)]
     keep_outliers: bool,
@@ -96,20 +96,20 @@ pub fn run(args: CharacterizeArgs) -> CommandResult {
         sample_rate_hz: log.mean_sample_rate_hz(),
     };
     if let Some(path) = &args.save_model {
-        // The characterisation's JSON is the inverse-model file (mrbrake_sysid::model_file).
+        // The characterisation's JSON is the inverse-model file (mrbrake::sysid::model_file).
         let text = crate::output::json_text(&c)?;
-        mrbrake_report::write_atomic(path, text.as_bytes())?;
+        mrbrake::report::write_atomic(path, text.as_bytes())?;
     }
     if let Some(path) = &args.brake_model {
-        let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
+        let mut model = mrbrake::sim::brake_model::BrakeModel::read(path)?;
         let source = format!(
             "mrbrake characterize {} (order {}, {} repetitions)",
-            mrbrake_report::wording::shell_quote(&args.log),
+            mrbrake::report::wording::shell_quote(&args.log),
             args.order,
             c.repetitions
         );
         model.set_identified_branches(args.unit, &c.model()?, &source)?;
-        mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
+        mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if let Some(path) = &args.plot {
         report.save_plot(path, current, torque)?;
@@ -117,8 +117,7 @@ pub fn run(args: CharacterizeArgs) -> CommandResult {
     if args.json {
         return print_json(&report.json()?);
     }
-    crate::out!("{}", report.text());
-    Ok(())
+    print_text(&report.text())
 }
 
 /// `mrbrake characterize --operators N`: the operator model from a log with minor loops.
@@ -129,11 +128,10 @@ fn run_operators(args: &CharacterizeArgs, plays: usize) -> CommandResult {
     let fit = fit_operator_model(current, torque, options)?;
     if let Some(path) = &args.save_model {
         let text = crate::output::json_text(&fit)?;
-        mrbrake_report::write_atomic(path, text.as_bytes())?;
+        mrbrake::report::write_atomic(path, text.as_bytes())?;
     }
     if args.json {
         return print_json(&operator_fit_json(&fit, &args.log)?);
     }
-    crate::out!("{}", operator_fit_text(&fit, &args.log, log.len()));
-    Ok(())
+    print_text(&operator_fit_text(&fit, &args.log, log.len()))
 }

@@ -4,12 +4,13 @@
 use std::path::PathBuf;
 
 use crate::error::Context;
+use crate::output::print_text;
 use clap::Args;
 
 use crate::error::CommandResult;
-use mrbrake_design::mesh_build::MeshLevel;
-use mrbrake_design::spec::{BrakeSpec, default_spec};
-use mrbrake_report::geometry as geometry_report;
+use mrbrake::design::mesh_build::MeshLevel;
+use mrbrake::design::spec::{BrakeSpec, default_spec};
+use mrbrake::report::geometry as geometry_report;
 
 /// Arguments of `mrbrake export-geo`.
 #[derive(Debug, Args)]
@@ -42,14 +43,13 @@ pub fn run(args: ExportGeoArgs) -> CommandResult {
     }
     let geometry = validated.geometry;
     let settings = level.settings(geometry.device.r1);
-    let text = mrbrake_design::geo_export::to_geo(&geometry, &settings, &spec.name)?;
-    mrbrake_report::write_atomic(&args.output, text.as_bytes())
+    let text = mrbrake::design::geo_export::to_geo(&geometry, &settings, &spec.name)?;
+    mrbrake::report::write_atomic(&args.output, text.as_bytes())
         .with_context(|| format!("writing {}", args.output.display()))?;
     if args.json {
         let warnings: Vec<String> = warnings.iter().map(ToString::to_string).collect();
         let report = geometry_report::export_json(&geometry, &spec.name, &args.output, &warnings);
         return crate::output::print_json(&report);
     }
-    crate::out!("{}", geometry_report::export_text(&geometry, &args.output));
-    Ok(())
+    print_text(&geometry_report::export_text(&geometry, &args.output))
 }

@@ -1,21 +1,22 @@
 //! `mrbrake fem solve PROBLEM.toml [--order 1|2] [--json] [--vtu out.vtu] [--plot out.svg]`:
 //! axisymmetric non-linear magnetostatics driven by a problem file (see
-//! `mrbrake_magnetics::problem_file`).
+//! `mrbrake::magnetics::problem_file`).
 
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use mrbrake_magnetics::ElementOrder;
-use mrbrake_magnetics::problem_file::{solve_file_with_order, vtu_files};
-use mrbrake_report::field_map::{FieldMap, View, save_field_map};
+use mrbrake::fem::dofs::ElementOrder;
+use mrbrake::problem_file::{self, Physics};
+use mrbrake::report::field_map::{FieldMap, View, save_field_map};
 
-use crate::error::CommandResult;
-use crate::output::print_json;
+use crate::error::{CommandResult, InputError};
+use crate::output::{print_json, print_text};
 
 /// `mrbrake fem ...` subcommands.
 #[derive(Debug, Subcommand)]
 pub enum FemCommand {
-    /// Solve a magnetostatic problem file (mesh, materials, sources, boundaries, probes).
+    /// Solve a problem file: magnetostatic (mesh, materials, sources, boundaries, probes), its
+    /// transient or harmonic magnetodynamics, or `physics = "heat"`.
     Solve(SolveArgs),
 }
 
@@ -59,44 +60,48 @@ fn solve(args: SolveArgs) -> CommandResult {
     let order = args
         .order
         .map(|degree| ElementOrder::from_degree(degree.into()).expect("clap accepts only 1 and 2"));
-    // `physics = "heat"` files go to the heat solver; every other file is magnetostatic.
-    if super::fem_heat::is_heat(&args.problem) {
-        let (vtu, plot) = (args.vtu.as_deref(), args.plot.as_deref());
-        return super::fem_heat::solve(&args.problem, order, args.json, vtu, plot);
-    }
-    let (report, solver, solution) = solve_file_with_order(&args.problem, order)?;
-    if let Some(path) = &args.vtu {
-        // The static field, a transient's chosen instants or a harmonic solve's phasors.
-        for (file, text) in vtu_files(&report, &solver, &solution, path) {
-            mrbrake_report::write_atomic(&file, text.as_bytes())?;
-        }
-    }
+    // The library reads the file's physics and solves it; a plot (|B| and flux lines) only has a
+    // meaning for a magnetic file, so a heat file's --plot is refused before the solve.
     if args.plot.is_some() {
-        let field = solver.field_snapshot(&solution);
-        if let Some(path) = &args.plot {
-            // The problem's name (its file name without the folder), not a path.
-            let name = args.problem.file_stem().map_or_else(
-                || args.problem.display().to_string(),
-                |s| s.to_string_lossy().into_owned(),
-            );
-            let title = format!("{name}: |B| and flux lines");
-            let map = FieldMap {
-                title: &title,
-                nodes: &field.nodes,
-                triangles: &field.triangles,
-                region_tags: &field.region_tags,
-                b_abs_t: &field.element_b_abs_t,
-                flux_function: &field.flux_function_wb,
-                flux_lines: args.flux_lines,
-                regions: &[],
-                view: View::Whole,
-            };
-            save_field_map(&map, path)?;
+        let text = std::fs::read_to_string(&args.problem).unwrap_or_default();
+        if problem_file::physics_of(&text, &args.problem)? == Physics::Heat {
+            return Err(InputError(
+                "--plot draws |B| maps of magnetostatic files; for a heat file use --vtu".into(),
+            )
+            .into());
         }
+    }
+    let solved = problem_file::solve(&args.problem, order)?;
+    if let Some(path) = &args.vtu {
+        // The static field, a transient's chosen instants, a harmonic solve's phasors, or the
+        // temperature of a heat file.
+        for (file, text) in solved.vtu_files(path) {
+            mrbrake::report::write_atomic(&file, text.as_bytes())?;
+        }
+    }
+    if let Some(path) = &args.plot {
+        let field = solved.field();
+        // The problem's name (its file name without the folder), not a path.
+        let name = args.problem.file_stem().map_or_else(
+            || args.problem.display().to_string(),
+            |s| s.to_string_lossy().into_owned(),
+        );
+        let title = format!("{name}: |B| and flux lines");
+        let map = FieldMap {
+            title: &title,
+            nodes: &field.nodes,
+            triangles: &field.triangles,
+            region_tags: &field.region_tags,
+            b_abs_t: &field.values,
+            flux_function: field.flux_function_wb.as_deref().unwrap_or_default(),
+            flux_lines: args.flux_lines,
+            regions: &[],
+            view: View::Whole,
+        };
+        save_field_map(&map, path)?;
     }
     if args.json {
-        return print_json(&report);
+        return print_json(&solved.report());
     }
-    crate::out!("{}", report.text(&args.problem.display().to_string()));
-    Ok(())
+    print_text(&solved.text(&args.problem.display().to_string()))
 }

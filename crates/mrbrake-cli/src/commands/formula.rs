@@ -3,19 +3,17 @@
 //! Torque of a single disc (3.6)/(3.7), multi-disc (3.8), drum (3.9) and multi-drum (4.4)/(4.5) brake
 //! from a yield stress (given, or looked up from the fluid's τ_y(B) curve at a flux density), with the
 //! optional viscous term at a speed; and the coil of a winding window ((4.1)–(4.3), resistance, power).
+//! The command only parses its flags into the library's requests
+//! (`mrbrake_design::formula::{torque, coil}`), which hold every range rule.
 
 use clap::{Args, Subcommand};
-use mrbrake_design::formula::{self, BrakeTorque, Viscous};
-use mrbrake_materials::{CopperWire, library};
-use mrbrake_report::formula::{
-    self as formula_report, BrakeFormulaReport, CoilReport, FluidSource, YieldStress,
-};
-use mrbrake_units::{Dimension, parse};
-use serde_json::{Value, json};
+use mrbrake::design::formula::{self, ClosedFormBrake, CoilRequest, TorqueRequest, WireChoice};
+use mrbrake::report::formula::{BrakeFormulaReport, CoilReport};
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
 use crate::error::InputError;
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 
 /// `mrbrake formula` subcommands.
 #[derive(Debug, Subcommand)]
@@ -36,16 +34,17 @@ pub enum FormulaCommand {
 #[derive(Debug, Args)]
 pub struct FluidArgs {
     /// Yield stress τ_y (e.g. 24.315kPa); or give --b to read it from the fluid's τ_y(B) curve.
-    // Not `required_unless_present`: clap's message would name --tau-y alone; `yield_stress`
-    // names both ways.
+    // Not `required_unless_present`: clap's message would name --tau-y alone; the library's
+    // request names both ways.
     #[arg(long = "tau-y", value_name = "STRESS", allow_hyphen_values = true, conflicts_with = "b")]
     tau_y: Option<String>,
     /// Mean flux density in the fluid (e.g. 0.46T); τ_y is then read from the fluid's τ_y(B) curve.
     #[arg(long, value_name = "FLUX_DENSITY", allow_hyphen_values = true)]
     b: Option<String>,
-    /// MR fluid used for --b and for the default viscosity (see `mrbrake materials list`).
-    #[arg(long, default_value = "mrf-122eg")]
-    fluid: String,
+    /// MR fluid used for --b and for the default viscosity (see `mrbrake materials list`);
+    /// default: mrf-122eg, the thesis's fluid.
+    #[arg(long, value_name = "NAME")]
+    fluid: Option<String>,
     /// Relative speed for the viscous term (e.g. 60rpm, 6.28rad/s); omitted: yield torque only.
     #[arg(long, value_name = "SPEED", allow_hyphen_values = true)]
     speed: Option<String>,
@@ -138,17 +137,17 @@ pub struct CoilArgs {
     wire_diameter: Option<String>,
     /// Inner radius of the winding (default 5mm: the shaft radius of the thesis's Table 4.5, where
     /// the concept design winds the coil directly on the shaft).
-    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true, default_value = "5mm")]
-    inner_radius: String,
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    inner_radius: Option<String>,
     /// Number of turns; default: as many as fit the window by (4.2)/(4.3).
     #[arg(long)]
     turns: Option<u32>,
-    /// Coil current (e.g. 2A).
-    #[arg(long, value_name = "CURRENT", allow_hyphen_values = true, default_value = "2A")]
-    current: String,
-    /// Copper temperature for the resistance (e.g. 20C, 75C).
-    #[arg(long, value_name = "TEMPERATURE", allow_hyphen_values = true, default_value = "20C")]
-    temperature: String,
+    /// Coil current (e.g. 2A); default 2A, the thesis's design current.
+    #[arg(long, value_name = "CURRENT", allow_hyphen_values = true)]
+    current: Option<String>,
+    /// Copper temperature for the resistance (e.g. 20C, 75C); default 20C.
+    #[arg(long, value_name = "TEMPERATURE", allow_hyphen_values = true)]
+    temperature: Option<String>,
     /// Print a JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -157,192 +156,97 @@ pub struct CoilArgs {
 /// Runs `mrbrake formula …`.
 pub fn run(command: FormulaCommand) -> CommandResult {
     match command {
-        FormulaCommand::SingleDisc(a) => disc(1, &a, "single-disc", "(3.6)/(3.7)"),
-        FormulaCommand::MultiDisc(a) => disc(a.discs, &a.disc, "multi-disc", "(3.8)"),
+        FormulaCommand::SingleDisc(a) => disc(1, &a),
+        FormulaCommand::MultiDisc(a) => disc(a.discs, &a.disc),
         FormulaCommand::Drum(a) => {
-            let r = length("--r", &a.r)?;
-            let h = length("--h", &a.h)?;
-            let fluid = resolve_fluid(&a.fluid)?;
-            let viscous = fluid.viscous(a.gap.as_deref())?;
-            let t = formula::drum(r, h, fluid.source.tau_y_pa, viscous)?;
-            let inputs = json!({ "r_m": r, "h_m": h });
-            report("drum", "(3.9)", inputs, &fluid, viscous, t, a.fluid.json)
+            let brake =
+                ClosedFormBrake::Drum { r_m: length("--r", &a.r)?, h_m: length("--h", &a.h)? };
+            brake_torque(brake, &a.fluid, a.gap.as_deref())
         }
         FormulaCommand::MultiDrum(a) => {
-            let r0 = length("--r0", &a.r0)?;
-            let h = length("--h", &a.h)?;
-            let d = length("--d", &a.d)?;
-            let g = length("--g", &a.g)?;
-            let fluid = resolve_fluid(&a.fluid)?;
-            let eta_omega = fluid.speed.map(|w| (fluid.eta_pa_s, w));
-            let t = formula::multi_drum(r0, h, d, g, a.surfaces, fluid.source.tau_y_pa, eta_omega)?;
-            let radii = formula::multi_drum_radii(r0, d, g, a.surfaces);
-            let inputs = json!({
-                "r0_m": r0, "h_m": h, "d_m": d, "g_m": g, "surfaces": a.surfaces, "radii_m": radii,
-            });
-            let viscous =
-                fluid.speed.map(|w| Viscous { eta_pa_s: fluid.eta_pa_s, omega_rad_s: w, gap_m: g });
-            report("multi-drum", "(4.4)/(4.5)", inputs, &fluid, viscous, t, a.fluid.json)
+            let brake = ClosedFormBrake::MultiDrum {
+                r0_m: length("--r0", &a.r0)?,
+                h_m: length("--h", &a.h)?,
+                d_m: length("--d", &a.d)?,
+                g_m: length("--g", &a.g)?,
+                surfaces: a.surfaces,
+            };
+            brake_torque(brake, &a.fluid, None)
         }
         FormulaCommand::Coil(a) => coil(a),
     }
 }
 
 /// Single disc (n = 1) or multi-disc brake torque, (3.6)–(3.8).
-fn disc(n: u32, a: &SingleDiscArgs, configuration: &str, equation: &str) -> CommandResult {
-    let r1 = length("--r1", &a.r1)?;
-    let r2 = length("--r2", &a.r2)?;
-    let fluid = resolve_fluid(&a.fluid)?;
-    let viscous = fluid.viscous(a.gap.as_deref())?;
-    let t = formula::multi_disc(n, r1, r2, fluid.source.tau_y_pa, viscous)?;
-    let inputs = json!({ "discs": n, "r1_m": r1, "r2_m": r2 });
-    report(configuration, equation, inputs, &fluid, viscous, t, a.fluid.json)
+fn disc(discs: u32, a: &SingleDiscArgs) -> CommandResult {
+    let brake = ClosedFormBrake::Discs {
+        discs,
+        r1_m: length("--r1", &a.r1)?,
+        r2_m: length("--r2", &a.r2)?,
+    };
+    brake_torque(brake, &a.fluid, a.gap.as_deref())
 }
 
 fn length(flag: &str, text: &str) -> CommandResult<f64> {
-    parse(text, Dimension::Length).map_err(|e| InputError(format!("{flag}: {e}")).into())
+    quantity(flag, text, Dimension::Length)
 }
 
-/// The yield stress (and where it came from) plus the viscous-term inputs.
-struct ResolvedFluid {
-    source: FluidSource,
-    eta_pa_s: f64,
-    speed: Option<f64>,
+/// A quantity flag's value in SI, with the flag in front of any parse error.
+fn quantity(flag: &str, text: &str, dimension: Dimension) -> CommandResult<f64> {
+    parse(text, dimension).map_err(|e| InputError(format!("{flag}: {e}")).into())
 }
 
-impl ResolvedFluid {
-    /// The viscous term for brakes whose gap is an extra option (disc, drum).
-    fn viscous(&self, gap: Option<&str>) -> CommandResult<Option<Viscous>> {
-        let Some(omega) = self.speed else { return Ok(None) };
-        let Some(gap) = gap else {
-            return Err(InputError(
-                "--speed needs --gap (the fluid gap sheared at that speed)".into(),
-            )
-            .into());
-        };
-        Ok(Some(Viscous {
-            eta_pa_s: self.eta_pa_s,
-            omega_rad_s: omega,
-            gap_m: length("--gap", gap)?,
-        }))
-    }
+/// An optional quantity flag's value in SI.
+fn optional(flag: &str, text: Option<&str>, dimension: Dimension) -> CommandResult<Option<f64>> {
+    text.map(|t| quantity(flag, t, dimension)).transpose()
 }
 
-/// The yield stress from `--tau-y` or from the fluid's curve at `--b`, range-checked.
-fn yield_stress(a: &FluidArgs) -> CommandResult<YieldStress> {
-    match (&a.tau_y, &a.b) {
-        (Some(t), _) => {
-            let tau =
-                parse(t, Dimension::Stress).map_err(|e| InputError(format!("--tau-y: {e}")))?;
-            if tau < 0.0 {
-                return Err(InputError(format!("--tau-y must be >= 0, got {t}")).into());
-            }
-            Ok(YieldStress::Given(tau))
-        }
-        (None, Some(b)) => {
-            let b_t =
-                parse(b, Dimension::FluxDensity).map_err(|e| InputError(format!("--b: {e}")))?;
-            if !(0.0..=3.0).contains(&b_t) {
-                return Err(InputError(format!("--b must be between 0 T and 3 T, got {b}")).into());
-            }
-            Ok(YieldStress::AtFluxDensity(b_t))
-        }
-        (None, None) => Err(InputError(
-            "give the yield stress: --tau-y STRESS (e.g. 24.315kPa), or --b FLUX_DENSITY (e.g. \
-             0.46T) to read it from the fluid's τ_y(B) curve"
-                .into(),
-        )
-        .into()),
-    }
-}
-
-fn resolve_fluid(a: &FluidArgs) -> CommandResult<ResolvedFluid> {
-    let fluid = library::fluid(&a.fluid)?;
-    let yield_stress = yield_stress(a)?;
-    let speed = match &a.speed {
-        Some(s) => Some(
-            parse(s, Dimension::AngularVelocity)
-                .map_err(|e| InputError(format!("--speed: {e}")))?,
-        ),
-        None => None,
+/// The torque of `brake` by the library's closed-form request (which checks every value), as
+/// text or JSON.
+fn brake_torque(brake: ClosedFormBrake, a: &FluidArgs, gap: Option<&str>) -> CommandResult {
+    let request = TorqueRequest {
+        brake,
+        tau_y_pa: optional("--tau-y", a.tau_y.as_deref(), Dimension::Stress)?,
+        b_t: optional("--b", a.b.as_deref(), Dimension::FluxDensity)?,
+        fluid: a.fluid.clone(),
+        speed_rad_s: optional("--speed", a.speed.as_deref(), Dimension::AngularVelocity)?,
+        eta_pa_s: optional("--eta", a.eta.as_deref(), Dimension::Viscosity)?,
+        gap_m: optional("--gap", gap, Dimension::Length)?,
     };
-    let eta = match &a.eta {
-        Some(e) => {
-            let eta = parse(e, Dimension::Viscosity)
-                .map_err(|err| InputError(format!("--eta: {err}")))?;
-            if eta < 0.0 {
-                return Err(InputError(format!("--eta must be >= 0, got {e}")).into());
-            }
-            Some(eta)
-        }
-        None => None,
-    };
-    let (source, eta_pa_s) = FluidSource::resolve(fluid, yield_stress, eta);
-    Ok(ResolvedFluid { source, eta_pa_s, speed })
-}
-
-fn report(
-    configuration: &str,
-    equation: &str,
-    inputs: Value,
-    fluid: &ResolvedFluid,
-    viscous: Option<Viscous>,
-    torque: BrakeTorque,
-    as_json: bool,
-) -> CommandResult {
-    let report = BrakeFormulaReport {
-        configuration,
-        equation,
-        inputs,
-        fluid: &fluid.source,
-        viscous,
-        torque,
-    };
-    if as_json {
-        return print_json(&report.json());
-    }
-    crate::out!("{}", report.text());
-    Ok(())
-}
-
-fn coil(a: CoilArgs) -> CommandResult {
-    let cw = length("--window-width", &a.window_width)?;
-    let ch = length("--window-height", &a.window_height)?;
-    let inner = length("--inner-radius", &a.inner_radius)?;
-    let current =
-        parse(&a.current, Dimension::Current).map_err(|e| InputError(format!("--current: {e}")))?;
-    let temperature = parse(&a.temperature, Dimension::TemperatureCelsius)
-        .map_err(|e| InputError(format!("--temperature: {e}")))?;
-    let wire = match (a.awg, &a.wire_diameter) {
-        (Some(awg), _) => CopperWire::awg(awg)?,
-        (None, Some(d)) => CopperWire::from_diameter(length("--wire-diameter", d)?)?,
-        (None, None) => return Err(InputError("give --awg or --wire-diameter".into()).into()),
-    };
-    let window = formula::turns_in_window(cw, ch, wire.diameter_m / 2.0)?;
-    let turns = a.turns.unwrap_or(window.turns);
-    if let Some(warning) = formula_report::turns_warning(turns, &window) {
-        eprintln!("warning: {warning}");
-    }
-    let mean_radius = formula::coil_mean_radius(inner, cw);
-    let electrics = formula::coil_electrics(turns, mean_radius, &wire, current, temperature)?;
-    if let Some(warning) = formula_report::rating_warning(&wire, current) {
-        eprintln!("warning: {warning}");
-    }
-    let report = CoilReport {
-        window_width_m: cw,
-        window_height_m: ch,
-        inner_radius_m: inner,
-        wire: &wire,
-        current_a: current,
-        temperature_c: temperature,
-        window,
-        turns,
-        mean_radius_m: mean_radius,
-        electrics,
-    };
+    let answer = formula::torque(&request)?;
+    let report = BrakeFormulaReport(&answer);
     if a.json {
         return print_json(&report.json());
     }
-    crate::out!("{}", report.text());
-    Ok(())
+    print_text(&report.text())
+}
+
+fn coil(a: CoilArgs) -> CommandResult {
+    let wire = match (a.awg, &a.wire_diameter) {
+        (Some(awg), _) => Some(WireChoice::Awg(awg)),
+        (None, Some(d)) => Some(WireChoice::Diameter(length("--wire-diameter", d)?)),
+        (None, None) => None,
+    };
+    let request = CoilRequest {
+        window_width_m: length("--window-width", &a.window_width)?,
+        window_height_m: length("--window-height", &a.window_height)?,
+        wire,
+        inner_radius_m: optional("--inner-radius", a.inner_radius.as_deref(), Dimension::Length)?,
+        turns: a.turns,
+        current_a: optional("--current", a.current.as_deref(), Dimension::Current)?,
+        temperature_c: optional(
+            "--temperature",
+            a.temperature.as_deref(),
+            Dimension::TemperatureCelsius,
+        )?,
+    };
+    let answer = formula::coil(&request)?;
+    for warning in &answer.warnings {
+        eprintln!("warning: {warning}");
+    }
+    let report = CoilReport(&answer);
+    if a.json {
+        return print_json(&report.json());
+    }
+    print_text(&report.text())
 }

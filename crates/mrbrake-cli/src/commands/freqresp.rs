@@ -4,15 +4,15 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake_report::identification::{
+use mrbrake::report::identification::{
     frequency_response_json, frequency_response_text, save_frequency_response_plot,
 };
-use mrbrake_sysid::freqresp::{FreqRespOptions, frd_csv, frequency_response};
-use mrbrake_units::{Dimension, parse};
+use mrbrake::sysid::freqresp::{FreqRespOptions, frd_csv, frequency_response};
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::InputError;
 use crate::error::{CommandResult, Context as _};
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 
 /// Arguments of `mrbrake freqresp`.
 #[derive(Debug, Args)]
@@ -42,7 +42,7 @@ pub struct FreqRespArgs {
     #[arg(
         long,
         value_name = "PERCENT",
-        default_value_t = mrbrake_sysid::freqresp::DEFAULT_MIN_QUALITY_PERCENT,
+        default_value_t = mrbrake::sysid::freqresp::DEFAULT_MIN_QUALITY_PERCENT,
         allow_hyphen_values = true
     )]
     min_quality: f64,
@@ -75,13 +75,12 @@ pub fn run(args: FreqRespArgs) -> CommandResult {
     };
     let points = frequency_response(&args.manifest, &options)?;
     let out = args.output.clone().unwrap_or_else(|| args.manifest.with_file_name("frd.csv"));
-    mrbrake_report::write_atomic(&out, frd_csv(&points).as_bytes())?;
+    mrbrake::report::write_atomic(&out, frd_csv(&points).as_bytes())?;
     if let Some(path) = &args.plot {
         save_frequency_response_plot(path, &points)?;
     }
     if args.json {
         return print_json(&frequency_response_json(&points, &out)?);
     }
-    crate::out!("{}", frequency_response_text(&points, &out));
-    Ok(())
+    print_text(&frequency_response_text(&points, &out))
 }

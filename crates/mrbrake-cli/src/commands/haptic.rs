@@ -5,20 +5,21 @@ use std::path::PathBuf;
 
 use crate::error::Context;
 use clap::{Args, Subcommand, ValueEnum};
-use mrbrake_report::haptic::{
+use mrbrake::observe::{Count, Flow};
+use mrbrake::report::haptic::{
     save_zwidth_plot, trace_csv, wall_metrics_text, wall_plot_title, wall_runs_figure,
     zwidth_summary, zwidth_text,
 };
-use mrbrake_sim::brake_model::BrakeModel;
-use mrbrake_sim::brake_model::apply::apply_to_haptic;
-use mrbrake_sim::haptic::zwidth::{ZWidthConfig, sweep_with_progress};
-use mrbrake_sim::haptic::{DeviceKind, HapticConfig, HapticRun, Scenario, simulate};
-use mrbrake_sysid::model_file::read_inverse_model;
-use mrbrake_units::{Dimension, parse};
+use mrbrake::sim::brake_model::BrakeModel;
+use mrbrake::sim::brake_model::apply::apply_to_haptic;
+use mrbrake::sim::haptic::zwidth::{ZWidthConfig, sweep};
+use mrbrake::sim::haptic::{DeviceKind, HapticConfig, HapticRun, Scenario, simulate};
+use mrbrake::sysid::model_file::read_inverse_model;
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
 use crate::error::InputError;
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
 
 /// `mrbrake haptic` subcommands.
@@ -108,7 +109,7 @@ pub struct WallArgs {
     model: Option<PathBuf>,
     /// Brake model (JSON from `mrbrake analyze --save-model`): brake 1 runs unit 1, brake 2 unit 2
     /// (a single-unit model drives both), in the plant and in the controller, with the model's
-    /// dynamics where it has them (see `mrbrake_sim::brake_model`); default: the built-in
+    /// dynamics where it has them (see `mrbrake::sim::brake_model`); default: the built-in
     /// prototype-like brakes (examples/brake-models/prototype.json).
     #[arg(long, value_name = "FILE.json", conflicts_with = "model")]
     brake_model: Option<PathBuf>,
@@ -237,7 +238,7 @@ fn wall(args: WallArgs) -> CommandResult {
     let record = args.plot.is_some() || args.csv.is_some();
     let run = simulate(&wall_config(&args, device)?, record)?;
     if let Some(path) = &args.csv {
-        mrbrake_report::write_atomic(path, trace_csv(device, &run)?.as_bytes())?;
+        mrbrake::report::write_atomic(path, trace_csv(device, &run)?.as_bytes())?;
     }
     if let Some(path) = &args.plot {
         let title = wall_plot_title(run.metrics.scenario, stiffness, damping);
@@ -259,15 +260,11 @@ fn wall(args: WallArgs) -> CommandResult {
     if args.json {
         return print_json(&run.metrics);
     }
-    crate::out!("{}", wall_metrics_text(&run.metrics, stiffness));
-    Ok(())
+    print_text(&wall_metrics_text(&run.metrics, stiffness))
 }
 
 fn zwidth(args: ZwidthArgs) -> CommandResult {
     let period = parse(&args.period, Dimension::Time).context("--period")?;
-    if !(2..=1000).contains(&args.points) {
-        return Err(InputError(format!("--points = {} must be in 2..=1000", args.points)).into());
-    }
     crate::output::check_plot_path("--plot", args.plot.as_deref())?;
     let (stiffness, damping) = (Dimension::RotationalStiffness, Dimension::RotationalDamping);
     let config = ZWidthConfig {
@@ -289,10 +286,13 @@ fn zwidth(args: ZwidthArgs) -> CommandResult {
         ..ZWidthConfig::default()
     };
     let mut display = ProgressDisplay::steps("haptic zwidth", "stiffness rows", args.json);
-    let map = sweep_with_progress(&config, &mut |done, total| display.step(done, total))?;
+    let map = sweep(&config, &mut |c: &Count| {
+        display.step(c.done, c.total);
+        Flow::Continue
+    })?;
     display.finish();
     if let Some(path) = &args.csv {
-        mrbrake_report::write_atomic(path, map.to_csv().as_bytes())?;
+        mrbrake::report::write_atomic(path, map.to_csv().as_bytes())?;
     }
     if let Some(path) = &args.plot {
         save_zwidth_plot(path, &map)?;
@@ -300,6 +300,5 @@ fn zwidth(args: ZwidthArgs) -> CommandResult {
     if args.json {
         return print_json(&zwidth_summary(&map));
     }
-    crate::out!("{}", zwidth_text(&map));
-    Ok(())
+    print_text(&zwidth_text(&map))
 }

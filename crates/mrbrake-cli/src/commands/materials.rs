@@ -1,13 +1,13 @@
 //! `mrbrake materials …`: the built-in material library (names, curves, derived values, provenance).
 
 use clap::{Args, Subcommand};
-use mrbrake_materials::library;
-use mrbrake_report::materials::{self as report, DEFAULT_B_T, DEFAULT_H_A_PER_M};
-use mrbrake_units::{Dimension, parse};
+use mrbrake::materials::library;
+use mrbrake::report::materials::{self as report, DEFAULT_B_T, DEFAULT_H_A_PER_M};
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
 use crate::error::InputError;
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 
 /// `mrbrake materials` subcommands.
 #[derive(Debug, Subcommand)]
@@ -61,8 +61,7 @@ fn list(a: &ListArgs) -> CommandResult {
     if a.json {
         return print_json(&report::list_json(&rows));
     }
-    crate::out!("{}", report::list_text(&rows));
-    Ok(())
+    print_text(&report::list_text(&rows))
 }
 
 /// Parses a list of non-negative quantities of one dimension.
@@ -99,6 +98,5 @@ fn show(a: &ShowArgs) -> CommandResult {
     if a.json {
         return print_json(&report::show_json(material, &b_values, &h_values));
     }
-    crate::out!("{}", report::show_text(material, &b_values, &h_values, !a.no_points));
-    Ok(())
+    print_text(&report::show_text(material, &b_values, &h_values, !a.no_points))
 }

@@ -8,7 +8,6 @@ mod analyze;
 mod characterize;
 mod export_geo;
 mod fem;
-mod fem_heat;
 mod formula;
 mod freqresp;
 mod haptic;

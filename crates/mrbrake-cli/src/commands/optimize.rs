@@ -5,13 +5,14 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake_explore::optimize;
-use mrbrake_explore::problem::{BudgetOverride, OptimizationProblem};
-use mrbrake_report::study::{self as study_report, OptimizationReport};
+use mrbrake::explore::optimize::{self, OptimizeProgress};
+use mrbrake::explore::problem::{BudgetOverride, OptimizationProblem};
+use mrbrake::observe::Flow;
+use mrbrake::report::study::{self as study_report, OptimizationReport};
 
 use crate::error::CommandResult;
 use crate::error::InputError;
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
 
 /// Arguments of `mrbrake optimize`.
@@ -54,8 +55,7 @@ pub struct OptimizeArgs {
 /// Runs `mrbrake optimize`.
 pub fn run(a: OptimizeArgs) -> CommandResult {
     if a.list_metrics {
-        crate::out!("{}", study_report::metrics_text());
-        return Ok(());
+        return print_text(&study_report::metrics_text());
     }
     let path = a.problem.as_ref().ok_or_else(|| InputError("give a PROBLEM.toml".into()))?;
     let mut problem = OptimizationProblem::from_path(path)?;
@@ -67,7 +67,10 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     let store_path = a.store.clone().unwrap_or_else(|| optimize::default_store_path(path));
     let mut store = optimize::open_problem_store(&problem, &store_path, a.resume)?;
     let mut display = ProgressDisplay::new("optimize", a.json);
-    let result = optimize::run(&problem, &mut store, a.jobs, &mut |p| display.update_optimize(p))?;
+    let result = optimize::run(&problem, &mut store, a.jobs, &mut |p: &OptimizeProgress| {
+        display.update_optimize(p);
+        Flow::Continue
+    })?;
     display.finish();
 
     let report = OptimizationReport {
@@ -82,6 +85,5 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     if a.json {
         return print_json(&report.json());
     }
-    crate::out!("{}", report.text(a.out.as_deref()));
-    Ok(())
+    print_text(&report.text(a.out.as_deref()))
 }

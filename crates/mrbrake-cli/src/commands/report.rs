@@ -1,17 +1,17 @@
 //! `mrbrake report`: one self-contained HTML file (inline CSS and figures, no script, nothing
 //! fetched) for a design (`[SPEC]`), a study (`--store`) or a characterisation (`--log`, `--frd`).
-//! The pages are composed by `mrbrake_report::html`; this command parses, runs the analyses and
+//! The pages are composed by `mrbrake::report::html`; this command parses, runs the analyses and
 //! writes the file atomically.
 
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake_design::analysis::{self, AnalysisOptions, ElementOrder};
-use mrbrake_design::geometry;
-use mrbrake_design::mesh_build::MeshLevel;
-use mrbrake_design::spec::{BrakeSpec, DEFAULT_SPEC_TOML, default_spec};
-use mrbrake_report::html::design::DesignReport;
-use mrbrake_units::{Dimension, parse};
+use mrbrake::design::analysis::{AnalysisOptions, AnalysisRequest, ElementOrder};
+use mrbrake::design::geometry;
+use mrbrake::design::mesh_build::MeshLevel;
+use mrbrake::design::spec::{BrakeSpec, DEFAULT_SPEC_TOML, default_spec};
+use mrbrake::report::html::design::DesignReport;
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::{CommandResult, InputError};
 
@@ -40,13 +40,13 @@ pub struct ReportArgs {
     #[arg(long, value_name = "FRD.csv", requires = "log")]
     frd: Option<PathBuf>,
     /// Poles of the fitted transfer function (with --frd).
-    #[arg(long, default_value_t = mrbrake_sysid::request::DEFAULT_POLES, requires = "frd")]
+    #[arg(long, default_value_t = mrbrake::sysid::request::DEFAULT_POLES, requires = "frd")]
     poles: usize,
     /// Zeros of the fitted transfer function (with --frd).
-    #[arg(long, default_value_t = mrbrake_sysid::request::DEFAULT_ZEROS, requires = "frd")]
+    #[arg(long, default_value_t = mrbrake::sysid::request::DEFAULT_ZEROS, requires = "frd")]
     zeros: usize,
     /// Polynomial order of the hysteresis branch fits (with --log).
-    #[arg(long, default_value_t = mrbrake_sysid::characterize::DEFAULT_ORDER, requires = "log")]
+    #[arg(long, default_value_t = mrbrake::sysid::characterize::DEFAULT_ORDER, requires = "log")]
     fit_order: usize,
     /// Mesh density of a design report: coarse, default or fine.
     #[arg(long, default_value = "default")]
@@ -82,7 +82,7 @@ pub fn run(a: ReportArgs) -> CommandResult {
     } else {
         design_page(&a)?
     };
-    mrbrake_report::write_atomic(&a.output, page.as_bytes())?;
+    mrbrake::report::write_atomic(&a.output, page.as_bytes())?;
     eprintln!("wrote {}", a.output.display());
     Ok(())
 }
@@ -98,9 +98,6 @@ fn design_page(a: &ReportArgs) -> CommandResult<String> {
         }
         None => (default_spec(), DEFAULT_SPEC_TOML.to_string()),
     };
-    if a.points < 2 {
-        return Err(InputError(format!("--points must be at least 2, got {}", a.points)).into());
-    }
     let options = AnalysisOptions {
         mesh: MeshLevel::parse(&a.mesh)?,
         points: a.points,
@@ -111,7 +108,7 @@ fn design_page(a: &ReportArgs) -> CommandResult<String> {
         order: ElementOrder::from_degree(a.order.into()).expect("clap accepts only 1 and 2"),
         ..AnalysisOptions::default()
     };
-    let (analysis, field) = analysis::analyze_with_field(&spec, &options)?;
+    let (analysis, field) = AnalysisRequest::of(&spec).options(options).run_with_field()?;
     for w in &analysis.warnings {
         eprintln!("warning: {w}");
     }
@@ -134,9 +131,9 @@ fn design_page(a: &ReportArgs) -> CommandResult<String> {
 mod study {
     use std::path::Path;
 
-    use mrbrake_explore::problem::{Objective, OptimizationProblem};
-    use mrbrake_report::html::study::{DEFAULT_OBJECTIVES, StudyReport};
-    use mrbrake_store::Store;
+    use mrbrake::explore::problem::{Objective, OptimizationProblem};
+    use mrbrake::report::html::study::{DEFAULT_OBJECTIVES, StudyReport};
+    use mrbrake::store::Store;
 
     use crate::error::CommandResult;
 
@@ -144,8 +141,7 @@ mod study {
     /// records, else the default pair.
     pub fn page(store: &Path, problem: Option<&Path>) -> CommandResult<String> {
         let opened = Store::open_read_only(store)?;
-        let mut records = opened.records()?;
-        records.iter_mut().for_each(mrbrake_explore::evaluate::upgrade_metric_names);
+        let records = mrbrake::explore::stored::read_records(&opened)?;
         let recorded = opened.meta("problem")?;
         let problem = match (problem, recorded) {
             (Some(path), _) => {
@@ -192,11 +188,11 @@ mod study {
 mod characterization {
     use std::path::Path;
 
-    use mrbrake_report::html::characterization::CharacterizationPage;
-    use mrbrake_report::identification::CharacterizationReport;
-    use mrbrake_sysid::characterize::CharacterizeOptions;
-    use mrbrake_sysid::request::CharacterizationRequest;
-    use mrbrake_sysid::tfest::TfestOptions;
+    use mrbrake::report::html::characterization::CharacterizationPage;
+    use mrbrake::report::identification::CharacterizationReport;
+    use mrbrake::sysid::characterize::CharacterizeOptions;
+    use mrbrake::sysid::request::CharacterizationRequest;
+    use mrbrake::sysid::tfest::TfestOptions;
 
     use crate::error::{CommandResult, InputError};
 
@@ -244,28 +240,28 @@ mod characterization {
 /// The sections of the analyses asked for beside the static one (`--response`).
 fn extra_sections(
     a: &ReportArgs,
-    spec: &mrbrake_design::spec::BrakeSpec,
-) -> CommandResult<Vec<mrbrake_report::html::Section>> {
+    spec: &mrbrake::design::spec::BrakeSpec,
+) -> CommandResult<Vec<mrbrake::report::html::Section>> {
     let mut sections = Vec::new();
     if a.response {
-        let mut options = mrbrake_design::response::ResponseOptions {
-            mesh: mrbrake_design::mesh_build::MeshLevel::parse(&a.mesh)?,
+        let mut options = mrbrake::design::response::ResponseOptions {
+            mesh: mrbrake::design::mesh_build::MeshLevel::parse(&a.mesh)?,
             ..Default::default()
         };
         // The eddy-current map at the instant `mrbrake response --plot-dir` draws by default.
         options.eddy_at_s = Some(options.default_eddy_at_s());
-        let r = mrbrake_design::response::response(spec, &options)?;
-        sections.push(mrbrake_report::html::response::section(&r, a.spec.is_none())?);
+        let r = mrbrake::design::response::response(spec, &options)?;
+        sections.push(mrbrake::report::html::response::section(&r, a.spec.is_none())?);
     }
     if a.thermal {
-        let options = mrbrake_design::thermal::ThermalOptions {
-            mesh: mrbrake_design::mesh_build::MeshLevel::parse(&a.mesh)?,
+        let options = mrbrake::design::thermal::ThermalOptions {
+            mesh: mrbrake::design::mesh_build::MeshLevel::parse(&a.mesh)?,
             current_a: spec.coil.max_current.a(),
             behaviour: true,
             ..Default::default()
         };
-        let (r, field) = mrbrake_design::thermal::analyze_thermal_with_field(spec, &options)?;
-        sections.push(mrbrake_report::html::thermal::section(&r, &field)?);
+        let (r, field) = mrbrake::design::thermal::analyze_thermal_with_field(spec, &options)?;
+        sections.push(mrbrake::report::html::thermal::section(&r, &field)?);
     }
     Ok(sections)
 }

@@ -4,14 +4,14 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake_design::mesh_build::MeshLevel;
-use mrbrake_design::response::{ElementOrder, ResponseDrive, ResponseOptions, response};
-use mrbrake_design::spec::{BrakeSpec, default_spec};
-use mrbrake_report::response as report;
-use mrbrake_units::{Dimension, parse};
+use mrbrake::design::mesh_build::MeshLevel;
+use mrbrake::design::response::{ElementOrder, ResponseDrive, ResponseOptions, response};
+use mrbrake::design::spec::{BrakeSpec, default_spec};
+use mrbrake::report::response as report;
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::{CommandResult, InputError};
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 
 /// Arguments of `mrbrake response`.
 #[derive(Debug, Args)]
@@ -117,7 +117,7 @@ pub fn run(a: ResponseArgs) -> CommandResult {
     };
     let r = response(&spec, &options(&a)?)?;
     if let Some(path) = &a.frd {
-        mrbrake_report::write_atomic(path, r.frequency_response.to_csv().as_bytes())?;
+        mrbrake::report::write_atomic(path, r.frequency_response.to_csv().as_bytes())?;
     }
     if let Some(dir) = &a.plot_dir {
         std::fs::create_dir_all(dir).map_err(|e| {
@@ -128,15 +128,14 @@ pub fn run(a: ResponseArgs) -> CommandResult {
     let source =
         a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     if let Some(path) = &a.save_model {
-        let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
+        let mut model = mrbrake::sim::brake_model::BrakeModel::read(path)?;
         let word = super::analyze::command_word(a.spec.as_deref(), &source);
         let how = format!("mrbrake response {word} (--mesh {} --drive {})", a.mesh, a.drive);
-        mrbrake_device::brake_model::add_dynamics(&mut model, &r, &how)?;
-        mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
+        mrbrake::device::brake_model::add_dynamics(&mut model, &r, &how)?;
+        mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if a.json {
         return print_json(&r);
     }
-    crate::out!("{}", report::text(&r, &source));
-    Ok(())
+    print_text(&report::text(&r, &source))
 }

@@ -3,16 +3,16 @@
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use mrbrake_report::operator::tracking_text;
-use mrbrake_report::rig::{rig_json, rig_text, write_rig_folder};
-use mrbrake_sim::brake_model::BrakeModel;
-use mrbrake_sim::brake_model::apply::apply_to_rig;
-use mrbrake_sim::rig::{self, RigConfig};
-use mrbrake_sysid::model_file::read_inverse_model;
-use mrbrake_sysid::operator_fit::read_torque_inverse;
+use mrbrake::report::operator::tracking_text;
+use mrbrake::report::rig::{rig_json, rig_text, write_rig_folder};
+use mrbrake::sim::brake_model::BrakeModel;
+use mrbrake::sim::brake_model::apply::apply_to_rig;
+use mrbrake::sim::rig::{self, RigConfig};
+use mrbrake::sysid::model_file::read_inverse_model;
+use mrbrake::sysid::operator_fit::read_torque_inverse;
 
 use crate::error::CommandResult;
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 
 /// `mrbrake rig` subcommands.
 #[derive(Debug, Subcommand)]
@@ -48,7 +48,7 @@ pub struct RigArgs {
     seed: Option<u64>,
     /// Brake model (JSON from `mrbrake analyze --save-model`) replacing the configuration's
     /// `[brake]`: its branches, maximum current, dynamics and viscous term (see
-    /// `mrbrake_sim::brake_model`); default: the configured (built-in prototype-like) brake.
+    /// `mrbrake::sim::brake_model`); default: the configured (built-in prototype-like) brake.
     #[arg(long, value_name = "FILE.json")]
     brake_model: Option<PathBuf>,
     /// Which unit of the brake model is on the rig: 1 or 2.
@@ -101,10 +101,7 @@ fn load_config(args: &RigArgs) -> CommandResult<RigConfig> {
 /// Runs `mrbrake rig …`.
 pub fn run(command: RigCommand) -> CommandResult {
     match command {
-        RigCommand::Config => {
-            crate::out!("{}", RigConfig::default().to_toml());
-            Ok(())
-        }
+        RigCommand::Config => print_text(&RigConfig::default().to_toml()),
         RigCommand::Characterize(args) => {
             let config = load_config(&args)?;
             let file = rig::characterization_log(&config)?;
@@ -130,7 +127,7 @@ pub fn run(command: RigCommand) -> CommandResult {
                     &serde_json::json!({ "files": rig_json(&written), "scores": scores }),
                 );
             }
-            crate::out!("{}", tracking_text(&scores));
+            print_text(&tracking_text(&scores))?;
             report(&args.common, &written, "tracking logs")
         }
         RigCommand::Freqresp(args) => {
@@ -147,6 +144,5 @@ fn report(args: &RigArgs, written: &[PathBuf], what: &str) -> CommandResult {
     if args.json {
         return print_json(&rig_json(written));
     }
-    crate::out!("{}", rig_text(what, &args.out, written));
-    Ok(())
+    print_text(&rig_text(what, &args.out, written))
 }

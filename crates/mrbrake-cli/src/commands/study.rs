@@ -2,13 +2,13 @@
 //! on mrbrake's own geometries and prints each beside the thesis's values.
 
 use clap::{Args, Subcommand};
-use mrbrake_design::analysis::AnalysisOptions;
-use mrbrake_design::mesh_build::MeshLevel;
-use mrbrake_design::study;
-use mrbrake_report::study::thesis_tables_text;
+use mrbrake::design::analysis::AnalysisOptions;
+use mrbrake::design::mesh_build::MeshLevel;
+use mrbrake::design::study;
+use mrbrake::report::study::thesis_tables_text;
 
 use crate::error::CommandResult;
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 
 /// `mrbrake study` subcommands.
 #[derive(Debug, Subcommand)]
@@ -39,8 +39,7 @@ pub fn run(command: StudyCommand) -> CommandResult {
             if a.json {
                 return print_json(&tables);
             }
-            crate::out!("{}", thesis_tables_text(&tables));
-            Ok(())
+            print_text(&thesis_tables_text(&tables))
         }
     }
 }

@@ -5,18 +5,19 @@ use std::path::PathBuf;
 
 use crate::error::Context;
 use clap::Args;
-use mrbrake_design::analysis::ElementOrder;
-use mrbrake_design::mesh_build::MeshLevel;
-use mrbrake_design::spec::DEFAULT_SPEC_TOML;
-use mrbrake_explore::plan::{self, Sampling, Shard, SweepPlan, SweepRequest};
-use mrbrake_explore::{EvaluationSettings, Runner, runner};
-use mrbrake_report::study::{self as study_report, SweepReport};
-use mrbrake_store::Store;
-use mrbrake_units::{Dimension, parse};
+use mrbrake::design::analysis::ElementOrder;
+use mrbrake::design::mesh_build::MeshLevel;
+use mrbrake::design::spec::DEFAULT_SPEC_TOML;
+use mrbrake::explore::plan::{self, Sampling, Shard, SweepPlan, SweepRequest};
+use mrbrake::explore::{EvaluationSettings, Progress, Runner, runner, stored};
+use mrbrake::observe::Flow;
+use mrbrake::report::study::{self as study_report, SweepReport};
+use mrbrake::store::Store;
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
 use crate::error::InputError;
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
 
 /// Arguments of `mrbrake sweep`.
@@ -153,11 +154,14 @@ pub fn run_sweep(a: SweepArgs) -> CommandResult {
     let mut store = runner::open_sweep_store(&a.store, a.resume, &created_by)?;
     let mut display = ProgressDisplay::new("sweep", a.json);
     let mut runner = Runner::new(&mut store, *space.settings(), a.jobs);
-    let (records, summary) = runner.run(&designs, &mut |p| display.update(p))?;
+    let (records, summary) = runner.run(&designs, &mut |p: &Progress| {
+        display.update(p);
+        Flow::Continue
+    })?;
     display.finish();
 
     if let Some(path) = &a.csv {
-        mrbrake_report::write_atomic(path, &mrbrake_store::to_csv(&records)?)?;
+        mrbrake::report::write_atomic(path, &mrbrake::store::to_csv(&records)?)?;
     }
     let name = if a.json { None } else { space.base_design()?.spec.map(|s| s.name).ok() };
     let report = SweepReport {
@@ -172,8 +176,7 @@ pub fn run_sweep(a: SweepArgs) -> CommandResult {
     if a.json {
         return print_json(&report.json());
     }
-    crate::out!("{}", report.text());
-    Ok(())
+    print_text(&report.text())
 }
 
 /// Runs `mrbrake merge`.
@@ -190,8 +193,7 @@ pub fn run_merge(a: MergeArgs) -> CommandResult {
     let mut total = 0;
     for input in &a.inputs {
         // A store written before the unit convention merges under the current metric names.
-        let upgrade = mrbrake_explore::evaluate::upgrade_metric_list;
-        let summary = match store.merge_from_upgrading(input, &upgrade) {
+        let summary = match stored::merge_into(&mut store, input) {
             Ok(summary) => summary,
             Err(error) => {
                 // A store this command created and could not fill is removed again.
@@ -203,11 +205,11 @@ pub fn run_merge(a: MergeArgs) -> CommandResult {
             }
         };
         total += summary.inserted;
-        crate::out!("{}", study_report::merge_text(input, &summary));
+        // A line per input as it is merged (each ends with one newline, as every output).
+        print_text(&study_report::merge_text(input, &summary))?;
     }
-    let designs = mrbrake_report::wording::count(store.len()?, "design", "designs");
-    crate::outln!("{}: {designs} ({total} added)", a.output.display());
-    Ok(())
+    let designs = mrbrake::report::wording::count(store.len()?, "design", "designs");
+    print_text(&format!("{}: {designs} ({total} added)", a.output.display()))
 }
 
 /// Runs `mrbrake export`.
@@ -215,17 +217,16 @@ pub fn run_export(a: ExportArgs) -> CommandResult {
     // Read-only: an export never changes the store (nor migrates an old one).
     let store = Store::open_read_only(&a.store)?;
     warn_unverified(&store)?;
-    let mut records = store.records()?;
     // A store written before the unit convention exports under the current metric names.
-    records.iter_mut().for_each(mrbrake_explore::evaluate::upgrade_metric_names);
+    let records = stored::read_records(&store)?;
     if let Some(path) = &a.csv {
-        mrbrake_report::write_atomic(path, &mrbrake_store::to_csv(&records)?)?;
+        mrbrake::report::write_atomic(path, &mrbrake::store::to_csv(&records)?)?;
     }
     if a.json {
-        return print_json(&mrbrake_store::to_json(&records));
+        return print_json(&mrbrake::store::to_json(&records));
     }
     if a.csv.is_none() {
-        crate::out!("{}", study_report::store_summary_text(&a.store, &records));
+        print_text(&study_report::store_summary_text(&a.store, &records))?;
     }
     Ok(())
 }

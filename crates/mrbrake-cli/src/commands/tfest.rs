@@ -4,14 +4,14 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use mrbrake_report::identification::{save_tfest_plot, tfest_text};
-use mrbrake_sysid::frd::read_frd;
-use mrbrake_sysid::tfest::{TfestOptions, Weighting, tfest};
-use mrbrake_units::{Dimension, parse};
+use mrbrake::report::identification::{save_tfest_plot, tfest_text};
+use mrbrake::sysid::frd::read_frd;
+use mrbrake::sysid::tfest::{TfestOptions, Weighting, tfest};
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::InputError;
 use crate::error::{CommandResult, Context as _};
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 
 /// Weighting of the complex fitting error.
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -74,7 +74,7 @@ pub fn run(args: TfestArgs) -> CommandResult {
     let fit = tfest(&frd, &options).with_context(|| args.frd.display().to_string())?;
     let summary = fit.summary()?;
     if let Some(path) = &args.save_model {
-        mrbrake_report::write_atomic(path, crate::output::json_text(&summary)?.as_bytes())?;
+        mrbrake::report::write_atomic(path, crate::output::json_text(&summary)?.as_bytes())?;
     }
     if let Some(path) = &args.plot {
         save_tfest_plot(path, &frd, &fit, args.poles, args.zeros)?;
@@ -82,6 +82,5 @@ pub fn run(args: TfestArgs) -> CommandResult {
     if args.json {
         return print_json(&summary);
     }
-    crate::out!("{}", tfest_text(&summary));
-    Ok(())
+    print_text(&tfest_text(&summary))
 }

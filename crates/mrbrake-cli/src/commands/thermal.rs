@@ -5,14 +5,14 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake_design::mesh_build::MeshLevel;
-use mrbrake_design::spec::{BrakeSpec, default_spec};
-use mrbrake_design::thermal::{Cooling, ThermalError, ThermalOptions, analyze_thermal_with_field};
-use mrbrake_report::thermal as report;
-use mrbrake_units::{Dimension, parse};
+use mrbrake::design::mesh_build::MeshLevel;
+use mrbrake::design::spec::{BrakeSpec, default_spec};
+use mrbrake::design::thermal::{Cooling, ThermalError, ThermalOptions, analyze_thermal_with_field};
+use mrbrake::report::thermal as report;
+use mrbrake::units::{Dimension, parse};
 
 use crate::error::{CommandError, CommandResult, InputError};
-use crate::output::print_json;
+use crate::output::{print_json, print_text};
 
 /// Arguments of `mrbrake thermal`.
 #[derive(Debug, Args)]
@@ -163,15 +163,14 @@ pub fn run(a: ThermalArgs) -> CommandResult {
     let source =
         a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     if let Some(path) = &a.save_model {
-        let mut model = mrbrake_sim::brake_model::BrakeModel::read(path)?;
+        let mut model = mrbrake::sim::brake_model::BrakeModel::read(path)?;
         let word = super::analyze::command_word(a.spec.as_deref(), &source);
         let how = format!("mrbrake thermal {word} (--mesh {} --h {})", a.mesh, a.h);
-        mrbrake_device::brake_model::add_thermal(&mut model, &result, &spec.name, &how)?;
-        mrbrake_report::write_atomic(path, model.to_json().as_bytes())?;
+        mrbrake::device::brake_model::add_thermal(&mut model, &result, &spec.name, &how)?;
+        mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if a.json {
         return print_json(&result);
     }
-    crate::out!("{}", report::text(&result, &source));
-    Ok(())
+    print_text(&report::text(&result, &source))
 }

@@ -225,14 +225,17 @@ mod tests {
     /// model; Newton from another start, so to its tolerance).
     #[test]
     fn direction1_points_match_the_sweep() {
-        use crate::analysis::analyze;
         let spec = crate::spec::default_spec();
         let options = AnalysisOptions {
             mesh: crate::mesh_build::MeshLevel::Coarse,
             points: 3,
             ..AnalysisOptions::default()
         };
-        let sweep = analyze(&spec, &options).unwrap().torque_current_curve;
+        let sweep = crate::analysis::AnalysisRequest::of(&spec)
+            .options(options)
+            .run()
+            .unwrap()
+            .torque_current_curve;
         let currents: Vec<f64> = sweep.iter().rev().map(|p| p.current_a).collect();
         let points = direction1_points(&spec, &options, &currents).unwrap();
         for (p, s) in points.iter().zip(sweep.iter().rev()) {

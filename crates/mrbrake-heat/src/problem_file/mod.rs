@@ -83,15 +83,6 @@ pub struct HeatFile {
     pub mesh_path: PathBuf,
 }
 
-/// True when the TOML text declares `physics = "heat"` (for the CLI's dispatch; a file that does
-/// not parse is not heat, its own reader will report why).
-pub fn is_heat_file(text: &str) -> bool {
-    toml::from_str::<toml::Table>(text)
-        .ok()
-        .and_then(|t| t.get("physics").and_then(|p| p.as_str().map(|s| s == "heat")))
-        .unwrap_or(false)
-}
-
 /// The 1-based line of `key` inside the `k`-th `[[table]]` (or `[table]`) of `text`, if present.
 fn line_of(text: &str, table: &str, k: usize, key: &str) -> Option<usize> {
     let (array, single) = (format!("[[{table}]]"), format!("[{table}]"));

@@ -1,7 +1,5 @@
-//! The result of a file-driven solve: the `--json` object of `mrbrake fem solve` and its text
-//! rendering (the one implementation the CLI and other front ends share).
-
-use std::fmt::Write as _;
+//! The result of a file-driven solve: the `--json` object of `mrbrake fem solve` (its text is
+//! composed by `mrbrake_report::fem`, as every command's text).
 
 use serde::Serialize;
 
@@ -145,69 +143,5 @@ impl From<&RegionStats> for RegionReport {
             max_b_t: s.max_b_t,
             quantiles_b_t: s.quantiles_b_t,
         }
-    }
-}
-
-impl SolveReport {
-    /// The text report of `mrbrake fem solve` for the problem named `name` (lengths in mm).
-    pub fn text(&self, name: &str) -> String {
-        let mut out = String::new();
-        let _ = writeln!(
-            out,
-            "{name}: {} nodes, {} triangles, {} unknowns (P{}); Newton {} iteration(s), converged: {}",
-            self.nodes,
-            self.elements,
-            self.unknowns,
-            self.order,
-            self.newton_iterations,
-            self.converged
-        );
-        for p in &self.probes {
-            let _ = writeln!(
-                out,
-                "  probe {:<16} r = {:>9.4} mm  z = {:>9.4} mm  B_r = {:>9.5} T  B_z = {:>9.5} T  |B| = {:.5} T",
-                p.name,
-                p.r * 1e3,
-                p.z * 1e3,
-                p.b_r_t,
-                p.b_z_t,
-                p.b_abs_t
-            );
-        }
-        for r in &self.regions {
-            let _ = writeln!(
-                out,
-                "  region {:>4}: area {:.4e} m²  mean |B| {:.4} T  max |B| {:.4} T",
-                r.physical, r.area_m2, r.mean_b_t, r.max_b_t
-            );
-        }
-        self.write_coils_and_lines(&mut out);
-        if let Some(dynamics) = &self.dynamics {
-            dynamics.write_text(&mut out);
-        }
-        let t = self.timings_s;
-        let _ = writeln!(
-            out,
-            "  time: read {:.3} s, assemble {:.3} s, solve {:.3} s, post {:.3} s, total {:.3} s",
-            t.read, t.assemble, t.solve, t.post, t.total
-        );
-        out
-    }
-
-    fn write_coils_and_lines(&self, out: &mut String) {
-        for c in &self.coils {
-            let _ = writeln!(
-                out,
-                "  coil {:>4}: flux linkage {:.5e} Wb  L = {:.5e} H  dλ/dI = {:.5e} H",
-                c.physical, c.flux_linkage_wb, c.inductance_h, c.incremental_inductance_h
-            );
-        }
-        for l in &self.lines {
-            let max = l.points.iter().map(|p| p.b_abs_t).fold(0.0, f64::max);
-            let _ =
-                writeln!(out, "  line {}: {} samples, max |B| {max:.4} T", l.name, l.points.len());
-        }
-        let _ =
-            writeln!(out, "  energy {:.5e} J, co-energy {:.5e} J", self.energy_j, self.coenergy_j);
     }
 }

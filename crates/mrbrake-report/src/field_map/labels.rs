@@ -1,12 +1,14 @@
 //! Region labels on a map: what each region is (steel, MR fluid, coil, non-magnetic, air), from
-//! its part name and its library material, and where on the map its label goes.
+//! its part's role in the geometry ([`PartKind`]) and, for structural parts, its library
+//! material, and where on the map its label goes.
 //!
-//! A region whose material is not in the library (e.g. a B-H curve from a CSV file) and whose
-//! name says nothing gets no label rather than a guess.
+//! A structural part whose material is not in the library (e.g. a B-H curve from a CSV file) gets
+//! no label rather than a guess.
 
 use std::collections::{HashMap, HashSet};
 
 use mrbrake_design::analysis::FieldRegion;
+use mrbrake_design::geometry::PartKind;
 use mrbrake_materials::MaterialKind;
 
 use super::lines::{Point, Window};
@@ -27,17 +29,19 @@ pub enum RegionKind {
 }
 
 impl RegionKind {
-    /// The kind of a region named `name` (a part name such as `unit1.gap1`) made of the library
-    /// material `material`; `None` when neither says.
-    pub fn of(name: &str, material: &str) -> Option<Self> {
-        let part = name.rsplit('.').next().unwrap_or(name).to_ascii_lowercase();
+    /// The kind of a part with role `part` made of the library material `material`: air, coil,
+    /// fluid and flux path by their role; the shaft, spacer and other structure by their
+    /// material (a steel shaft carries flux); `None` for a structural part of a material the
+    /// library does not know.
+    pub fn of(part: PartKind, material: &str) -> Option<Self> {
+        match part {
+            PartKind::Air => return Some(Self::Air),
+            PartKind::Coil => return Some(Self::Coil),
+            PartKind::Fluid => return Some(Self::Fluid),
+            PartKind::FluxPath => return Some(Self::Steel),
+            PartKind::Shaft | PartKind::NonMagnetic | PartKind::Spacer => {}
+        }
         let material = material.trim().to_ascii_lowercase();
-        if part == "air" || material == "air" {
-            return Some(Self::Air);
-        }
-        if part.contains("coil") {
-            return Some(Self::Coil);
-        }
         let kind = mrbrake_materials::library::names()
             .into_iter()
             .find(|(known, _)| *known == material)
@@ -90,7 +94,7 @@ pub fn place(
 ) -> Vec<Label> {
     let kinds: HashMap<u32, RegionKind> = regions
         .iter()
-        .filter_map(|r| Some((r.tag, RegionKind::of(&r.name, &r.material)?)))
+        .filter_map(|r| Some((r.tag, RegionKind::of(r.kind, &r.material)?)))
         .collect();
     let kind_of: Vec<Option<RegionKind>> =
         region_tags.iter().map(|t| kinds.get(t).copied()).collect();
@@ -200,14 +204,35 @@ mod tests {
     use super::*;
 
     #[test]
-    fn kinds_come_from_names_and_library_materials() {
-        assert_eq!(RegionKind::of("unit1.core", "steel-1008"), Some(RegionKind::Steel));
-        assert_eq!(RegionKind::of("unit1.gap1", "mrf-122eg"), Some(RegionKind::Fluid));
-        assert_eq!(RegionKind::of("unit1.coil", "copper"), Some(RegionKind::Coil));
-        assert_eq!(RegionKind::of("spacer", "aluminium"), Some(RegionKind::NonMagnetic));
-        assert_eq!(RegionKind::of("air", "air"), Some(RegionKind::Air));
-        // A material from a CSV file and a name that says nothing: no label, not a guess.
-        assert_eq!(RegionKind::of("part7", "my-bh-curve.csv"), None);
+    fn kinds_come_from_part_roles_and_library_materials() {
+        assert_eq!(RegionKind::of(PartKind::FluxPath, "steel-1008"), Some(RegionKind::Steel));
+        assert_eq!(RegionKind::of(PartKind::Fluid, "mrf-122eg"), Some(RegionKind::Fluid));
+        assert_eq!(RegionKind::of(PartKind::Coil, "copper"), Some(RegionKind::Coil));
+        assert_eq!(RegionKind::of(PartKind::Spacer, "aluminium"), Some(RegionKind::NonMagnetic));
+        assert_eq!(RegionKind::of(PartKind::Shaft, "steel-1008"), Some(RegionKind::Steel));
+        assert_eq!(RegionKind::of(PartKind::Air, "air"), Some(RegionKind::Air));
+        // A structural part of a material from a CSV file: no label, not a guess.
+        assert_eq!(RegionKind::of(PartKind::NonMagnetic, "my-bh-curve.csv"), None);
         assert_eq!(RegionKind::Air.label(), None);
+    }
+
+    /// The labels of the thesis brake's parts are those its part names once implied: the role
+    /// now comes from the geometry, and no name is read.
+    #[test]
+    fn every_part_of_the_thesis_brake_has_the_kind_of_its_role() {
+        let geometry = mrbrake_design::geometry::build(&mrbrake_design::spec::default_spec())
+            .expect("the thesis brake builds");
+        for region in &geometry.regions {
+            let kind = RegionKind::of(region.kind, &region.material);
+            let expected = match region.kind {
+                PartKind::Air => Some(RegionKind::Air),
+                PartKind::Coil => Some(RegionKind::Coil),
+                PartKind::Fluid => Some(RegionKind::Fluid),
+                PartKind::FluxPath => Some(RegionKind::Steel),
+                _ => kind,
+            };
+            assert!(kind.is_some(), "{} ({}) has no kind", region.name, region.material);
+            assert_eq!(kind, expected, "{}", region.name);
+        }
     }
 }

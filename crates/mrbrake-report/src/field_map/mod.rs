@@ -57,8 +57,8 @@ pub struct FieldMap<'a> {
     pub flux_function: &'a [f64],
     /// Number of flux lines.
     pub flux_lines: usize,
-    /// The regions (tag, part name, material) for the labels; a region not listed, or of no known
-    /// kind ([`RegionKind::of`]), is not labelled.
+    /// The regions (tag, part name, material, role) for the labels; a region not listed, or of
+    /// no known kind ([`RegionKind::of`]), is not labelled.
     pub regions: &'a [FieldRegion],
     /// The part of the mesh shown.
     pub view: View,
@@ -205,7 +205,7 @@ impl FieldMap<'_> {
         let solid: std::collections::HashSet<u32> = self
             .regions
             .iter()
-            .filter(|r| RegionKind::of(&r.name, &r.material).is_some_and(|k| k != RegionKind::Air))
+            .filter(|r| RegionKind::of(r.kind, &r.material).is_some_and(|k| k != RegionKind::Air))
             .map(|r| r.tag)
             .collect();
         let points: Vec<[f64; 2]> = self
@@ -658,6 +658,7 @@ pub fn save_scalar_map(map: &ScalarMap<'_>, path: &Path) -> Result<(), ReportErr
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mrbrake_design::geometry::PartKind;
 
     fn square() -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
         (vec![[0.0, 0.0], [0.01, 0.0], [0.01, 0.01], [0.0, 0.01]], vec![[0, 1, 2], [0, 2, 3]])
@@ -776,12 +777,16 @@ mod tests {
         let (nodes, triangles, b) = grid_with_a_hot_block();
         let tags: Vec<u32> = (0..triangles.len()).map(|t| u32::from(t % 20 >= 10)).collect();
         let psi: Vec<f64> = nodes.iter().map(|p| p[0] * p[1]).collect();
-        let region = |tag, name: &str, material: &str| FieldRegion {
+        let region = |tag, name: &str, material: &str, kind| FieldRegion {
             tag,
             name: name.into(),
             material: material.into(),
+            kind,
         };
-        let regions = [region(0, "unit1.core", "steel-1008"), region(1, "part", "custom.csv")];
+        let regions = [
+            region(0, "unit1.core", "steel-1008", PartKind::FluxPath),
+            region(1, "part", "custom.csv", PartKind::NonMagnetic),
+        ];
         let map = FieldMap {
             title: "grid",
             nodes: &nodes,

@@ -27,6 +27,7 @@ use mrbrake_control::{
     BrakeLayout, ControlInput, ControllerState, DirectionalController, InputLimits,
     VelocityEstimator, VelocityState, VirtualWall, WallSide,
 };
+use mrbrake_observe::{Count, Observer};
 use serde::Serialize;
 
 use super::brake::BrakePlant;
@@ -121,13 +122,17 @@ pub struct ZWidthCell {
     pub brake_energy_j: f64,
 }
 
-/// A complete map.
+/// A map: every cell of the grid, or the finished stiffness rows of a stopped sweep.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ZWidthMap {
     /// The sweep settings.
     pub config: ZWidthConfig,
-    /// Cells, stiffness-major.
+    /// Cells, stiffness-major (`damping_points` per stiffness row).
     pub cells: Vec<ZWidthCell>,
+    /// True when the observer stopped the sweep: `cells` then holds the first
+    /// `cells.len() / damping_points` stiffness rows only.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub stopped: bool,
 }
 
 impl ZWidthMap {
@@ -301,17 +306,41 @@ pub fn free_response_decays(
     tail_max < initial
 }
 
-/// Runs the sweep.
-pub fn sweep(config: &ZWidthConfig) -> Result<ZWidthMap, SimError> {
-    sweep_with_progress(config, &mut |_, _| ())
+/// Runs the sweep, calling `observer` with the stiffness rows done ([`Count`]) after each row of
+/// the grid (for a front end's progress display on long sweeps). [`Flow::Stop`] ends the sweep
+/// after that row: the map then holds the finished rows and [`ZWidthMap::stopped`] is set.
+///
+/// [`Flow::Stop`]: mrbrake_observe::Flow::Stop
+pub fn sweep(
+    config: &ZWidthConfig,
+    observer: &mut impl Observer<Count>,
+) -> Result<ZWidthMap, SimError> {
+    check_config(config)?;
+    let model = prototype_model();
+    let brakes = [
+        BrakePlant { branches: model, lag: super::brake::TorqueLag::BRAKE_1 },
+        BrakePlant { branches: model, lag: super::brake::TorqueLag::BRAKE_2 },
+    ];
+    let mut cells = Vec::with_capacity(config.stiffness_points * config.damping_points);
+    let total = config.stiffness_points;
+    let mut stopped = false;
+    for i in 0..total {
+        let k = config.stiffness_max_nm_per_rad * i as f64 / (total - 1) as f64;
+        for j in 0..config.damping_points {
+            let bv = config.damping_max_nms_per_rad * j as f64 / (config.damping_points - 1) as f64;
+            cells.push(cell(config, &brakes, k, bv));
+        }
+        let done = i + 1;
+        if observer.observe(&Count { done, total }).is_stop() && done < total {
+            stopped = true;
+            break;
+        }
+    }
+    Ok(ZWidthMap { config: *config, cells, stopped })
 }
 
-/// Runs the sweep, calling `progress(done, total)` after each stiffness row of the grid (for a
-/// front end's progress display on long sweeps).
-pub fn sweep_with_progress(
-    config: &ZWidthConfig,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<ZWidthMap, SimError> {
+/// Checks the ranges of every setting.
+fn check_config(config: &ZWidthConfig) -> Result<(), SimError> {
     let check = |field, value, min, max| check_range("zwidth", field, value, min, max);
     check("stiffness_max_nm_per_rad", config.stiffness_max_nm_per_rad, 1e-9, 1e6)?;
     check("damping_max_nms_per_rad", config.damping_max_nms_per_rad, 0.0, 1e3)?;
@@ -320,56 +349,50 @@ pub fn sweep_with_progress(
     check("sample_period_s", config.sample_period_s, 1e-6, 0.1)?;
     check("physical_damping_nms_per_rad", config.physical_damping_nms_per_rad, 0.0, 1e3)?;
     check("controllable_damping_nms_per_rad", config.controllable_damping_nms_per_rad, 0.0, 1e3)?;
-    check("inertia_kg_m2", config.inertia_kg_m2, 1e-12, 1e3)?;
-    let model = prototype_model();
-    let brakes = [
-        BrakePlant { branches: model, lag: super::brake::TorqueLag::BRAKE_1 },
-        BrakePlant { branches: model, lag: super::brake::TorqueLag::BRAKE_2 },
-    ];
+    check("inertia_kg_m2", config.inertia_kg_m2, 1e-12, 1e3)
+}
+
+/// The motor device with physical damping `b_phys` classified at (K, B) = (`k`, `bv`), and the
+/// largest energy it supplied over the test motions.
+fn classify_motor(config: &ZWidthConfig, k: f64, bv: f64, b_phys: f64) -> (Interaction, f64) {
+    let t = config.sample_period_s;
+    let energy = motor_test_energy(k, bv, b_phys, t);
+    // Round-off allowance: 1e-12 of the stored-energy scale of the test.
+    let passive = energy <= 1e-12 * (1.0 + k) * TEST_AMPLITUDE_RAD * TEST_AMPLITUDE_RAD;
+    let class = if passive {
+        Interaction::Passive
+    } else if free_response_decays(k, bv, b_phys, config.inertia_kg_m2, t) {
+        Interaction::Stable
+    } else {
+        Interaction::Unstable
+    };
+    (class, energy)
+}
+
+/// One cell of the grid: the three devices at (K, B) = (`k`, `bv`).
+fn cell(config: &ZWidthConfig, brakes: &[BrakePlant; 2], k: f64, bv: f64) -> ZWidthCell {
     let t = config.sample_period_s;
     let b = config.physical_damping_nms_per_rad;
     let b_hybrid = b + config.controllable_damping_nms_per_rad;
-    let classify = |k: f64, bv: f64, b_phys: f64| -> (Interaction, f64) {
-        let energy = motor_test_energy(k, bv, b_phys, t);
-        // Round-off allowance: 1e-12 of the stored-energy scale of the test.
-        let passive = energy <= 1e-12 * (1.0 + k) * TEST_AMPLITUDE_RAD * TEST_AMPLITUDE_RAD;
-        let class = if passive {
-            Interaction::Passive
-        } else if free_response_decays(k, bv, b_phys, config.inertia_kg_m2, t) {
-            Interaction::Stable
-        } else {
-            Interaction::Unstable
-        };
-        (class, energy)
+    let (motor, motor_energy_j) = classify_motor(config, k, bv, b);
+    let (hybrid, _) = classify_motor(config, k, bv, b_hybrid);
+    let brake_energy_j = brake_test_energy(k, bv, b, t, brakes);
+    let brake = if brake_energy_j <= 0.0 {
+        Interaction::Passive
+    } else if free_response_decays(k, bv, b, config.inertia_kg_m2, t) {
+        Interaction::Stable
+    } else {
+        Interaction::Unstable
     };
-    let mut cells = Vec::with_capacity(config.stiffness_points * config.damping_points);
-    for i in 0..config.stiffness_points {
-        let k = config.stiffness_max_nm_per_rad * i as f64 / (config.stiffness_points - 1) as f64;
-        for j in 0..config.damping_points {
-            let bv = config.damping_max_nms_per_rad * j as f64 / (config.damping_points - 1) as f64;
-            let (motor, motor_energy_j) = classify(k, bv, b);
-            let (hybrid, _) = classify(k, bv, b_hybrid);
-            let brake_energy_j = brake_test_energy(k, bv, b, t, &brakes);
-            let brake = if brake_energy_j <= 0.0 {
-                Interaction::Passive
-            } else if free_response_decays(k, bv, b, config.inertia_kg_m2, t) {
-                Interaction::Stable
-            } else {
-                Interaction::Unstable
-            };
-            cells.push(ZWidthCell {
-                stiffness_nm_per_rad: k,
-                damping_nms_per_rad: bv,
-                motor,
-                motor_predicted_passive: b > k * t / 2.0 + bv,
-                motor_energy_j,
-                hybrid,
-                hybrid_predicted_passive: b_hybrid > k * t / 2.0 + bv,
-                brake,
-                brake_energy_j,
-            });
-        }
-        progress(i + 1, config.stiffness_points);
+    ZWidthCell {
+        stiffness_nm_per_rad: k,
+        damping_nms_per_rad: bv,
+        motor,
+        motor_predicted_passive: b > k * t / 2.0 + bv,
+        motor_energy_j,
+        hybrid,
+        hybrid_predicted_passive: b_hybrid > k * t / 2.0 + bv,
+        brake,
+        brake_energy_j,
     }
-    Ok(ZWidthMap { config: *config, cells })
 }

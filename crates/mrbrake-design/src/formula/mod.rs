@@ -20,6 +20,10 @@
 //! annular face, as on a disc) and [`cylinder_yield_torque`] and [`cylinder_viscous_torque`] (a
 //! cylindrical surface, as on a drum).
 //!
+//! A front end asks through a [`TorqueRequest`] ([`torque`]) or a [`CoilRequest`] ([`coil`]),
+//! which hold every range rule of the arguments (the CLI's `formula` commands and the Python
+//! `mrbrake.formula` functions only translate theirs).
+//!
 //! ```
 //! use mrbrake_design::formula::{single_disc, Viscous};
 //! let t = single_disc(0.0225, 0.0275, 24_315.0, None).unwrap();
@@ -32,6 +36,15 @@ use mrbrake_materials::CopperWire;
 use serde::Serialize;
 
 use crate::DesignError;
+
+mod request;
+
+pub use request::{
+    ClosedFormBrake, ClosedFormCoil, ClosedFormTorque, CoilRequest, DEFAULT_COIL_CURRENT_A,
+    DEFAULT_COIL_INNER_RADIUS_M, DEFAULT_COPPER_TEMPERATURE_C, DEFAULT_FLUID, FluidSource,
+    MAX_FLUX_DENSITY_T, TorqueRequest, WireChoice, YieldStress, coil, rating_warning,
+    surface_radii, torque, turns_warning,
+};
 
 /// The viscous (Newtonian) part of the Bingham model (3.4): fluid viscosity, relative speed and gap.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
