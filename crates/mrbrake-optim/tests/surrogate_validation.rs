@@ -148,7 +148,8 @@ fn compare(
     let nsga2_fraction = |generations: usize| {
         let settings = Nsga2Options { population: 30, generations, seed: 1, ..Default::default() };
         let mut nsga2_problem = FnProblem::new(bounds.clone(), 2, function);
-        let nsga2_result = nsga2::run(&mut nsga2_problem, &settings, &mut mrbrake_observe::Silent).unwrap();
+        let nsga2_result =
+            nsga2::run(&mut nsga2_problem, &settings, &mut mrbrake_observe::Silent).unwrap();
         let points: Vec<Vec<f64>> =
             nsga2_result.front.iter().map(|i| i.evaluation.objectives.clone()).collect();
         hypervolume(&points, &reference) / exact
