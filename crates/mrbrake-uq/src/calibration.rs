@@ -7,10 +7,11 @@
 //!
 //! **Levenberg–Marquardt** (Levenberg 1944; Marquardt, SIAM J. Appl. Math. 11, 431–441, 1963) as in
 //! Madsen, Nielsen & Tingleff, *Methods for Non-Linear Least Squares Problems*, 2nd ed., IMM DTU
-//! 2004, §3.2 (Algorithm 3.16): the step solves `(JᵀJ + μI) h = −Jᵀr`, its gain ratio
+//! 2004, ch. 3: the step solves `(JᵀJ + μI) h = −Jᵀr`, its gain ratio
 //! `ρ = (F(θ) − F(θ + h)) / (L(0) − L(h))` against the linear model `L` decides acceptance, and the
 //! damping follows Nielsen's update (`μ ← μ max(1/3, 1 − (2ρ − 1)³)` after a success,
-//! `μ ← μν, ν ← 2ν` after a failure; ibid. eq. 3.16), starting from `μ₀ = 10⁻³ max diag(JᵀJ)`.
+//! `μ ← μν, ν ← 2ν` after a failure; H. B. Nielsen, "Damping parameter in Marquardt's method",
+//! IMM-REP-1999-05, DTU, 1999), starting from `μ₀ = 10⁻³ max diag(JᵀJ)`.
 //!
 //! It works in the **normalised coordinates** `z = (θ − lower)/(upper − lower) ∈ [0, 1]ᵖ`: the
 //! bounds make every parameter's scale explicit, so the identity damping `μI` treats a gap in
@@ -28,12 +29,13 @@
 //! (2) the covariance `σ²(JᵀJ)⁻¹` is then in the parameters' own units, with no change of variables.
 //!
 //! **Finite-difference Jacobian**, one column per parameter evaluated in parallel (rayon): forward
-//! differences (central on request) with the step `relative_step · max(|θ_j|, upper_j − lower_j)`,
-//! taken backwards when a forward step would leave the bounds (the model may be undefined outside).
+//! differences (central on request) with the step `relative_step · max(|θ_j|, upper_j − lower_j)`
+//! (at most half the range), taken backwards when a forward step would leave the bounds (the model
+//! may be undefined outside).
 //! The Jacobian is recomputed after every accepted step and once more at the final estimate.
 //!
 //! **Stopping** (the tests of MINPACK's `lmder`, Moré, Garbow & Hillstrom, *User Guide for MINPACK-1*,
-//! ANL-80-74, 1980, §2.3): the residual is orthogonal to every free Jacobian column to within
+//! ANL-80-74, 1980): the residual is orthogonal to every free Jacobian column to within
 //! `gradient_tolerance` (cosine), the relative cost reduction of an accepted step is below
 //! `cost_tolerance`, or the step is below `step_tolerance` (normalised units); otherwise the
 //! iteration or evaluation budget ends it, which is reported, not an error.
@@ -41,7 +43,7 @@
 //! # Statistics
 //!
 //! At the estimate, `Cov(θ) = σ² (JᵀJ)⁻¹` (Bates & Watts, *Nonlinear Regression Analysis and Its
-//! Applications*, 1988, §2.3.1, eq. 2.29), `σ` the given measurement noise or the residual
+//! Applications*, 1988, ch. 2: the linear-approximation inference), `σ` the given measurement noise or the residual
 //! estimate `s² = ‖r‖² / (m − p)`; standard errors are its diagonal's roots, the correlation matrix
 //! its normalisation. Near-singular `JᵀJ` is handled by [`crate::identifiability`]: the inverse is
 //! taken through the SVD of the column-normalised Jacobian with singular values floored at
@@ -338,7 +340,8 @@ where
         let mut points = Vec::new(); // (column, θ_j shifted, signed step in z)
         for (j, p) in self.parameters.iter().enumerate() {
             let range = p.upper - p.lower;
-            let h = self.options.relative_step * theta[j].abs().max(range);
+            // At most half the range, so that one side always stays within the bounds.
+            let h = (self.options.relative_step * theta[j].abs().max(range)).min(0.5 * range);
             let forward = theta[j] + h <= p.upper;
             let backward = theta[j] - h >= p.lower;
             if self.options.central_differences && forward && backward {

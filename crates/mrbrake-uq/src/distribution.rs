@@ -9,23 +9,23 @@
 //! * Normal `N(μ, σ²)`: `F(x) = Φ((x − μ)/σ)` and `F⁻¹(p) = μ + σ Φ⁻¹(p)` with the standard normal
 //!   functions of [`crate::special`] (erfc; Wichura's AS 241 quantile with a Newton polish).
 //! * Uniform `U(a, b)`: `F(x) = (x − a)/(b − a)`.
-//! * Triangular `(a, c, b)` with mode `c` (Johnson, Kotz & Balakrishnan, *Continuous Univariate
-//!   Distributions* vol. 2, 2nd ed., 1995, ch. 26 §9): `F(x) = (x − a)²/((b − a)(c − a))` on `[a, c]`,
-//!   `1 − (b − x)²/((b − a)(b − c))` on `[c, b]`, inverted in closed form.
-//! * Log-normal: `ln X ~ N(μ, σ²)` (`log_mean` μ, `log_std_dev` σ; JKB vol. 1, 2nd ed., 1994,
-//!   ch. 14, eqs. 14.2–14.4); [`Distribution::log_normal_from_mean_std`] converts a mean `m` and
+//! * Triangular `(a, c, b)` with mode `c`: the integral of the piecewise-linear density,
+//!   `F(x) = (x − a)²/((b − a)(c − a))` on `[a, c]`, `1 − (b − x)²/((b − a)(b − c))` on `[c, b]`,
+//!   inverted in closed form.
+//! * Log-normal: `ln X ~ N(μ, σ²)` (`log_mean` μ, `log_std_dev` σ; Johnson, Kotz & Balakrishnan,
+//!   *Continuous Univariate Distributions* vol. 1 (JKB), 2nd ed., 1994, ch. 14); [`Distribution::log_normal_from_mean_std`] converts a mean `m` and
 //!   standard deviation `s` of X by `σ² = ln(1 + s²/m²)`, `μ = ln m − σ²/2`.
 //!
 //! **Truncation** to `[a, b]` renormalises the law on the interval:
 //! `F_T(x) = (F(x) − F(a)) / (F(b) − F(a))` and `F_T⁻¹(p) = F⁻¹(F(a) + p (F(b) − F(a)))`
 //! (inverse-CDF sampling of the renormalised interval; e.g. Devroye, *Non-Uniform Random Variate
-//! Generation*, 1986, §II.2.1). When the interval lies above the law's median both are written with
+//! Generation*, 1986, ch. II §2). When the interval lies above the law's median both are written with
 //! the survival function `S = 1 − F` instead (`F_T(x) = (S(a) − S(x))/(S(a) − S(b))`,
 //! `F_T⁻¹(p) = S⁻¹(S(a) − p (S(a) − S(b)))`), so a truncation far in the upper tail keeps its
 //! precision. Moments of the truncated laws are closed forms: the truncated normal's from JKB
-//! vol. 1, ch. 13 §10.1 (eqs. 13.134–13.135 for the doubly truncated case), the log-normal's
+//! vol. 1, ch. 13 (the doubly truncated normal), the log-normal's
 //! partial moments `E[X^k; a < X < b] = exp(kμ + k²σ²/2) [Φ(β − kσ) − Φ(α − kσ)]`
-//! (JKB vol. 1, ch. 14 §3), the uniform's trivially, the triangular's by exact Gauss–Legendre
+//! (JKB vol. 1, ch. 14), the uniform's trivially, the triangular's by exact Gauss–Legendre
 //! quadrature of its piecewise-linear density.
 
 use crate::UqError;
@@ -473,7 +473,7 @@ fn window_of(law: &Law, truncation: Option<Truncation>) -> Result<Window, UqErro
     Ok(Window { lower: a, upper: b, upper_tail, start, mass })
 }
 
-/// Mean and variance of the standard normal truncated to `[α, β]` (JKB vol. 1, ch. 13 §10.1):
+/// Mean and variance of the standard normal truncated to `[α, β]` (JKB vol. 1, ch. 13):
 /// `m = (φ(α) − φ(β))/Z`, `v = 1 + (αφ(α) − βφ(β))/Z − m²`, `Z = Φ(β) − Φ(α)`. An interval
 /// centred above 0 is mirrored (`[−β, −α]`, mean negated) so `Z` and the densities are evaluated
 /// in the lower tail, where they are accurate.
@@ -491,7 +491,7 @@ fn std_truncated_normal_moments(alpha: f64, beta: f64) -> (f64, f64) {
 }
 
 /// Mean and standard deviation of the log-normal `ln X ~ N(μ, σ²)` truncated to the standardised
-/// interval `[α, β]` of `ln X`, from its partial moments (JKB vol. 1, ch. 14 §3):
+/// interval `[α, β]` of `ln X`, from its partial moments (JKB vol. 1, ch. 14):
 /// `E[X^k | α < Z < β] = exp(kμ + k²σ²/2) (Φ(β − kσ) − Φ(α − kσ)) / (Φ(β) − Φ(α))`.
 fn log_normal_moments(mu: f64, sigma: f64, alpha: f64, beta: f64) -> (f64, f64) {
     let mass = std_normal_mass(alpha, beta);

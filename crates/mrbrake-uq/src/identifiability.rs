@@ -4,11 +4,11 @@
 //!
 //! The Jacobian's columns are scaled to unit length, `J̃ = J D⁻¹`, `D = diag(‖J_j‖)`, which
 //! removes the parameters' units (Brun, Reichert & Künsch, "Practical identifiability analysis of
-//! large environmental simulation models", Water Resour. Res. 37(4), 1015–1030, 2001, §2.2). Its
+//! large environmental simulation models", Water Resour. Res. 37(4), 1015–1030, 2001). Its
 //! singular values `s_k` and right singular vectors `v_k` describe every direction of parameter
 //! space: a direction with a small `s_k` changes the residuals little, and its **collinearity
-//! index** `γ_k = 1/s_k` (Brun et al. eq. 6, there for the smallest; `γ > 10–15` marks a poorly
-//! identifiable set) is reported as a **weak direction** with its loadings `v_k` when it exceeds the
+//! index** `γ_k = 1/s_k` (Brun et al.'s index is that of the smallest; they call a set with `γ` above
+//! 10–15 poorly identifiable) is reported as a **weak direction** with its loadings `v_k` when it exceeds the
 //! threshold. A parameter takes part in a weak direction when its loading is at least 0.3 times
 //! the direction's largest. A parameter the residuals do not depend on has a zero column and a
 //! direction of its own with `s = 0`.

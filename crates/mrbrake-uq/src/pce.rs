@@ -12,7 +12,7 @@
 //! independent and uniform on `(0, 1)` whatever the laws — normal, log-normal, triangular, any of
 //! them truncated — so one orthonormal family serves every marginal (an isoprobabilistic transform;
 //! Soize & Ghanem, "Physical systems with random uncertainties: chaos representations with
-//! arbitrary probability measure", SIAM J. Sci. Comput. 26(2), 395–410, 2004, §2). The Wiener–Askey
+//! arbitrary probability measure", SIAM J. Sci. Comput. 26(2), 395–410, 2004). The Wiener–Askey
 //! alternative (Hermite for normals, Laguerre, Jacobi; Xiu & Karniadakis, SIAM J. Sci. Comput.
 //! 24(2), 619–644, 2002) has no family for a truncated or triangular law. The price is that the
 //! model seen through `F⁻¹` may be less polynomial (a normal input's quantile is steep near
@@ -26,15 +26,15 @@
 //! dropped, giving the minimum-norm solution). Candidate bases: the
 //! total-degree sets `{α : Σ α_i ≤ p}` and the hyperbolic sets `{α : (Σ α_i^q)^{1/q} ≤ p}`, `q < 1`
 //! (Blatman & Sudret, "Adaptive sparse polynomial chaos expansion based on least angle
-//! regression", J. Comput. Phys. 230, 2345–2367, 2011, §4.2), which keep high univariate degrees
+//! regression", J. Comput. Phys. 230, 2345–2367, 2011), which keep high univariate degrees
 //! but few interactions, for `p = 1, 2, …` while the basis has at most `max_terms_ratio · n` terms
 //! (a least-squares oversampling of at least 2, and enough distinct points left in a bootstrap
 //! resample, which holds ~63 % of them). The basis with the smallest **leave-one-out error** wins:
 //! `ε_LOO = (1/n) Σ_i ((y_i − ŷ_i)/(1 − h_i))² / Var[y]` with `h_i` the diagonal of the hat matrix
 //! `Ψ(ΨᵀΨ)⁻¹Ψᵀ` (the closed form of the LOO residual for least squares; Blatman & Sudret,
 //! "Efficient computation of global sensitivity indices using sparse polynomial chaos expansions",
-//! Reliab. Eng. Syst. Saf. 95, 1216–1229, 2010, §3.3). For each `q` the degree stops rising once the
-//! LOO error has grown twice in a row (over-fitting, as in Blatman & Sudret 2011, Fig. 3).
+//! Reliab. Eng. Syst. Saf. 95, 1216–1229, 2010). For each `q` the degree stops rising once the
+//! LOO error has grown twice in a row (over-fitting: the stopping rule of Blatman & Sudret 2011).
 
 use crate::UqError;
 use faer::Mat;
@@ -189,7 +189,7 @@ impl Pce {
         self.terms.iter().flatten().copied().max().unwrap_or(0)
     }
 
-    /// First-order and total Sobol' indices from the coefficients (Sudret 2008, §4: with an
+    /// First-order and total Sobol' indices from the coefficients (Sudret 2008: with an
     /// orthonormal basis the partial variances are sums of squared coefficients):
     /// `S_i = Σ_{α ∈ A_i} c_α² / D` over the terms in input `i` alone, `S_Ti = Σ_{α_i > 0} c_α² / D`,
     /// `D = Σ_{α≠0} c_α²`. A constant expansion (`D = 0`) has all indices 0.

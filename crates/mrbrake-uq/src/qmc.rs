@@ -7,7 +7,7 @@
 //! point's index, `C_j` the generator matrix whose columns are the direction numbers of
 //! [`mrbrake_optim::sampling::sobol_direction_numbers`] (Joe & Kuo 2008). Scrambling applies
 //! Matoušek's **linear matrix scrambling with a random digital shift** (J. Matoušek, "On the
-//! L2-discrepancy for anchored boxes", J. Complexity 14(4), 527–556, 1998, §3; the scheme of
+//! L2-discrepancy for anchored boxes", J. Complexity 14(4), 527–556, 1998; the scheme of
 //! SciPy's `qmc.Sobol(scramble=True)`): `x' = L_j C_j a ⊕ e_j`, with `L_j` a random
 //! lower-triangular binary matrix with unit diagonal and `e_j` a random 32-bit shift. Because `L_j`
 //! is lower triangular and invertible, the first `k` output digits are a bijection of the first
@@ -28,10 +28,10 @@ use mrbrake_optim::rng::Rng;
 use mrbrake_optim::sampling::{MAX_SOBOL_DIMENSION, SOBOL_BITS, sobol_direction_numbers};
 use rayon::prelude::*;
 
-/// The largest number of points [`ScrambledSobol::points`] and [`sample`] produce (2^24): far
-/// beyond what a propagation through an expensive model needs, and small enough that the points
-/// always fit in memory.
-pub const MAX_POINTS: usize = 1 << 24;
+/// The largest number of coordinates (points × dimension) [`ScrambledSobol::points`] and
+/// [`sample`] produce (2^24, 128 MiB of `f64`): far beyond what a propagation through an expensive
+/// model needs (2 million points of 8 inputs), and small enough that the points fit in memory.
+pub const MAX_COORDINATES: usize = 1 << 24;
 
 /// A scrambled Sobol' sequence (module docs): the scrambled direction numbers and the digital
 /// shift of each dimension, fixed by the seed.
@@ -69,13 +69,13 @@ impl ScrambledSobol {
     }
 
     /// The first `n` points (index 0 included), each a `Vec` of `dimension` coordinates in
-    /// `(0, 1)`. Errors when `n` exceeds [`MAX_POINTS`].
+    /// `(0, 1)`. Errors when `n × dimension` exceeds [`MAX_COORDINATES`].
     pub fn points(&self, n: usize) -> Result<Vec<Vec<f64>>, UqError> {
-        if n > MAX_POINTS {
+        if n.saturating_mul(self.dimension()) > MAX_COORDINATES {
             return Err(UqError::InvalidOption {
                 name: "samples",
                 value: n as f64,
-                allowed: "at most 2^24 = 16 777 216",
+                allowed: "at most 2^24 = 16 777 216 samples × inputs",
             });
         }
         const SCALE: f64 = 1.0 / 4_294_967_296.0; // 2^-32
@@ -203,7 +203,9 @@ mod tests {
         assert!(ScrambledSobol::new(0, 1).is_err());
         assert!(ScrambledSobol::new(MAX_SOBOL_DIMENSION + 1, 1).is_err());
         let s = ScrambledSobol::new(1, 1).unwrap();
-        assert!(matches!(s.points(MAX_POINTS + 1), Err(UqError::InvalidOption { .. })));
+        assert!(matches!(s.points(MAX_COORDINATES + 1), Err(UqError::InvalidOption { .. })));
+        let wide = ScrambledSobol::new(8, 1).unwrap();
+        assert!(matches!(wide.points(usize::MAX), Err(UqError::InvalidOption { .. })));
     }
 
     #[test]

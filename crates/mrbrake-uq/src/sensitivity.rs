@@ -6,7 +6,7 @@
 //!
 //! Both are allowed surrogates; the PCE ([`crate::pce`]) is used because (1) its Sobol' indices are
 //! exact functions of its coefficients (Sudret, "Global sensitivity analysis using polynomial chaos
-//! expansions", Reliab. Eng. Syst. Saf. 93, 964–979, 2008, §4) — no Monte Carlo integration of the
+//! expansions", Reliab. Eng. Syst. Saf. 93, 964–979, 2008) — no Monte Carlo integration of the
 //! surrogate, whose own sampling error a GP's indices carry; (2) its leave-one-out error is a
 //! closed form of one least-squares fit, so the basis is selected and its accuracy reported at no
 //! extra cost, while a GP needs a non-convex likelihood optimisation (`O(n³)` per evaluation) for
@@ -21,7 +21,7 @@
 //! Nonparametric bootstrap (Efron & Tibshirani, *An Introduction to the Bootstrap*, 1993, ch. 6
 //! and 13): `B` resamples of the `n` samples drawn with replacement, the selected basis refitted to
 //! each, the indices recomputed; the interval of each index is the percentile interval of its `B`
-//! replicates (ch. 13.3) at the requested confidence (Hyndman & Fan definition 7 percentiles). The
+//! replicates (ch. 13) at the requested confidence (Hyndman & Fan definition 7 percentiles). The
 //! intervals measure the estimation error of the coefficients from `n` samples; the truncation error
 //! of the basis is what the LOO error reports. Each replicate draws from its own generator, seeded
 //! in order from the master seed, so the intervals do not depend on the number of threads.

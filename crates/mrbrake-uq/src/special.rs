@@ -2,7 +2,7 @@
 //! and the probability of an interval without cancellation.
 //!
 //! * CDF and survival function from the complementary error function,
-//!   `Φ(z) = ½ erfc(−z/√2)`, `1 − Φ(z) = ½ erfc(z/√2)` (Abramowitz & Stegun 1964, eq. 26.2.29),
+//!   `Φ(z) = ½ erfc(−z/√2)`, `1 − Φ(z) = ½ erfc(z/√2)` (Abramowitz & Stegun 1964, §26.2),
 //!   so both tails keep their relative accuracy far out (`erfc` of the `libm` crate, a port of
 //!   FreeBSD's `s_erf.c`, error below 1 ulp).
 //! * Quantile by Wichura's algorithm AS 241 (`PPND16`: M. J. Wichura, "The percentage points of the

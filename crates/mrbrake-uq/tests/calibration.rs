@@ -118,6 +118,21 @@ fn a_parameter_whose_truth_lies_outside_its_bounds_ends_on_the_bound() {
 }
 
 #[test]
+fn bounds_narrow_against_the_value_keep_the_steps_inside() {
+    // T_off in [0.999, 1.001]: a step relative to |θ| = 1 would be twice the range.
+    let (currents, measured) = log(2);
+    let inside = |p: &[f64]| -> Result<Vec<f64>, Infallible> {
+        assert!((0.999..=1.001).contains(&p[2]), "step left the bounds: {}", p[2]);
+        Ok(currents.iter().zip(&measured).map(|(&i, m)| torque(p, i) - m).collect())
+    };
+    let mut narrow = parameters();
+    narrow[2] = Parameter { start: 1.0005, lower: 0.999, upper: 1.001 };
+    let options = CalibrationOptions { relative_step: 0.1, ..Default::default() };
+    let fit = calibrate(inside, &narrow, &options).unwrap();
+    assert!((fit.estimate[0] - TRUE[0]).abs() < 0.02 * TRUE[0]);
+}
+
+#[test]
 fn central_differences_and_a_given_noise() {
     let (currents, measured) = log(3);
     let residual = |p: &[f64]| -> Result<Vec<f64>, Infallible> {
