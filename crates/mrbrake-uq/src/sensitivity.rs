@@ -11,7 +11,7 @@
 //! closed form of one least-squares fit, so the basis is selected and its accuracy reported at no
 //! extra cost, while a GP needs a non-convex likelihood optimisation (`O(n³)` per evaluation) for
 //! its hyper-parameters; (3) it is deterministic and fast: the fit and 200 bootstrap refits at
-//! 256 samples × 8 inputs take tens of milliseconds (`benches/pce.rs`) against minutes of FEA;
+//! 256 samples × 8 inputs take about 0.1 s (`benches/pce.rs`) against minutes of FEA;
 //! (4) brake outputs are smooth in the uncertain factors (torque is near-linear in a yield-stress
 //! scale, smooth in a gap), the case where low-degree polynomials converge fast. The GP's strength,
 //! a built-in predictive variance, is replaced by the bootstrap below.
