@@ -77,7 +77,7 @@ pub fn latin_hypercube(n: usize, bounds: &[Bounds], rng: &mut Rng) -> Vec<Vec<f6
 pub const MAX_SOBOL_DIMENSION: usize = JOE_KUO_2008.len() + 1;
 
 /// Bits of the direction numbers: at most 2^32 − 1 points can be generated.
-const SOBOL_BITS: usize = 32;
+pub const SOBOL_BITS: usize = 32;
 
 /// Joe & Kuo (2008) direction numbers, file `new-joe-kuo-6.21201`, dimensions 2 to 32: for each
 /// dimension `(s, a, [m_1 .. m_s])`, where `s` is the degree of the primitive polynomial, `a` encodes
@@ -146,6 +146,22 @@ fn direction_numbers(dimension: usize) -> [u32; SOBOL_BITS] {
         }
     }
     v
+}
+
+/// The 32 direction numbers `V_1 .. V_32` of Sobol' dimension `dimension` (0-based, below
+/// [`MAX_SOBOL_DIMENSION`]; 0 is van der Corput), as 32-bit binary fractions: bit `31 − k` of
+/// `V_j` is entry `(k, j)` of the dimension's generator matrix `C` over GF(2) (row `k` = output
+/// digit `2^-(k+1)`, column `j` = digit `j` of the point index). These are the numbers
+/// [`sobol_unit`] uses; a scrambler (e.g. Matoušek's linear matrix scrambling, which multiplies
+/// `C` on the left by a random lower-triangular matrix) needs them to build its own points.
+pub fn sobol_direction_numbers(dimension: usize) -> Result<[u32; SOBOL_BITS], OptimError> {
+    if dimension >= MAX_SOBOL_DIMENSION {
+        return Err(OptimError::SobolDimension {
+            requested: dimension + 1,
+            max: MAX_SOBOL_DIMENSION,
+        });
+    }
+    Ok(direction_numbers(dimension))
 }
 
 /// The first `n` points of the `dimension`-dimensional Sobol' sequence in the unit cube, **skipping**
@@ -240,5 +256,27 @@ mod tests {
         ));
         assert!(sobol_unit(4, MAX_SOBOL_DIMENSION).is_ok());
         assert!(sobol(4, &[Bounds::continuous(1.0, 0.0)]).is_err());
+        assert!(sobol_direction_numbers(MAX_SOBOL_DIMENSION - 1).is_ok());
+        assert!(matches!(
+            sobol_direction_numbers(MAX_SOBOL_DIMENSION),
+            Err(OptimError::SobolDimension { .. })
+        ));
+    }
+
+    #[test]
+    fn direction_numbers_rebuild_the_sequence() {
+        // Point k (Gray-code order, zero point skipped) is the XOR of the direction numbers
+        // selected by the bits of the Gray code of k, as the generator matrices say.
+        let points = sobol_unit(64, 5).unwrap();
+        for dimension in 0..5 {
+            let v = sobol_direction_numbers(dimension).unwrap();
+            for (k, point) in points.iter().enumerate() {
+                let gray = (k + 1) ^ ((k + 1) >> 1);
+                let x = (0..SOBOL_BITS)
+                    .filter(|bit| (gray >> bit) & 1 == 1)
+                    .fold(0u32, |acc, bit| acc ^ v[bit]);
+                assert!((f64::from(x) / 4_294_967_296.0 - point[dimension]).abs() < 1e-15);
+            }
+        }
     }
 }

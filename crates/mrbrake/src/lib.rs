@@ -27,6 +27,8 @@
 //! - [`heat`]: axisymmetric heat conduction on the same core (steady, transient, Joule coupling).
 //! - [`design`]: brake specifications, geometry, the thesis's closed forms, the brake analysis.
 //! - [`optim`], [`store`], [`explore`]: optimisers, the results store, design studies.
+//! - [`uq`]: uncertainty quantification: input laws, scrambled Sobol' propagation, bands,
+//!   polynomial-chaos Sobol' indices, bounded least-squares calibration with identifiability.
 //! - [`sysid`]: characterisation logs, hysteresis fits, frequency responses, transfer functions.
 //! - [`control`]: the `no_std` real-time directional brake controller.
 //! - [`sim`]: the virtual test rig and the haptic simulation.
@@ -66,5 +68,6 @@ pub use mrbrake_sim as sim;
 pub use mrbrake_store as store;
 pub use mrbrake_sysid as sysid;
 pub use mrbrake_units as units;
+pub use mrbrake_uq as uq;
 
 pub use mrbrake_error::{ErrorKind, Kind};
