@@ -95,10 +95,14 @@ pub fn generate<T: JsonSchema + for<'de> Deserialize<'de>>() -> Value {
     schema
 }
 
-/// Records the key order of the struct `T` (`x-order`) on the object at `path` in `schema`.
+/// Records the key order of the struct `T` (`x-order`) on the object at `path` in `schema` (on
+/// its items for an array of tables).
 pub fn order<T: for<'de> Deserialize<'de>>(schema: &mut Value, path: &str) {
     let keys = field_order::<T>();
-    if let Some(node) = node_mut(schema, path) {
+    if let Some(mut node) = node_mut(schema, path) {
+        if node.get("items").is_some() {
+            node = &mut node["items"];
+        }
         node["x-order"] = json!(keys);
     }
 }

@@ -149,7 +149,8 @@ pub const MAX_ROTORS: u32 = 20;
 pub const RATED_CURRENT_BOUNDS: Bounds = Bounds::open_closed(0.0, 1000.0);
 
 /// A numeric field of the spec: its dotted TOML path, what it holds and the values it accepts.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Fields are equal when their paths are (the path decides the rest).
+#[derive(Debug, Clone, Copy)]
 pub struct SpecField {
     /// The dotted TOML path, e.g. `drum.gap`.
     pub path: &'static str,
@@ -158,6 +159,14 @@ pub struct SpecField {
     /// The values it accepts (SI).
     pub bounds: Bounds,
 }
+
+impl PartialEq for SpecField {
+    fn eq(&self, other: &Self) -> bool {
+        self.path == other.path
+    }
+}
+
+impl Eq for SpecField {}
 
 impl SpecField {
     const fn length(path: &'static str) -> Self {
