@@ -98,7 +98,7 @@ fn mesh_level(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
 
 /// `order`: 1 or 2.
 fn element_order(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
-    schemars::json_schema!({ "type": "integer", "enum": [1, 2], "default": 1 })
+    mrbrake_schema::element_order()
 }
 
 /// `[set]`: spec paths to values.

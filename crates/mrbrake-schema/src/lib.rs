@@ -211,8 +211,8 @@ mod order_probe {
 }
 
 /// `schema` as TOML reads it: no `null` (an optional key is left out, its default its absence):
-/// `"default": null` goes, so do the `null` of a `type` or `enum` and a `{"type": "null"}` branch
-/// (an `anyOf` left with one branch becomes it).
+/// `"default": null` goes (a default kept by [`choice`] comes back), so do the `null` of a `type`
+/// or `enum` and a `{"type": "null"}` branch (an `anyOf` left with one branch becomes it).
 pub fn without_null(mut schema: Value) -> Value {
     strip_null(&mut schema);
     schema
@@ -223,6 +223,9 @@ fn strip_null(node: &mut Value) {
         Value::Object(object) => {
             if object.get("default").is_some_and(Value::is_null) {
                 object.remove("default");
+            }
+            if let Some(kept) = object.remove(DEFAULT_KEPT) {
+                object.insert("default".into(), kept);
             }
             if let Some(Value::Array(types)) = object.get_mut("type") {
                 types.retain(|t| t != "null");
@@ -285,10 +288,34 @@ fn regex_escape(text: &str) -> String {
 pub fn choice(values: &[&str], default: Option<&str>) -> Schema {
     let mut schema = json_schema!({ "type": "string", "enum": values });
     if let Some(default) = default {
-        schema.insert("default".into(), json!(default));
+        with_default(&mut schema, json!(default));
     }
     schema
 }
+
+/// The element order key of the problem files: 1 (linear triangles, the default) or 2.
+pub fn element_order() -> Schema {
+    let mut schema = json_schema!({ "type": "integer", "enum": [1, 2] });
+    with_default(&mut schema, json!(1));
+    schema
+}
+
+/// A key naming a unit of `dimension` on its own (a problem file's `length_unit`), default SI.
+pub fn unit_choice(dimension: Dimension) -> Schema {
+    let units: Vec<&str> = dimension.units().iter().map(|(u, _)| *u).collect();
+    choice(&units, Some(dimension.si_unit()))
+}
+
+/// Sets the default of a key schema written by a `schema_with` function. The derive overwrites a
+/// field's `default` with its serde default (`null` for an absent optional key) after the
+/// function ran, so the value is kept as `x-default` too, which [`without_null`] restores.
+fn with_default(schema: &mut Schema, value: Value) {
+    schema.insert("default".into(), value.clone());
+    schema.insert(DEFAULT_KEPT.into(), value);
+}
+
+/// Where [`with_default`] keeps a default until [`without_null`] has run.
+const DEFAULT_KEPT: &str = "x-default";
 
 #[cfg(test)]
 mod tests {

@@ -96,12 +96,11 @@ fn physics(_: &mut SchemaGenerator) -> Schema {
 }
 
 fn length_unit(_: &mut SchemaGenerator) -> Schema {
-    let units: Vec<&str> = Dimension::Length.units().iter().map(|(u, _)| *u).collect();
-    choice(&units, Some("m"))
+    mrbrake_schema::unit_choice(Dimension::Length)
 }
 
 fn element_order(_: &mut SchemaGenerator) -> Schema {
-    json_schema!({ "type": "integer", "enum": [1, 2], "default": 1 })
+    mrbrake_schema::element_order()
 }
 
 /// `[solver]`.

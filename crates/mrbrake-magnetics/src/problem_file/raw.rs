@@ -116,13 +116,12 @@ pub(super) struct RawFile {
 
 /// `length_unit`: one of the length units, default `m`.
 fn length_unit(_: &mut SchemaGenerator) -> Schema {
-    let units: Vec<&str> = Dimension::Length.units().iter().map(|(u, _)| *u).collect();
-    choice(&units, Some("m"))
+    mrbrake_schema::unit_choice(Dimension::Length)
 }
 
 /// `order`: 1 or 2, default 1.
 fn element_order(_: &mut SchemaGenerator) -> Schema {
-    json_schema!({ "type": "integer", "enum": [1, 2], "default": 1 })
+    mrbrake_schema::element_order()
 }
 
 /// `[solver]`.
