@@ -7,12 +7,18 @@ use mrbrake_report::html::design::DesignReport;
 use crate::server::Reply;
 use crate::session::{Session, chain};
 
+/// The downloads there are.
+const NAMES: [&str; 5] = ["spec.toml", "analysis.json", "curve.csv", "report.html", "model.json"];
+
 /// The download `name` of `session`.
 pub(crate) fn download(session: &Session, name: &str) -> Reply {
     let (text, solved) = {
         let state = session.lock();
         (state.text.clone(), state.solved.clone())
     };
+    if !NAMES.contains(&name) {
+        return Reply::error(404, &format!("no download '{name}'"));
+    }
     let stem = file_stem(&text);
     let body = match name {
         "spec.toml" => Ok(("application/toml", text.into_bytes())),

@@ -134,9 +134,12 @@ impl Studio {
         }
     }
 
-    /// Stops serving and solving (after the solves running now).
+    /// Stops serving and solving (the running solves stop at their next cancellation point).
     pub fn shut_down(self) {
         self.app.queue.shut_down();
+        for (session, _) in self.app.sessions.lock().unwrap_or_else(|p| p.into_inner()).iter() {
+            session.cancel();
+        }
         for _ in 0..self.threads.len() {
             self.server.unblock();
         }

@@ -158,9 +158,9 @@ impl Queue {
 
 /// Solves the latest edit of `session`, stage by stage, unless it becomes obsolete.
 fn solve_latest(session: &Session) {
-    let (generation, spec, text) = {
+    let (generation, version, spec, text) = {
         let state = session.lock();
-        (session.generation(), state.spec.clone(), state.text.clone())
+        (session.generation(), state.version, state.spec.clone(), state.text.clone())
     };
     let Some(spec) = spec else { return };
     let cancel = Cancel { session, generation };
@@ -170,6 +170,10 @@ fn solve_latest(session: &Session) {
         }
         set_stage(session, &cancel, k, |s| s.status = "running");
         let outcome = run_stage(session, &cancel, k, *stage, &spec, &text);
+        let outcome = outcome.map(|(mut result, solved)| {
+            result["version"] = json!(version);
+            (result, solved)
+        });
         let mut state = session.lock();
         if cancel.is_cancelled() {
             return;
