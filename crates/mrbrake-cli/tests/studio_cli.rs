@@ -99,6 +99,9 @@ fn the_studio_edits_solves_and_matches_the_cli() {
     let first = solved_torque(&mut b, &tab, "default");
     let cli = json(&["analyze", "--json"]);
     assert_eq!(first, cli["torque"]["at_max_current_Nm"].as_f64().unwrap(), "the thesis brake");
+    if let Ok(path) = std::env::var("MRBRAKE_STUDIO_SCREENSHOT") {
+        std::fs::write(path, b.screenshot(&tab)).unwrap();
+    }
 
     // An edit: the cross-section changes at once, then the default-mesh torque equals the CLI's.
     let section = "document.querySelector('#cross-section .svg').innerHTML";
@@ -150,9 +153,6 @@ fn the_studio_edits_solves_and_matches_the_cli() {
     let shot = b.screenshot(&tab);
     let (share, colours) = browser::ink(&shot);
     assert!(share > 0.05 && colours > 50, "blank screenshot ({share}, {colours} colours)");
-    if let Ok(path) = std::env::var("MRBRAKE_STUDIO_SCREENSHOT") {
-        std::fs::write(path, &shot).unwrap();
-    }
     for t in [&tab, &second] {
         let (errors, requests) = b.tab_problems(t, &server.origin());
         assert!(errors.is_empty(), "console errors: {errors:?}");

@@ -69,6 +69,7 @@ function setMarkup(container, markup, empty) {
 
 function fmt(value, digits) {
   if (value === null || value === undefined || !Number.isFinite(value)) return '–';
+  if (Number.isInteger(value) && Math.abs(value) < 1e6) return String(value);
   const magnitude = Math.abs(value);
   if (magnitude !== 0 && (magnitude < 1e-3 || magnitude >= 1e6)) return value.toExponential(digits - 1);
   return value.toPrecision(digits);
@@ -359,22 +360,31 @@ function linePlot(series, xLabel, yLabel) {
   const x = (v) => L + (v / xMax) * (W - L - R);
   const y = (v) => H - B - (v / yMax) * (H - T - B);
   const svg = svgEl('svg', { viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': `${yLabel} against ${xLabel} of the pinned designs` });
-  svg.append(svgEl('rect', { x: 0, y: 0, width: W, height: H, fill: '#fff' }));
-  svg.append(svgEl('line', { x1: L, y1: H - B, x2: W - R, y2: H - B, stroke: '#333' }));
-  svg.append(svgEl('line', { x1: L, y1: T, x2: L, y2: H - B, stroke: '#333' }));
-  for (let k = 0; k <= 4; k++) {
-    const xv = (xMax * k) / 4, yv = (yMax * k) / 4;
-    svg.append(svgEl('text', { x: x(xv), y: H - B + 16, 'text-anchor': 'middle', 'font-size': 11 }, fmt(xv, 3)));
-    svg.append(svgEl('text', { x: L - 6, y: y(yv) + 4, 'text-anchor': 'end', 'font-size': 11 }, fmt(yv, 3)));
-  }
-  svg.append(svgEl('text', { x: (L + W - R) / 2, y: H - 8, 'text-anchor': 'middle', 'font-size': 12 }, xLabel));
-  svg.append(svgEl('text', { x: 14, y: (T + H - B) / 2, 'text-anchor': 'middle', 'font-size': 12, transform: `rotate(-90 14 ${(T + H - B) / 2})` }, yLabel));
+  axes(svg, { W, H, L, R, T, B }, [0, xMax, x, xLabel], [0, yMax, y, yLabel]);
   series.forEach((s, k) => {
     const colour = COLOURS[k % COLOURS.length];
     svg.append(svgEl('polyline', { points: s.points.map((p) => `${x(p[0]).toFixed(1)},${y(p[1]).toFixed(1)}`).join(' '), fill: 'none', stroke: colour, 'stroke-width': 2 }));
     svg.append(svgEl('text', { x: L + 10, y: T + 14 + 15 * k, 'font-size': 11, fill: colour }, s.label));
   });
   return svg;
+}
+
+// White ground, the two axes, five ticks each and the axis labels; `xAxis` and `yAxis` are
+// [low, high, to pixels, label].
+function axes(svg, box, xAxis, yAxis) {
+  const { W, H, L, R, T, B } = box;
+  const [x0, x1, x, xLabel] = xAxis, [y0, y1, y, yLabel] = yAxis;
+  svg.append(svgEl('rect', { x: 0, y: 0, width: W, height: H, fill: '#fff' }));
+  svg.append(svgEl('line', { x1: L, y1: H - B, x2: W - R, y2: H - B, stroke: '#333' }));
+  svg.append(svgEl('line', { x1: L, y1: T, x2: L, y2: H - B, stroke: '#333' }));
+  for (let k = 0; k <= 4; k++) {
+    const xv = x0 + ((x1 - x0) * k) / 4, yv = y0 + ((y1 - y0) * k) / 4;
+    svg.append(svgEl('text', { x: x(xv), y: H - B + 16, 'text-anchor': 'middle', 'font-size': 11 }, fmt(xv, 3)));
+    svg.append(svgEl('text', { x: L - 6, y: y(yv) + 4, 'text-anchor': 'end', 'font-size': 11 }, fmt(yv, 3)));
+  }
+  svg.append(svgEl('text', { x: (L + W - R) / 2, y: H - 8, 'text-anchor': 'middle', 'font-size': 12 }, xLabel));
+  const mid = (T + H - B) / 2;
+  svg.append(svgEl('text', { x: 14, y: mid, 'text-anchor': 'middle', 'font-size': 12, transform: `rotate(-90 14 ${mid})` }, yLabel));
 }
 
 // --- study: the Pareto plot -----------------------------------------------------------------
@@ -412,15 +422,7 @@ function drawStudy() {
   const x = (v) => L + ((v - x0) / (x1 - x0)) * (W - L - R);
   const y = (v) => H - B - ((v - y0) / (y1 - y0)) * (H - T - B);
   const svg = svgEl('svg', { viewBox: `0 0 ${W} ${H}`, role: 'group', 'aria-label': `Designs: ${yName} against ${xName}; front points are buttons that load the design` });
-  svg.append(svgEl('rect', { x: 0, y: 0, width: W, height: H, fill: '#fff' }));
-  svg.append(svgEl('line', { x1: L, y1: H - B, x2: W - R, y2: H - B, stroke: '#333' }));
-  svg.append(svgEl('line', { x1: L, y1: T, x2: L, y2: H - B, stroke: '#333' }));
-  for (let k = 0; k <= 4; k++) {
-    svg.append(svgEl('text', { x: x(x0 + ((x1 - x0) * k) / 4), y: H - B + 16, 'text-anchor': 'middle', 'font-size': 11 }, fmt(x0 + ((x1 - x0) * k) / 4, 3)));
-    svg.append(svgEl('text', { x: L - 6, y: y(y0 + ((y1 - y0) * k) / 4) + 4, 'text-anchor': 'end', 'font-size': 11 }, fmt(y0 + ((y1 - y0) * k) / 4, 3)));
-  }
-  svg.append(svgEl('text', { x: (L + W - R) / 2, y: H - 8, 'text-anchor': 'middle', 'font-size': 12 }, xName));
-  svg.append(svgEl('text', { x: 14, y: (T + H - B) / 2, 'text-anchor': 'middle', 'font-size': 12, transform: `rotate(-90 14 ${(T + H - B) / 2})` }, yName));
+  axes(svg, { W, H, L, R, T, B }, [x0, x1, x, xName], [y0, y1, y, yName]);
   for (const c of study.constraints) {
     for (const [bound, value] of [['min', c.min], ['max', c.max]]) {
       if (value === null || value === undefined) continue;

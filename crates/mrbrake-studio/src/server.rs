@@ -1,7 +1,6 @@
 //! The HTTP side: `tiny_http` on a few threads, every request checked (`security`), bodies
 //! bounded, then routed to the page, the JSON API or a download.
 
-use std::collections::HashMap;
 use std::io::Read;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
@@ -302,7 +301,7 @@ fn new_session(app: &App) -> Reply {
         sessions.push((Arc::clone(&session), Instant::now()));
     }
     app.queue.submit(&session);
-    Reply::json(&state_json(app, &session, false))
+    Reply::json(&state_json(app, &session))
 }
 
 fn find_session(app: &App, id: &str) -> Option<Arc<Session>> {
@@ -325,19 +324,19 @@ fn session_route(
             let after = query_value(url, "after").and_then(|a| a.parse::<u64>().ok());
             match after {
                 Some(after) => long_poll(app, session, after),
-                None => Reply::json(&state_json(app, session, false)),
+                None => Reply::json(&state_json(app, session)),
             }
         }
         ("POST", ["edit"]) => edit(app, session, body),
         ("POST", ["cancel"]) => {
             session.cancel();
-            Reply::json(&state_json(app, session, false))
+            Reply::json(&state_json(app, session))
         }
         ("POST", ["solve"]) => {
             if session.resolve() {
                 app.queue.submit(session);
             }
-            Reply::json(&state_json(app, session, false))
+            Reply::json(&state_json(app, session))
         }
         ("POST", ["pin"]) => pin(app, session, body),
         ("GET", ["download", name]) => downloads::download(session, name),
@@ -359,11 +358,11 @@ fn long_poll(app: &App, session: &Session, after: u64) -> Reply {
     let allowed = app.limits.http_threads.max(3) - 2;
     if app.polls.fetch_add(1, Ordering::SeqCst) >= allowed {
         app.polls.fetch_sub(1, Ordering::SeqCst);
-        return Reply::json(&state_json(app, session, false));
+        return Reply::json(&state_json(app, session));
     }
     drop(session.wait_newer(after, POLL));
     app.polls.fetch_sub(1, Ordering::SeqCst);
-    Reply::json(&state_json(app, session, false))
+    Reply::json(&state_json(app, session))
 }
 
 /// An edit: `{"text": …}`, `{"path": …, "value": …}` or `{"action": "undo" | "redo"}`.
@@ -401,7 +400,7 @@ fn edit(app: &App, session: &Arc<Session>, body: &[u8]) -> Reply {
     if session.lock().spec.is_some() {
         app.queue.submit(session);
     }
-    Reply::json(&state_json(app, session, false))
+    Reply::json(&state_json(app, session))
 }
 
 /// Pins the latest finished solve (`{"stage": "default"}`), or removes pin `{"remove": k}`.
@@ -429,11 +428,11 @@ fn pin(app: &App, session: &Session, body: &[u8]) -> Reply {
     }
     session.notify(&mut state);
     drop(state);
-    Reply::json(&state_json(app, session, false))
+    Reply::json(&state_json(app, session))
 }
 
 /// The session as the page sees it.
-pub(crate) fn state_json(app: &App, session: &Session, _full: bool) -> Value {
+pub(crate) fn state_json(app: &App, session: &Session) -> Value {
     let state = session.lock();
     let (undo, redo) = state.history();
     let stages: Vec<Value> = STAGES
@@ -449,9 +448,6 @@ pub(crate) fn state_json(app: &App, session: &Session, _full: bool) -> Value {
         })
         .collect();
     let stats = app.queue.stats();
-    let mut counts = HashMap::new();
-    counts.insert("waiting", stats.waiting);
-    counts.insert("running", stats.running);
     json!({
         "id": session.id,
         "revision": state.revision,
@@ -463,6 +459,6 @@ pub(crate) fn state_json(app: &App, session: &Session, _full: bool) -> Value {
         "pins": state.pins,
         "undo": undo,
         "redo": redo,
-        "queue": counts,
+        "queue": { "waiting": stats.waiting, "running": stats.running },
     })
 }

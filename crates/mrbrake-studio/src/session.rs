@@ -117,7 +117,7 @@ impl Session {
             solved: None,
             history_limit: limits.history,
         };
-        state.set_text(text);
+        state.set_text_only(text);
         Arc::new(Self {
             id,
             state: Mutex::new(state),
@@ -220,10 +220,6 @@ impl Session {
 }
 
 impl State {
-    fn set_text(&mut self, text: String) {
-        self.set_text_only(text);
-    }
-
     /// Takes `text` as the spec: what it shows at once, its stages reset.
     fn set_text_only(&mut self, text: String) {
         self.version += 1;

@@ -172,20 +172,8 @@ impl Browser {
     /// Opens `file` in a new tab, waits for its load event and collects what the page did.
     pub fn visit(&mut self, file: &Path) -> PageVisit {
         let url = format!("file://{}", file.canonicalize().expect("page exists").display());
-        let target = self.call(None, "Target.createTarget", json!({ "url": "about:blank" }));
-        let attached = self.call(
-            None,
-            "Target.attachToTarget",
-            json!({ "targetId": target["targetId"], "flatten": true }),
-        );
-        let session = attached["sessionId"].as_str().expect("session id").to_string();
+        let session = self.new_tab(1200, 900);
         let s = Some(session.as_str());
-        for domain in ["Page.enable", "Runtime.enable", "Log.enable", "Network.enable"] {
-            self.call(s, domain, json!({}));
-        }
-        let metrics =
-            json!({ "width": 1200, "height": 900, "deviceScaleFactor": 1, "mobile": false });
-        self.call(s, "Emulation.setDeviceMetricsOverride", metrics);
         self.events.clear();
         self.call(s, "Page.navigate", json!({ "url": url }));
         self.wait_for(&session, "Page.loadEventFired");
@@ -333,8 +321,8 @@ pub struct Tab {
 
 #[allow(dead_code)]
 impl Browser {
-    /// Opens `url` in a new `width` × `height` tab and waits for its load event.
-    pub fn open(&mut self, url: &str, width: u32, height: u32) -> Tab {
+    /// A new blank `width` × `height` tab with its events on; its protocol session.
+    fn new_tab(&mut self, width: u32, height: u32) -> String {
         let target = self.call(None, "Target.createTarget", json!({ "url": "about:blank" }));
         let attached = self.call(
             None,
@@ -349,7 +337,13 @@ impl Browser {
         let metrics =
             json!({ "width": width, "height": height, "deviceScaleFactor": 1, "mobile": false });
         self.call(s, "Emulation.setDeviceMetricsOverride", metrics);
-        self.call(s, "Page.navigate", json!({ "url": url }));
+        session
+    }
+
+    /// Opens `url` in a new `width` × `height` tab and waits for its load event.
+    pub fn open(&mut self, url: &str, width: u32, height: u32) -> Tab {
+        let session = self.new_tab(width, height);
+        self.call(Some(&session), "Page.navigate", json!({ "url": url }));
         self.wait_for(&session, "Page.loadEventFired");
         Tab { session }
     }
