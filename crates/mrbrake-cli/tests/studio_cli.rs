@@ -98,7 +98,8 @@ fn the_studio_edits_solves_and_matches_the_cli() {
     b.wait_until(&tab, "document.body.dataset.ready === '1'", 60, "the page to be ready");
     let first = solved_torque(&mut b, &tab, "default");
     let cli = json(&["analyze", "--json"]);
-    assert_eq!(first, cli["torque"]["at_max_current_Nm"].as_f64().unwrap(), "the thesis brake");
+    let cli_torque = cli["torque"]["at_max_current_Nm"].as_f64().unwrap();
+    assert_eq!(first.to_bits(), cli_torque.to_bits(), "the thesis brake: {first} vs {cli_torque}");
     if let Ok(path) = std::env::var("MRBRAKE_STUDIO_SCREENSHOT") {
         std::fs::write(path, b.screenshot(&tab)).unwrap();
     }
@@ -110,7 +111,8 @@ fn the_studio_edits_solves_and_matches_the_cli() {
     b.wait_until(&tab, &format!("{section} !== {before}"), 30, "the new cross-section");
     let torque = solved_torque(&mut b, &tab, "default");
     let expected = analyze_shown_spec(&mut b, &tab, dir.path());
-    assert_eq!(torque, expected["torque"]["at_max_current_Nm"].as_f64().unwrap());
+    let expected = expected["torque"]["at_max_current_Nm"].as_f64().unwrap();
+    assert_eq!(torque.to_bits(), expected.to_bits(), "the edited spec: {torque} vs {expected}");
     assert!(torque < first, "a wider gap brakes less: {torque} vs {first}");
 
     // Pin, then compare with a second design.

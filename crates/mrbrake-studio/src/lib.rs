@@ -31,6 +31,11 @@
 //! - No request names a file: the server reads only the spec and the store given on its command
 //!   line, and writes nothing (downloads are responses the browser saves).
 //!
+//! # Measured (release binary, thesis brake, 2 shared cores)
+//! The server answers 4–29 ms after start and the page is ready 0.35 s after the browser opens it;
+//! edit → cross-section 2 ms (in the edit's response); edit → coarse torque 0.58 s, → default
+//! torque 2.17 s (medians of 6 edits); peak RSS after 6 solved and 100 quick edits 81 MB.
+//!
 //! # Why `tiny_http` (build time, issue 34)
 //! Cold release builds of a hello-world server on this 2-core machine (shared, so wall times
 //! vary): axum 0.8 on tokio 1 (http1, json, query; rt-multi-thread, net, macros, sync, signal):
