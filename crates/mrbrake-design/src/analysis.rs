@@ -1015,6 +1015,53 @@ fn curve_point(
     })
 }
 
+/// The figures of a design that need no field solve, exactly as [`analyze`] reports them: the
+/// mechanics (torque densities NaN: no torque yet) and unit 1's coil at the maximum current
+/// (turns, wire, resistance, current density, power; the inductances and time constant NaN), at
+/// the copper temperature `temperature_c`. For a front end that shows them while the field is
+/// being solved.
+pub fn instant_figures(
+    spec: &BrakeSpec,
+    geometry: &BrakeGeometry,
+    temperature_c: f64,
+) -> Result<(Mechanics, CoilResult), DesignError> {
+    let unit1: Vec<u32> = geometry.coils.iter().filter(|c| c.unit == 0).map(|c| c.tag).collect();
+    let coil = coil_electrics(spec, geometry, &unit1, spec.coil.max_current.a(), temperature_c)?;
+    Ok((mechanics(geometry, spec, f64::NAN)?, coil))
+}
+
+/// Unit 1's coil from the formulas (4.1)–(4.3) and the wire: everything of [`CoilResult`] but the
+/// inductances and the time constant (NaN).
+fn coil_electrics(
+    spec: &BrakeSpec,
+    geometry: &BrakeGeometry,
+    unit1: &[u32],
+    max_current: f64,
+    temperature_c: f64,
+) -> Result<CoilResult, DesignError> {
+    let wire = CopperWire::from_diameter(spec.wire_diameter_m()).map_err(material_error)?;
+    let coil = geometry
+        .coils
+        .iter()
+        .find(|c| unit1.contains(&c.tag))
+        .ok_or_else(|| DesignError::Internal("the geometry has no coil in unit 1".into()))?;
+    let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
+    let e = formula::coil_electrics(coil.turns, mean_radius, &wire, max_current, temperature_c)?;
+    let coils_in_series = unit1.len() as f64;
+    Ok(CoilResult {
+        turns: coil.turns,
+        wire_diameter_m: wire.diameter_m,
+        wire_length_m: e.wire_length_m,
+        resistance_20c_ohm: e.resistance_20c_ohm,
+        resistance_ohm: e.resistance_ohm,
+        current_density_a_per_mm2: e.current_density_a_per_mm2,
+        power_w: e.power_w * coils_in_series,
+        inductance_h: f64::NAN,
+        incremental_inductance_h: f64::NAN,
+        time_constant_s: f64::NAN,
+    })
+}
+
 fn coil_result(
     spec: &BrakeSpec,
     geometry: &BrakeGeometry,
@@ -1024,20 +1071,7 @@ fn coil_result(
     max_current: f64,
     options: &AnalysisOptions,
 ) -> Result<CoilResult, DesignError> {
-    let wire = CopperWire::from_diameter(spec.wire_diameter_m()).map_err(material_error)?;
-    let coil = geometry
-        .coils
-        .iter()
-        .find(|c| unit1.contains(&c.tag))
-        .ok_or_else(|| DesignError::Internal("the geometry has no coil in unit 1".into()))?;
-    let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
-    let e = formula::coil_electrics(
-        coil.turns,
-        mean_radius,
-        &wire,
-        max_current,
-        options.temperature_c,
-    )?;
+    let electrics = coil_electrics(spec, geometry, unit1, max_current, options.temperature_c)?;
     // Flux linkage of every energised coil of unit 1 (two-sided coils are in series).
     let flux: f64 = solver
         .coils(solution)
@@ -1052,19 +1086,12 @@ fn coil_result(
         incremental +=
             sign * sign * solver.incremental_inductance(solution, tag).map_err(numerical)?;
     }
-    let coils_in_series = unit1.len() as f64;
-    let resistance = e.resistance_ohm * coils_in_series;
+    let resistance = electrics.resistance_ohm * unit1.len() as f64;
     Ok(CoilResult {
-        turns: coil.turns,
-        wire_diameter_m: wire.diameter_m,
-        wire_length_m: e.wire_length_m,
-        resistance_20c_ohm: e.resistance_20c_ohm,
-        resistance_ohm: e.resistance_ohm,
-        current_density_a_per_mm2: e.current_density_a_per_mm2,
-        power_w: e.power_w * coils_in_series,
         inductance_h: secant,
         incremental_inductance_h: incremental,
         time_constant_s: secant / resistance,
+        ..electrics
     })
 }
 

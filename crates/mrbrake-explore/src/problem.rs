@@ -35,89 +35,201 @@ use std::path::{Path, PathBuf};
 use mrbrake_design::analysis::ElementOrder;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_units::{Dimension, parse};
+use schemars::JsonSchema;
 use serde::Deserialize;
 
 use crate::ExploreError;
 use crate::evaluate::{EvaluationSettings, METRICS, current_metric_name, metric_info};
 
 /// A number (SI) or a quantity with its unit.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
 #[serde(untagged)]
 enum RawQuantity {
+    /// A number in SI units.
     Number(f64),
+    /// A whole number in SI units.
     Integer(i64),
+    /// A quantity with its unit (`"18mm"`, `"3Nm"`).
     Text(String),
 }
 
-#[derive(Debug, Deserialize)]
+/// An optimisation problem file.
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawProblem {
+    /// The base spec, relative to this file.
     spec: String,
+    /// Mesh density of every evaluation.
     #[serde(default)]
+    #[schemars(schema_with = "mesh_level")]
     mesh: Option<String>,
+    /// Relative speed of the viscous torque (e.g. `"1rad/s"`, `"60rpm"`; default 1 rad/s).
     #[serde(default)]
     speed: Option<String>,
+    /// Element order of the field solution: 1 (linear) or 2 (quadratic).
     #[serde(default)]
+    #[schemars(schema_with = "element_order")]
     order: Option<i64>,
+    /// Fixed changes to the base spec: spec paths (`"coil.turns"`) to values (`"fill"` lets the
+    /// turns fill the window, (4.2), (4.3)).
     #[serde(default)]
+    #[schemars(schema_with = "set_table")]
     set: toml::Table,
+    /// Evaluate the base spec too, as the reference of the front.
     #[serde(default)]
     reference: Option<bool>,
+    /// The design variables: spec fields (`drum.r0`) or thesis symbols (`R0`) with bounds.
     #[serde(default, rename = "variable")]
     variables: Vec<RawVariable>,
+    /// Bounds on metrics (`mrbrake optimize --list-metrics`).
     #[serde(default, rename = "constraint")]
     constraints: Vec<RawConstraint>,
+    /// The objectives: one (pattern search) or more (NSGA-II).
     #[serde(default, rename = "objective")]
     objectives: Vec<RawObjective>,
+    /// The optimiser and its budget.
     algorithm: RawAlgorithm,
 }
 
-#[derive(Debug, Deserialize)]
+/// `mesh`: coarse, default or fine.
+fn mesh_level(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    mrbrake_schema::choice(&["coarse", "default", "fine"], Some("default"))
+}
+
+/// `order`: 1 or 2.
+fn element_order(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    mrbrake_schema::element_order()
+}
+
+/// `[set]`: spec paths to values.
+fn set_table(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    schemars::json_schema!({
+        "type": "object",
+        "additionalProperties": { "type": ["number", "string", "integer"] },
+    })
+}
+
+/// `[[variable]]`: a design variable.
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawVariable {
+    /// A spec field (`drum.r0`) or a thesis symbol (`R0`).
     name: String,
+    /// Lower bound (SI number or quantity with unit).
     min: RawQuantity,
+    /// Upper bound.
     max: RawQuantity,
 }
 
-#[derive(Debug, Deserialize)]
+/// `[[constraint]]`: bounds on a metric.
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawConstraint {
+    /// The metric.
+    #[schemars(schema_with = "metric_name")]
     metric: String,
+    /// Its lower limit.
     #[serde(default)]
     min: Option<RawQuantity>,
+    /// Its upper limit.
     #[serde(default)]
     max: Option<RawQuantity>,
 }
 
-#[derive(Debug, Deserialize)]
+/// A metric's name, one of [`METRICS`].
+fn metric_name(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    let names: Vec<&str> = METRICS.iter().map(|m| m.name).collect();
+    mrbrake_schema::choice(&names, None)
+}
+
+/// `[[objective]]`.
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawObjective {
+    /// The metric.
+    #[schemars(schema_with = "metric_name")]
     metric: String,
+    /// `minimize` or `maximize`.
     #[serde(default = "minimize")]
+    #[schemars(schema_with = "goal")]
     goal: String,
+}
+
+fn goal(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    mrbrake_schema::choice(&["minimize", "maximize"], Some("minimize"))
 }
 
 fn minimize() -> String {
     "minimize".into()
 }
 
-#[derive(Debug, Deserialize)]
+/// `[algorithm]`.
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawAlgorithm {
+    /// `nsga2` (NSGA-II, one or more objectives) or `pattern-search` (one objective).
+    #[schemars(schema_with = "algorithm_kind")]
     kind: String,
+    /// NSGA-II: the population, an even number from 4.
     #[serde(default)]
     population: Option<usize>,
+    /// NSGA-II: generations after the initial population.
     #[serde(default)]
     generations: Option<usize>,
+    /// Pattern search: the most designs evaluated.
     #[serde(default)]
     max_evaluations: Option<usize>,
+    /// Seed of the random numbers (reproducible runs).
     #[serde(default)]
     seed: Option<u64>,
+    /// Pattern search: `compass` or `random` polling.
     #[serde(default)]
+    #[schemars(schema_with = "poll")]
     poll: Option<String>,
+    /// Pattern search: start at the `centre` of the bounds or at the `base` spec's values.
     #[serde(default)]
+    #[schemars(schema_with = "start")]
     start: Option<String>,
+}
+
+fn algorithm_kind(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    mrbrake_schema::choice(&["nsga2", "pattern-search"], None)
+}
+
+fn poll(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    mrbrake_schema::choice(&["compass", "random"], Some("compass"))
+}
+
+fn start(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    mrbrake_schema::choice(&["centre", "base"], Some("centre"))
+}
+
+/// The JSON Schema of an optimisation problem file (`mrbrake optimize`); counts bounded by
+/// [`MAX_POPULATION`] and [`MAX_EVALUATIONS`], the limits the reader checks.
+pub fn schema() -> serde_json::Value {
+    use mrbrake_schema::{Bounds, annotate, node_mut, order};
+    let mut schema = mrbrake_schema::generate::<RawProblem>();
+    schema["$id"] = serde_json::json!("https://mrbrake.invalid/schema/study.json");
+    schema["title"] = serde_json::json!("mrbrake optimisation problem");
+    schema["description"] = serde_json::json!(
+        "A constrained design optimisation for `mrbrake optimize`: a base spec, design variables \
+         with bounds, constraints on metrics, objectives and the algorithm."
+    );
+    order::<RawVariable>(&mut schema, "variable");
+    order::<RawConstraint>(&mut schema, "constraint");
+    order::<RawObjective>(&mut schema, "objective");
+    order::<RawAlgorithm>(&mut schema, "algorithm");
+    let counts = [
+        ("algorithm.population", Bounds::closed(4.0, MAX_POPULATION as f64)),
+        ("algorithm.generations", Bounds::closed(0.0, MAX_EVALUATIONS as f64)),
+        ("algorithm.max_evaluations", Bounds::closed(1.0, MAX_EVALUATIONS as f64)),
+    ];
+    for (path, bounds) in counts {
+        if let Some(node) = node_mut(&mut schema, path) {
+            annotate(node, "", bounds);
+        }
+    }
+    schema
 }
 
 /// A design variable with its bounds (SI).
@@ -709,5 +821,46 @@ generations = 2
         assert!((c.violation(1.5) - 0.5).abs() < 1e-12);
         assert!((c.margin(3.3) - 0.1).abs() < 1e-12);
         assert!(c.violation(f64::NAN).is_infinite());
+    }
+}
+
+#[cfg(test)]
+mod schema_tests {
+    use super::*;
+
+    /// Every key of the example problem files is in the schema, with its doc text.
+    #[test]
+    fn the_schema_covers_the_examples() {
+        let schema = schema();
+        assert_eq!(schema["required"], serde_json::json!(["spec", "algorithm"]));
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/optimize");
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let table: toml::Table =
+                toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+            for (key, value) in &table {
+                let node = &schema["properties"][key];
+                assert!(node["description"].is_string(), "{}: {key}", path.display());
+                let items = node.get("items").unwrap_or(node);
+                let inner: Vec<&toml::Table> = match value {
+                    toml::Value::Table(t) if key != "set" => vec![t],
+                    toml::Value::Array(a) => a.iter().filter_map(|v| v.as_table()).collect(),
+                    _ => vec![],
+                };
+                for t in inner {
+                    for k in t.keys() {
+                        assert!(
+                            items["properties"][k].is_object(),
+                            "{}: {key}.{k}",
+                            path.display()
+                        );
+                    }
+                }
+            }
+        }
+        assert_eq!(
+            schema["properties"]["algorithm"]["properties"]["population"]["maximum"],
+            MAX_POPULATION
+        );
     }
 }

@@ -206,6 +206,28 @@ pub fn gap_flux_density_figure(a: &Analysis) -> Figure {
     figure
 }
 
+/// The torque–current curve as CSV: one row per current, the columns named as `analyze --json`
+/// names the curve's keys.
+pub fn torque_current_csv(a: &Analysis) -> String {
+    let mut out = String::from(
+        "current_A,torque_Nm,yield_torque_Nm,thesis_formula_Nm,mean_B_T,flux_linkage_Wb,newton_iterations\n",
+    );
+    for p in &a.torque_current_curve {
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{}",
+            p.current_a,
+            p.torque_nm,
+            p.yield_torque_nm,
+            p.thesis_formula_nm,
+            p.mean_b_t,
+            p.flux_linkage_wb,
+            p.newton_iterations
+        );
+    }
+    out
+}
+
 /// Palette indices of the gaps of one unit: blue, vermilion, bluish green, reddish purple (the
 /// Okabe–Ito colours that stay dark enough on white; no yellow).
 const GAP_COLOURS: [usize; 4] = [0, 1, 2, 3];

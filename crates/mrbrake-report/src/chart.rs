@@ -376,7 +376,8 @@ impl Picture for Figure {
         let area = if self.title.is_empty() {
             root.clone()
         } else {
-            root.titled(&self.title, ("sans-serif", 22)).map_err(be)?
+            let (title, size) = fit_title(root, &self.title, 22);
+            root.titled(&title, ("sans-serif", size)).map_err(be)?
         };
         let rows = self.panels.len().div_ceil(self.columns);
         let row_areas = area.split_by_breakpoints(
@@ -389,6 +390,40 @@ impl Picture for Figure {
         }
         Ok(())
     }
+}
+
+/// A title that fits the width of `area`, and its font size: at `size` px if it fits, else smaller
+/// (down to 60 % of `size`), else at that size shortened in the middle with `…` (a design's name
+/// can be long; plotters centres a title and would clip it on both sides).
+pub(crate) fn fit_title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    size: u32,
+) -> (String, u32) {
+    ensure_font();
+    let room = area.dim_in_pixel().0.saturating_sub(16);
+    let width = |text: &str, size: u32| {
+        area.estimate_text_size(text, &TextStyle::from(("sans-serif", size).into_font()))
+            .map_or(u32::MAX, |s| s.0)
+    };
+    let smallest = (size * 3).div_ceil(5).max(1);
+    for s in (smallest..=size).rev() {
+        if width(title, s) <= room {
+            return (title.to_string(), s);
+        }
+    }
+    let chars: Vec<char> = title.chars().collect();
+    let mut keep = chars.len();
+    while keep > 2 {
+        keep -= 1;
+        let head: String = chars[..keep.div_ceil(2)].iter().collect();
+        let tail: String = chars[chars.len() - keep / 2..].iter().collect();
+        let shortened = format!("{}…{}", head.trim_end(), tail.trim_start());
+        if width(&shortened, smallest) <= room {
+            return (shortened, smallest);
+        }
+    }
+    ("…".to_string(), smallest)
 }
 
 /// The pixel rows at which `rows` panel rows of `height` pixels split, in proportion to `weights`
@@ -742,6 +777,29 @@ fn legend_key<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A title too long for its figure is shrunk, then shortened in the middle, never clipped;
+    /// a short one is left alone.
+    #[test]
+    fn long_titles_fit_their_figure() {
+        let long = format!(
+            "{}: torque–current curve",
+            "front design 17 of the thesis requirement study ".repeat(3)
+        );
+        let figure = Figure::new(long.clone())
+            .panel(Panel::new("x", "y").series(Series::line("a", vec![(0.0, 0.0), (1.0, 1.0)])));
+        let svg = figure.to_svg().unwrap();
+        assert!(svg.contains('…') && svg.contains("torque–current curve"), "the end is kept");
+        let mut buf = String::new();
+        let root = SVGBackend::with_string(&mut buf, (900, 600)).into_drawing_area();
+        let (title, size) = fit_title(&root, &long, 22);
+        let width = root
+            .estimate_text_size(&title, &TextStyle::from(("sans-serif", size).into_font()))
+            .unwrap()
+            .0;
+        assert!(width <= 900 && size < 22, "{width} px at {size}");
+        assert_eq!(fit_title(&root, "short", 22), ("short".to_string(), 22));
+    }
 
     fn sample() -> Figure {
         Figure::new("test")

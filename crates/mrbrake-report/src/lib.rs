@@ -41,6 +41,7 @@ pub mod materials;
 pub mod operator;
 pub mod pareto;
 pub mod plot_format;
+pub mod reference;
 pub mod response;
 pub mod rig;
 pub mod study;

@@ -19,8 +19,9 @@ use crate::progress::ProgressDisplay;
 /// Arguments of `mrbrake analyze`.
 #[derive(Debug, Args)]
 pub struct AnalyzeArgs {
-    /// Brake specification (TOML). Omitted: the embedded thesis bidirectional brake
-    /// (examples/specs/thesis-bidirectional.toml).
+    /// Brake specification (TOML; every key with its unit, range and default:
+    /// docs/reference/spec.md or `mrbrake schema spec --markdown`). Omitted: the embedded thesis
+    /// bidirectional brake (examples/specs/thesis-bidirectional.toml).
     spec: Option<PathBuf>,
     /// Mesh density: coarse, default or fine.
     #[arg(long, default_value = "default")]

@@ -23,7 +23,8 @@ pub enum FemCommand {
 /// Arguments of `mrbrake fem solve`.
 #[derive(Debug, Args)]
 pub struct SolveArgs {
-    /// Problem file (TOML): `mesh = "file.msh"`, `[[region]]`, `[[boundary]]`, `[[probe]]`, `[[line]]`.
+    /// Problem file (TOML): `mesh = "file.msh"`, `[[region]]`, `[[boundary]]`, `[[probe]]`, `[[line]]`
+    /// (every key: docs/reference/magnetics.md and heat.md, or `mrbrake schema magnetics|heat`).
     problem: PathBuf,
     /// Element order: 1 (linear triangles) or 2 (quadratic, 6-node triangles on the same mesh);
     /// overrides the problem file's `order` key (default 1).

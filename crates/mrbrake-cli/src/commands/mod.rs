@@ -16,6 +16,8 @@ mod optimize;
 mod report;
 mod response;
 mod rig;
+mod schema;
+mod studio;
 mod study;
 mod sweep;
 mod tfest;
@@ -72,6 +74,13 @@ pub enum Command {
     /// One self-contained HTML report (offline, printable on A4): a design ([SPEC]; default the
     /// thesis brake), a study (--store) or a characterisation (--log, --frd).
     Report(report::ReportArgs),
+    /// The JSON Schema of an input format (spec, magnetics, heat, study) for editors (taplo, Even
+    /// Better TOML), or with --markdown its reference page (docs/reference/).
+    Schema(schema::SchemaArgs),
+    /// Design a brake in the browser: a local web application with the spec's form, the
+    /// cross-section, and torque and field solved as you type. Prints its address (with a session
+    /// token) on the first line and serves until interrupted.
+    Studio(studio::StudioArgs),
 }
 
 /// Runs one subcommand.
@@ -95,5 +104,7 @@ pub fn run(command: Command) -> CommandResult {
         Command::Merge(a) => sweep::run_merge(a),
         Command::Export(a) => sweep::run_export(a),
         Command::Report(a) => report::run(a),
+        Command::Schema(a) => schema::run(a),
+        Command::Studio(a) => studio::run(a),
     }
 }

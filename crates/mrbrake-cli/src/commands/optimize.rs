@@ -18,7 +18,8 @@ use crate::progress::ProgressDisplay;
 /// Arguments of `mrbrake optimize`.
 #[derive(Debug, Args)]
 pub struct OptimizeArgs {
-    /// Problem file (TOML): base spec, variables with bounds, constraints, objectives, algorithm.
+    /// Problem file (TOML): base spec, variables with bounds, constraints, objectives, algorithm
+    /// (every key: docs/reference/study.md or `mrbrake schema study --markdown`).
     #[arg(required_unless_present = "list_metrics")]
     problem: Option<PathBuf>,
     /// Results store (SQLite). Default: `<problem name>.sqlite` in the current folder. An existing

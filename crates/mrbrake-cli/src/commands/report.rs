@@ -18,8 +18,9 @@ use crate::error::{CommandResult, InputError};
 /// Arguments of `mrbrake report`.
 #[derive(Debug, Args)]
 pub struct ReportArgs {
-    /// Brake specification (TOML) for a design report. Omitted (and no --store or --log): the
-    /// embedded thesis bidirectional brake, compared with the thesis's published values.
+    /// Brake specification (TOML; its keys: docs/reference/spec.md or `mrbrake schema spec
+    /// --markdown`) for a design report. Omitted (and no --store or --log): the embedded thesis
+    /// bidirectional brake, compared with the thesis's published values.
     #[arg(conflicts_with_all = ["store", "log"])]
     spec: Option<PathBuf>,
     /// The HTML file to write.

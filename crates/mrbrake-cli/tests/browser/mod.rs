@@ -172,20 +172,8 @@ impl Browser {
     /// Opens `file` in a new tab, waits for its load event and collects what the page did.
     pub fn visit(&mut self, file: &Path) -> PageVisit {
         let url = format!("file://{}", file.canonicalize().expect("page exists").display());
-        let target = self.call(None, "Target.createTarget", json!({ "url": "about:blank" }));
-        let attached = self.call(
-            None,
-            "Target.attachToTarget",
-            json!({ "targetId": target["targetId"], "flatten": true }),
-        );
-        let session = attached["sessionId"].as_str().expect("session id").to_string();
+        let session = self.new_tab(1200, 900);
         let s = Some(session.as_str());
-        for domain in ["Page.enable", "Runtime.enable", "Log.enable", "Network.enable"] {
-            self.call(s, domain, json!({}));
-        }
-        let metrics =
-            json!({ "width": 1200, "height": 900, "deviceScaleFactor": 1, "mobile": false });
-        self.call(s, "Emulation.setDeviceMetricsOverride", metrics);
         self.events.clear();
         self.call(s, "Page.navigate", json!({ "url": url }));
         self.wait_for(&session, "Page.loadEventFired");
@@ -323,4 +311,91 @@ pub fn ink(png_bytes: &[u8]) -> (f64, usize) {
         }
     }
     (inked as f64 / count as f64, colours.len())
+}
+
+/// A tab open on a web application (`Browser::open`), driven by script evaluation and keys.
+#[allow(dead_code)]
+pub struct Tab {
+    session: String,
+}
+
+#[allow(dead_code)]
+impl Browser {
+    /// A new blank `width` × `height` tab with its events on; its protocol session.
+    fn new_tab(&mut self, width: u32, height: u32) -> String {
+        let target = self.call(None, "Target.createTarget", json!({ "url": "about:blank" }));
+        let attached = self.call(
+            None,
+            "Target.attachToTarget",
+            json!({ "targetId": target["targetId"], "flatten": true }),
+        );
+        let session = attached["sessionId"].as_str().expect("session id").to_string();
+        let s = Some(session.as_str());
+        for domain in ["Page.enable", "Runtime.enable", "Log.enable", "Network.enable"] {
+            self.call(s, domain, json!({}));
+        }
+        let metrics =
+            json!({ "width": width, "height": height, "deviceScaleFactor": 1, "mobile": false });
+        self.call(s, "Emulation.setDeviceMetricsOverride", metrics);
+        session
+    }
+
+    /// Opens `url` in a new `width` × `height` tab and waits for its load event.
+    pub fn open(&mut self, url: &str, width: u32, height: u32) -> Tab {
+        let session = self.new_tab(width, height);
+        self.call(Some(&session), "Page.navigate", json!({ "url": url }));
+        self.wait_for(&session, "Page.loadEventFired");
+        Tab { session }
+    }
+
+    /// The value of `expression` in `tab` (promises awaited; an exception fails the test).
+    pub fn eval(&mut self, tab: &Tab, expression: &str) -> Value {
+        let v = self.call(
+            Some(&tab.session),
+            "Runtime.evaluate",
+            json!({ "expression": expression, "returnByValue": true, "awaitPromise": true }),
+        );
+        assert!(v.get("exceptionDetails").is_none(), "{expression}: {}", v["exceptionDetails"]);
+        v["result"]["value"].clone()
+    }
+
+    /// Waits until `expression` is truthy in `tab` (polling), returns its value; fails after
+    /// `seconds` with `what`.
+    pub fn wait_until(&mut self, tab: &Tab, expression: &str, seconds: u64, what: &str) -> Value {
+        let deadline = Instant::now() + Duration::from_secs(seconds);
+        loop {
+            let v = self.eval(tab, expression);
+            if !(v.is_null() || v == json!(false) || v == json!(0) || v == json!("")) {
+                return v;
+            }
+            assert!(Instant::now() < deadline, "timed out waiting for {what}");
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+
+    /// Presses `key` (e.g. `Tab`) in `tab`, as the keyboard would.
+    pub fn press(&mut self, tab: &Tab, key: &str, code: u32) {
+        for kind in ["rawKeyDown", "keyUp"] {
+            self.call(
+                Some(&tab.session),
+                "Input.dispatchKeyEvent",
+                json!({ "type": kind, "key": key, "code": key, "windowsVirtualKeyCode": code }),
+            );
+        }
+    }
+
+    /// A PNG screenshot of `tab`'s viewport.
+    pub fn screenshot(&mut self, tab: &Tab) -> Vec<u8> {
+        let shot =
+            self.call(Some(&tab.session), "Page.captureScreenshot", json!({ "format": "png" }));
+        base64_decode(shot["data"].as_str().expect("screenshot data"))
+    }
+
+    /// Console errors and warnings, exceptions, and every requested URL not starting with `own`.
+    pub fn tab_problems(&mut self, tab: &Tab, own: &str) -> (Vec<String>, Vec<String>) {
+        // Collect what arrived meanwhile.
+        self.call(Some(&tab.session), "Runtime.evaluate", json!({ "expression": "1" }));
+        let (errors, requests) = self.page_problems(&tab.session, own);
+        (errors, requests.into_iter().filter(|r| !r.starts_with(own)).collect())
+    }
 }

@@ -29,15 +29,18 @@
 //! [`BrakeSpec::validate`].
 
 mod raw;
+mod schema;
 mod source;
 mod validate;
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Deserializer, Serialize};
 
 use mrbrake_units::{Dimension, parse};
 
 use crate::DesignError;
 
+pub use schema::schema;
 pub use source::SpecSource;
 pub(crate) use validate::Problems;
 pub use validate::Validated;
@@ -125,26 +128,57 @@ impl Quantity {
     }
 }
 
-/// A numeric field of the spec: its dotted TOML path and what it holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The values a numeric field accepts (SI): what [`BrakeSpec::validate`] checks and what the
+/// schema ([`schema`]) publishes, from this one definition.
+pub use mrbrake_schema::Bounds;
+
+/// Every length of a spec: positive, below a sanity bound of 10 m.
+pub const LENGTH_BOUNDS: Bounds = Bounds::open(0.0, 10.0);
+/// The maximum current (A): positive, at most 100 A.
+pub const MAX_CURRENT_BOUNDS: Bounds = Bounds::open_closed(0.0, 100.0);
+/// The wire's American wire gauge: 18 to 40 (the gauges `mrbrake_materials::wire` tabulates).
+pub const AWG_BOUNDS: Bounds = Bounds::closed(18.0, 40.0);
+/// The number of turns: at least one (at most what fits the window, checked with the wire).
+pub const TURNS_BOUNDS: Bounds = Bounds::closed(1.0, u32::MAX as f64);
+/// Rotating discs or cylinders: at least one, at most [`MAX_ROTORS`] (one for the single disc and
+/// the drum, [`ConfigurationKind::max_rotors`]).
+pub const ROTOR_BOUNDS: Bounds = Bounds::closed(1.0, MAX_ROTORS as f64);
+/// The most rotating discs or cylinders of the multi-disc and multi-drum families (a sanity bound).
+pub const MAX_ROTORS: u32 = 20;
+/// A rated current of the wire (A): positive, at most 1000 A.
+pub const RATED_CURRENT_BOUNDS: Bounds = Bounds::open_closed(0.0, 1000.0);
+
+/// A numeric field of the spec: its dotted TOML path, what it holds and the values it accepts.
+/// Fields are equal when their paths are (the path decides the rest).
+#[derive(Debug, Clone, Copy)]
 pub struct SpecField {
     /// The dotted TOML path, e.g. `drum.gap`.
     pub path: &'static str,
     /// What it holds.
     pub quantity: Quantity,
+    /// The values it accepts (SI).
+    pub bounds: Bounds,
 }
+
+impl PartialEq for SpecField {
+    fn eq(&self, other: &Self) -> bool {
+        self.path == other.path
+    }
+}
+
+impl Eq for SpecField {}
 
 impl SpecField {
     const fn length(path: &'static str) -> Self {
-        Self { path, quantity: Quantity::Length }
+        Self { path, quantity: Quantity::Length, bounds: LENGTH_BOUNDS }
     }
 
-    const fn current(path: &'static str) -> Self {
-        Self { path, quantity: Quantity::Current }
+    const fn current(path: &'static str, bounds: Bounds) -> Self {
+        Self { path, quantity: Quantity::Current, bounds }
     }
 
-    const fn integer(path: &'static str) -> Self {
-        Self { path, quantity: Quantity::Integer }
+    const fn integer(path: &'static str, bounds: Bounds) -> Self {
+        Self { path, quantity: Quantity::Integer, bounds }
     }
 }
 
@@ -167,7 +201,7 @@ pub fn numeric_fields() -> impl Iterator<Item = &'static SpecField> + Clone {
 }
 
 /// The name of a configuration, as the file writes it (`configuration = "multi-drum"`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum ConfigurationKind {
     /// One rotating disc between two static case faces, two fluid surfaces (3.7).
@@ -189,6 +223,18 @@ impl ConfigurationKind {
         matches!(self, Self::Drum | Self::MultiDrum | Self::Bidirectional)
     }
 
+    /// Whether the file of this configuration has the optional table `table` (one of
+    /// [`OPTIONAL_TABLES`]): drums their `[drum]`, discs their `[disc]`, the bidirectional brake
+    /// also its `[spacer]`; a configuration must not have the others.
+    pub fn requires_table(self, table: &str) -> bool {
+        match table {
+            "drum" => self.is_drum(),
+            "disc" => !self.is_drum(),
+            "spacer" => self == Self::Bidirectional,
+            _ => false,
+        }
+    }
+
     /// The name used in TOML.
     pub fn name(self) -> &'static str {
         match self {
@@ -205,10 +251,14 @@ impl ConfigurationKind {
     pub fn max_rotors(self) -> u32 {
         match self {
             Self::SingleDisc | Self::Drum => 1,
-            Self::MultiDisc | Self::MultiDrum | Self::Bidirectional => 20,
+            Self::MultiDisc | Self::MultiDrum | Self::Bidirectional => MAX_ROTORS,
         }
     }
 }
+
+/// The tables a spec file has or not depending on its configuration
+/// ([`ConfigurationKind::requires_table`]).
+pub const OPTIONAL_TABLES: [&str; 3] = ["drum", "disc", "spacer"];
 
 /// The brake configuration (thesis 3.1.3 and 4.3) with its working surfaces: each configuration
 /// holds exactly the tables it needs.
@@ -322,7 +372,7 @@ impl Configuration {
 }
 
 /// Where the coil sits (thesis 3.1.4, Figures 3.7–3.9).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum CoilPlacement {
     /// Discs: radially inside the working surfaces (around the core on the shaft side).
@@ -338,7 +388,7 @@ pub enum CoilPlacement {
 
 /// Material names of the parts, from the `mrbrake_materials` library (e.g. `steel-1008`,
 /// `aluminium`, `stainless-304`, `mrf-122eg`, `copper`, `air`).
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Materials {
     /// Low-carbon steel of the flux path (core, case wall, end plates, cylinders or discs).
@@ -369,7 +419,7 @@ fn default_air() -> String {
 }
 
 /// The shaft.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Shaft {
     /// Shaft radius (thesis Table 4.5: 5 mm).
@@ -382,7 +432,7 @@ impl Shaft {
 }
 
 /// The static magnetic circuit and the non-magnetic closures around the working surfaces.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Housing {
     /// Outer radius of the case (half the device diameter).
@@ -417,7 +467,7 @@ impl Housing {
 }
 
 /// Multi-drum working surfaces (thesis 4.4, 4.5, Figure 4.15).
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Drum {
     /// R0: outer radius of the static inner core, the first fluid surface.
@@ -439,7 +489,7 @@ impl Drum {
         SpecField::length("drum.height"),
         SpecField::length("drum.cylinder_thickness"),
         SpecField::length("drum.gap"),
-        SpecField::integer("drum.rotating_cylinders"),
+        SpecField::integer("drum.rotating_cylinders", ROTOR_BOUNDS),
     ];
 
     /// R_k = R0 + k (d + g) (4.5): radius of fluid surface k (inner wall of gap k), m.
@@ -454,7 +504,7 @@ impl Drum {
 }
 
 /// Disc working surfaces (thesis 3.6–3.8, Figure 3.11).
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Disc {
     /// R1: inner radius of the fluid annulus.
@@ -476,12 +526,12 @@ impl Disc {
         SpecField::length("disc.outer_radius"),
         SpecField::length("disc.thickness"),
         SpecField::length("disc.gap"),
-        SpecField::integer("disc.count"),
+        SpecField::integer("disc.count", ROTOR_BOUNDS),
     ];
 }
 
 /// The wire: by AWG gauge or by bare copper diameter.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Wire {
     /// American wire gauge (thesis Table 4.6).
@@ -499,9 +549,9 @@ pub struct Wire {
 impl Wire {
     /// The numeric fields of `coil.wire`.
     pub const FIELDS: &'static [SpecField] = &[
-        SpecField::integer("coil.wire.awg"),
+        SpecField::integer("coil.wire.awg", AWG_BOUNDS),
         SpecField::length("coil.wire.diameter"),
-        SpecField::current("coil.wire.rated_current"),
+        SpecField::current("coil.wire.rated_current", RATED_CURRENT_BOUNDS),
     ];
 
     /// The copper diameter (m): given, or from the AWG gauge.
@@ -520,7 +570,7 @@ impl Wire {
 }
 
 /// The coil (thesis 4.2.2: window C_w × C_h, (4.1)–(4.3)).
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Coil {
     /// Where the coil sits.
@@ -546,13 +596,13 @@ impl Coil {
         SpecField::length("coil.window_width"),
         SpecField::length("coil.window_height"),
         SpecField::length("coil.bobbin_wall"),
-        SpecField::integer("coil.turns"),
-        SpecField::current("coil.max_current"),
+        SpecField::integer("coil.turns", TURNS_BOUNDS),
+        SpecField::current("coil.max_current", MAX_CURRENT_BOUNDS),
     ];
 }
 
 /// The spacer between the two units of a bidirectional brake.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Spacer {
     /// Axial thickness of the non-magnetic spacer.
@@ -565,7 +615,7 @@ impl Spacer {
 }
 
 /// The envelope the device must fit in.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Envelope {
     /// Maximum outer diameter.
@@ -581,7 +631,7 @@ impl Envelope {
 }
 
 /// Model (not device) settings.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Model {
     /// Air margin around the device, radially and axially, before the outer (A = 0) boundary.

@@ -4,6 +4,7 @@
 //! table) stay what they were before the configuration carried its tables; a missing or
 //! superfluous table is reported here, naming it.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use mrbrake_error::{FieldError, FieldErrors};
@@ -15,22 +16,35 @@ use super::{
 use crate::DesignError;
 
 /// A spec as the file writes it. The field order is the file's and the JSON's.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawSpec {
+    /// A short name for reports.
     name: String,
+    /// The brake configuration; it decides which of `[drum]`, `[disc]` and `[spacer]` the file
+    /// has (drums: `drum`, `multi-drum`, `bidirectional` with `[drum]`; discs: `single-disc`,
+    /// `multi-disc` with `[disc]`; the bidirectional brake also `[spacer]`).
     configuration: ConfigurationKind,
+    /// Material of each part, by name in the material library (`mrbrake materials list`).
     materials: Materials,
+    /// The shaft.
     shaft: Shaft,
+    /// The static magnetic circuit and the non-magnetic closures around the working surfaces.
     housing: Housing,
+    /// The cylindrical working surfaces (drum configurations only).
     #[serde(default)]
     drum: Option<Drum>,
+    /// The annular working surfaces (disc configurations only).
     #[serde(default)]
     disc: Option<Disc>,
+    /// The coil (one per unit).
     coil: Coil,
+    /// The spacer between the two units (the bidirectional brake only).
     #[serde(default)]
     spacer: Option<Spacer>,
+    /// The envelope the device must fit in.
     envelope: Envelope,
+    /// Model (not device) settings.
     #[serde(default)]
     model: Model,
 }
@@ -87,11 +101,15 @@ impl Tables {
         errors: &mut FieldErrors,
     ) -> Option<Configuration> {
         let Self { drum, disc, spacer } = self;
-        let bidirectional = kind == ConfigurationKind::Bidirectional;
         let rules = [
-            ("drum", drum.is_some(), kind.is_drum(), "its working surfaces"),
-            ("disc", disc.is_some(), !kind.is_drum(), "its working surfaces"),
-            ("spacer", spacer.is_some(), bidirectional, "the spacer between the units"),
+            ("drum", drum.is_some(), kind.requires_table("drum"), "its working surfaces"),
+            ("disc", disc.is_some(), kind.requires_table("disc"), "its working surfaces"),
+            (
+                "spacer",
+                spacer.is_some(),
+                kind.requires_table("spacer"),
+                "the spacer between the units",
+            ),
         ];
         for (table, present, needed, what) in rules {
             let message = match (present, needed) {

@@ -6,7 +6,8 @@ use mrbrake_error::FieldErrors;
 use mrbrake_materials::MaterialKind;
 
 use super::{
-    BrakeSpec, CoilPlacement, Configuration, ConfigurationKind, Disc, Drum, Length, Warning,
+    AWG_BOUNDS, BrakeSpec, CoilPlacement, Configuration, ConfigurationKind, Disc, Drum,
+    LENGTH_BOUNDS, Length, MAX_CURRENT_BOUNDS, RATED_CURRENT_BOUNDS, TURNS_BOUNDS, Warning,
     WorkingSurfaces, fmt_mm, turns_in_window,
 };
 use crate::DesignError;
@@ -43,11 +44,12 @@ impl Problems {
         self.errors.is_empty()
     }
 
-    /// A length that must be > 0 (and below a sanity bound of 10 m).
+    /// A length that must be within [`LENGTH_BOUNDS`] (> 0, below a sanity bound of 10 m).
     pub fn positive(&mut self, field: &str, value: Length) {
         let v = value.m();
-        if !(v.is_finite() && v > 0.0 && v < 10.0) {
-            self.error(field, format!("{} must be a length in (0, 10 m)", fmt_mm(v)));
+        if !LENGTH_BOUNDS.contains(v) {
+            let max = LENGTH_BOUNDS.max;
+            self.error(field, format!("{} must be a length in (0, {max} m)", fmt_mm(v)));
         }
     }
 }
@@ -252,18 +254,28 @@ fn check_coil(spec: &BrakeSpec, p: &mut Problems) {
     p.positive("coil.window_width", c.window_width);
     p.positive("coil.window_height", c.window_height);
     p.positive("coil.bobbin_wall", c.bobbin_wall);
+    let (awg_min, awg_max) = (AWG_BOUNDS.min, AWG_BOUNDS.max);
     match (&c.wire.awg, &c.wire.diameter) {
-        (None, None) => p.error("coil.wire", "give either awg (18..=40) or diameter"),
+        (None, None) => {
+            p.error("coil.wire", format!("give either awg ({awg_min}..={awg_max}) or diameter"))
+        }
         (Some(_), Some(_)) => p.error("coil.wire", "give either awg or diameter, not both"),
-        (Some(g), None) if !(18..=40).contains(g) => {
-            p.error("coil.wire.awg", format!("{g} is outside 18..=40"))
+        (Some(g), None) if !AWG_BOUNDS.contains(f64::from(*g)) => {
+            p.error("coil.wire.awg", format!("{g} is outside {awg_min}..={awg_max}"))
         }
         (None, Some(d)) => p.positive("coil.wire.diameter", *d),
         _ => {}
     }
+    if let Some(rating) = c.wire.rated_current.map(super::Current::a)
+        && !RATED_CURRENT_BOUNDS.contains(rating)
+    {
+        let max = RATED_CURRENT_BOUNDS.max;
+        p.error("coil.wire.rated_current", format!("{rating} A must be in (0, {max}] A"));
+    }
     let current = c.max_current.a();
-    if !(current.is_finite() && current > 0.0 && current <= 100.0) {
-        p.error("coil.max_current", format!("{current} A must be in (0, 100] A"));
+    if !MAX_CURRENT_BOUNDS.contains(current) {
+        let max = MAX_CURRENT_BOUNDS.max;
+        p.error("coil.max_current", format!("{current} A must be in (0, {max}] A"));
     }
     if let Some(d) = c.wire.diameter_m().filter(|d| *d > 0.0) {
         check_winding(spec, d, current, p);
@@ -279,7 +291,9 @@ fn check_winding(spec: &BrakeSpec, d: f64, current: f64, p: &mut Problems) {
     } else {
         let turns_fit = turns_in_window(c.window_width.m(), c.window_height.m(), d / 2.0);
         match c.turns {
-            Some(0) => p.error("coil.turns", "must be at least 1"),
+            Some(n) if !TURNS_BOUNDS.contains(f64::from(n)) => {
+                p.error("coil.turns", format!("must be at least {}", TURNS_BOUNDS.min))
+            }
             Some(n) if n > turns_fit => p.error(
                 "coil.turns",
                 format!(

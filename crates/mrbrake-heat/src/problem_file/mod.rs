@@ -52,6 +52,7 @@ use crate::{ElementOrder, HeatError, kelvin};
 mod raw;
 mod report;
 
+pub use raw::schema;
 use raw::{RawBoundary, RawFile, RawMaterial, RawRegion};
 pub use report::{
     BoundaryReport, HeatReport, ProbeReport, ProbeSeries, RegionReport, RegionSeries, Timings,
@@ -128,7 +129,7 @@ impl Errors<'_> {
 }
 
 fn positive(v: f64) -> bool {
-    v.is_finite() && v > 0.0
+    raw::POSITIVE.contains(v)
 }
 
 /// Reads and checks a heat problem file and its mesh.
@@ -165,7 +166,7 @@ pub fn load(path: &Path) -> Result<HeatFile, HeatError> {
             options.max_iterations = m.max(1);
         }
         if let Some(t) = s.tolerance {
-            if !(t > 0.0 && t < 1.0) {
+            if !raw::TOLERANCE.contains(t) {
                 errors.add("solver", 0, "tolerance", format!("= {t} must be in (0, 1)"));
             }
             options.tolerance = t;
@@ -271,7 +272,7 @@ fn source_of(raw: &RawRegion, mesh: &Mesh, k: usize, errors: &mut Errors) -> Sou
     let Some(j) = &raw.joule else { return Source::None };
     let alpha =
         j.alpha_per_k.unwrap_or(mrbrake_materials::wire::COPPER_TEMPERATURE_COEFFICIENT_PER_K);
-    if !(alpha.is_finite() && (0.0..0.1).contains(&alpha)) {
+    if !raw::ALPHA.contains(alpha) {
         errors.add("region", k, "joule", format!("alpha_per_K = {alpha} must be in [0, 0.1)"));
     }
     if !j.current_a.is_finite() {
@@ -358,7 +359,7 @@ fn condition_of(b: &RawBoundary, k: usize, errors: &mut Errors) -> Option<Bounda
     Some(match b.kind.as_str() {
         "convection" => {
             let h = b.h.unwrap_or(f64::NAN);
-            if !(h.is_finite() && h >= 0.0) {
+            if !raw::CONVECTION.contains(h) {
                 errors.add("boundary", k, "h_W_per_m2K", format!("= {h} must be >= 0 (W/(m² K))"));
             }
             BoundaryCondition::Convection {
@@ -368,7 +369,7 @@ fn condition_of(b: &RawBoundary, k: usize, errors: &mut Errors) -> Option<Bounda
         }
         "radiation" => {
             let e = b.emissivity.unwrap_or(f64::NAN);
-            if !(0.0..=1.0).contains(&e) {
+            if !raw::EMISSIVITY.contains(e) {
                 errors.add("boundary", k, "emissivity", format!("= {e} must be in [0, 1]"));
             }
             BoundaryCondition::Radiation {

@@ -228,7 +228,7 @@ pub(super) fn spec_of(
             // A static solve does not use conductivities; a bad one is still refused.
             for (k, r) in raw.region.iter().enumerate() {
                 if let Some(s) = r.conductivity
-                    && !(s >= 0.0 && s.is_finite())
+                    && !super::raw::CONDUCTIVITY.contains(s)
                 {
                     return Err(input(format!(
                         "{file}: region[{k}] (physical = {}): conductivity_S_per_m = {s} must be \
@@ -260,7 +260,7 @@ fn conductors_of(
         let field = format!("{file}: region[{k}] (physical = {})", r.physical);
         let coil = is_coil(problem, r.physical);
         let (sigma, source) = match r.conductivity {
-            Some(s) if !(s >= 0.0 && s.is_finite()) => {
+            Some(s) if !super::raw::CONDUCTIVITY.contains(s) => {
                 return Err(input(format!(
                     "{field}: conductivity_S_per_m = {s} must be finite and >= 0"
                 )));
@@ -346,7 +346,7 @@ fn transient_of(raw: &RawTransient, file: &str) -> Result<TransientOptions, Magn
         }
     };
     let t_end = raw.t_end;
-    if !(t_end > 0.0 && t_end.is_finite()) {
+    if !super::raw::DURATION.contains(t_end) {
         return Err(input(format!("{file}: transient.t_end = {t_end} s must be finite and > 0")));
     }
     let step = match (raw.dt, &raw.adaptive) {
@@ -361,7 +361,7 @@ fn transient_of(raw: &RawTransient, file: &str) -> Result<TransientOptions, Magn
             )));
         }
         (Some(dt), None) => {
-            if !(dt > 0.0 && dt.is_finite()) {
+            if !super::raw::DURATION.contains(dt) {
                 return Err(input(format!("{file}: transient.dt = {dt} s must be finite and > 0")));
             }
             if t_end < dt {
@@ -507,7 +507,7 @@ fn harmonic_of(raw: &RawHarmonic, coils: &[u32], file: &str) -> Result<Analysis,
     if raw.frequencies_hz.is_empty() {
         return Err(input(format!("{file}: harmonic.frequencies_Hz is empty")));
     }
-    if let Some(f) = raw.frequencies_hz.iter().find(|f| !(**f >= 0.0 && f.is_finite())) {
+    if let Some(f) = raw.frequencies_hz.iter().find(|f| !super::raw::FREQUENCY.contains(**f)) {
         return Err(input(format!(
             "{file}: harmonic.frequencies_Hz: {f} Hz must be finite and >= 0"
         )));

@@ -55,6 +55,7 @@ mod raw;
 mod report;
 
 pub use dynamics::{DynamicsReport, DynamicsSpec, vtu_files};
+pub use raw::schema;
 use raw::{RawBoundary, RawFile, RawRegion, RawSolver};
 use report::probe_report;
 pub use report::{CoilReport, LineReport, ProbeReport, RegionReport, SolveReport, Timings};
@@ -201,7 +202,7 @@ fn options_of(
     let mut options = SolverOptions { order, ..SolverOptions::default() };
     let Some(s) = raw else { return Ok(options) };
     if let Some(m) = s.max_iterations {
-        if m == 0 {
+        if !raw::MAX_ITERATIONS.contains(m as f64) {
             return Err(MagneticsError::Input(format!(
                 "{file}: solver.max_iterations must be >= 1"
             )));
@@ -209,7 +210,7 @@ fn options_of(
         options.max_iterations = m;
     }
     if let Some(t) = s.tolerance {
-        if !(t > 0.0 && t < 1.0) {
+        if !raw::TOLERANCE.contains(t) {
             return Err(MagneticsError::Input(format!(
                 "{file}: solver.tolerance = {t} must be in (0, 1)"
             )));
@@ -217,7 +218,7 @@ fn options_of(
         options.residual_tolerance = t;
     }
     if let Some(q) = s.quadrature_degree {
-        if !(1..=5).contains(&q) {
+        if !raw::QUADRATURE_DEGREE.contains(q as f64) {
             return Err(MagneticsError::Input(format!(
                 "{file}: solver.quadrature_degree = {q} must be 1 to 5"
             )));

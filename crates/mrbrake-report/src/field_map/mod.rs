@@ -321,8 +321,9 @@ fn draw_map<DB: DrawingBackend>(
     raster: Raster,
 ) -> Result<Option<SvgImage>, ReportError> {
     let (lo, hi) = map.window;
+    let (title, size) = crate::chart::fit_title(area, map.title, 18);
     let mut chart = ChartBuilder::on(area)
-        .caption(map.title, ("sans-serif", 18))
+        .caption(title, ("sans-serif", size))
         .margin(10)
         .margin_right(24)
         .x_label_area_size(40)

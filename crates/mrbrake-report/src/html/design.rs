@@ -501,7 +501,9 @@ fn spec_section(spec_text: &str, warnings: &[String]) -> Section {
     }
     s.body.table(&t);
     s.body.paragraph(
-        "Fields the spec leaves out take mrbrake's defaults (see docs of `mrbrake analyze`).",
+        "Fields the spec leaves out take their defaults: every key with its unit, allowed range, \
+         default and meaning is in the spec reference (docs/reference/spec.md in the source, or \
+         `mrbrake schema spec --markdown`).",
     );
     if !warnings.is_empty() {
         s.body.element("h3", &[], "Warnings of the analysis");
