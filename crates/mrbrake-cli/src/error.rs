@@ -131,7 +131,7 @@ mod tests {
     /// in the message.
     #[test]
     fn a_numerical_failure_exits_1_with_its_history() {
-        let newton = mrbrake_fem::newton::NewtonError {
+        let newton = mrbrake_fem::workflow::newton::NewtonError {
             reason: "no convergence in 2 Newton iterations".into(),
             history: Vec::new(),
             residual_scale: 1.0,

@@ -22,13 +22,15 @@
 use std::f64::consts::{FRAC_PI_2 as A, PI};
 use std::sync::Arc;
 
-use mrbrake_fem::assemble::{Assembly, ElementForm, MAX_PACKED_LEN, packed_len};
-use mrbrake_fem::basis::{Basis, Element, Weighting};
-use mrbrake_fem::constraints::Constraints;
-use mrbrake_fem::dofs::ElementOrder;
-use mrbrake_fem::element::TriangleBasis;
-use mrbrake_fem::newton::{AssembledSystem, EliminationOrder, NewtonOptions, NewtonSolver, norm2};
-use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::discretisation::basis::{Basis, Element, Weighting};
+use mrbrake_fem::discretisation::dofs::ElementOrder;
+use mrbrake_fem::discretisation::element::TriangleBasis;
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::workflow::assemble::{Assembly, ElementForm, MAX_PACKED_LEN, packed_len};
+use mrbrake_fem::workflow::constraints::Constraints;
+use mrbrake_fem::workflow::newton::{
+    AssembledSystem, EliminationOrder, NewtonOptions, NewtonSolver, norm2,
+};
 
 fn exact(p: [f64; 2]) -> f64 {
     (A * p[0]).cos() * p[1].exp()
@@ -278,7 +280,7 @@ fn transient_error(steps: usize) -> f64 {
     let basis = assembly.basis();
     let mut sum = 0.0;
     for t in 0..basis.n_elements() {
-        let element = basis.element::<mrbrake_fem::element::ElementTriP2, 6>(t);
+        let element = basis.element::<mrbrake_fem::discretisation::element::ElementTriP2, 6>(t);
         let geometry = element.geometry();
         let local = element.dofs().map(|d| u[d]);
         for q in element.points(&geometry) {

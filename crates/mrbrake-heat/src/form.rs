@@ -15,9 +15,9 @@
 //! is linear and the core sums it once. It is symmetric, and positive definite unless the Joule
 //! feedback `q1` outweighs conduction and cooling (thermal runaway).
 
-use mrbrake_fem::assemble::{ElementForm, MAX_PACKED_LEN, packed_len};
-use mrbrake_fem::basis::{Element, QuadraturePoint};
-use mrbrake_fem::element::TriangleBasis;
+use mrbrake_fem::discretisation::basis::{Element, QuadraturePoint};
+use mrbrake_fem::discretisation::element::TriangleBasis;
+use mrbrake_fem::workflow::assemble::{ElementForm, MAX_PACKED_LEN, packed_len};
 
 /// The coefficients of one region.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -36,7 +36,7 @@ pub mod problem;
 pub mod problem_file;
 pub mod solver;
 
-pub use mrbrake_fem::dofs::ElementOrder;
+pub use mrbrake_fem::discretisation::dofs::ElementOrder;
 pub use problem::{Boundary, BoundaryCondition, HeatProblem, Region, Source};
 pub use solver::{HeatSolver, SolverOptions, TimeScheme, TransientSettings};
 
@@ -67,7 +67,7 @@ pub enum HeatError {
     Material(#[from] mrbrake_materials::MaterialError),
     /// Newton failed; the history says how far it got.
     #[error(transparent)]
-    NotConverged(#[from] mrbrake_fem::newton::NewtonError),
+    NotConverged(#[from] mrbrake_fem::workflow::newton::NewtonError),
     /// The Joule (or another temperature-increasing) source outruns the cooling: no steady state.
     #[error(
         "thermal runaway: {0}; the heat generated grows faster with temperature than the \

@@ -23,13 +23,13 @@
 
 use std::sync::Arc;
 
-use mrbrake_fem::assemble::{Assembly, element_matrices, element_matrix_product};
-use mrbrake_fem::basis::{Basis, Weighting};
-use mrbrake_fem::boundary::EdgeFlux;
-use mrbrake_fem::constraints::Constraints;
-use mrbrake_fem::dofs::ElementOrder;
-use mrbrake_fem::locate::PointLocator;
-use mrbrake_fem::newton::{
+use mrbrake_fem::discretisation::basis::{Basis, Weighting};
+use mrbrake_fem::discretisation::dofs::ElementOrder;
+use mrbrake_fem::mesh::locate::PointLocator;
+use mrbrake_fem::workflow::assemble::{Assembly, element_matrices, element_matrix_product};
+use mrbrake_fem::workflow::boundary::EdgeFlux;
+use mrbrake_fem::workflow::constraints::Constraints;
+use mrbrake_fem::workflow::newton::{
     EliminationOrder, NewtonOptions, NewtonReport, NewtonSolver, NonlinearSystem, norm2,
 };
 use serde::Serialize;
@@ -202,7 +202,7 @@ fn build_form(problem: &HeatProblem, volumes: &[(u32, f64)]) -> HeatForm {
 }
 
 /// `∫ ρc φ_i φ_j r dr dz` of every element (packed upper triangles).
-fn capacity_matrices<E: mrbrake_fem::element::TriangleBasis<N>, const N: usize>(
+fn capacity_matrices<E: mrbrake_fem::discretisation::element::TriangleBasis<N>, const N: usize>(
     basis: &Basis,
     form: &HeatForm,
 ) -> Vec<f64> {
@@ -538,7 +538,7 @@ impl HeatSolver {
         let free = constraints.free_index();
         for (dof, value) in u.iter_mut().enumerate() {
             let d = free[dof];
-            if d != mrbrake_fem::pattern::CONSTRAINED {
+            if d != mrbrake_fem::linalg::pattern::CONSTRAINED {
                 *value = rhs[d];
             }
         }

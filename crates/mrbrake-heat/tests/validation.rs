@@ -7,9 +7,9 @@
 
 use std::sync::Arc;
 
-use mrbrake_fem::basis::Basis;
-use mrbrake_fem::element::TriangleBasis;
-use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::discretisation::basis::Basis;
+use mrbrake_fem::discretisation::element::TriangleBasis;
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 use mrbrake_heat::exact;
 use mrbrake_heat::{
     Boundary, BoundaryCondition, ElementOrder, HeatError, HeatProblem, HeatSolver, Region,
@@ -40,7 +40,7 @@ fn strip(
             )
         })
         .collect();
-    let r = mrbrake_fem::structured::join_lines(&segments);
+    let r = mrbrake_fem::mesh::structured::join_lines(&segments);
     let z = graded_lines(0.0, H, 2, 1.0);
     Arc::new(rectangle_mesh(&r, &z, |rc, _| region(rc), SIDES).unwrap())
 }
@@ -62,7 +62,7 @@ fn l2_error(solver: &HeatSolver, t: &[f64], exact: impl Fn(f64) -> f64) -> f64 {
     let basis = Basis::with_dofs(
         solver.basis().dofs().clone(),
         5,
-        mrbrake_fem::basis::Weighting::Axisymmetric,
+        mrbrake_fem::discretisation::basis::Weighting::Axisymmetric,
     );
     let (mut sum, mut volume) = (0.0, 0.0);
     for e in 0..basis.n_elements() {

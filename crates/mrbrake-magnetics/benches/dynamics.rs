@@ -5,7 +5,7 @@
 //!   core (μr = 1000, σ = 5.8 MS/m, FEMM's steel value) on ~16 k nodes, a current step, 500 fixed
 //!   BDF2 steps (two factorisations: the Euler start and the rest). Target ≤ 0.5 s.
 //! - `harmonic/16k_31_frequencies`: the same problem, 31 frequencies (1–1000 Hz), by the default
-//!   reduced-basis sweep (`mrbrake_fem::sweep`: real shifted Cholesky solves, every frequency's
+//!   reduced-basis sweep (`mrbrake_fem::linalg::sweep`: real shifted Cholesky solves, every frequency's
 //!   residual checked); `harmonic_direct/16k_31_frequencies`: the reference, one complex sparse LU
 //!   per frequency.
 //!

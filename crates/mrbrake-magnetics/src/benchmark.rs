@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use mrbrake_fem::structured::{SideTags, graded_lines, join_lines, rectangle_mesh};
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, join_lines, rectangle_mesh};
 
 use crate::MagneticsError;
 use crate::material::Magnetic;

@@ -7,7 +7,7 @@
 //!   symbolic Cholesky), then [`solver::Solver::solve`] runs the core's Newton–Raphson with line
 //!   search; sources can be changed ([`solver::Solver::set_source`]) and the previous solution
 //!   passed as a warm start, as a current sweep does. The weak form is [`form`] (an
-//!   `mrbrake_fem::assemble::ElementForm`), the open boundary a constant boundary coupling. The element order is
+//!   `mrbrake_fem::workflow::assemble::ElementForm`), the open boundary a constant boundary coupling. The element order is
 //!   [`solver::SolverOptions::order`]: linear triangles ([`ElementOrder::P1`], the default) or
 //!   quadratic 6-node triangles ([`ElementOrder::P2`]) on the same mesh, with about four times the
 //!   unknowns and one order more accuracy where the field is smooth (A in L2 at O(h³), B at O(h²);
@@ -22,7 +22,7 @@
 //!
 //! ```
 //! use std::sync::Arc;
-//! use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+//! use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 //! use mrbrake_magnetics::material::Magnetic;
 //! use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 //! use mrbrake_magnetics::solver::{Solver, SolverOptions};
@@ -61,7 +61,7 @@ pub mod problem_file;
 pub mod solver;
 
 pub use field::Solution;
-pub use mrbrake_fem::dofs::ElementOrder;
+pub use mrbrake_fem::discretisation::dofs::ElementOrder;
 pub use solver::{NewtonStep, Solver, SolverOptions};
 
 /// Errors of this crate.
@@ -79,7 +79,7 @@ pub enum MagneticsError {
     Material(#[from] mrbrake_materials::MaterialError),
     /// Newton–Raphson failed; the residual history says how far it got.
     #[error(transparent)]
-    NotConverged(#[from] mrbrake_fem::newton::NewtonError),
+    NotConverged(#[from] mrbrake_fem::workflow::newton::NewtonError),
     /// Another numerical failure.
     #[error("{0}")]
     Numerical(String),

@@ -12,7 +12,7 @@
 
 use std::sync::Arc;
 
-use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 use mrbrake_magnetics::dynamics::transient::{Probe, Scheme, TimeStep, TransientOptions};
 use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use mrbrake_magnetics::exact::{conducting_cylinder_potential, cylinder_step_flux};

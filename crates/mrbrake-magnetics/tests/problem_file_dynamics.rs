@@ -10,9 +10,9 @@
 use std::path::{Path, PathBuf};
 
 use mrbrake_error::Kind as _;
-use mrbrake_fem::gmsh::to_msh22;
 use mrbrake_fem::mesh::Mesh;
-use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::mesh::gmsh::to_msh22;
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 use mrbrake_magnetics::MagneticsError;
 use mrbrake_magnetics::problem_file::{SolveReport, solve_file};
 

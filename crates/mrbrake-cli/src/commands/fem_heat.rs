@@ -35,11 +35,13 @@ pub fn solve(
         let celsius: Vec<f64> =
             temperature[..mesh.nodes.len()].iter().map(|&t| mrbrake_heat::celsius(t)).collect();
         let regions: Vec<f64> = mesh.triangle_tags.iter().map(|&t| f64::from(t)).collect();
-        let point = [mrbrake_fem::vtu::Field { name: "T_C", components: 1, values: &celsius }];
-        let cell = [mrbrake_fem::vtu::Field { name: "region", components: 1, values: &regions }];
+        let point =
+            [mrbrake_fem::mesh::vtu::Field { name: "T_C", components: 1, values: &celsius }];
+        let cell =
+            [mrbrake_fem::mesh::vtu::Field { name: "region", components: 1, values: &regions }];
         mrbrake_report::write_atomic(
             path,
-            mrbrake_fem::vtu::to_vtu(mesh, &point, &cell).as_bytes(),
+            mrbrake_fem::mesh::vtu::to_vtu(mesh, &point, &cell).as_bytes(),
         )?;
     }
     if json {

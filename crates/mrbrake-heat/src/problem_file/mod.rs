@@ -161,7 +161,7 @@ pub fn load(path: &Path) -> Result<HeatFile, HeatError> {
     };
     let mesh_path = path.parent().unwrap_or(Path::new(".")).join(&raw.mesh);
     let (gmsh, scale) =
-        mrbrake_fem::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
+        mrbrake_fem::mesh::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
     let mesh = Arc::new(gmsh.mesh);
     let mut errors = Errors { file: &file, text: &text, errors: FieldErrors::new() };
     let regions = regions_of(&raw.region, &mesh, &mut errors);

@@ -14,7 +14,7 @@
 //! the discrete circuit equation `v = R i + ρ (λ(a) − λ_h)` with `λ(a) = 2π c · a` gives the current
 //! as a function of the field, `i(a) = [v + ρ λ_h − 2πρ c·a]/R`, which is eliminated: the residual
 //! gains `−i(a) c` and the Jacobian the dense rank-one term `(2πρ/R) c cᵀ` (applied with the sparse
-//! factor by the Woodbury formula, [`mrbrake_fem::low_rank`]). The step's system stays the
+//! factor by the Woodbury formula, [`mrbrake_fem::linalg::low_rank`]). The step's system stays the
 //! gradient of a convex energy, so the core's Newton solver and line search apply unchanged, and
 //! the coil's own `L/R` and the eddy currents both appear in the response.
 //!
@@ -36,9 +36,11 @@
 
 use std::time::Instant;
 
-use mrbrake_fem::assemble::Assembly;
-use mrbrake_fem::low_rank::LowRankTerm;
-use mrbrake_fem::newton::{EliminationOrder, NewtonOptions, NewtonSolver, NonlinearSystem};
+use mrbrake_fem::linalg::low_rank::LowRankTerm;
+use mrbrake_fem::workflow::assemble::Assembly;
+use mrbrake_fem::workflow::newton::{
+    EliminationOrder, NewtonOptions, NewtonSolver, NonlinearSystem,
+};
 use serde::Serialize;
 
 use super::form::TransientForm;
@@ -291,7 +293,7 @@ struct StepSystem<'a> {
 }
 
 impl NonlinearSystem for StepSystem<'_> {
-    fn constraints(&self) -> &mrbrake_fem::constraints::Constraints {
+    fn constraints(&self) -> &mrbrake_fem::workflow::constraints::Constraints {
         self.assembly.constraints()
     }
 

@@ -123,7 +123,7 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     let mesh_path = dir.join(&raw.mesh);
     let start = Instant::now();
     let (gmsh, scale) =
-        mrbrake_fem::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
+        mrbrake_fem::mesh::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
     let mesh_read_s = start.elapsed().as_secs_f64();
     let regions = regions_of(&raw.region, dir, &file)?;
     let boundaries = boundaries_of(&raw.boundary, &gmsh.mesh, scale, &file, &mesh_path)?;

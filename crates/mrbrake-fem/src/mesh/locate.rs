@@ -9,7 +9,7 @@
 //! each) costs more than testing every triangle once: [`locate_by_scan`] does that, with the same
 //! answer (the lowest-numbered triangle containing the point).
 
-use crate::element::P1Triangle;
+use crate::discretisation::element::P1Triangle;
 use crate::mesh::Mesh;
 
 /// Bucket grid for point-in-triangle queries on one mesh.
@@ -148,7 +148,7 @@ fn first_containing(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::structured::{SideTags, graded_lines, rectangle_mesh};
+    use crate::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 
     #[test]
     fn finds_points_and_rejects_outside() {

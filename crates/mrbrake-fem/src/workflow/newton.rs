@@ -67,12 +67,12 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::FemError;
-use crate::assemble::{Assembly, ElementForm};
-use crate::cholesky::SparseCholesky;
-use crate::constraints::Constraints;
-use crate::low_rank::{LowRankTerm, Woodbury};
-use crate::ordering::nested_dissection;
-use crate::pattern::{CONSTRAINED, SymmetricPattern};
+use crate::linalg::cholesky::SparseCholesky;
+use crate::linalg::low_rank::{LowRankTerm, Woodbury};
+use crate::linalg::ordering::nested_dissection;
+use crate::linalg::pattern::{CONSTRAINED, SymmetricPattern};
+use crate::workflow::assemble::{Assembly, ElementForm};
+use crate::workflow::constraints::Constraints;
 
 /// A non-linear system `R(u) = 0` on the free DOFs of a full DOF vector `u`, with a symmetric
 /// Jacobian that is positive definite (the gradient of a convex energy).
@@ -89,7 +89,7 @@ pub trait NonlinearSystem {
 
     /// Dense symmetric rank-one terms `w c cᵀ` of the Jacobian besides its sparse part (none by
     /// default), constant during a solve: the solver applies them with the sparse factor by the
-    /// Woodbury formula ([`crate::low_rank`]); the residual must include their contribution.
+    /// Woodbury formula ([`crate::linalg::low_rank`]); the residual must include their contribution.
     fn low_rank(&self) -> &[LowRankTerm] {
         &[]
     }
@@ -266,7 +266,7 @@ pub struct NewtonSolver {
 /// The fill-reducing elimination order of the sparse factor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EliminationOrder {
-    /// Geometric nested dissection ([`crate::ordering`]): the least work per numeric
+    /// Geometric nested dissection ([`crate::linalg::ordering`]): the least work per numeric
     /// factorisation on 2D meshes and two independent halves for parallel solves; the default,
     /// for Newton's many factorisations.
     NestedDissection,
@@ -280,7 +280,7 @@ pub enum EliminationOrder {
 impl NewtonSolver {
     /// The solver for systems on `pattern`, with a nested-dissection elimination order from the
     /// free DOFs' coordinates `free_coordinates` (less work per numeric factorisation than AMD on
-    /// 2D meshes, see [`crate::ordering`]). `threads` is the parallelism of the numeric
+    /// 2D meshes, see [`crate::linalg::ordering`]). `threads` is the parallelism of the numeric
     /// factorisation ([`SparseCholesky::new`]).
     pub fn new(
         pattern: &Arc<SymmetricPattern>,

@@ -1,0 +1,11 @@
+//! The finite-element workflow of a physics: constrain, assemble, solve.
+//!
+//! [`constraints`] (which DOFs are free: axis, prescribed and fixed boundaries, lifting),
+//! [`assemble`] (`Assembly`: the free-DOF pattern and parallel element loops over the physics'
+//! forms), [`boundary`] (edge integrals as constant couplings, boundary fluxes) and [`newton`]
+//! (`NewtonSolver` over the `NonlinearSystem` trait).
+
+pub mod assemble;
+pub mod boundary;
+pub mod constraints;
+pub mod newton;
