@@ -132,7 +132,7 @@ mod tests {
     #[test]
     fn a_numerical_failure_exits_1_with_its_history() {
         let newton = mrbrake_fem::workflow::newton::NewtonError {
-            reason: "no convergence in 2 Newton iterations".into(),
+            failure: mrbrake_fem::workflow::newton::NewtonFailure::IterationLimit { iterations: 2 },
             history: Vec::new(),
             residual_scale: 1.0,
         };

@@ -70,7 +70,19 @@ pub enum FemError {
         /// The underlying I/O error.
         source: std::io::Error,
     },
-    /// A numerical failure (e.g. a matrix that is not positive definite).
+    /// A symmetric matrix that is not positive definite: the Cholesky factorisation met a pivot
+    /// that is not positive.
+    #[error(
+        "the matrix is not positive definite: the Cholesky pivot of row {row} (of {rows}) is not \
+         positive"
+    )]
+    NotPositiveDefinite {
+        /// The row of the failing pivot, in the matrix's own numbering (a free DOF).
+        row: usize,
+        /// The matrix's order.
+        rows: usize,
+    },
+    /// Another numerical failure (a singular dense system, memory for a factorisation, …).
     #[error("{0}")]
     Numerical(String),
 }
@@ -83,7 +95,7 @@ impl mrbrake_error::Kind for FemError {
         match self {
             Self::Input(_) | Self::Parse { .. } => ErrorKind::Input,
             Self::Io { source, .. } => Kind::kind(source),
-            Self::Numerical(_) => ErrorKind::Numerical,
+            Self::NotPositiveDefinite { .. } | Self::Numerical(_) => ErrorKind::Numerical,
         }
     }
 }

@@ -83,17 +83,10 @@ pub enum MagneticsError {
     /// Another numerical failure.
     #[error("{0}")]
     Numerical(String),
-    /// A time step of a transient failed: which step, at what time, and why (the `source`, e.g.
-    /// Newton's residual history, is the next error of the chain, not repeated in this message).
-    #[error("time step {step} (t = {time_s:.6e} s) failed")]
-    TimeStep {
-        /// 1-based step number.
-        step: usize,
-        /// The time the step was to reach (s).
-        time_s: f64,
-        /// The failure (Newton's residual history, a factorisation, …).
-        source: Box<MagneticsError>,
-    },
+    /// A transient failed: its options, its step bound, or a step (which one, at what time, and
+    /// why: Newton's residual history is the next error of the chain).
+    #[error(transparent)]
+    Time(#[from] mrbrake_fem::workflow::time::TimeError),
 }
 
 impl mrbrake_error::Kind for MagneticsError {
@@ -106,7 +99,7 @@ impl mrbrake_error::Kind for MagneticsError {
             Self::Fem(e) => e.kind(),
             Self::Material(e) => e.kind(),
             Self::NotConverged { .. } | Self::Numerical(_) => ErrorKind::Numerical,
-            Self::TimeStep { source, .. } => source.kind(),
+            Self::Time(e) => e.kind(),
         }
     }
 }

@@ -30,6 +30,7 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltError;
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
@@ -176,7 +177,8 @@ impl SparseCholesky {
     }
 
     /// Numeric factorisation of the matrix with upper-triangle `values` (pattern order). Fails with
-    /// [`FemError::Numerical`] when the matrix is not numerically positive definite.
+    /// [`FemError::NotPositiveDefinite`] (naming the row of the failing pivot) when the matrix is not
+    /// numerically positive definite.
     pub fn factorize(&mut self, values: &[f64]) -> Result<(), FemError> {
         self.factorised = false;
         self.l_values_single.clear();
@@ -201,8 +203,9 @@ impl SparseCholesky {
                 MemStack::new(&mut self.factor_workspace),
                 Default::default(),
             )
-            .map_err(|e| {
-                FemError::Numerical(format!("sparse Cholesky factorisation failed: {e:?}"))
+            .map_err(|LltError::NonPositivePivot { index }| FemError::NotPositiveDefinite {
+                row: self.order.get(index).copied().unwrap_or(index),
+                rows: self.order.len(),
             })?;
         self.factorised = true;
         Ok(())

@@ -1,5 +1,6 @@
 //! The TOML layout of heat problem files, as read by serde (unknown keys are errors).
 
+use mrbrake_fem::workflow::time::AdaptiveKeys;
 use serde::Deserialize;
 
 #[derive(Debug, Deserialize)]
@@ -97,10 +98,12 @@ pub(super) struct RawBoundary {
 #[serde(deny_unknown_fields)]
 pub(super) struct RawTransient {
     pub t_end: f64,
-    pub dt: f64,
+    pub dt: Option<f64>,
+    pub adaptive: Option<AdaptiveKeys>,
     #[serde(rename = "T_initial_C")]
     pub t_initial_c: Option<f64>,
     pub scheme: Option<String>,
+    pub max_steps: Option<usize>,
 }
 
 #[derive(Debug, Deserialize)]

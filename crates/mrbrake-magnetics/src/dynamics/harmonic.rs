@@ -32,9 +32,9 @@ use mrbrake_fem::linalg::sweep::{SweepOptions, SweepReport, sweep};
 use num_complex::Complex64;
 use serde::Serialize;
 
-use super::transient::Probe;
 use super::{Drive, Dynamics, TWO_PI};
 use crate::MagneticsError;
+use mrbrake_fem::mesh::locate::Probe;
 
 /// One complex LU factorisation and solve per frequency.
 fn direct_sweep(

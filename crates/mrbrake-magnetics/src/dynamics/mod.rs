@@ -27,12 +27,16 @@
 //! Module map:
 //! - [`Dynamics`]: the set-up shared by both (the static [`Solver`], conductivities per element,
 //!   the element mass matrices, the coil vectors `c_k`), with flux linkage and eddy loss;
-//! - [`transient`]: implicit Euler and BDF2, fixed or adaptive steps, Newton per step;
+//! - [`transient`]: transients on the core's time integrator (implicit Euler and BDF2, fixed or
+//!   adaptive steps, Newton per step), recorded per level; `step` makes [`Dynamics`] the
+//!   integrator's physics (`mrbrake_fem::workflow::time::TransientProblem`: the eddy-current mass,
+//!   the coils as step loads and their flux linkages as auxiliary states);
 //! - [`harmonic`]: complex solves (linear, or linearised about a DC bias);
 //! - [`waveform`]: the drive waveforms.
 
 pub(crate) mod form;
 pub mod harmonic;
+mod step;
 pub mod transient;
 pub mod waveform;
 

@@ -42,6 +42,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use mrbrake_fem::mesh::Mesh;
+use mrbrake_fem::mesh::locate::Probe;
 
 use crate::ElementOrder;
 use crate::MagneticsError;
@@ -57,16 +58,9 @@ mod report;
 pub use dynamics::{DynamicsReport, DynamicsSpec, vtu_files};
 use raw::{RawBoundary, RawFile, RawRegion, RawSolver};
 use report::probe_report;
-pub use report::{CoilReport, LineReport, ProbeReport, RegionReport, SolveReport, Timings};
-
-/// A named point where B is reported (coordinates in metres).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Probe {
-    /// Name from the file.
-    pub name: String,
-    /// `[r, z]` in metres.
-    pub point: [f64; 2],
-}
+pub use report::{
+    CoilReport, LineReport, MagneticsTimings, ProbeReport, RegionReport, SolveReport,
+};
 
 /// A named segment along which B is reported (metres).
 #[derive(Debug, Clone, PartialEq)]
@@ -461,7 +455,7 @@ pub fn solve_file_with_order(
     }
     let incremental_s = inc_start.elapsed().as_secs_f64();
     let t = solution.report.timings;
-    let timings_s = Timings {
+    let timings_s = MagneticsTimings {
         read,
         assemble: t.assemble_s,
         solve: solver.symbolic_factorisation_s() + t.factor_s + t.solve_s + incremental_s,

@@ -1,5 +1,6 @@
 //! The TOML layout of problem files, as read by serde (unknown keys are errors).
 
+use mrbrake_fem::workflow::time::AdaptiveKeys;
 use serde::Deserialize;
 
 #[derive(Debug, Deserialize)]
@@ -75,18 +76,11 @@ pub(super) struct RawLine {
 pub(super) struct RawTransient {
     pub t_end: f64,
     pub dt: Option<f64>,
-    pub adaptive: Option<RawAdaptive>,
+    pub adaptive: Option<AdaptiveKeys>,
     pub scheme: Option<String>,
     pub waveform: Option<RawWaveform>,
     pub vtu_times: Option<Vec<f64>>,
     pub max_steps: Option<usize>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawAdaptive {
-    pub rtol: f64,
-    pub dt_initial: f64,
 }
 
 #[derive(Debug, Deserialize)]
