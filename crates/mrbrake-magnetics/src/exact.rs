@@ -22,7 +22,7 @@
 use std::f64::consts::PI;
 
 use crate::material::MU_0;
-use mrbrake_fem::quadrature::gauss_legendre_unit;
+use mrbrake_fem::discretisation::quadrature::gauss_legendre_unit;
 
 /// Complete elliptic integrals of the first and second kind, `(K(m), E(m))`, parameter `m = k²` in `[0, 1)`.
 pub fn elliptic_k_e(m: f64) -> (f64, f64) {
