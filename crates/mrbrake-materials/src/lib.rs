@@ -31,6 +31,7 @@
 mod bh_curve;
 mod error;
 mod hermite;
+pub mod hysteresis;
 pub mod library;
 mod material;
 mod mr_fluid;
