@@ -15,7 +15,10 @@
 //! their amplitudes are set to zero); amplitudes whose standard error exceeds half their value (the
 //! data cannot tell them from their neighbours on the grid — harmless for the fitted curves, but the
 //! split is not a material property); and the saturation polarisation `J_s = Σ J_{k,m}` when its
-//! relative standard error exceeds 5 % (a loop that stops short of saturation).
+//! relative standard error exceeds 5 % (a loop that stops short of saturation). Standard errors use
+//! the residual's standard deviation, but at least [`RESIDUAL_FLOOR_T`] (noise-free synthetic data
+//! would otherwise make every amplitude look determined). The weighted residual variance is used
+//! as it is (weights are not normalised).
 //!
 //! # Paths
 //! An [`Observation`] is one H sequence with measured B at some of its samples, starting from the
@@ -40,6 +43,10 @@ pub const MAX_LOOP_FILE_BYTES: u64 = 4_000_000;
 
 /// Fewest samples of a loop.
 pub const MIN_LOOP_POINTS: usize = 8;
+
+/// The smallest residual standard deviation assumed when judging what the data determine, T (the
+/// resolution of a good B–H tracer, 0.1 mT).
+pub const RESIDUAL_FLOOR_T: f64 = 1e-4;
 
 /// Where an observed path starts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -361,7 +368,9 @@ fn uncertainty(
     if n == 0 || samples <= n {
         return None;
     }
-    let variance = sum_squares / (samples - n) as f64;
+    // A floor on the residual variance: exact (synthetic) data must not make everything look
+    // determined.
+    let variance = (sum_squares / (samples - n) as f64).max(RESIDUAL_FLOOR_T * RESIDUAL_FLOOR_T);
     let sub: Vec<f64> =
         active.iter().flat_map(|&i| active.iter().map(move |&j| scaled[i * p + j])).collect();
     let (mut js_variance, mut poor) = (0.0, Vec::new());
