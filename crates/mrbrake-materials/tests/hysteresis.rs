@@ -393,7 +393,6 @@ proptest! {
         mut waypoints in prop::collection::vec(-2.4..2.4_f64, 2..10),
     ) {
         waypoints.push(0.0);
-        let mut state = HysteresisState::demagnetised();
         // The quadrature error of the trapezoidal work is estimated by halving the sub-step
         // (the rule is second order, kinks included): the tolerance is twice that estimate.
         let start = HysteresisState::demagnetised();
