@@ -255,27 +255,38 @@ impl Grid {
         }
     }
 
-    /// The parameter set of amplitudes `x` (zero amplitudes dropped).
+    /// The parameter set of amplitudes `x`: zero amplitudes dropped, and with them the cells left
+    /// without a term (they would contribute nothing but cost time at every step).
     fn params(&self, x: &[f64]) -> Result<HysteresisParams, MaterialError> {
         let m = self.fields.len();
-        let terms: Vec<Term> = x
+        let kept: Vec<(usize, usize, f64)> = x
             .iter()
             .enumerate()
             .filter(|(_, v)| **v > 1e-9)
-            .map(|(i, &v)| Term {
-                cell: i / m,
-                polarisation_t: v,
-                field_a_per_m: self.fields[i % m],
-            })
+            .map(|(i, &v)| (i / m, i % m, v))
             .collect();
-        if terms.is_empty() {
+        if kept.is_empty() {
             return Err(MaterialError::OutOfRange {
                 quantity: "fitted saturation polarisation (no positive amplitude)".into(),
                 value: 0.0,
                 allowed: "data with B − mu0 H increasing with H".into(),
             });
         }
-        HysteresisParams::new(&self.pinning, &terms)
+        let mut cells: Vec<usize> = kept.iter().map(|t| t.0).collect();
+        cells.dedup();
+        let pinning: Vec<f64> = cells.iter().map(|&k| self.pinning[k]).collect();
+        let terms: Vec<Term> = kept
+            .iter()
+            .map(|&(k, j, v)| Term {
+                cell: cells
+                    .iter()
+                    .position(|&c| c == k)
+                    .expect("kept cells include every term's cell"),
+                polarisation_t: v,
+                field_a_per_m: self.fields[j],
+            })
+            .collect();
+        HysteresisParams::new(&pinning, &terms)
     }
 }
 

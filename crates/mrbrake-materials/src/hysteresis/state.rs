@@ -9,7 +9,7 @@
 //! A-formulation FEA needs) solves `B(H) = B_new` for the unique `H` by Newton's method safeguarded by
 //! bisection on a bracket that always holds the root (`[H₀, H₀ + ΔB/μ0]` for `ΔB > 0`). No ODE is
 //! integrated, so no sub-steps: the update is exact for the discretised model (up to the root
-//! tolerance, 1e-12 T), and the number of iterations is bounded ([`MAX_ITERATIONS`]).
+//! tolerance, [`TOLERANCE_T`]), and the number of iterations is bounded ([`MAX_ITERATIONS`]).
 //!
 //! The returned `dH/dB` is the derivative of this step map at `B_new` (one-sided, in the direction of
 //! the step): `1 / (μ0 + Σ_{moving k} J_k'(h_k))`, where a cell moves when it sits on the edge of its
@@ -28,6 +28,9 @@ use crate::MU_0;
 /// Most Newton/bisection iterations of one B-driven step. Bisection alone halves the bracket each
 /// time, so 200 iterations resolve any bracket of finite floating-point width.
 pub const MAX_ITERATIONS: u32 = 200;
+
+/// Tolerance of the B-driven root, T (relative to `1 + |B|`).
+pub const TOLERANCE_T: f64 = 1e-10;
 
 /// Largest |B| a step accepts, T: a flux density beyond it (or not finite) is a caller's bug; the
 /// step then leaves the state unchanged and reports `accepted = false`.
@@ -58,6 +61,8 @@ pub struct HysteresisState {
     b: f64,
     /// +1 or −1: the direction of the last step that moved; 0 before any.
     direction: f64,
+    /// `dH/dB` of the last step (0 before any): the start of the next root search.
+    tangent_dh_db: f64,
 }
 
 impl HysteresisState {
@@ -93,11 +98,8 @@ impl HysteresisState {
             return self.tangent(params);
         }
         let s = delta.signum();
-        let (h, iterations) = self.solve_field(params, b_new, s);
-        let moving = self.advance(params, h, s);
-        self.b = b_new;
-        let (_, dj) = params.polarisation(&self.reversible, moving);
-        Response { h, b: b_new, dh_db: 1.0 / (MU_0 + dj), iterations, accepted: true }
+        let solved = self.solve_field(params, b_new, s, None);
+        self.commit(solved, b_new, s)
     }
 
     /// The B-driven step to `b_new` without committing it: the response and the state it would leave
@@ -105,6 +107,30 @@ impl HysteresisState {
     pub fn trial(&self, params: &HysteresisParams, b_new: f64) -> (Response, Self) {
         let mut next = *self;
         let response = next.step(params, b_new);
+        (response, next)
+    }
+
+    /// [`HysteresisState::trial`] with a guess of the field (A/m), e.g. the field of the previous
+    /// Newton iteration at this point: the root search starts there (clamped into its bracket), which
+    /// saves iterations when successive trials are close. The result is the same.
+    pub fn trial_near(
+        &self,
+        params: &HysteresisParams,
+        b_new: f64,
+        h_guess: f64,
+    ) -> (Response, Self) {
+        let mut next = *self;
+        let delta = b_new - self.b;
+        if !(b_new.is_finite() && b_new.abs() <= MAX_FLUX_DENSITY_T)
+            || delta == 0.0
+            || !h_guess.is_finite()
+        {
+            let response = next.step(params, b_new);
+            return (response, next);
+        }
+        let s = delta.signum();
+        let solved = self.solve_field(params, b_new, s, Some(h_guess));
+        let response = next.commit(solved, b_new, s);
         (response, next)
     }
 
@@ -124,7 +150,8 @@ impl HysteresisState {
         let moving = self.advance(params, h_new, s);
         let (j, dj) = params.polarisation(&self.reversible, moving);
         self.b = MU_0 * h_new + j;
-        Response { h: h_new, b: self.b, dh_db: 1.0 / (MU_0 + dj), iterations: 0, accepted: true }
+        self.tangent_dh_db = 1.0 / (MU_0 + dj);
+        Response { h: h_new, b: self.b, dh_db: self.tangent_dh_db, iterations: 0, accepted: true }
     }
 
     /// H, B and the tangent `dH/dB` for a continued motion in the last direction (at the demagnetised
@@ -156,68 +183,115 @@ impl HysteresisState {
 
     /// Moves every cell to the applied field `h` (direction `s`) and returns the moving cells.
     fn advance(&mut self, params: &HysteresisParams, h: f64, s: f64) -> u32 {
-        self.reversible = played(params, &self.reversible, h);
+        let (reversible, moving) = played(params, &self.reversible, h, s);
+        self.reversible = reversible;
         self.h = h;
         self.direction = s;
-        moving_cells(params, &self.reversible, h, s)
+        moving
     }
 
-    /// Solves `B(H) = b_new` along the step from this state in direction `s` (safeguarded Newton).
-    fn solve_field(&self, params: &HysteresisParams, b_new: f64, s: f64) -> (f64, u32) {
-        let residual = |h: f64| {
-            let reversible = played(params, &self.reversible, h);
-            let moving = moving_cells(params, &reversible, h, s);
+    /// Solves `B(H) = b_new` along the step from this state in direction `s` (safeguarded Newton,
+    /// started at `guess` when given, else one step along the last tangent). Returns the cells at
+    /// the root as evaluated there (no second evaluation).
+    fn solve_field(
+        &self,
+        params: &HysteresisParams,
+        b_new: f64,
+        s: f64,
+        guess: Option<f64>,
+    ) -> Solved {
+        let evaluate = |h: f64| {
+            let (reversible, moving) = played(params, &self.reversible, h, s);
             let (j, dj) = params.polarisation(&reversible, moving);
-            (MU_0 * h + j - b_new, MU_0 + dj)
+            (reversible, MU_0 * h + j - b_new, dj)
         };
         // The root lies between H₀ (residual B₀ − b_new) and H₀ + ΔB/μ0 (slope ≥ μ0).
         let far = self.h + (b_new - self.b) / MU_0;
         let (mut lo, mut hi) = if s > 0.0 { (self.h, far) } else { (far, self.h) };
-        let tolerance = 1e-12 * (1.0 + b_new.abs());
-        let (_, slope0) = residual(self.h);
-        let mut h = (self.h + (b_new - self.b) / slope0).clamp(lo, hi);
-        for iteration in 1..=MAX_ITERATIONS {
-            let (r, slope) = residual(h);
-            if r.abs() <= tolerance {
-                return (h, iteration);
+        let tolerance = TOLERANCE_T * (1.0 + b_new.abs());
+        let start = guess.unwrap_or(self.h + (b_new - self.b) * self.tangent_dh_db);
+        let mut h = start.clamp(lo, hi);
+        let mut iterations = 0;
+        loop {
+            iterations += 1;
+            let (reversible, r, dj) = evaluate(h);
+            let narrow = hi - lo <= f64::EPSILON * hi.abs().max(lo.abs());
+            if r.abs() <= tolerance || narrow || iterations >= MAX_ITERATIONS {
+                return Solved { h, reversible, dj, iterations };
             }
             if r > 0.0 {
                 hi = h
             } else {
                 lo = h
             }
-            let newton = h - r / slope;
+            let newton = h - r / (MU_0 + dj);
             h = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
-            if hi - lo <= f64::EPSILON * hi.abs().max(lo.abs()) {
-                return (h, iteration);
-            }
         }
-        (h, MAX_ITERATIONS)
+    }
+
+    /// Commits a solved B-driven step and returns its response.
+    fn commit(&mut self, solved: Solved, b_new: f64, s: f64) -> Response {
+        self.reversible = solved.reversible;
+        self.h = solved.h;
+        self.b = b_new;
+        self.direction = s;
+        self.tangent_dh_db = 1.0 / (MU_0 + solved.dj);
+        Response {
+            h: solved.h,
+            b: b_new,
+            dh_db: self.tangent_dh_db,
+            iterations: solved.iterations,
+            accepted: true,
+        }
     }
 }
 
-/// The reversible fields after the applied field moves to `h`: the play rule of each cell.
+/// A solved B-driven step: the field, the cells there, and `dJ/dH` of the moving cells.
+struct Solved {
+    h: f64,
+    reversible: [f64; MAX_CELLS],
+    dj: f64,
+    iterations: u32,
+}
+
+/// The reversible fields after the applied field moves to `h` (the play rule of each cell) and the
+/// cells then on the leading edge of their band for a motion in direction `s` (bit `k` set): they
+/// follow a further change of the applied field with slope 1. One pass over the cells.
 #[inline]
-fn played(params: &HysteresisParams, reversible: &[f64; MAX_CELLS], h: f64) -> [f64; MAX_CELLS] {
+fn played(
+    params: &HysteresisParams,
+    reversible: &[f64; MAX_CELLS],
+    h: f64,
+    s: f64,
+) -> ([f64; MAX_CELLS], u32) {
     let mut next = *reversible;
+    let mut moving = 0u32;
     for (k, &kappa) in params.pinning_a_per_m().iter().enumerate() {
         next[k] = next[k].clamp(h - kappa, h + kappa);
+        if leads(next[k], h, kappa, s) {
+            moving |= 1 << k;
+        }
     }
-    next
+    (next, moving)
 }
 
-/// The cells on the leading edge of their band for a motion in direction `s` (bit `k` set): they
-/// follow a further change of the applied field with slope 1.
+/// The cells on the leading edge of their band for a motion in direction `s` (bit `k` set).
 #[inline]
 fn moving_cells(params: &HysteresisParams, reversible: &[f64; MAX_CELLS], h: f64, s: f64) -> u32 {
     let mut moving = 0u32;
     for (k, &kappa) in params.pinning_a_per_m().iter().enumerate() {
-        // The play rule puts the cell exactly at h − s κ when it moved; allow rounding.
-        // Before any motion (s = 0) only cells without pinning follow the field.
-        let lag = if s == 0.0 { (h - reversible[k]).abs() } else { s * (h - reversible[k]) };
-        if lag >= kappa - 1e-9 * (kappa + h.abs()) {
+        if leads(reversible[k], h, kappa, s) {
             moving |= 1 << k;
         }
     }
     moving
+}
+
+/// Whether a cell at reversible field `reversible` is on the leading edge of its band `[h − κ, h + κ]`
+/// for a motion in direction `s`; before any motion (`s = 0`) only cells without pinning follow.
+#[inline]
+fn leads(reversible: f64, h: f64, kappa: f64, s: f64) -> bool {
+    // The play rule puts a moving cell exactly at h − s κ; allow rounding.
+    let lag = if s == 0.0 { (h - reversible).abs() } else { s * (h - reversible) };
+    lag >= kappa - 1e-9 * (kappa + h.abs())
 }
