@@ -74,10 +74,26 @@ pub fn steel(name: &str) -> Result<Arc<SteelHysteresis>, MaterialError> {
         .as_ref()
         .map_err(Clone::clone)?;
     let wanted = name.trim().to_ascii_lowercase();
-    sets.iter().find(|s| s.name == wanted).cloned().ok_or_else(|| MaterialError::UnknownMaterial {
+    match sets.iter().find(|s| s.name == wanted) {
+        Some(set) => Ok(Arc::clone(set)),
+        None => Err(no_model(name)),
+    }
+}
+
+/// The hysteresis law of library material `name`, for an FEA region: the steel's default set, an
+/// error naming the material for a material without a model (air, aluminium, a fluid) and the
+/// library's error for an unknown name.
+pub fn for_material(name: &str) -> Result<Arc<SteelHysteresis>, MaterialError> {
+    crate::library::get(name)?;
+    steel(name)
+}
+
+/// The error for a material without a hysteresis model.
+fn no_model(name: &str) -> MaterialError {
+    MaterialError::NoHysteresisModel {
         name: name.to_string(),
         known: steel_names().unwrap_or_default(),
-    })
+    }
 }
 
 /// The library's steels (every material of kind steel has a set).
@@ -144,10 +160,10 @@ pub fn steel_with_coercivity(
         });
     }
     let material = crate::library::get(name)?;
-    let curve = material.magnetic.bh_curve().ok_or_else(|| MaterialError::UnknownMaterial {
-        name: name.to_string(),
-        known: steel_names().unwrap_or_default(),
-    })?;
+    if material.kind != MaterialKind::Steel {
+        return Err(no_model(name));
+    }
+    let curve = material.magnetic.bh_curve().ok_or_else(|| no_model(name))?;
     let points: Vec<(f64, f64)> =
         curve.points().iter().copied().filter(|p| p.0 > 0.0 && p.0 <= FIT_FIELD_A_PER_M).collect();
     let normal = Observation::first_magnetisation(&format!("{name} library curve"), &points);

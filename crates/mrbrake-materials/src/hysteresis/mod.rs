@@ -14,7 +14,22 @@
 //!   fields and term fields, solved as non-negative least squares; CSV reading with file and line in
 //!   every error; warnings for what the data do not determine.
 //! * [`loop_measures`] — coercivity, remanence, loop area of a simulated or measured loop.
-//! * [`library`] — parameter sets for the library's low-carbon steels, with provenance.
+//! * [`library`] — parameter sets for the library's low-carbon steels, with provenance;
+//!   [`library::for_material`] is how an FEA selects the law of a region by material name.
+//! * [`NormalCurve`] — the model's normal magnetisation curve as a single-valued
+//!   [`crate::Reluctivity`], to run the existing anhysteretic solvers on the same law.
+//!
+//! # How an FEA uses it (the integration point)
+//! [`crate::Magnetic`] stays the single-valued law of every region (anhysteretic solves are
+//! untouched). A region whose steel is solved with hysteresis additionally gets an
+//! `Arc<HysteresisParams>` (from [`library::for_material`], or a fitted set), and the solver keeps one
+//! [`HysteresisState`] per quadrature point of that region. In each Newton iteration it calls
+//! [`HysteresisState::trial_near`] from the committed state with the trial `B` (the previous
+//! iteration's H as the guess) and assembles `H` and the tangent `dH/dB`; after convergence of the
+//! step it commits the states returned by the last trials. In the axisymmetric A-formulation B is a
+//! 2-vector: the scalar model acts along a per-point axis `e` fixed when the point is first
+//! magnetised (`b = B·e`), with the tangent `dH/dB e⊗e + (H/b)(I − e⊗e)`; the vector play rule
+//! (Henrotte 2006, eq. (14)) is the extension if the field rotates.
 //!
 //! # The model (Henrotte, Nicolet, Hameyer 2006; Bergqvist 1997)
 //! F. Henrotte, A. Nicolet, K. Hameyer, "An energy-based vector hysteresis model for ferromagnetic
@@ -60,10 +75,12 @@ pub mod identify;
 pub mod library;
 mod measures;
 mod nnls;
+mod normal_curve;
 mod params;
 mod state;
 
 pub use identify::{Identified, IdentifyOptions, Observation, PathStart};
 pub use measures::{LoopMeasures, loop_measures, major_loop};
+pub use normal_curve::NormalCurve;
 pub use params::{HysteresisParams, MAX_CELLS, MAX_TERMS, Term};
 pub use state::{HysteresisState, MAX_FLUX_DENSITY_T, MAX_ITERATIONS, Response};
