@@ -6,7 +6,7 @@
 //! `κ_0 = 0 < κ_1 < …` and the term fields on a grid `a_1 < a_2 < …`, every sample gives one linear
 //! equation in the term amplitudes `J_{k,m} ≥ 0`:
 //! `B_i − μ0 H_i = Σ_{k,m} J_{k,m} g(h_k(i) / a_m)`, `g(x) = x/(1 + |x|)`.
-//! The least-squares fit with `J_{k,m} ≥ 0` is convex (Lawson–Hanson NNLS, [`super::nnls`]), has no
+//! The least-squares fit with `J_{k,m} ≥ 0` is convex (Lawson–Hanson NNLS: C. L. Lawson, R. J. Hanson, *Solving Least Squares Problems*, 1974, ch. 23), has no
 //! local minima and needs no starting guess; the grid is the only choice (defaults from the data:
 //! [`IdentifyOptions::from_data`]). Non-negative amplitudes make every fitted set a valid, passive model.
 //!
