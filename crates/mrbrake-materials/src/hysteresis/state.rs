@@ -88,14 +88,9 @@ impl HysteresisState {
 
     /// B-driven step to `b_new` (T): updates the state and returns H, `dH/dB` (see the module docs).
     pub fn step(&mut self, params: &HysteresisParams, b_new: f64) -> Response {
-        if !(b_new.is_finite() && b_new.abs() <= MAX_FLUX_DENSITY_T) {
-            let mut response = self.tangent(params);
-            response.accepted = false;
-            return response;
-        }
         let delta = b_new - self.b;
-        if delta == 0.0 {
-            return self.tangent(params);
+        if !(b_new.is_finite() && b_new.abs() <= MAX_FLUX_DENSITY_T) || delta == 0.0 {
+            return self.without_step(params, delta == 0.0);
         }
         let s = delta.signum();
         let solved = self.solve_field(params, b_new, s, None);
@@ -137,14 +132,11 @@ impl HysteresisState {
     /// H-driven step to `h_new` (A/m): the forward form of the model. Returns B and `dH/dB` (the
     /// inverse of `dB/dH` of the step). A non-finite `h_new` is rejected like a bad B.
     pub fn step_h(&mut self, params: &HysteresisParams, h_new: f64) -> Response {
-        if !(h_new.is_finite() && h_new.abs() <= super::params::MAX_FIELD_A_PER_M * 10.0) {
-            let mut response = self.tangent(params);
-            response.accepted = false;
-            return response;
-        }
         let delta = h_new - self.h;
-        if delta == 0.0 {
-            return self.tangent(params);
+        if !(h_new.is_finite() && h_new.abs() <= super::params::MAX_FIELD_A_PER_M * 10.0)
+            || delta == 0.0
+        {
+            return self.without_step(params, delta == 0.0);
         }
         let s = delta.signum();
         let moving = self.advance(params, h_new, s);
@@ -152,6 +144,11 @@ impl HysteresisState {
         self.b = MU_0 * h_new + j;
         self.tangent_dh_db = 1.0 / (MU_0 + dj);
         Response { h: h_new, b: self.b, dh_db: self.tangent_dh_db, iterations: 0, accepted: true }
+    }
+
+    /// The response when the state does not move: its tangent, `accepted` false for rejected input.
+    fn without_step(&self, params: &HysteresisParams, accepted: bool) -> Response {
+        Response { accepted, ..self.tangent(params) }
     }
 
     /// H, B and the tangent `dH/dB` for a continued motion in the last direction (at the demagnetised
