@@ -97,7 +97,7 @@ fn dh_db_matches_finite_differences_of_the_step_map() {
 #[test]
 fn loop_area_equals_the_closed_form_dissipation() {
     // Over a symmetric cycle of amplitude H_m every cell k swings between ±(H_m − κ_k), so
-    // ∮ H dB = Σ_k κ_k ∫|dJ_k| = Σ_k 4 κ_k J_k(H_m − κ_k) (Henrotte et al. 2006, eq. (8)).
+    // ∮ H dB = Σ_k κ_k ∫|dJ_k| = Σ_k 4 κ_k J_k(H_m − κ_k) (the dissipation of the dry-friction law, Henrotte et al. 2006).
     let p = steel_like();
     let h_max: f64 = 5000.0;
     let cell_j = |k: usize, h: f64| -> f64 {

@@ -29,7 +29,7 @@
 //! step it commits the states returned by the last trials. In the axisymmetric A-formulation B is a
 //! 2-vector: the scalar model acts along a per-point axis `e` fixed when the point is first
 //! magnetised (`b = B·e`), with the tangent `dH/dB e⊗e + (H/b)(I − e⊗e)`; the vector play rule
-//! (Henrotte 2006, eq. (14)) is the extension if the field rotates.
+//! of Henrotte et al. (2006) is the extension if the field rotates.
 //!
 //! # The model (Henrotte, Nicolet, Hameyer 2006; Bergqvist 1997)
 //! F. Henrotte, A. Nicolet, K. Hameyer, "An energy-based vector hysteresis model for ferromagnetic
@@ -65,7 +65,7 @@
 //! * **Newton robustness.** Energy-based: the step map `B ↦ H` is strictly increasing with
 //!   `0 < dH/dB ≤ 1/μ0`; its tangent is exact. JA: `dH/dB` from the ODE right-hand side, which can
 //!   become negative or unbounded near reversals without the corrections.
-//! * **Vector extension** (later): the same cells with the vector play rule (Henrotte 2006, eq. (14)).
+//! * **Vector extension** (later): the same cells with the vector form of the dry-friction rule (Henrotte et al. 2006).
 //!
 //! The model's anhysteretic limit (`κ → 0`) is the single-valued curve `μ0 H + Σ_k J_k(H)`; its
 //! first-magnetisation curve from the demagnetised state, which is also the locus of the tips of

@@ -5,7 +5,7 @@
 //! `J_k(h) = Σ_{terms of k} J_t · g(h / a_t)`, `g(x) = x / (1 + |x|)`, with `J_t > 0` (T) and
 //! `a_t > 0` (A/m). `g` is the Fröhlich–Kennelly law `M = M_s H / (a + |H|)` (O. Fröhlich,
 //! Elektrotech. Z. 2 (1881) 134; A. E. Kennelly, Trans. AIEE 8 (1891) 485; in R. M. Bozorth,
-//! *Ferromagnetism*, Van Nostrand 1951, §11): odd, strictly increasing, bounded by `J_t`, and it
+//! *Ferromagnetism*, Van Nostrand 1951; citations as usually given): odd, strictly increasing, bounded by `J_t`, and it
 //! approaches saturation as `1 − a/H`, the law of approach of polycrystalline iron at high field.
 //! A sum of such terms with different `a_t` describes both the steep low-field part of a steel's curve
 //! and its slow approach to saturation; it costs one division per term (no `exp`, no `coth`).

@@ -2,9 +2,9 @@
 //!
 //! # One step
 //! From the committed state (reversible fields `h_k`, applied field `H₀`, flux density `B₀`) to a new
-//! applied field `H`, every cell follows the dry-friction (play) rule of Henrotte et al. (2006),
-//! eq. (14) in scalar form, `h_k ← clamp(h_k, H − κ_k, H + κ_k)`, and
-//! `B(H) = μ0 H + Σ_k J_k(h_k)` (eqs. (1), (9)). Along one step the map `H ↦ B` is continuous,
+//! applied field `H`, every cell follows the dry-friction (play) rule of Henrotte et al. (2006) in
+//! scalar form, `h_k ← clamp(h_k, H − κ_k, H + κ_k)`, and
+//! `B(H) = μ0 H + Σ_k J_k(h_k)`. Along one step the map `H ↦ B` is continuous,
 //! piecewise smooth and strictly increasing (slope `≥ μ0`), so a **B-driven** step (what an
 //! A-formulation FEA needs) solves `B(H) = B_new` for the unique `H` by Newton's method safeguarded by
 //! bisection on a bracket that always holds the root (`[H₀, H₀ + ΔB/μ0]` for `ΔB > 0`). No ODE is
@@ -17,7 +17,7 @@
 //!
 //! # Energy
 //! The work per volume of one step splits exactly into a change of free energy and dissipation:
-//! `∫H dB = Δ(μ0 H²/2) + Σ_k ΔU_k + Σ_k κ_k |ΔJ_k|` (Henrotte et al. 2006, eqs. (4)–(8)); the
+//! `∫H dB = Δ(μ0 H²/2) + Σ_k ΔU_k + Σ_k κ_k |ΔJ_k|` (the energy balance of Henrotte et al. 2006 and Bergqvist 1997); the
 //! dissipation `κ_k |ΔJ_k| ≥ 0` is exact for the discrete step because each cell moves
 //! monotonically within a step. Over a closed cycle `∮ H dB = Σ κ_k ∫|dJ_k| ≥ 0`: the model is
 //! passive by construction.
