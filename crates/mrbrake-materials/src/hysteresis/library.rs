@@ -60,24 +60,24 @@ pub struct SteelHysteresis {
 }
 
 /// The default set of library steel `name` (coercivity from [`curve_consistent_coercivity`]), built
-/// once for all steels.
+/// on its first use.
 pub fn steel(name: &str) -> Result<Arc<SteelHysteresis>, MaterialError> {
-    static SETS: OnceLock<Result<Vec<Arc<SteelHysteresis>>, MaterialError>> = OnceLock::new();
+    type Slot = OnceLock<Result<Arc<SteelHysteresis>, MaterialError>>;
+    static SETS: OnceLock<Result<Vec<(String, Slot)>, MaterialError>> = OnceLock::new();
     let sets = SETS
-        .get_or_init(|| {
-            steel_names()?
-                .iter()
-                .map(|n| steel_with_coercivity(n, curve_consistent_coercivity(n)?).map(Arc::new))
-                .collect::<Result<_, _>>()
-                .map_err(MaterialError::builtin)
-        })
+        .get_or_init(|| Ok(steel_names()?.into_iter().map(|n| (n, OnceLock::new())).collect()))
         .as_ref()
         .map_err(Clone::clone)?;
     let wanted = name.trim().to_ascii_lowercase();
-    match sets.iter().find(|s| s.name == wanted) {
-        Some(set) => Ok(Arc::clone(set)),
-        None => Err(no_model(name)),
-    }
+    let (steel, slot) = sets.iter().find(|s| s.0 == wanted).ok_or_else(|| no_model(name))?;
+    // Each steel is fitted on its first use only (a coercivity search of about 40 small fits).
+    slot.get_or_init(|| {
+        curve_consistent_coercivity(steel)
+            .and_then(|hc| steel_with_coercivity(steel, hc))
+            .map(Arc::new)
+            .map_err(MaterialError::builtin)
+    })
+    .clone()
 }
 
 /// The hysteresis law of library material `name`, for an FEA region: the steel's default set, an
@@ -123,11 +123,21 @@ pub fn curve_consistent_coercivity(name: &str) -> Result<Sourced<f64>, MaterialE
             best = (i, r);
         }
     }
+    // Golden-section search in ln H_c, one new fit per iteration (the bracket shrinks to 0.2 %).
     let (mut a, mut b) = (grid[best.0.saturating_sub(1)].ln(), grid[(best.0 + 1).min(24)].ln());
     let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..20 {
-        let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
-        if rms(c.exp())? < rms(d.exp())? { b = d } else { a = c }
+    let (mut c, mut d) = (b - ratio * (b - a), a + ratio * (b - a));
+    let (mut fc, mut fd) = (rms(c.exp())?, rms(d.exp())?);
+    for _ in 0..14 {
+        if fc < fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - ratio * (b - a);
+            fc = rms(c.exp())?;
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + ratio * (b - a);
+            fd = rms(d.exp())?;
+        }
     }
     let hc = (0.5 * (a + b)).exp();
     Ok(Sourced::new(

@@ -46,6 +46,8 @@ pub struct HysteresisParams {
     cells: usize,
     pinning: [f64; MAX_CELLS],
     terms: usize,
+    /// Terms are stored grouped by cell: cell `k` owns `cell_start[k]..cell_start[k + 1]`.
+    cell_start: [usize; MAX_CELLS + 1],
     term_cell: [usize; MAX_TERMS],
     term_js: [f64; MAX_TERMS],
     /// `1/a_t`, so that a term costs one division (`1/(1+|x|)`).
@@ -88,15 +90,25 @@ impl HysteresisParams {
             cells,
             pinning,
             terms: terms.len(),
+            cell_start: [0; MAX_CELLS + 1],
             term_cell: [0; MAX_TERMS],
             term_js: [0.0; MAX_TERMS],
             term_inv_a: [0.0; MAX_TERMS],
         };
         for (t, term) in terms.iter().enumerate() {
             check_term(t, term, cells)?;
+        }
+        // Group the terms by cell (stable), so that an evaluation visits each cell once.
+        let mut ordered: Vec<&Term> = terms.iter().collect();
+        ordered.sort_by_key(|term| term.cell);
+        for (t, term) in ordered.iter().enumerate() {
             params.term_cell[t] = term.cell;
             params.term_js[t] = term.polarisation_t;
             params.term_inv_a[t] = 1.0 / term.field_a_per_m;
+            params.cell_start[term.cell + 1] = t + 1;
+        }
+        for k in 1..=MAX_CELLS {
+            params.cell_start[k] = params.cell_start[k].max(params.cell_start[k - 1]);
         }
         Ok(params)
     }
@@ -111,7 +123,7 @@ impl HysteresisParams {
         &self.pinning[..self.cells]
     }
 
-    /// The anhysteretic terms.
+    /// The anhysteretic terms, grouped by cell (in the order given within a cell).
     pub fn terms(&self) -> Vec<Term> {
         (0..self.terms)
             .map(|t| Term {
@@ -139,17 +151,40 @@ impl HysteresisParams {
     /// reversible field follows the applied field), T and T·m/A.
     #[inline]
     pub(crate) fn polarisation(&self, reversible: &[f64; MAX_CELLS], moving: u32) -> (f64, f64) {
-        let (mut j, mut dj) = (0.0, 0.0);
-        for t in 0..self.terms {
-            let cell = self.term_cell[t];
-            let x = reversible[cell] * self.term_inv_a[t];
-            let inv = 1.0 / (1.0 + x.abs());
-            j += self.term_js[t] * x * inv;
-            if moving & (1 << cell) != 0 {
-                dj += self.term_js[t] * self.term_inv_a[t] * inv * inv;
+        let (j, dj, _) = self.polarisation_and_curvature(reversible, moving);
+        (j, dj)
+    }
+
+    /// [`HysteresisParams::polarisation`] and the second derivative `d²J/dH²` of the moving cells
+    /// (`g''(x) = −2 sign(x) / (1 + |x|)³`), for the root search's Halley steps.
+    #[inline]
+    pub(crate) fn polarisation_and_curvature(
+        &self,
+        reversible: &[f64; MAX_CELLS],
+        moving: u32,
+    ) -> (f64, f64, f64) {
+        let (mut j, mut dj, mut d2j) = (0.0, 0.0, 0.0);
+        for (k, &h) in reversible.iter().enumerate().take(self.cells) {
+            let terms = self.cell_start[k]..self.cell_start[k + 1];
+            let js = &self.term_js[terms.clone()];
+            let inv_a = &self.term_inv_a[terms];
+            if moving & (1 << k) == 0 {
+                for (&js, &inv_a) in js.iter().zip(inv_a) {
+                    let x = h * inv_a;
+                    j += js * x / (1.0 + x.abs());
+                }
+                continue;
+            }
+            for (&js, &inv_a) in js.iter().zip(inv_a) {
+                let x = h * inv_a;
+                let inv = 1.0 / (1.0 + x.abs());
+                j += js * x * inv;
+                let slope = js * inv_a * inv * inv;
+                dj += slope;
+                d2j -= 2.0 * slope * inv_a * inv * x.signum();
             }
         }
-        (j, dj)
+        (j, dj, d2j)
     }
 
     /// Polarisation of cell `cell` alone at reversible field `h`, T.

@@ -6,7 +6,7 @@
 //! scalar form, `h_k ← clamp(h_k, H − κ_k, H + κ_k)`, and
 //! `B(H) = μ0 H + Σ_k J_k(h_k)`. Along one step the map `H ↦ B` is continuous,
 //! piecewise smooth and strictly increasing (slope `≥ μ0`), so a **B-driven** step (what an
-//! A-formulation FEA needs) solves `B(H) = B_new` for the unique `H` by Newton's method safeguarded by
+//! A-formulation FEA needs) solves `B(H) = B_new` for the unique `H` by Halley's/Newton's method safeguarded by
 //! bisection on a bracket that always holds the root (`[H₀, H₀ + ΔB/μ0]` for `ΔB > 0`). No ODE is
 //! integrated, so no sub-steps: the update is exact for the discretised model (up to the root
 //! tolerance, [`TOLERANCE_T`]), and the number of iterations is bounded ([`MAX_ITERATIONS`]).
@@ -199,8 +199,8 @@ impl HysteresisState {
     ) -> Solved {
         let evaluate = |h: f64| {
             let (reversible, moving) = played(params, &self.reversible, h, s);
-            let (j, dj) = params.polarisation(&reversible, moving);
-            (reversible, MU_0 * h + j - b_new, dj)
+            let (j, dj, d2j) = params.polarisation_and_curvature(&reversible, moving);
+            (reversible, MU_0 * h + j - b_new, dj, d2j)
         };
         // The root lies between H₀ (residual B₀ − b_new) and H₀ + ΔB/μ0 (slope ≥ μ0).
         let far = self.h + (b_new - self.b) / MU_0;
@@ -211,7 +211,7 @@ impl HysteresisState {
         let mut iterations = 0;
         loop {
             iterations += 1;
-            let (reversible, r, dj) = evaluate(h);
+            let (reversible, r, dj, d2j) = evaluate(h);
             let narrow = hi - lo <= f64::EPSILON * hi.abs().max(lo.abs());
             if r.abs() <= tolerance || narrow || iterations >= MAX_ITERATIONS {
                 return Solved { h, reversible, dj, iterations };
@@ -221,8 +221,7 @@ impl HysteresisState {
             } else {
                 lo = h
             }
-            let newton = h - r / (MU_0 + dj);
-            h = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+            h = next_iterate(h, r, MU_0 + dj, d2j, lo, hi);
         }
     }
 
@@ -241,6 +240,20 @@ impl HysteresisState {
             accepted: true,
         }
     }
+}
+
+/// The next iterate of the root search: Halley's step (cubic convergence on a smooth piece, using
+/// `F'' = d²J/dH²`), else Newton's, else bisection — whichever first lies inside the bracket.
+#[inline]
+fn next_iterate(h: f64, r: f64, slope: f64, curvature: f64, lo: f64, hi: f64) -> f64 {
+    let inside = |x: f64| x > lo && x < hi;
+    let denominator = 2.0 * slope * slope - r * curvature;
+    let halley = h - 2.0 * r * slope / denominator;
+    if denominator > 0.0 && inside(halley) {
+        return halley;
+    }
+    let newton = h - r / slope;
+    if inside(newton) { newton } else { 0.5 * (lo + hi) }
 }
 
 /// A solved B-driven step: the field, the cells there, and `dJ/dH` of the moving cells.
@@ -264,7 +277,8 @@ fn played(
     let mut next = *reversible;
     let mut moving = 0u32;
     for (k, &kappa) in params.pinning_a_per_m().iter().enumerate() {
-        next[k] = next[k].clamp(h - kappa, h + kappa);
+        // max/min rather than clamp: no check that the bounds are ordered (they are, κ ≥ 0).
+        next[k] = next[k].max(h - kappa).min(h + kappa);
         if leads(next[k], h, kappa, s) {
             moving |= 1 << k;
         }
