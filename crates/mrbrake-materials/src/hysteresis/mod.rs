@@ -19,6 +19,15 @@
 //! * [`NormalCurve`] — the model's normal magnetisation curve as a single-valued
 //!   [`crate::Reluctivity`], to run the existing anhysteretic solvers on the same law.
 //!
+//! ```
+//! use mrbrake_materials::hysteresis::{HysteresisState, library};
+//! let steel = library::for_material("steel-1008").unwrap();
+//! let mut point = HysteresisState::demagnetised();
+//! let up = point.step(&steel.params, 1.5); // B-driven: returns H and dH/dB
+//! let back = point.step(&steel.params, 0.0); // B back to 0 needs a negative H (remanence)
+//! assert!(up.h > 0.0 && back.h < 0.0 && back.dh_db > 0.0);
+//! ```
+//!
 //! # How an FEA uses it (the integration point)
 //! [`crate::Magnetic`] stays the single-valued law of every region (anhysteretic solves are
 //! untouched). A region whose steel is solved with hysteresis additionally gets an
