@@ -6,20 +6,27 @@
 //! descending branch (both by linear interpolation between samples); the loop area
 //! `∮ H dB` (J/m³ per cycle, the hysteresis loss) is the trapezoidal rule over the samples.
 
+use serde::Serialize;
+
 use super::{HysteresisParams, HysteresisState};
 
 /// Figures of a closed loop.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct LoopMeasures {
     /// Coercivity `H_c` on the descending branch, A/m (`None` when B does not cross zero).
+    #[serde(rename = "coercivity_A_per_m")]
     pub coercivity_a_per_m: Option<f64>,
     /// Remanence `B_r` on the descending branch, T (`None` when H does not cross zero).
+    #[serde(rename = "remanence_T")]
     pub remanence_t: Option<f64>,
     /// Largest |B| of the loop, T.
+    #[serde(rename = "peak_B_T")]
     pub peak_b_t: f64,
     /// Largest |H| of the loop, A/m.
+    #[serde(rename = "peak_H_A_per_m")]
     pub peak_h_a_per_m: f64,
     /// `∮ H dB` over the samples (trapezoidal), J/m³ per cycle.
+    #[serde(rename = "area_J_per_m3")]
     pub area_j_per_m3: f64,
 }
 

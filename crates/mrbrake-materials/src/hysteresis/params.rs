@@ -12,6 +12,8 @@
 //!
 //! The saturation polarisation of the material is `J_s = Σ_t J_t`.
 
+use serde::Serialize;
+
 use crate::{MU_0, MaterialError};
 
 /// Most cells (pinning fields) of a parameter set: the per-point state holds one reversible field per
@@ -29,13 +31,15 @@ pub const MAX_FIELD_A_PER_M: f64 = 1e7;
 pub const MAX_POLARISATION_T: f64 = 3.0;
 
 /// One anhysteretic term: `J_t · g(h/a_t)` added to the law of cell `cell`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Term {
     /// Index of the cell the term belongs to.
     pub cell: usize,
     /// Polarisation amplitude `J_t`, T (`> 0`).
+    #[serde(rename = "polarisation_T")]
     pub polarisation_t: f64,
     /// Field scale `a_t`, A/m (`> 0`).
+    #[serde(rename = "field_A_per_m")]
     pub field_a_per_m: f64,
 }
 
@@ -216,6 +220,20 @@ impl HysteresisParams {
     pub fn anhysteretic_b(&self, h: f64) -> f64 {
         let reversible = [h; MAX_CELLS];
         MU_0 * h + self.polarisation(&reversible, 0).0
+    }
+}
+
+impl Serialize for HysteresisParams {
+    /// `{ "model": "energy-based (play)", "pinning_A_per_m": [...], "terms": [...],
+    /// "saturation_polarisation_T": ... }` (for reports).
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut out = serializer.serialize_struct("HysteresisParams", 4)?;
+        out.serialize_field("model", "energy-based (play), Henrotte et al. 2006")?;
+        out.serialize_field("pinning_A_per_m", self.pinning_a_per_m())?;
+        out.serialize_field("terms", &self.terms())?;
+        out.serialize_field("saturation_polarisation_T", &self.saturation_polarisation_t())?;
+        out.end()
     }
 }
 
