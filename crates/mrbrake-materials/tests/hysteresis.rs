@@ -513,3 +513,21 @@ fn the_normal_curve_is_a_consistent_single_valued_law() {
     let magnetic = mrbrake_materials::Magnetic::NonLinear(std::sync::Arc::new(law));
     assert!(magnetic.nu_of_b2(0.0).is_finite() && magnetic.nu_of_b2(0.0) > 0.0);
 }
+
+#[test]
+fn a_warm_start_gives_the_same_step_whatever_the_guess() {
+    let p = steel_like();
+    let mut state = HysteresisState::demagnetised();
+    state.step(&p, 1.6);
+    state.step(&p, 0.3);
+    for (b, guess) in [(0.35, 0.0), (0.35, 1e9), (-0.4, f64::NAN), (-0.4, -123.0), (1.0, 500.0)] {
+        let (cold, cold_state) = state.trial(&p, b);
+        let (warm, warm_state) = state.trial_near(&p, b, guess);
+        assert!((warm.h - cold.h).abs() <= 1e-6 * (1.0 + cold.h.abs()), "B {b}, guess {guess}");
+        assert!((warm.dh_db - cold.dh_db).abs() <= 1e-9 * cold.dh_db);
+        assert!((warm_state.h() - cold_state.h()).abs() <= 1e-6 * (1.0 + cold.h.abs()));
+    }
+    // A good guess (the field of a nearby trial) converges in two evaluations.
+    let near = state.trial(&p, 0.3499).0.h;
+    assert!(state.trial_near(&p, 0.35, near).0.iterations <= 3);
+}
