@@ -13,7 +13,8 @@
 //!   unknowns and one order more accuracy where the field is smooth (A in L2 at O(h³), B at O(h²);
 //!   the validation tests measure both).
 //! - [`field::Solution`] with post-processing on the solver: B at points and along lines, region
-//!   statistics, flux linkage, inductance, energy and co-energy.
+//!   statistics, flux linkage, inductance, energy and co-energy; [`force`]: the axial force on a
+//!   body by virtual work on the layer of elements around it, and the Lorentz force on a coil.
 //! - [`material`]: the material library's magnetic law ([`material::Magnetic`], with the
 //!   [`material::Reluctivity`] `ν(B²)` of its B-H curves) and an analytic test curve.
 //! - [`problem_file`]: the TOML problem files of `mrbrake fem solve`.
@@ -53,6 +54,7 @@ pub mod benchmark;
 pub mod dynamics;
 pub mod exact;
 pub mod field;
+pub mod force;
 pub mod form;
 pub mod material;
 pub mod open_boundary;
