@@ -31,7 +31,7 @@
 //! them) has a contact force that no field formula gives. The force of a harmonic phasor pair
 //! is its time average (`⟨H_i B_j⟩ = ½ Re(H_i B_j*)`, linear media).
 
-use mrbrake_fem::element::P1Triangle;
+use mrbrake_fem::discretisation::element::P1Triangle;
 
 use crate::MagneticsError;
 use crate::field::Solution;

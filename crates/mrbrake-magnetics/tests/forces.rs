@@ -9,7 +9,7 @@
 
 use std::sync::Arc;
 
-use mrbrake_fem::structured::{SideTags, graded_lines, join_lines, rectangle_mesh};
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, join_lines, rectangle_mesh};
 use mrbrake_magnetics::exact::{CoilSection, thick_coil_a_phi, thick_coils_force_z};
 use mrbrake_magnetics::material::Magnetic;
 use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
