@@ -275,3 +275,30 @@ fn unknown_material_names_file_and_region() {
     let e = input_error(&text, &[]);
     assert!(e.contains("p.toml") && e.contains("physical = 1") && e.contains("unobtainium"), "{e}");
 }
+
+/// The forces of `fem solve` (`regions[].force_z_N`) obey Newton's third law: the steel (pot and
+/// plate, region 1) and the coil (region 2) are the only bodies in air, so their forces cancel (the
+/// field far away carries no momentum in statics). Each is a small net force (a few N) left over
+/// from the ~10³ N pull between pot and plate, so the residue is measured against that scale (the
+/// co-energy over the 1 mm gap) and shrinks with the element order; the coil's force also equals
+/// its Lorentz force, an independent formula.
+#[test]
+fn region_forces_of_the_pot_core_cancel() {
+    let example = repo_root().join("examples/fem/potcore.toml");
+    let mut residues = Vec::new();
+    for order in [ElementOrder::P1, ElementOrder::P2] {
+        let (report, solver, solution) = solve_file_with_order(&example, Some(order)).unwrap();
+        let force = |tag: u32| report.regions.iter().find(|r| r.physical == tag).unwrap().force_z_n;
+        let (steel, coil) = (force(1), force(2));
+        let lorentz = solver.lorentz_force_z(&solution, 2).unwrap();
+        let scale = report.coenergy_j / 1e-3;
+        let residue = (steel + coil).abs() / scale;
+        eprintln!(
+            "{order:?}: F_steel = {steel:.6e} N, F_coil = {coil:.6e} N, Lorentz {lorentz:.6e} N, \
+             scale {scale:.3e} N, residue {residue:.2e}"
+        );
+        assert!((coil - lorentz).abs() <= 0.02 * lorentz.abs(), "{coil} vs {lorentz}");
+        residues.push(residue);
+    }
+    assert!(residues[0] < 5e-3 && residues[1] < 0.5 * residues[0], "{residues:?}");
+}

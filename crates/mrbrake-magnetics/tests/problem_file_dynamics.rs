@@ -115,6 +115,14 @@ fn voltage_step_in_a_file_follows_the_lr_closed_form() {
         assert!(json["transient"]["coils"][0].get(key).is_some(), "missing coils[0].{key}");
     }
     assert!(json["transient"]["probes"][0].get("B_z_T").is_some());
+    // The axial force on every region at every level (values: `tests/forces.rs`, the static one
+    // in `tests/problem_file.rs`).
+    assert_eq!(transient.forces.len(), report.regions.len());
+    for trace in &transient.forces {
+        assert_eq!(trace.force_z_n.len(), transient.time_s.len());
+        assert!(trace.force_z_n.iter().all(|f| f.is_finite()));
+    }
+    assert!(json["transient"]["forces"][0].get("force_z_N").is_some());
     assert!(json.get("harmonic").is_none());
     // (Its text is `mrbrake_report::fem`'s, tested there and by the CLI.)
     assert_eq!(json["transient"]["scheme"], "bdf2");

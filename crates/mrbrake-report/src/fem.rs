@@ -39,8 +39,8 @@ pub fn solve_text(report: &SolveReport, name: &str) -> String {
     for r in &report.regions {
         let _ = writeln!(
             out,
-            "  region {:>4}: area {:.4e} m²  mean |B| {:.4} T  max |B| {:.4} T",
-            r.physical, r.area_m2, r.mean_b_t, r.max_b_t
+            "  region {:>4}: area {:.4e} m²  mean |B| {:.4} T  max |B| {:.4} T  F_z {:+.4e} N",
+            r.physical, r.area_m2, r.mean_b_t, r.max_b_t, r.force_z_n
         );
     }
     write_coils_and_lines(report, &mut out);
@@ -157,6 +157,12 @@ fn write_transient(t: &TransientReport, seconds: f64, out: &mut String) {
             let _ = write!(out, " {:>11.4e} {:>11.4e}", p.b_r_t[n], p.b_z_t[n]);
         }
         let _ = writeln!(out, " {:>11.4e}", r.eddy_loss_w[n]);
+    }
+    let final_forces: Vec<String> = (r.forces.iter())
+        .filter_map(|f| Some(format!("region {} {:+.4e} N", f.physical, f.force_z_n.last()?)))
+        .collect();
+    if !final_forces.is_empty() {
+        let _ = writeln!(out, "  axial force at the end: {}", final_forces.join(", "));
     }
     write_energy_balance(r, out);
 }

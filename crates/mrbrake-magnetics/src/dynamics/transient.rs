@@ -44,6 +44,9 @@ pub struct TransientOptions {
     pub energy: bool,
     /// Keep the potential at the first step at or after each of these times (s).
     pub snapshot_times_s: Vec<f64>,
+    /// Record the axial force on each of these regions (physical tags) every step
+    /// ([`crate::force`]; one pass over the mesh per region and step).
+    pub force_regions: Vec<u32>,
 }
 
 impl TransientOptions {
@@ -54,6 +57,7 @@ impl TransientOptions {
             probes: Vec::new(),
             energy: false,
             snapshot_times_s: Vec::new(),
+            force_regions: Vec::new(),
         }
     }
 }
@@ -88,6 +92,16 @@ pub struct ProbeTrace {
     pub b_z_t: Vec<f64>,
 }
 
+/// The axial force on a region over time.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ForceTrace {
+    /// Physical tag of the region.
+    pub physical: u32,
+    /// Axial force (N, +z) at each level, by virtual work ([`crate::force`]).
+    #[serde(rename = "force_z_N")]
+    pub force_z_n: Vec<f64>,
+}
+
 /// The outcome of a transient solve: one entry per accepted time level, `t = 0` first.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TransientResult {
@@ -97,6 +111,8 @@ pub struct TransientResult {
     pub coils: Vec<CoilTrace>,
     /// Every probe.
     pub probes: Vec<ProbeTrace>,
+    /// The force on every region of [`TransientOptions::force_regions`].
+    pub forces: Vec<ForceTrace>,
     /// Eddy-current loss of all conductors (W) at each level.
     #[serde(rename = "eddy_loss_W")]
     pub eddy_loss_w: Vec<f64>,
@@ -229,6 +245,11 @@ impl<'o> Recorder<'o> {
                 .iter()
                 .map(|p| ProbeTrace { name: p.name.clone(), b_r_t: Vec::new(), b_z_t: Vec::new() })
                 .collect(),
+            forces: options
+                .force_regions
+                .iter()
+                .map(|&physical| ForceTrace { physical, force_z_n: Vec::new() })
+                .collect(),
             eddy_loss_w: Vec::new(),
             winding_loss_w: Vec::new(),
             stored_energy_j: Vec::new(),
@@ -328,8 +349,11 @@ impl<'o> Recorder<'o> {
     ) -> Result<(), MagneticsError> {
         self.result.time_s.push(level.t);
         let options = self.options;
-        if !options.probes.is_empty() || options.energy {
+        if !options.probes.is_empty() || options.energy || !options.force_regions.is_empty() {
             let solution = dynamics.solution(level.u.to_vec());
+            for trace in &mut self.result.forces {
+                trace.force_z_n.push(dynamics.solver.axial_force(&solution, &[trace.physical])?);
+            }
             for (trace, probe) in self.result.probes.iter_mut().zip(&options.probes) {
                 let b = dynamics.solver.b_at(&solution, probe.point)?;
                 trace.b_r_t.push(b.b_r_t);

@@ -354,6 +354,7 @@ fn transient_of(raw: &RawTransient, file: &str) -> Result<TransientOptions, Magn
         probes: Vec::new(),
         energy: true,
         snapshot_times_s: vtu_times_of(raw.vtu_times.as_deref(), raw.t_end, file)?,
+        force_regions: Vec::new(),
     })
 }
 
@@ -609,7 +610,8 @@ pub(super) fn run(
     };
     match &spec.analysis {
         DynamicSolve::Transient(options) => {
-            let options = TransientOptions { probes, ..options.clone() };
+            let force_regions = dynamics.solver().mesh().region_tags();
+            let options = TransientOptions { probes, force_regions, ..options.clone() };
             let result = dynamics.transient(&options).map_err(|e| named(e, &file))?;
             report.transient = Some(TransientReport { scheme: options.time.scheme, result });
         }

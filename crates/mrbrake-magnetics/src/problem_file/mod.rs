@@ -436,7 +436,8 @@ pub fn solve_file_with_order(
     let (probes, lines) = sample_probes(&solver, &solution, &file, path)?;
     let mut regions = Vec::new();
     for tag in solver.mesh().region_tags() {
-        regions.push(RegionReport::from(&solver.region_stats(&solution, tag)?));
+        let force_z_n = solver.axial_force(&solution, &[tag])?;
+        regions.push(RegionReport::new(&solver.region_stats(&solution, tag)?, force_z_n));
     }
     let linkages: Vec<CoilLinkage> = solver.coils(&solution);
     let (energy_j, coenergy_j) = solver.energy(&solution);

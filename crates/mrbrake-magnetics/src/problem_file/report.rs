@@ -43,6 +43,11 @@ pub struct RegionReport {
     /// 10/50/90 % volume quantiles of |B| (T).
     #[serde(rename = "quantiles_B_T")]
     pub quantiles_b_t: [f64; 3],
+    /// Axial electromagnetic force on the region (N, +z), by virtual work on the layer of
+    /// elements around it ([`crate::force`]); meaningful for a body surrounded by a field medium
+    /// (air, fluid, steel), not for the contact force between two touching bodies.
+    #[serde(rename = "force_z_N")]
+    pub force_z_n: f64,
 }
 
 /// Coil results in the report.
@@ -134,14 +139,16 @@ pub(super) fn probe_report(name: &str, f: &PointField) -> ProbeReport {
     }
 }
 
-impl From<&RegionStats> for RegionReport {
-    fn from(s: &RegionStats) -> Self {
+impl RegionReport {
+    /// The report of a region: its statistics and the axial force on it (N).
+    pub fn new(s: &RegionStats, force_z_n: f64) -> Self {
         Self {
             physical: s.physical,
             area_m2: s.area_m2,
             mean_b_t: s.mean_b_t,
             max_b_t: s.max_b_t,
             quantiles_b_t: s.quantiles_b_t,
+            force_z_n,
         }
     }
 }
