@@ -49,8 +49,18 @@ fn coils() -> (CoilSection, CoilSection) {
 /// size `h` near the coils, with the exact potential of both coils on the box `r ≤ 80 mm`,
 /// `|z| ≤ 80 mm`.
 fn coaxial_coil_forces(h: f64, order: ElementOrder) -> (f64, f64, f64) {
-    let mm = 1e-3;
     let (c1, c2) = coils();
+    coil_pair_forces(c1, c2, h, order)
+}
+
+/// [`coaxial_coil_forces`] for any two coil sections whose edges lie on the grid's breaks.
+fn coil_pair_forces(
+    c1: CoilSection,
+    c2: CoilSection,
+    h: f64,
+    order: ElementOrder,
+) -> (f64, f64, f64) {
+    let mm = 1e-3;
     let r = lines(&[0.0, 18.0 * mm, 22.0 * mm, 25.0 * mm, 29.0 * mm, 40.0 * mm], h);
     let r = join_lines(&[r, graded_lines(40.0 * mm, 80.0 * mm, 12, 3.0)]);
     let z_core = lines(&[-20.0 * mm, -2.0 * mm, 2.0 * mm, 6.0 * mm, 10.0 * mm, 25.0 * mm], h);
@@ -205,4 +215,31 @@ fn pot_core_plate_force_equals_the_co_energy_derivative() {
         }
         assert!(differences[1] < 0.01, "{current} A: {differences:?}");
     }
+}
+
+/// Two coils that touch (one on top of the other): the layer of each lies partly in the other's
+/// current, where the stress is not divergence-free, and the force takes that Lorentz force off.
+/// The layer force then equals the Lorentz force on the coil, action equals reaction, and both
+/// tend to the elliptic-integral force of the two sections under refinement.
+#[test]
+fn touching_coils_keep_action_and_reaction() {
+    let mm = 1e-3;
+    let lower = CoilSection { r1: 18.0 * mm, r2: 22.0 * mm, z1: -2.0 * mm, z2: 2.0 * mm, j: 1e6 };
+    let upper = CoilSection { z1: 2.0 * mm, z2: 6.0 * mm, ..lower };
+    let exact = thick_coils_force_z(&lower, &upper, 4);
+    let mut rows = Vec::new();
+    for h_mm in [1.0, 0.5, 0.25] {
+        let (work, lorentz, on_lower) =
+            coil_pair_forces(lower, upper, h_mm * 1e-3, ElementOrder::P2);
+        let (vs_lorentz, third_law) =
+            ((work - lorentz).abs() / lorentz.abs(), (work + on_lower).abs() / lorentz.abs());
+        println!(
+            "h = {h_mm} mm: layer {work:.6e} N, Lorentz {lorentz:.6e} N, on the lower coil \
+             {on_lower:.6e} N, elliptic integrals {exact:.6e} N"
+        );
+        rows.push((vs_lorentz, third_law, (work - exact).abs() / exact.abs()));
+    }
+    let (vs_lorentz, third_law, vs_exact) = rows[rows.len() - 1];
+    assert!(vs_lorentz < 1e-4 && third_law < 1e-4, "{rows:?}");
+    assert!(vs_exact < 2e-2 && rows[2].2 < rows[0].2, "{rows:?}");
 }
