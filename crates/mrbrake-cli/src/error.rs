@@ -132,8 +132,10 @@ mod tests {
     /// in the message.
     #[test]
     fn a_numerical_failure_exits_1_with_its_history() {
-        let newton = mrbrake::fem::newton::NewtonError {
-            reason: "no convergence in 2 Newton iterations".into(),
+        let newton = mrbrake::fem::workflow::newton::NewtonError {
+            failure: mrbrake::fem::workflow::newton::NewtonFailure::IterationLimit {
+                iterations: 2,
+            },
             history: Vec::new(),
             residual_scale: 1.0,
         };

@@ -14,7 +14,9 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use mrbrake_design::spec::default_spec;
 use mrbrake_design::thermal::{ThermalOptions, analyze_thermal, thermal_problem};
-use mrbrake_heat::{HeatSolver, SolverOptions, TimeScheme, TransientSettings, kelvin};
+use mrbrake_fem::workflow::time::{Event, Scheme, TimeOptions, TimeStep};
+use mrbrake_heat::{HeatSolver, SolverOptions, kelvin};
+use mrbrake_observe::Flow;
 
 fn solver() -> HeatSolver {
     let (problem, _) =
@@ -32,14 +34,14 @@ fn benchmarks(c: &mut Criterion) {
     group.bench_function("setup_and_steady/thesis_default_mesh", |b| {
         b.iter(|| solver().steady(None).expect("steady").0.len())
     });
-    let settings = TransientSettings { dt_s: 10.0, t_end_s: 7200.0, scheme: TimeScheme::Bdf2 };
+    let settings = TimeOptions::new(7200.0, Scheme::Bdf2, TimeStep::Fixed { dt_s: 10.0 });
     group.bench_function("warmup/2h_10s", |b| {
         b.iter(|| {
             let start = s.uniform(kelvin(25.0));
             let mut steps = 0;
-            s.transient(&start, &settings, |_, _, _| {
-                steps += 1;
-                Ok(())
+            s.transient(&start, &settings, |e: &Event<'_, HeatSolver>| {
+                steps = e.level.index;
+                Flow::Continue
             })
             .expect("transient");
             assert_eq!(steps, 720);

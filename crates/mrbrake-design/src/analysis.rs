@@ -295,9 +295,9 @@ pub struct MeshSummary {
     pub unknowns: usize,
 }
 
-/// Wall-clock split (s).
+/// Wall-clock split of an analysis (s).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
-pub struct Timings {
+pub struct AnalysisTimings {
     /// Geometry and mesh.
     pub mesh: f64,
     /// Solver set-up (pattern, symbolic factorisation).
@@ -338,7 +338,7 @@ pub struct Analysis {
     /// Analysis speed for the viscous term (rad/s).
     pub speed_rad_s: f64,
     /// Timings.
-    pub timings_s: Timings,
+    pub timings_s: AnalysisTimings,
     /// Spec warnings (e.g. current above the wire rating).
     pub warnings: Vec<String>,
 }
@@ -596,7 +596,7 @@ fn run_analysis<F>(
             unknowns: model.solver.unknowns(),
         },
         speed_rad_s: options.speed_rad_s,
-        timings_s: Timings {
+        timings_s: AnalysisTimings {
             mesh: t_mesh,
             setup: t_setup,
             solve: t_solve,

@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use crate::DesignError;
 use crate::geometry::{BrakeGeometry, Rect};
 use crate::mesh_build::{MeshSettings, pslg};
-use mrbrake_fem::mesher::Segment;
+use mrbrake_fem::mesh::mesher::Segment;
 
 /// Writes the `.geo` text of a geometry meshed with `settings`.
 pub fn to_geo(

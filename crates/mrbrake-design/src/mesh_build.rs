@@ -1,5 +1,5 @@
 //! From a [`BrakeGeometry`] to a [`Mesh`]: the planar graph, the size field that resolves the fluid
-//! gaps, and the in-process mesher (`mrbrake_fem::mesher`).
+//! gaps, and the in-process mesher (`mrbrake_fem::mesh::mesher`).
 //!
 //! The gap regions get a target edge length g / c, where c is the number of cells across a gap of
 //! the chosen [`MeshLevel`] (coarse 3, default 4, fine 6); the size grows away from the gaps at
@@ -14,7 +14,7 @@
 //! error.
 
 use mrbrake_fem::mesh::Mesh;
-use mrbrake_fem::mesher::{MeshOptions, Pslg, SizeField, quality, triangulate};
+use mrbrake_fem::mesh::mesher::{MeshOptions, Pslg, SizeField, quality, triangulate};
 
 use crate::DesignError;
 use crate::geometry::{BrakeGeometry, GapInfo, GapOrientation};

@@ -34,10 +34,12 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use mrbrake_magnetics::dynamics::transient::{Scheme, TimeStep, TransientOptions};
+use mrbrake_fem::workflow::time::{Scheme, TimeStep};
+use mrbrake_magnetics::dynamics::transient::{StepView, TransientOptions, TransientResult};
 use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use mrbrake_magnetics::{Solution, Solver, SolverOptions};
 use mrbrake_materials::{CopperWire, MrFluid, library};
+use mrbrake_observe::Flow;
 use mrbrake_sysid::frd::{Frd, FrequencyPoint, MINUS_3_DB};
 use num_complex::Complex64;
 use rayon::prelude::*;
@@ -440,25 +442,8 @@ impl Model<'_> {
         let duration = self.options.duration_s;
         let step = TimeStep::Adaptive { rtol: self.options.rtol, dt_initial_s: 1e-4 * duration };
         let transient = TransientOptions::new(duration, Scheme::Bdf2, step);
-        let mut yield_torque = Vec::new();
-        let mut failure = None;
-        let mut eddy = None;
-        let result = dynamics
-            .transient_observed(&transient, |view| {
-                match self.torque(view.dynamics, unit, view.a.to_vec()) {
-                    Ok(t) => yield_torque.push(t),
-                    Err(e) => failure = Some(e),
-                }
-                if eddy.is_none() && keep_at.is_some_and(|t| view.t >= t * (1.0 - 1e-12)) {
-                    let j = view.dynamics.eddy_current_density(view.rate)?;
-                    eddy = Some(self.eddy_field(unit, view.t, &j));
-                }
-                Ok(())
-            })
-            .map_err(numerical)?;
-        if let Some(e) = failure {
-            return Err(e);
-        }
+        let (result, yield_torque, eddy) =
+            self.observed_transient(&mut dynamics, &transient, unit, keep_at)?;
         let time = result.time_s;
         let torque = first_order_lag(&time, &yield_torque, self.options.fluid_lag_s);
         let sign =
@@ -474,6 +459,44 @@ impl Model<'_> {
             torque_nm: torque,
         };
         Ok((response, eddy))
+    }
+
+    /// The transient of `dynamics` with the yield torque of every level and the eddy-current
+    /// field of the first level at or after `keep_at`; the first failure of either stops the run
+    /// and is returned.
+    fn observed_transient(
+        &self,
+        dynamics: &mut Dynamics,
+        transient: &TransientOptions,
+        unit: usize,
+        keep_at: Option<f64>,
+    ) -> Result<(TransientResult, Vec<f64>, Option<EddyField>), DesignError> {
+        let mut yield_torque = Vec::new();
+        let mut failure = None;
+        let mut eddy = None;
+        let result = dynamics
+            .transient_observed(transient, |view: &StepView<'_>| {
+                let level = self.torque(view.dynamics, unit, view.a.to_vec()).and_then(|t| {
+                    yield_torque.push(t);
+                    if eddy.is_none() && keep_at.is_some_and(|k| view.t >= k * (1.0 - 1e-12)) {
+                        let j = view.dynamics.eddy_current_density(view.rate).map_err(numerical)?;
+                        eddy = Some(self.eddy_field(unit, view.t, &j));
+                    }
+                    Ok(())
+                });
+                level.map_or_else(
+                    |e| {
+                        failure = Some(e);
+                        Flow::Stop
+                    },
+                    |()| Flow::Continue,
+                )
+            })
+            .map_err(numerical)?;
+        match failure {
+            Some(e) => Err(e),
+            None => Ok((result, yield_torque, eddy)),
+        }
     }
 
     /// The [`EddyField`] of `unit`'s step at `t` from the vertex values `j` (three per element).

@@ -4,7 +4,7 @@ use mrbrake_design::geometry::{self, Direction, GapOrientation, PartKind};
 use mrbrake_design::mesh_build::{self, MeshLevel};
 use mrbrake_design::spec::{BrakeSpec, default_spec};
 use mrbrake_error::Kind as _;
-use mrbrake_fem::mesher::quality::area_by_tag;
+use mrbrake_fem::mesh::mesher::quality::area_by_tag;
 
 fn example(name: &str) -> BrakeSpec {
     let path =

@@ -2,7 +2,7 @@
 //! 100 000 nodes with a graded size field.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use mrbrake_fem::mesher::{MeshOptions, Pslg, SizeField, triangulate};
+use mrbrake_fem::mesh::mesher::{MeshOptions, Pslg, SizeField, triangulate};
 
 fn geometry() -> Pslg {
     let mut g = Pslg::new();

@@ -4,56 +4,46 @@
 //! assemble, fenris's operators and Newton).
 //!
 //! The workflow of a physics:
-//! 1. a [`mesh::Mesh`] and an element order make a [`basis::Basis`] (with a quadrature rule and the
-//!    axisymmetric `r` weight): basis values and gradients at every quadrature point;
-//! 2. [`constraints::Constraints`] say which DOFs are free (the axis, Dirichlet boundaries);
-//! 3. an [`assemble::Assembly`] builds the free-DOF sparsity pattern and assembles the caller's
-//!    forms: per-element bilinear/linear forms ([`assemble::element_matrices`],
-//!    [`assemble::element_vectors`]) and non-linear residual/Jacobian kernels
-//!    ([`assemble::ElementForm`]), plus boundary integrals ([`boundary::edge_matrices`]);
-//! 4. [`newton::NewtonSolver`] solves any [`newton::NonlinearSystem`] (an assembly with a form is
-//!    one: [`newton::AssembledSystem`]) with a safeguarded line search and a preconditioned-CG
-//!    tail; linear systems converge in one step. Complex (time-harmonic) systems go to
-//!    [`lu::SparseLu`].
+//! 1. a [`mesh::Mesh`] and an element order make a [`discretisation::basis::Basis`] (with a
+//!    quadrature rule and the axisymmetric `r` weight): basis values and gradients at every
+//!    quadrature point;
+//! 2. [`workflow::constraints::Constraints`] say which DOFs are free (the axis, Dirichlet
+//!    boundaries);
+//! 3. an [`workflow::assemble::Assembly`] builds the free-DOF sparsity pattern and assembles the
+//!    caller's forms: per-element bilinear/linear forms ([`workflow::assemble::element_matrices`],
+//!    [`workflow::assemble::element_vectors`]) and non-linear residual/Jacobian kernels
+//!    ([`workflow::assemble::ElementForm`]), plus boundary integrals
+//!    ([`workflow::boundary::edge_matrices`]);
+//! 4. [`workflow::newton::NewtonSolver`] solves any [`workflow::newton::NonlinearSystem`] (an
+//!    assembly with a form is one: [`workflow::newton::AssembledSystem`]) with a safeguarded line
+//!    search and a preconditioned-CG tail; linear systems converge in one step. Complex
+//!    (time-harmonic) systems go to [`linalg::lu::SparseLu`].
 //!
-//! Brief overview of the modules:
-//! - [`mesh::Mesh`] holds the (r, z) nodes, the triangles with their physical (region) tags and the
-//!   tagged boundary edges; [`structured`] generates simple graded meshes of blocks and half-discs;
-//!   [`gmsh`] reads Gmsh MSH 2.2 / 4.1 ASCII files; [`vtu`] writes ParaView files.
-//! - [`quadrature`] gives triangle and interval rules; [`element`] the affine triangle geometry
-//!   (barycentric gradients) and the Lagrange bases [`element::ElementTriP1`] and
-//!   [`element::ElementTriP2`] used by the forms; [`dofs::DofMap`] numbers their degrees of freedom
-//!   (vertices, then one per edge for P2) and finds boundary and axis DOFs.
-//! - [`pattern::SymmetricPattern`] is the sparsity pattern with a precomputed element scatter map, and
-//!   [`cholesky::SparseCholesky`] the faer sparse Cholesky with the symbolic analysis done once;
-//!   [`ordering`] gives it a nested-dissection elimination order for 2D meshes.
-//! - [`locate::PointLocator`] finds the triangle containing a point (uniform bucket grid).
-//! - [`basis`], [`constraints`], [`assemble`] (with the [`by_order!`] dispatch macro),
-//!   [`boundary`], [`newton`], [`lu`]: the generic finite-element workflow above;
-//!   [`low_rank`]: dense rank-one Jacobian terms (an eliminated circuit equation) applied with the
-//!   sparse factor by the Woodbury formula; [`sweep`]: frequency sweeps of `(K + jωM) x = b` by an
-//!   adaptive reduced basis of real shifted Cholesky solves.
+//! The modules, in four groups:
+//! - [`mesh`]: the [`mesh::Mesh`] (the (r, z) nodes, the triangles with their physical (region)
+//!   tags and the tagged boundary edges); [`mesh::structured`] generates simple graded meshes of
+//!   blocks and half-discs, [`mesh::mesher`] meshes a brake's cross-section, [`mesh::gmsh`] reads
+//!   Gmsh MSH 2.2 / 4.1 ASCII files, [`mesh::vtu`] writes ParaView files and
+//!   [`mesh::locate::PointLocator`] finds the triangle containing a point.
+//! - [`discretisation`]: [`discretisation::quadrature`] gives triangle and interval rules;
+//!   [`discretisation::element`] the affine triangle geometry and the Lagrange bases used by the
+//!   forms; [`discretisation::dofs::DofMap`] numbers their degrees of freedom (vertices, then one
+//!   per edge for P2); [`discretisation::basis`] ties them to a mesh and a weight.
+//! - [`workflow`]: [`workflow::constraints`], [`workflow::assemble`] (with the [`by_order!`]
+//!   dispatch macro), [`workflow::boundary`] and [`workflow::newton`]: the generic finite-element
+//!   workflow above.
+//! - [`linalg`]: [`linalg::pattern::SymmetricPattern`] is the sparsity pattern with a precomputed
+//!   element scatter map, [`linalg::cholesky::SparseCholesky`] the faer sparse Cholesky with the
+//!   symbolic analysis done once, [`linalg::ordering`] a nested-dissection elimination order for
+//!   2D meshes; [`linalg::low_rank`]: dense rank-one Jacobian terms (an eliminated circuit
+//!   equation) applied with the sparse factor by the Woodbury formula; [`linalg::lu`] complex
+//!   symmetric systems; [`linalg::sweep`]: frequency sweeps of `(K + jωM) x = b` by an adaptive
+//!   reduced basis of real shifted Cholesky solves.
 
-pub mod assemble;
-pub mod basis;
-pub mod boundary;
-pub mod cholesky;
-pub mod constraints;
-pub mod dofs;
-pub mod element;
-pub mod gmsh;
-pub mod locate;
-pub mod low_rank;
-pub mod lu;
+pub mod discretisation;
+pub mod linalg;
 pub mod mesh;
-pub mod mesher;
-pub mod newton;
-pub mod ordering;
-pub mod pattern;
-pub mod quadrature;
-pub mod structured;
-pub mod sweep;
-pub mod vtu;
+pub mod workflow;
 
 /// Errors of this crate.
 #[derive(Debug, thiserror::Error)]
@@ -80,7 +70,19 @@ pub enum FemError {
         /// The underlying I/O error.
         source: std::io::Error,
     },
-    /// A numerical failure (e.g. a matrix that is not positive definite).
+    /// A symmetric matrix that is not positive definite: the Cholesky factorisation met a pivot
+    /// that is not positive.
+    #[error(
+        "the matrix is not positive definite: the Cholesky pivot of row {row} (of {rows}) is not \
+         positive"
+    )]
+    NotPositiveDefinite {
+        /// The row of the failing pivot, in the matrix's own numbering (a free DOF).
+        row: usize,
+        /// The matrix's order.
+        rows: usize,
+    },
+    /// Another numerical failure (a singular dense system, memory for a factorisation, …).
     #[error("{0}")]
     Numerical(String),
 }
@@ -93,7 +95,7 @@ impl mrbrake_error::Kind for FemError {
         match self {
             Self::Input(_) | Self::Parse { .. } => ErrorKind::Input,
             Self::Io { source, .. } => Kind::kind(source),
-            Self::Numerical(_) => ErrorKind::Numerical,
+            Self::NotPositiveDefinite { .. } | Self::Numerical(_) => ErrorKind::Numerical,
         }
     }
 }

@@ -5,7 +5,7 @@ use mrbrake_error::Kind as _;
 use std::path::PathBuf;
 
 use mrbrake_fem::FemError;
-use mrbrake_fem::gmsh::{parse_msh, read_msh, to_msh22};
+use mrbrake_fem::mesh::gmsh::{parse_msh, read_msh, to_msh22};
 
 fn fixture(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(name)

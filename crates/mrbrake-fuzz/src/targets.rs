@@ -160,7 +160,7 @@ fn run_heat_problem(input: &[u8]) -> Outcome {
 }
 
 fn run_msh(input: &[u8]) -> Outcome {
-    Outcome::of(mrbrake_fem::gmsh::parse_msh(&text(input), "fuzz.msh", 1e-3))
+    Outcome::of(mrbrake_fem::mesh::gmsh::parse_msh(&text(input), "fuzz.msh", 1e-3))
 }
 
 fn run_optimisation_problem(input: &[u8]) -> Outcome {

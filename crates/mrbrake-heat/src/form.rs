@@ -5,19 +5,21 @@
 //! is dropped) and integrating the conduction term by parts (e.g. Lewis, Nithiarasu and Seetharamu,
 //! *Fundamentals of the Finite Element Method for Heat and Fluid Flow*, Wiley 2004, §3.2 and §6.3):
 //!
-//! `R_i(T) = ∫ [k_r ∂_rT ∂_rφ_i + k_z ∂_zT ∂_zφ_i − (q0 + q1 T) φ_i + ρc (a T − h)/Δt φ_i] r dr dz`
+//! `R_i(T) = ∫ [k_r ∂_rT ∂_rφ_i + k_z ∂_zT ∂_zφ_i − (q0 + q1 T) φ_i + ρc ρ (T − h) φ_i] r dr dz`
 //!
 //! plus the boundary fluxes (added by the solver through the core's `EdgeFlux`). The source is
 //! affine in `T` (a Joule loss at the local temperature, see [`crate::problem::Source::affine`]),
-//! the last term is the time derivative of a step: implicit Euler `a = 1, h = T_n`; BDF2
-//! `a = 3/2, h = 2 T_n − T_{n−1}/2` (Hairer & Wanner, *Solving ODEs II*, §III.1). The Jacobian
-//! `∫ [k ∇φ_j·∇φ_i − q1 φ_j φ_i + ρc a/Δt φ_j φ_i] r dr dz` does not depend on `T`: every element
+//! the last term is the time derivative of a step of the core's integrator,
+//! `Ṫ ≈ ρ (T − h)` with the scheme's rate `ρ` and history `h` (`mrbrake_fem::workflow::time`:
+//! implicit Euler `ρ = 1/Δt, h = T_n`; BDF2 `ρ = 3/(2Δt), h = (4 T_n − T_{n−1})/3` at a constant
+//! step; Hairer & Wanner, *Solving ODEs II*, §III.1). The Jacobian
+//! `∫ [k ∇φ_j·∇φ_i − q1 φ_j φ_i + ρc ρ φ_j φ_i] r dr dz` does not depend on `T`: every element
 //! is linear and the core sums it once. It is symmetric, and positive definite unless the Joule
 //! feedback `q1` outweighs conduction and cooling (thermal runaway).
 
-use mrbrake_fem::assemble::{ElementForm, MAX_PACKED_LEN, packed_len};
-use mrbrake_fem::basis::{Element, QuadraturePoint};
-use mrbrake_fem::element::TriangleBasis;
+use mrbrake_fem::discretisation::basis::{Element, QuadraturePoint};
+use mrbrake_fem::discretisation::element::TriangleBasis;
+use mrbrake_fem::workflow::assemble::{ElementForm, MAX_PACKED_LEN, packed_len};
 
 /// The coefficients of one region.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,13 +36,11 @@ pub struct Coefficients {
     pub q1: f64,
 }
 
-/// The time-derivative term of a step: `ρc (a T − h)/Δt`.
+/// The time-derivative term of a step: `ρc ρ (T − h)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Capacity {
-    /// `a/Δt` \[1/s\].
-    pub a_over_dt: f64,
-    /// `1/Δt` \[1/s\].
-    pub inv_dt: f64,
+    /// The scheme's rate `ρ` \[1/s\].
+    pub rate: f64,
     /// The history `h` at every DOF \[K\].
     pub history: Vec<f64>,
 }
@@ -79,14 +79,14 @@ impl HeatForm {
         &self.coefficients[self.element_region[index]]
     }
 
-    /// The capacity term's rate `(a T − h)/Δt` at a point (0 for a steady problem).
+    /// The capacity term's rate `ρ (T − h)` at a point (0 for a steady problem).
     #[inline(always)]
     pub fn rate<const N: usize>(&self, q: &QuadraturePoint<N>, t: f64, history: &[f64; N]) -> f64 {
         match &self.capacity {
             None => 0.0,
             Some(c) => {
                 let h: f64 = (0..N).map(|i| history[i] * q.phi[i]).sum();
-                c.a_over_dt * t - c.inv_dt * h
+                c.rate * (t - h)
             }
         }
     }
@@ -111,7 +111,7 @@ impl ElementForm for HeatForm {
     ) {
         let c = *self.coefficients_of(element.index);
         let history = self.history_of(element.dofs());
-        let a_over_dt = self.capacity.as_ref().map_or(0.0, |cap| cap.a_over_dt);
+        let rate = self.capacity.as_ref().map_or(0.0, |cap| cap.rate);
         let (mut res, mut jac) = ([0.0; N], [0.0; MAX_PACKED_LEN]);
         let want_jacobian = jacobian.is_some();
         let geometry = element.geometry();
@@ -124,7 +124,7 @@ impl ElementForm for HeatForm {
                     * (flux[0] * q.grad[i][0] + flux[1] * q.grad[i][1] + volumetric * q.phi[i]);
             }
             if want_jacobian {
-                let mass = c.rho_c * a_over_dt - c.q1;
+                let mass = c.rho_c * rate - c.q1;
                 let mut p = 0;
                 for i in 0..N {
                     for j in i..N {

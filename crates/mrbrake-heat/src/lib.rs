@@ -13,9 +13,11 @@
 //!   field;
 //! - [`form`]: the weak form as an `ElementForm` (conduction, the affine source, the capacity term of
 //!   a time step);
-//! - [`solver`]: steady and transient solves (implicit Euler and BDF2; a linear problem at a fixed
-//!   step is factorised once per scheme), Newton for radiation, the boundary fluxes through the
-//!   core's `EdgeFlux` seam;
+//! - [`solver`]: the set-up and the steady solve (Newton for radiation), the boundary fluxes
+//!   through the core's `EdgeFlux` seam;
+//! - [`transient`]: the heat problem on the core's time integrator (implicit Euler or BDF2, fixed
+//!   or adaptive steps; a linear problem is factorised once per step size, a step is one capacity
+//!   product and one solve);
 //! - [`post`]: probes, region mean/max/heat, boundary heat out and the energy balance;
 //! - [`problem_file`]: the `physics = "heat"` TOML problem files of `mrbrake fem solve`;
 //! - [`convection`]: natural-convection correlations (Churchill–Chu) for `h(T_s)`;
@@ -35,10 +37,11 @@ pub mod post;
 pub mod problem;
 pub mod problem_file;
 pub mod solver;
+pub mod transient;
 
-pub use mrbrake_fem::dofs::ElementOrder;
+pub use mrbrake_fem::discretisation::dofs::ElementOrder;
 pub use problem::{Boundary, BoundaryCondition, HeatProblem, Region, Source};
-pub use solver::{HeatSolver, SolverOptions, TimeScheme, TransientSettings};
+pub use solver::{HeatSolver, SolverOptions};
 
 /// Stefan–Boltzmann constant σ = 5.670 374 419·10⁻⁸ W/(m²·K⁴), exact in the 2019 SI (CODATA 2018).
 pub const STEFAN_BOLTZMANN: f64 = 5.670_374_419e-8;
@@ -67,7 +70,11 @@ pub enum HeatError {
     Material(#[from] mrbrake_materials::MaterialError),
     /// Newton failed; the history says how far it got.
     #[error(transparent)]
-    NotConverged(#[from] mrbrake_fem::newton::NewtonError),
+    NotConverged(#[from] mrbrake_fem::workflow::newton::NewtonError),
+    /// A transient failed: its options, its step bound, or a step (which one, at what time, and
+    /// why: Newton's residual history is the next error of the chain).
+    #[error(transparent)]
+    Time(#[from] mrbrake_fem::workflow::time::TimeError),
     /// The Joule (or another temperature-increasing) source outruns the cooling: no steady state.
     #[error(
         "thermal runaway: {0}; the heat generated grows faster with temperature than the \
@@ -91,6 +98,7 @@ impl mrbrake_error::Kind for HeatError {
             Self::Fem(e) => e.kind(),
             Self::Material(e) => e.kind(),
             Self::NotConverged(e) => e.kind(),
+            Self::Time(e) => e.kind(),
             Self::Runaway(_) | Self::LimitCrossed(_) => ErrorKind::Numerical,
             Self::Internal(_) => ErrorKind::Internal,
         }

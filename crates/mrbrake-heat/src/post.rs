@@ -9,9 +9,9 @@
 //! `Σ_i R_i = ∫ρc Ṫ − ∫q + ∮ g`: the balance `generated − out − stored` equals the sum of the
 //! residual at the free DOFs — round-off after a direct solve.
 
-use mrbrake_fem::basis::Basis;
-use mrbrake_fem::element::TriangleBasis;
-use mrbrake_fem::pattern::CONSTRAINED;
+use mrbrake_fem::discretisation::basis::Basis;
+use mrbrake_fem::discretisation::element::TriangleBasis;
+use mrbrake_fem::linalg::pattern::CONSTRAINED;
 use serde::Serialize;
 
 use crate::HeatError;
@@ -77,7 +77,9 @@ fn element_totals<E: TriangleBasis<N>, const N: usize>(
         let dofs = element.dofs();
         let local = dofs.map(|d| t[d]);
         let mut res = [0.0; N];
-        mrbrake_fem::assemble::ElementForm::element(form, &element, local, &mut res, None);
+        mrbrake_fem::workflow::assemble::ElementForm::element(
+            form, &element, local, &mut res, None,
+        );
         for (k, &d) in dofs.iter().enumerate() {
             residual[d] += res[k];
         }

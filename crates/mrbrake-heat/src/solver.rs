@@ -7,34 +7,27 @@
 //!
 //! - **Steady**: `R(T) = 0` by Newton; without radiation the system is linear and one step solves
 //!   it (the Joule coupling is affine in `T`).
-//! - **Transient** by implicit Euler (first order) or BDF2 (second order, started by one implicit
-//!   Euler step, which keeps the global order two: its local error is `O(Δt²)`; Hairer, Nørsett
-//!   and Wanner, *Solving ODEs I*, §III.3). Without radiation every step is the linear system
-//!   `(a/Δt C + K) T_{n+1} = C h/Δt + F` with a fixed matrix: it is factorised once per scheme
-//!   (twice for BDF2: the start and the rest). The right-hand side is affine in the history `h`:
-//!   its constant part `−R(T_c, h = 0)` (sources, ambient, fixed temperatures `T_c`) is evaluated
-//!   once with the factorisation, so a step costs one product with the capacity matrix `C`
-//!   (element by element, [`element_matrix_product`]) and one pair of triangular solves. This is
-//!   the same step as Newton's `T_{n+1} = T_n − K⁻¹ R(T_n)` on the affine residual (to rounding);
-//!   measured on the thesis brake's 2 h warm-up (720 BDF2 steps), it replaced a full residual
-//!   evaluation per step. With radiation each step is a Newton solve that starts from the previous
-//!   step's factor as a CG preconditioner (`NewtonOptions::reuse_factor`; refactorised when CG
-//!   does not reach the forcing tolerance in a few iterations).
+//! - **Transient** on the core's time integrator (`mrbrake_fem::workflow::time`, see
+//!   [`crate::transient`]): implicit Euler or BDF2, fixed or adaptive steps; the capacity matrix is
+//!   the integrator's mass. Without radiation every step is linear with one matrix per step size
+//!   (factorised once for a fixed-step run, twice with BDF2's Euler start) and costs one product
+//!   with the capacity matrix and one pair of triangular solves; with radiation each step is a
+//!   Newton solve that starts from the previous step's factor as a CG preconditioner.
 
 use std::sync::Arc;
 
-use mrbrake_fem::assemble::{Assembly, element_matrices, element_matrix_product};
-use mrbrake_fem::basis::{Basis, Weighting};
-use mrbrake_fem::boundary::EdgeFlux;
-use mrbrake_fem::constraints::Constraints;
-use mrbrake_fem::dofs::ElementOrder;
-use mrbrake_fem::locate::PointLocator;
-use mrbrake_fem::newton::{
-    EliminationOrder, NewtonOptions, NewtonReport, NewtonSolver, NonlinearSystem, norm2,
+use mrbrake_fem::discretisation::basis::{Basis, Weighting};
+use mrbrake_fem::discretisation::dofs::ElementOrder;
+use mrbrake_fem::mesh::locate::PointLocator;
+use mrbrake_fem::workflow::assemble::{Assembly, element_matrices};
+use mrbrake_fem::workflow::boundary::EdgeFlux;
+use mrbrake_fem::workflow::constraints::Constraints;
+use mrbrake_fem::workflow::newton::{
+    NewtonFailure, NewtonOptions, NewtonReport, NewtonSolver, NonlinearSystem, norm2,
 };
-use serde::Serialize;
+use mrbrake_fem::workflow::time::TimeError;
 
-use crate::form::{Capacity, Coefficients, HeatForm};
+use crate::form::{Coefficients, HeatForm};
 use crate::problem::{BoundaryCondition, HeatProblem};
 use crate::{HeatError, STEFAN_BOLTZMANN};
 
@@ -63,26 +56,6 @@ impl Default for SolverOptions {
             threads: 1,
         }
     }
-}
-
-/// Time-integration scheme.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub enum TimeScheme {
-    /// Implicit (backward) Euler: first order, L-stable.
-    ImplicitEuler,
-    /// Second-order backward differentiation, started by one implicit-Euler step.
-    Bdf2,
-}
-
-/// A transient run.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TransientSettings {
-    /// Time step \[s\].
-    pub dt_s: f64,
-    /// End time \[s\].
-    pub t_end_s: f64,
-    /// Scheme.
-    pub scheme: TimeScheme,
 }
 
 /// The outward boundary flux of one tag: `h (T − T_c) + εσ (T⁴ − T_r⁴)`.
@@ -120,23 +93,22 @@ pub struct HeatSolver {
     pub(crate) locator: PointLocator,
     /// `(tag, volume in m³)` of every region.
     pub(crate) volumes: Vec<(u32, f64)>,
-    radiation: bool,
-    /// `a/Δt` the assembly was last prepared with (`None`: steady).
-    prepared: Option<Option<f64>>,
+    /// True when a boundary radiates (the only non-linearity: Newton per step).
+    pub(crate) radiation: bool,
+    /// The rate `ρ` the assembly was last prepared with (`None`: steady).
+    pub(crate) prepared: Option<Option<f64>>,
     /// The capacity matrix `∫ ρc φ_i φ_j r dr dz` of every element (packed upper triangles).
-    capacity_matrices: Vec<f64>,
-    /// `R(T_c, h = 0)` at the free DOFs for the factorised step matrix (linear transients), reset
-    /// whenever a source, a boundary or `a/Δt` changes.
-    step_offset: Option<Vec<f64>>,
+    pub(crate) capacity_matrices: Vec<f64>,
 }
 
-/// The system of one solve: the assembly with the form and the boundary fluxes.
-struct HeatSystem<'a> {
-    assembly: &'a mut Assembly,
-    form: &'a HeatForm,
-    edges: &'a EdgeFlux,
-    laws: &'a [(u32, FluxLaw)],
-    linear: bool,
+/// The system of one solve (steady, or a time step): the assembly with the form and the boundary
+/// fluxes.
+pub struct HeatSystem<'a> {
+    pub(crate) assembly: &'a mut Assembly,
+    pub(crate) form: &'a HeatForm,
+    pub(crate) edges: &'a EdgeFlux,
+    pub(crate) laws: &'a [(u32, FluxLaw)],
+    pub(crate) linear: bool,
 }
 
 pub(crate) fn law_of(laws: &[(u32, FluxLaw)], tag: u32) -> FluxLaw {
@@ -202,7 +174,7 @@ fn build_form(problem: &HeatProblem, volumes: &[(u32, f64)]) -> HeatForm {
 }
 
 /// `∫ ρc φ_i φ_j r dr dz` of every element (packed upper triangles).
-fn capacity_matrices<E: mrbrake_fem::element::TriangleBasis<N>, const N: usize>(
+fn capacity_matrices<E: mrbrake_fem::discretisation::element::TriangleBasis<N>, const N: usize>(
     basis: &Basis,
     form: &HeatForm,
 ) -> Vec<f64> {
@@ -286,7 +258,6 @@ impl HeatSolver {
             radiation,
             prepared: None,
             capacity_matrices,
-            step_offset: None,
         })
     }
 
@@ -324,7 +295,6 @@ impl HeatSolver {
         let changed_jacobian = (self.form.coefficients[k].q1 - q1).abs() > 0.0;
         self.form.coefficients[k].q0 = q0;
         self.form.coefficients[k].q1 = q1;
-        self.step_offset = None;
         if changed_jacobian {
             self.prepared = None;
         }
@@ -353,7 +323,6 @@ impl HeatSolver {
         boundary.condition = BoundaryCondition::Convection { h_w_per_m2k, ambient_k };
         self.laws = flux_laws(&self.problem);
         self.prepared = None;
-        self.step_offset = None;
         Ok(())
     }
 
@@ -384,44 +353,47 @@ impl HeatSolver {
         self.form.coefficients.iter().any(|c| c.q1 > 0.0)
     }
 
-    /// A failure of the factorisation with a positive source feedback is a thermal runaway.
-    fn runaway_or(&self, error: HeatError) -> HeatError {
-        let factorisation = match &error {
-            HeatError::NotConverged(e) => {
-                e.reason.contains("factorisation") || e.reason.contains("positive")
+    /// A Jacobian that is not positive definite with a positive source feedback is a thermal
+    /// runaway.
+    pub(crate) fn runaway_or(&self, error: HeatError) -> HeatError {
+        let not_positive_definite = |e: &mrbrake_fem::workflow::newton::NewtonError| {
+            matches!(e.failure, NewtonFailure::NotPositiveDefinite { .. })
+        };
+        let runaway = match &error {
+            HeatError::NotConverged(e) | HeatError::Time(TimeError::Step { source: e, .. }) => {
+                not_positive_definite(e)
             }
-            HeatError::Fem(mrbrake_fem::FemError::Numerical(_)) => true,
+            HeatError::Fem(mrbrake_fem::FemError::NotPositiveDefinite { .. }) => true,
             _ => false,
         };
-        if factorisation && self.has_joule_feedback() {
+        if runaway && self.has_joule_feedback() {
             HeatError::Runaway(format!("the system matrix is not positive definite ({error})"))
         } else {
             error
         }
     }
 
-    /// Prepares the assembly for `a/Δt` (`None`: steady) when it changed.
-    fn prepare(&mut self, a_over_dt: Option<f64>) {
-        if self.prepared != Some(a_over_dt) {
+    /// Prepares the assembly for the steady form when it was prepared for something else.
+    fn prepare_steady(&mut self) {
+        if self.prepared != Some(None) {
             self.assembly.prepare(&self.form);
-            self.prepared = Some(a_over_dt);
+            self.prepared = Some(None);
         }
     }
 
-    /// Newton's settings; `warm`: start from the previous solve's factor (the steps of a
-    /// transient with radiation, whose Jacobians differ little from step to step).
-    fn newton_options(&self, warm: bool) -> NewtonOptions {
+    /// Newton's settings (a transient's steps start from the previous step's factor: the
+    /// integrator sets `reuse_factor`).
+    pub(crate) fn newton_settings(&self) -> NewtonOptions {
         NewtonOptions {
-            reuse_factor: warm,
             max_iterations: self.options.max_iterations,
             residual_tolerance: self.options.tolerance,
             ..NewtonOptions::default()
         }
     }
 
-    /// Solves the current system (steady, or a step whose capacity is set) from `u` by Newton.
-    fn newton_solve(&mut self, u: &mut Vec<f64>, warm: bool) -> Result<NewtonReport, HeatError> {
-        let options = self.newton_options(warm);
+    /// Solves the steady system from `u` by Newton.
+    fn newton_solve(&mut self, u: &mut Vec<f64>) -> Result<NewtonReport, HeatError> {
+        let options = self.newton_settings();
         let mut system = HeatSystem {
             assembly: &mut self.assembly,
             form: &self.form,
@@ -442,147 +414,14 @@ impl HeatSolver {
         initial: Option<&[f64]>,
     ) -> Result<(Vec<f64>, NewtonReport), HeatError> {
         self.form.capacity = None;
-        self.prepare(None);
+        self.prepare_steady();
         let mut u = match initial {
             Some(t) => t.to_vec(),
             None => self.uniform(self.reference_temperature()),
         };
-        match self.newton_solve(&mut u, false) {
+        match self.newton_solve(&mut u) {
             Ok(report) => Ok((u, report)),
             Err(e) => Err(self.runaway_or(e)),
         }
-    }
-
-    /// Sets the capacity term of a step with `a/Δt`, `1/Δt` and history `h`, preparing (and for a
-    /// linear problem factorising) when `a/Δt` changed. Returns true when a factorisation was made.
-    fn set_step(&mut self, a: f64, dt: f64, history: Vec<f64>) -> Result<bool, HeatError> {
-        let a_over_dt = a / dt;
-        self.form.capacity = Some(Capacity { a_over_dt, inv_dt: 1.0 / dt, history });
-        let changed = self.prepared != Some(Some(a_over_dt));
-        self.prepare(Some(a_over_dt));
-        if changed && !self.radiation {
-            let mut system = HeatSystem {
-                assembly: &mut self.assembly,
-                form: &self.form,
-                edges: &self.edges,
-                laws: &self.laws,
-                linear: true,
-            };
-            let u = system.assembly.constraints().lifting();
-            // Hundreds of solves per factorisation: the order with the fewest factor entries.
-            self.newton.set_elimination_order(EliminationOrder::MinimumDegree)?;
-            if let Err(e) = self.newton.factorize_at(&mut system, &u) {
-                return Err(self.runaway_or(e.into()));
-            }
-            self.step_offset = None;
-        }
-        if !self.radiation && self.step_offset.is_none() {
-            self.step_offset = Some(self.offset_without_history());
-        }
-        Ok(changed && !self.radiation)
-    }
-
-    /// `R(T_c, h = 0)` at the free DOFs: the step residual at the fixed temperatures (free DOFs
-    /// at zero) without history, the constant part of every linear step's right-hand side.
-    fn offset_without_history(&mut self) -> Vec<f64> {
-        let zeros = vec![0.0; self.assembly.basis().dofs().len()];
-        let history = self.form.capacity.as_mut().map(|c| std::mem::replace(&mut c.history, zeros));
-        let mut system = HeatSystem {
-            assembly: &mut self.assembly,
-            form: &self.form,
-            edges: &self.edges,
-            laws: &self.laws,
-            linear: true,
-        };
-        let u = system.assembly.constraints().lifting();
-        let mut offset = vec![0.0; system.assembly.n_free()];
-        system.evaluate(&u, &mut offset, None);
-        if let (Some(c), Some(h)) = (self.form.capacity.as_mut(), history) {
-            c.history = h;
-        }
-        offset
-    }
-
-    /// One linear step with the stored factorisation: `K T_{n+1} = C h/Δt − R(T_c, h = 0)` at the
-    /// free DOFs (the history `h` of the step set by [`Self::set_step`]); the fixed temperatures
-    /// of `u` stay. (Solved for the increment `T_{n+1} − T_n` instead, the energy balance of a
-    /// step is no better: its round-off comes from the capacity terms `C T/Δt`, large against the
-    /// heat flows, whose cancellation the element-wise residual of a Newton step avoided: 2e-12
-    /// of the heat out against 2e-14 on the validation cylinder.)
-    fn linear_step(&mut self, u: &mut [f64]) -> Result<(), HeatError> {
-        let capacity =
-            self.form.capacity.as_ref().ok_or_else(|| {
-                HeatError::Internal("a linear step without a capacity term".into())
-            })?;
-        let offset = self
-            .step_offset
-            .as_ref()
-            .ok_or_else(|| HeatError::Internal("a linear step before its factorisation".into()))?;
-        let mut c_h = vec![0.0; u.len()];
-        let (dofs, matrices) =
-            (self.assembly.basis().dofs().element_dofs(), &self.capacity_matrices);
-        match self.options.order {
-            ElementOrder::P1 => {
-                element_matrix_product::<3>(dofs, matrices, |_| 1.0, &capacity.history, &mut c_h)
-            }
-            ElementOrder::P2 => {
-                element_matrix_product::<6>(dofs, matrices, |_| 1.0, &capacity.history, &mut c_h)
-            }
-        }
-        let constraints = self.assembly.constraints();
-        let mut rhs = constraints.restrict(&c_h);
-        for (r, o) in rhs.iter_mut().zip(offset) {
-            *r = capacity.inv_dt * *r - o;
-        }
-        self.newton.solve_in_place(&mut rhs)?;
-        let free = constraints.free_index();
-        for (dof, value) in u.iter_mut().enumerate() {
-            let d = free[dof];
-            if d != mrbrake_fem::pattern::CONSTRAINED {
-                *value = rhs[d];
-            }
-        }
-        Ok(())
-    }
-
-    /// Integrates from `initial` (kelvin per DOF; fixed temperatures are imposed) to
-    /// `settings.t_end_s`, calling `observe(time, T, solver)` after every step (the solver gives
-    /// the step's post-processing: balances, region statistics). Returns the final temperature and
-    /// the number of factorisations (linear problems) or Newton iterations (with radiation).
-    pub fn transient(
-        &mut self,
-        initial: &[f64],
-        settings: &TransientSettings,
-        mut observe: impl FnMut(f64, &[f64], &HeatSolver) -> Result<(), HeatError>,
-    ) -> Result<(Vec<f64>, usize), HeatError> {
-        let (dt, t_end) = (settings.dt_s, settings.t_end_s);
-        if !(dt.is_finite() && dt > 0.0 && t_end.is_finite() && t_end > 0.0) {
-            return Err(HeatError::Input(format!(
-                "transient: dt = {dt} s and t_end = {t_end} s must be > 0"
-            )));
-        }
-        let steps = (t_end / dt - 1e-9).ceil().max(1.0) as usize;
-        let mut u = initial.to_vec();
-        self.assembly.constraints().impose(&mut u);
-        let mut previous = u.clone();
-        let mut work = 0;
-        for step in 1..=steps {
-            let (a, history) = match (settings.scheme, step) {
-                (TimeScheme::Bdf2, s) if s > 1 => {
-                    (1.5, u.iter().zip(&previous).map(|(n, m)| 2.0 * n - 0.5 * m).collect())
-                }
-                _ => (1.0, u.clone()),
-            };
-            work += usize::from(self.set_step(a, dt, history)?);
-            previous.copy_from_slice(&u);
-            if self.radiation {
-                let report = self.newton_solve(&mut u, step > 1).map_err(|e| self.runaway_or(e))?;
-                work += report.iterations;
-            } else {
-                self.linear_step(&mut u)?;
-            }
-            observe(step as f64 * dt, &u, self)?;
-        }
-        Ok((u, work))
     }
 }

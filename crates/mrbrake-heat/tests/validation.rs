@@ -7,14 +7,16 @@
 
 use std::sync::Arc;
 
-use mrbrake_fem::basis::Basis;
-use mrbrake_fem::element::TriangleBasis;
-use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::discretisation::basis::Basis;
+use mrbrake_fem::discretisation::element::TriangleBasis;
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::workflow::time::{Event, Outcome, Scheme, TimeOptions, TimeStep};
 use mrbrake_heat::exact;
 use mrbrake_heat::{
     Boundary, BoundaryCondition, ElementOrder, HeatError, HeatProblem, HeatSolver, Region,
-    SolverOptions, Source, TimeScheme, TransientSettings,
+    SolverOptions, Source,
 };
+use mrbrake_observe::Flow;
 
 const SIDES: SideTags = SideTags { r_min: 1, r_max: 2, z_min: 3, z_max: 4 };
 const H: f64 = 0.004;
@@ -40,7 +42,7 @@ fn strip(
             )
         })
         .collect();
-    let r = mrbrake_fem::structured::join_lines(&segments);
+    let r = mrbrake_fem::mesh::structured::join_lines(&segments);
     let z = graded_lines(0.0, H, 2, 1.0);
     Arc::new(rectangle_mesh(&r, &z, |rc, _| region(rc), SIDES).unwrap())
 }
@@ -62,7 +64,7 @@ fn l2_error(solver: &HeatSolver, t: &[f64], exact: impl Fn(f64) -> f64) -> f64 {
     let basis = Basis::with_dofs(
         solver.basis().dofs().clone(),
         5,
-        mrbrake_fem::basis::Weighting::Axisymmetric,
+        mrbrake_fem::discretisation::basis::Weighting::Axisymmetric,
     );
     let (mut sum, mut volume) = (0.0, 0.0);
     for e in 0..basis.n_elements() {
@@ -195,16 +197,32 @@ fn two_layer_composite_cylinder() {
 }
 
 /// Transient cylinder R = 10 mm, k = 1, ρc = 1 MJ/(m³ K) (R²/κ = 100 s), cooling from 400 K by
-/// convection to 300 K; returns the L2 error at `t_end` against the series solution and the
-/// largest relative energy imbalance of the steps.
+/// convection to 300 K in `steps` fixed steps; returns the L2 error at `t_end` against the series
+/// solution, the largest relative energy imbalance of the steps and the mean temperature.
 fn transient_cylinder(
     h: f64,
     cells: usize,
     order: ElementOrder,
     steps: usize,
     t_end: f64,
-    scheme: TimeScheme,
+    scheme: Scheme,
 ) -> (f64, f64, f64) {
+    let step = TimeStep::Fixed { dt_s: t_end / steps as f64 };
+    let (error, worst, mean, outcome) = cooling_cylinder(h, cells, order, step, t_end, scheme);
+    let expected = if scheme == Scheme::Bdf2 { 2 } else { 1 };
+    assert_eq!(outcome.factorizations, expected, "one factorisation per step matrix");
+    (error, worst, mean)
+}
+
+/// [`transient_cylinder`] with any step control; also returns the run's outcome.
+fn cooling_cylinder(
+    h: f64,
+    cells: usize,
+    order: ElementOrder,
+    step: TimeStep,
+    t_end: f64,
+    scheme: Scheme,
+) -> (f64, f64, f64, Outcome) {
     let (radius, k, rho_c, t0, ta) = (0.01, 1.0, 1e6, 400.0, 300.0);
     let problem = HeatProblem {
         mesh: strip(0.0, radius, cells, |_| 1, &[]),
@@ -213,30 +231,28 @@ fn transient_cylinder(
     };
     let mut solver = HeatSolver::new(problem, options(order)).unwrap();
     let initial = solver.uniform(t0);
-    let settings = TransientSettings { dt_s: t_end / steps as f64, t_end_s: t_end, scheme };
+    let options = TimeOptions::new(t_end, scheme, step);
     let mut worst: f64 = 0.0;
-    let (t, factorizations) = solver
-        .transient(&initial, &settings, |_, t, s| {
-            let b = s.energy_balance(t);
-            worst = worst.max(b.imbalance_w.abs() / b.out_w.abs());
-            Ok(())
+    let outcome = solver
+        .transient(&initial, &options, |e: &Event<'_, HeatSolver>| {
+            if e.level.index > 0 {
+                let b = e.problem.energy_balance(e.level.u);
+                worst = worst.max(b.imbalance_w.abs() / b.out_w.abs());
+            }
+            Flow::Continue
         })
         .unwrap();
-    let expected = if scheme == TimeScheme::Bdf2 { 2 } else { 1 };
-    assert_eq!(factorizations, expected, "one factorisation per step matrix");
     let eigenvalues = exact::cylinder_eigenvalues(h * radius / k, 40);
-    let error = l2_error(&solver, &t, |r| {
+    let error = l2_error(&solver, &outcome.u, |r| {
         exact::transient_cylinder(r, t_end, radius, k, rho_c, t0, ta, &eigenvalues)
     });
-    let mean = solver.region_stats(&t)[0].mean_k;
-    (error, worst, mean)
+    let mean = solver.region_stats(&outcome.u)[0].mean_k;
+    (error, worst, mean, outcome)
 }
 
 #[test]
 fn transient_cylinder_orders_in_time_and_energy_balance_every_step() {
-    for (scheme, low, high) in
-        [(TimeScheme::ImplicitEuler, 0.9, 1.1), (TimeScheme::Bdf2, 1.85, 2.2)]
-    {
+    for (scheme, low, high) in [(Scheme::ImplicitEuler, 0.9, 1.1), (Scheme::Bdf2, 1.85, 2.2)] {
         let runs: Vec<(f64, f64, f64)> = [10, 20, 40]
             .iter()
             .map(|&n| transient_cylinder(100.0, 24, ElementOrder::P2, n, 50.0, scheme))
@@ -245,10 +261,70 @@ fn transient_cylinder_orders_in_time_and_energy_balance_every_step() {
         let o = orders(&errors);
         let worst = runs.iter().map(|r| r.1).fold(0.0, f64::max);
         println!(
-            "transient cylinder Bi = 1, {scheme:?}: L2 errors at 50 s (K) {errors:?}, orders {o:.3?}, worst step imbalance {worst:.1e} (relative to heat out)"
+            "transient cylinder Bi = 1, {scheme}: L2 errors at 50 s (K) {errors:?}, orders {o:.3?}, worst step imbalance {worst:.1e} (relative to heat out)"
         );
-        assert!(o.iter().all(|&x| x > low && x < high), "{scheme:?} orders {o:?}");
+        assert!(o.iter().all(|&x| x > low && x < high), "{scheme} orders {o:?}");
         assert!(worst < 1e-9, "energy balance {worst}");
+    }
+}
+
+/// The cooling cylinder (Bi = 1, P2) over 500 s, five diffusion times: the largest error of its
+/// surface temperature against the series solution over the levels after 2 s (before, the
+/// boundary layer of the jump to the ambient is finer than the mesh), its final state and the
+/// run's outcome.
+fn surface_history(step: TimeStep) -> (f64, Vec<f64>, Outcome) {
+    let (radius, k, rho_c, t0, ta, h) = (0.01, 1.0, 1e6, 400.0, 300.0, 100.0);
+    let problem = HeatProblem {
+        mesh: strip(0.0, radius, 16, |_| 1, &[]),
+        regions: vec![Region::isotropic(1, k, rho_c)],
+        boundaries: vec![convection(2, h, ta)],
+    };
+    let mut solver = HeatSolver::new(problem, options(ElementOrder::P2)).unwrap();
+    let initial = solver.uniform(t0);
+    let eigenvalues = exact::cylinder_eigenvalues(h * radius / k, 40);
+    let mut worst = 0.0_f64;
+    let options = TimeOptions::new(500.0, Scheme::Bdf2, step);
+    let outcome = solver
+        .transient(&initial, &options, |e: &Event<'_, HeatSolver>| {
+            let t = e.level.t;
+            if t >= 2.0 {
+                let surface = e.problem.temperature_at(e.level.u, [radius, 0.5 * H]).unwrap();
+                let exact =
+                    exact::transient_cylinder(radius, t, radius, k, rho_c, t0, ta, &eigenvalues);
+                worst = worst.max((surface - exact).abs());
+            }
+            Flow::Continue
+        })
+        .unwrap();
+    (worst, outcome.u.clone(), outcome)
+}
+
+#[test]
+fn adaptive_steps_match_fixed_steps_within_their_tolerance_in_fewer_steps() {
+    // Fast at first (the boundary layer after the jump to the ambient), slow later: adaptive
+    // BDF2 takes small steps first and large ones after.
+    let (_, fine, _) = surface_history(TimeStep::Fixed { dt_s: 500.0 / 4000.0 });
+    let gap = |u: &[f64]| u.iter().zip(&fine).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    for rtol in [1e-5, 1e-6] {
+        let (error, end, o) = surface_history(TimeStep::Adaptive { rtol, dt_initial_s: 1e-2 });
+        let fixed_steps = 4 * o.steps;
+        let (fixed_error, _, _) =
+            surface_history(TimeStep::Fixed { dt_s: 500.0 / fixed_steps as f64 });
+        println!(
+            "adaptive rtol {rtol:e}: {} steps ({} rejected, {} factorisations), surface error \
+             after 2 s {error:.2e} K, final state {:.2e} K from the 4000-step run; {fixed_steps} \
+             fixed steps: surface error {fixed_error:.2e} K",
+            o.steps,
+            o.rejected_steps,
+            o.factorizations,
+            gap(&end)
+        );
+        // The end state within the local tolerances the steps were allowed (rtol · max|T| per
+        // step, max|T| = 400 K) of the converged fixed-step run ...
+        let allowed = o.steps as f64 * rtol * 400.0;
+        assert!(gap(&end) < allowed, "rtol {rtol}: {:e} K", gap(&end));
+        // ... and the history more accurate than fixed steps four times as many.
+        assert!(error < fixed_error, "rtol {rtol}: {error:e} K against {fixed_error:e} K");
     }
 }
 
@@ -256,7 +332,7 @@ fn transient_cylinder_orders_in_time_and_energy_balance_every_step() {
 fn small_biot_cylinder_follows_the_lumped_limit() {
     // Bi = h R / k = 0.01: the mean temperature follows exp(−t/τ), τ = ρc R/(2h) = 5000 s.
     let (h, t_end) = (1.0, 3000.0);
-    let (error, _, mean) = transient_cylinder(h, 8, ElementOrder::P1, 300, t_end, TimeScheme::Bdf2);
+    let (error, _, mean) = transient_cylinder(h, 8, ElementOrder::P1, 300, t_end, Scheme::Bdf2);
     let lumped = exact::lumped_cylinder(t_end, 0.01, 1e6, h, 400.0, 300.0);
     let series = exact::transient_cylinder(
         0.0,

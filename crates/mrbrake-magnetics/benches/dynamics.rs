@@ -5,32 +5,21 @@
 //!   core (μr = 1000, σ = 5.8 MS/m, FEMM's steel value) on ~16 k nodes, a current step, 500 fixed
 //!   BDF2 steps (two factorisations: the Euler start and the rest). Target ≤ 0.5 s.
 //! - `harmonic/16k_31_frequencies`: the same problem, 31 frequencies (1–1000 Hz), by the default
-//!   reduced-basis sweep (`mrbrake_fem::sweep`: real shifted Cholesky solves, every frequency's
+//!   reduced-basis sweep (`mrbrake_fem::linalg::sweep`: real shifted Cholesky solves, every frequency's
 //!   residual checked); `harmonic_direct/16k_31_frequencies`: the reference, one complex sparse LU
 //!   per frequency.
 //!
 //! Each sample includes the set-up (pattern, symbolic factorisation, mass matrices).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use mrbrake_magnetics::benchmark::{COIL, STEEL, pot_core_problem};
+use mrbrake_fem::workflow::time::{Scheme, TimeStep};
+use mrbrake_magnetics::benchmark::conducting_pot_core;
+use mrbrake_magnetics::dynamics::Dynamics;
 use mrbrake_magnetics::dynamics::harmonic::HarmonicMethod;
-use mrbrake_magnetics::dynamics::transient::{Scheme, TimeStep, TransientOptions};
-use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
-use mrbrake_magnetics::{Solver, SolverOptions};
-use mrbrake_materials::Magnetic;
+use mrbrake_magnetics::dynamics::transient::TransientOptions;
 
 fn dynamics() -> Dynamics {
-    let problem =
-        pot_core_problem(16_000, Magnetic::Linear { mu_r: 1000.0 }, 1.0).expect("problem");
-    let solver = Solver::new(problem, SolverOptions::default()).expect("setup");
-    let conductors = [Conductor { tag: STEEL, conductivity_s_per_m: 5.8e6 }];
-    let coil = Coil {
-        tag: COIL,
-        turns: 500.0,
-        drive: Drive::Current { amplitude_a: 1.0 },
-        waveform: Waveform::Step { initial: 0.0 },
-    };
-    Dynamics::new(solver, &conductors, vec![coil]).expect("dynamics")
+    conducting_pot_core(16_000).expect("dynamics")
 }
 
 fn benchmarks(c: &mut Criterion) {

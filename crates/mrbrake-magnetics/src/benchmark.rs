@@ -1,15 +1,18 @@
 //! The saturating benchmark problem of the performance target (issue 3): an axisymmetric pot-core
 //! electromagnet (steel pot and armature separated by a 1 mm gap, coil in the window) on a graded
 //! structured mesh of about `target_nodes` nodes, driven far into saturation (peak |B| above 2 T).
-//! Used by `benches/saturating.rs` and `examples/saturating_benchmark.rs`.
+//! Used by `benches/saturating.rs` and `examples/saturating_benchmark.rs`; with a linear conducting
+//! core ([`conducting_pot_core`]) the magnetodynamics benchmark of `benches/dynamics.rs`.
 
 use std::sync::Arc;
 
-use mrbrake_fem::structured::{SideTags, graded_lines, join_lines, rectangle_mesh};
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, join_lines, rectangle_mesh};
 
 use crate::MagneticsError;
+use crate::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use crate::material::Magnetic;
 use crate::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
+use crate::solver::{Solver, SolverOptions};
 
 /// Region tags of the benchmark.
 pub const STEEL: u32 = 1;
@@ -17,6 +20,22 @@ pub const STEEL: u32 = 1;
 pub const COIL: u32 = 2;
 /// Air region tag.
 pub const AIR: u32 = 3;
+
+/// The pot core with a linear conducting core (μr = 1000, σ = 5.8 MS/m, FEMM's steel value) on
+/// about `target_nodes` nodes, its 500-turn coil driven by a current step to 1 A: the transient
+/// and harmonic benchmark of `benches/dynamics.rs`.
+pub fn conducting_pot_core(target_nodes: usize) -> Result<Dynamics, MagneticsError> {
+    let problem = pot_core_problem(target_nodes, Magnetic::Linear { mu_r: 1000.0 }, 1.0)?;
+    let solver = Solver::new(problem, SolverOptions::default())?;
+    let conductors = [Conductor { tag: STEEL, conductivity_s_per_m: 5.8e6 }];
+    let coil = Coil {
+        tag: COIL,
+        turns: 500.0,
+        drive: Drive::Current { amplitude_a: 1.0 },
+        waveform: Waveform::Step { initial: 0.0 },
+    };
+    Dynamics::new(solver, &conductors, vec![coil])
+}
 
 /// Builds the benchmark problem with about `target_nodes` nodes, `current_a` in a 500-turn coil and
 /// the given steel (e.g. the library's `steel-1010`).

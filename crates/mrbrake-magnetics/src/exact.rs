@@ -7,6 +7,12 @@
 //!   `k² = 4 a r / ((a + r)² + z²)`.
 //! - [`thick_coil_a_phi`]: a rectangular-section coil of uniform current density, by Gauss–Legendre
 //!   integration of the loop potential over the section (exact to quadrature outside the section).
+//! - [`loop_b_r`], [`coaxial_loops_force_z`], [`thick_coils_force_z`]: the radial field of a loop
+//!   and the axial force between coaxial loops, `F_z = −2π b I₂ B_r,1(b, d)` (the Lorentz force
+//!   on loop 2 in the field of loop 1), with `B_r = μ0 I z / (2π r √((a+r)²+z²)) [−K + (a²+r²+z²)
+//!   / ((a−r)²+z²) E]` (Smythe, *Static and Dynamic Electricity*, 3rd ed., §7.10; equal to
+//!   `I₁ I₂ ∂M/∂d` of the mutual inductance `M = μ0 √(ab) [(2/k − k) K − (2/k) E]`, Maxwell's
+//!   formula, checked in the tests), integrated over two rectangular sections by Gauss–Legendre.
 //! - [`thick_coil_axis_bz`]: on-axis B of that coil in closed form (integral of the loop's axial
 //!   field `μ0 I a² / (2 (a² + u²)^{3/2})` over the section).
 //! - [`long_solenoid_a_phi`]: infinitely long thick solenoid, `B_z(r) = μ0 J (r2 − max(r, r1))` inside,
@@ -22,7 +28,7 @@
 use std::f64::consts::PI;
 
 use crate::material::MU_0;
-use mrbrake_fem::quadrature::gauss_legendre_unit;
+use mrbrake_fem::discretisation::quadrature::gauss_legendre_unit;
 
 /// Complete elliptic integrals of the first and second kind, `(K(m), E(m))`, parameter `m = k²` in `[0, 1)`.
 pub fn elliptic_k_e(m: f64) -> (f64, f64) {
@@ -96,6 +102,64 @@ pub fn thick_coil_a_phi(coil: &CoilSection, r: f64, z: f64, panels: usize) -> f6
         }
     }
     sum * coil.j * dr * dz
+}
+
+/// `B_r` (T) at `(r, z)` of a loop of radius `a` at `z = 0` carrying `current` (A) (module docs;
+/// 0 on the axis and in the loop's plane).
+pub fn loop_b_r(a: f64, current: f64, r: f64, z: f64) -> f64 {
+    if r <= 0.0 {
+        return 0.0;
+    }
+    let outer = (a + r) * (a + r) + z * z;
+    let (k, e) = elliptic_k_e(4.0 * a * r / outer);
+    let bracket = -k + (a * a + r * r + z * z) / ((a - r) * (a - r) + z * z) * e;
+    MU_0 * current * z / (2.0 * PI * r * outer.sqrt()) * bracket
+}
+
+/// Axial force (N) on a loop of radius `b` carrying `i2` (A) at height `d` above a coaxial loop of
+/// radius `a` carrying `i1`: negative (towards it) when the currents flow the same way.
+pub fn coaxial_loops_force_z(a: f64, i1: f64, b: f64, i2: f64, d: f64) -> f64 {
+    -2.0 * PI * b * i2 * loop_b_r(a, i1, b, d)
+}
+
+/// Mutual inductance (H) of two coaxial loops of radii `a` and `b` at axial distance `d`
+/// (Maxwell's formula, module docs).
+pub fn coaxial_loops_mutual_inductance(a: f64, b: f64, d: f64) -> f64 {
+    let m = 4.0 * a * b / ((a + b) * (a + b) + d * d);
+    let k = m.sqrt();
+    let (kk, ee) = elliptic_k_e(m);
+    MU_0 * (a * b).sqrt() * ((2.0 / k - k) * kk - 2.0 / k * ee)
+}
+
+/// Axial force (N) on coil `on` in the field of coil `by` (disjoint sections), by `panels² × 8²`
+/// Gauss points in each section: `∫∫ j_by j_on F_loops dS dS`.
+pub fn thick_coils_force_z(by: &CoilSection, on: &CoilSection, panels: usize) -> f64 {
+    let points = |coil: &CoilSection| -> Vec<(f64, f64, f64)> {
+        let (x, w) = gauss_legendre_unit(8);
+        let panels = panels.max(1);
+        let (dr, dz) = ((coil.r2 - coil.r1) / panels as f64, (coil.z2 - coil.z1) / panels as f64);
+        let mut out = Vec::with_capacity(panels * panels * 64);
+        for pr in 0..panels {
+            for pz in 0..panels {
+                for (xr, wr) in x.iter().zip(&w) {
+                    for (xz, wz) in x.iter().zip(&w) {
+                        let r = coil.r1 + dr * (pr as f64 + xr);
+                        let z = coil.z1 + dz * (pz as f64 + xz);
+                        out.push((r, z, wr * wz * dr * dz * coil.j));
+                    }
+                }
+            }
+        }
+        out
+    };
+    let (sources, targets) = (points(by), points(on));
+    let mut force = 0.0;
+    for &(a, za, ia) in &sources {
+        for &(b, zb, ib) in &targets {
+            force += coaxial_loops_force_z(a, ia, b, ib, zb - za);
+        }
+    }
+    force
 }
 
 /// On-axis `B_z` (T) of the coil at axial position `z`.
@@ -260,6 +324,28 @@ mod tests {
         let bz = 2.0 * loop_a_phi(a, i, r, z) / r;
         let exact = MU_0 * i * a * a / (2.0 * (a * a + z * z).powf(1.5));
         assert!((bz - exact).abs() < 1e-6 * exact);
+    }
+
+    #[test]
+    fn loop_force_is_the_mutual_inductance_gradient_and_b_r_the_potential_derivative() {
+        let (a, b, i1, i2) = (0.02, 0.03, 3.0, -2.0);
+        for d in [0.001, 0.01, 0.04, -0.02] {
+            let h = 1e-7;
+            let gradient = (coaxial_loops_mutual_inductance(a, b, d + h)
+                - coaxial_loops_mutual_inductance(a, b, d - h))
+                / (2.0 * h);
+            let force = coaxial_loops_force_z(a, i1, b, i2, d);
+            assert!((force - i1 * i2 * gradient).abs() < 1e-6 * force.abs(), "d = {d}");
+            // B_r = −∂A/∂z.
+            let b_r = -(loop_a_phi(a, i1, b, d + h) - loop_a_phi(a, i1, b, d - h)) / (2.0 * h);
+            assert!((loop_b_r(a, i1, b, d) - b_r).abs() < 1e-6 * b_r.abs(), "d = {d}");
+        }
+        // Currents the same way attract: the upper loop is pulled down.
+        assert!(coaxial_loops_force_z(a, 1.0, b, 1.0, 0.01) < 0.0);
+        // Far apart, two dipoles: F = −3 μ0 m1 m2 / (2π d⁴).
+        let d: f64 = 2.0;
+        let dipoles = -3.0 * MU_0 * (PI * a * a) * (PI * b * b) / (2.0 * PI * d.powi(4));
+        assert!((coaxial_loops_force_z(a, 1.0, b, 1.0, d) - dipoles).abs() < 1e-3 * dipoles.abs());
     }
 
     #[test]

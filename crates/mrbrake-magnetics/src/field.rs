@@ -32,13 +32,13 @@ use serde::Serialize;
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use mrbrake_fem::basis::Basis;
 use mrbrake_fem::by_order;
-use mrbrake_fem::dofs::ElementOrder;
-use mrbrake_fem::element::{ElementTriP1, P1Triangle, TriangleBasis};
-use mrbrake_fem::locate::{PointLocator, locate_by_scan};
+use mrbrake_fem::discretisation::basis::Basis;
+use mrbrake_fem::discretisation::dofs::ElementOrder;
+use mrbrake_fem::discretisation::element::{ElementTriP1, P1Triangle, TriangleBasis};
+use mrbrake_fem::discretisation::quadrature::TrianglePoint;
 use mrbrake_fem::mesh::Mesh;
-use mrbrake_fem::quadrature::TrianglePoint;
+use mrbrake_fem::mesh::locate::{PointLocator, locate_by_scan};
 
 use crate::MagneticsError;
 use crate::form::{curls, flux_density};
@@ -117,7 +117,7 @@ impl FieldSnapshot {
     /// The field as a ParaView `.vtu` file: `A_phi` and `r·A_phi` at the nodes, B and |B| per
     /// triangle.
     pub fn to_vtu(&self, mesh: &Mesh) -> String {
-        use mrbrake_fem::vtu::{Field, to_vtu};
+        use mrbrake_fem::mesh::vtu::{Field, to_vtu};
         let b3: Vec<f64> = self.element_b_t.iter().flat_map(|b| [b[0], b[1], 0.0]).collect();
         to_vtu(
             mesh,
@@ -141,7 +141,7 @@ impl FieldSnapshot {
 /// parts (peak phasors, time factor `exp(+jωt)`): `A_phi` and `r·A_phi` (re, im) at the nodes,
 /// B (re, im) and `sqrt(|B̂_r|² + |B̂_z|²)` per triangle.
 pub fn phasor_vtu(re: &FieldSnapshot, im: &FieldSnapshot, mesh: &Mesh) -> String {
-    use mrbrake_fem::vtu::{Field, to_vtu};
+    use mrbrake_fem::mesh::vtu::{Field, to_vtu};
     let b3 = |s: &FieldSnapshot| -> Vec<f64> {
         s.element_b_t.iter().flat_map(|b| [b[0], b[1], 0.0]).collect()
     };
@@ -590,7 +590,7 @@ impl Solver {
         reference: impl Fn([f64; 2]) -> f64,
         tags: &[u32],
     ) -> f64 {
-        let rule = mrbrake_fem::quadrature::triangle_rule(5);
+        let rule = mrbrake_fem::discretisation::quadrature::triangle_rule(5);
         let sum = self.sum_over_samples(solution, &rule, tags, |s| {
             let e = s.a - reference(s.point);
             TWO_PI * s.weight * e * e
@@ -607,7 +607,7 @@ impl Solver {
         reference: impl Fn([f64; 2]) -> [f64; 2],
         tags: &[u32],
     ) -> f64 {
-        let rule = mrbrake_fem::quadrature::triangle_rule(5);
+        let rule = mrbrake_fem::discretisation::quadrature::triangle_rule(5);
         let sum = self.sum_over_samples(solution, &rule, tags, |s| {
             let b = reference(s.point);
             TWO_PI * s.weight * ((s.b[0] - b[0]).powi(2) + (s.b[1] - b[1]).powi(2))

@@ -14,7 +14,7 @@
 //! `K_ij = ∫ [ν curl φ_i · curl φ_j + 2 dν/dB² (B · curl φ_i)(B · curl φ_j)] r dr dz`,
 //!
 //! symmetric, and positive definite when `H(B) = ν B` is increasing (`ν + 2 B² dν/dB² > 0`), so the
-//! Newton systems are solved by sparse Cholesky ([`mrbrake_fem::newton`]).
+//! Newton systems are solved by sparse Cholesky ([`mrbrake_fem::workflow::newton`]).
 //!
 //! The `A/r` term makes the integrand non-polynomial on elements touching the axis; the quadrature
 //! rules have interior points only (no evaluation at r = 0) and the default degree-2 rule gives the
@@ -22,7 +22,7 @@
 //! the axis carry `A = 0`.
 //!
 //! Element order: the form is written once, generic over the Lagrange basis
-//! ([`mrbrake_fem::element::TriangleBasis`]: `ElementTriP1` with 3 DOFs, `ElementTriP2` with 6),
+//! ([`mrbrake_fem::discretisation::element::TriangleBasis`]: `ElementTriP1` with 3 DOFs, `ElementTriP2` with 6),
 //! and the FEM core compiles it for each order. For quadratic elements `B` is linear in each
 //! element (plus the `A/r` term) and the polynomial part of the r-weighted integrands has degree 3,
 //! so they take the degree-4 rule (Dunavant 1985, 6 interior points) or higher.
@@ -33,12 +33,12 @@
 //! (when the form is built), so those elements need no quadrature loop during the Newton iterations,
 //! and the core assembles their Jacobians once.
 
-use mrbrake_fem::assemble::{
+use mrbrake_fem::by_order;
+use mrbrake_fem::discretisation::basis::{Basis, Element, QuadraturePoint};
+use mrbrake_fem::discretisation::element::TriangleBasis;
+use mrbrake_fem::workflow::assemble::{
     ElementForm, MAX_PACKED_LEN, element_matrices, element_vectors, packed_len, unpack_symmetric,
 };
-use mrbrake_fem::basis::{Basis, Element, QuadraturePoint};
-use mrbrake_fem::by_order;
-use mrbrake_fem::element::TriangleBasis;
 use mrbrake_materials::Magnetic;
 
 /// `curl φ_i = (−∂φ_i/∂z, ∂φ_i/∂r + φ_i/r)` of the basis functions at a quadrature point.
@@ -225,9 +225,9 @@ pub(crate) fn element_kernel<E: TriangleBasis<N>, const N: usize>(
 mod tests {
     use super::*;
     use crate::material::MarroccoCurve;
-    use mrbrake_fem::basis::Weighting;
-    use mrbrake_fem::dofs::ElementOrder;
-    use mrbrake_fem::element::{ElementTriP1, ElementTriP2};
+    use mrbrake_fem::discretisation::basis::Weighting;
+    use mrbrake_fem::discretisation::dofs::ElementOrder;
+    use mrbrake_fem::discretisation::element::{ElementTriP1, ElementTriP2};
     use mrbrake_fem::mesh::Mesh;
     use std::sync::Arc;
 

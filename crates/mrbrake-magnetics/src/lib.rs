@@ -7,13 +7,14 @@
 //!   symbolic Cholesky), then [`solver::Solver::solve`] runs the core's Newton–Raphson with line
 //!   search; sources can be changed ([`solver::Solver::set_source`]) and the previous solution
 //!   passed as a warm start, as a current sweep does. The weak form is [`form`] (an
-//!   `mrbrake_fem::assemble::ElementForm`), the open boundary a constant boundary coupling. The element order is
+//!   `mrbrake_fem::workflow::assemble::ElementForm`), the open boundary a constant boundary coupling. The element order is
 //!   [`solver::SolverOptions::order`]: linear triangles ([`ElementOrder::P1`], the default) or
 //!   quadratic 6-node triangles ([`ElementOrder::P2`]) on the same mesh, with about four times the
 //!   unknowns and one order more accuracy where the field is smooth (A in L2 at O(h³), B at O(h²);
 //!   the validation tests measure both).
 //! - [`field::Solution`] with post-processing on the solver: B at points and along lines, region
-//!   statistics, flux linkage, inductance, energy and co-energy.
+//!   statistics, flux linkage, inductance, energy and co-energy; [`force`]: the axial force on a
+//!   body by virtual work on the layer of elements around it, and the Lorentz force on a coil.
 //! - [`material`]: the material library's magnetic law ([`material::Magnetic`], with the
 //!   [`material::Reluctivity`] `ν(B²)` of its B-H curves) and an analytic test curve.
 //! - [`problem_file`]: the TOML problem files of `mrbrake fem solve`.
@@ -22,7 +23,7 @@
 //!
 //! ```
 //! use std::sync::Arc;
-//! use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+//! use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 //! use mrbrake_magnetics::material::Magnetic;
 //! use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 //! use mrbrake_magnetics::solver::{Solver, SolverOptions};
@@ -53,6 +54,7 @@ pub mod benchmark;
 pub mod dynamics;
 pub mod exact;
 pub mod field;
+pub mod force;
 pub mod form;
 pub mod material;
 pub mod open_boundary;
@@ -61,7 +63,7 @@ pub mod problem_file;
 pub mod solver;
 
 pub use field::Solution;
-pub use mrbrake_fem::dofs::ElementOrder;
+pub use mrbrake_fem::discretisation::dofs::ElementOrder;
 pub use solver::{NewtonStep, Solver, SolverOptions};
 
 /// Errors of this crate.
@@ -79,21 +81,14 @@ pub enum MagneticsError {
     Material(#[from] mrbrake_materials::MaterialError),
     /// Newton–Raphson failed; the residual history says how far it got.
     #[error(transparent)]
-    NotConverged(#[from] mrbrake_fem::newton::NewtonError),
+    NotConverged(#[from] mrbrake_fem::workflow::newton::NewtonError),
     /// Another numerical failure.
     #[error("{0}")]
     Numerical(String),
-    /// A time step of a transient failed: which step, at what time, and why (the `source`, e.g.
-    /// Newton's residual history, is the next error of the chain, not repeated in this message).
-    #[error("time step {step} (t = {time_s:.6e} s) failed")]
-    TimeStep {
-        /// 1-based step number.
-        step: usize,
-        /// The time the step was to reach (s).
-        time_s: f64,
-        /// The failure (Newton's residual history, a factorisation, …).
-        source: Box<MagneticsError>,
-    },
+    /// A transient failed: its options, its step bound, or a step (which one, at what time, and
+    /// why: Newton's residual history is the next error of the chain).
+    #[error(transparent)]
+    Time(#[from] mrbrake_fem::workflow::time::TimeError),
 }
 
 impl mrbrake_error::Kind for MagneticsError {
@@ -106,7 +101,7 @@ impl mrbrake_error::Kind for MagneticsError {
             Self::Fem(e) => e.kind(),
             Self::Material(e) => e.kind(),
             Self::NotConverged { .. } | Self::Numerical(_) => ErrorKind::Numerical,
-            Self::TimeStep { source, .. } => source.kind(),
+            Self::Time(e) => e.kind(),
         }
     }
 }

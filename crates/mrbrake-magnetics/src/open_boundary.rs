@@ -5,13 +5,13 @@
 //! 2A/R − A/R = A/R`, and the natural boundary term of the weak form ([`crate::form`]) becomes
 //! `∮ ν0 (A/R) φ_i r dl` added to the left-hand side: a constant coupling
 //! `m_ab = ν0/R ∫_edge φ_a φ_b r dl` over the DOFs of each boundary edge, integrated exactly by the
-//! core's edge rule ([`mrbrake_fem::boundary::edge_matrices`]). This is the axisymmetric form of
+//! core's edge rule ([`mrbrake_fem::workflow::boundary::edge_matrices`]). This is the axisymmetric form of
 //! the asymptotic boundary condition of Chen & Konrad, IEEE Trans. Magn. 33(1) 1997, §III, and the
 //! coefficient FEMM uses for axisymmetric open boundaries (`c0 = 1/(μ0 R)`).
 
-use mrbrake_fem::assemble::LocalMatrix;
-use mrbrake_fem::basis::Basis;
-use mrbrake_fem::boundary::edge_matrices;
+use mrbrake_fem::discretisation::basis::Basis;
+use mrbrake_fem::workflow::assemble::LocalMatrix;
+use mrbrake_fem::workflow::boundary::edge_matrices;
 use mrbrake_materials::MU_0;
 
 use crate::MagneticsError;

@@ -1,7 +1,7 @@
 //! The magnetostatic solver: the A_phi form ([`crate::form`]) and the open boundary
 //! ([`crate::open_boundary`]) on the FEM core — a basis, constraints (the axis and the Dirichlet
 //! boundaries), an assembly with the free-DOF pattern, and the core's Newton solver
-//! ([`mrbrake_fem::newton`]: safeguarded line search on the magnetic energy, preconditioned-CG
+//! ([`mrbrake_fem::workflow::newton`]: safeguarded line search on the magnetic energy, preconditioned-CG
 //! tail). Set up once per mesh (DOF numbering, pattern, symbolic Cholesky, the linear elements'
 //! matrices), then solves that can be repeated with new sources and a warm start, as a current
 //! sweep does.
@@ -15,15 +15,15 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use mrbrake_fem::assemble::Assembly;
-use mrbrake_fem::basis::{Basis, Weighting};
-use mrbrake_fem::constraints::Constraints;
-use mrbrake_fem::dofs::ElementOrder;
+use mrbrake_fem::discretisation::basis::{Basis, Weighting};
+use mrbrake_fem::discretisation::dofs::ElementOrder;
 use mrbrake_fem::mesh::Mesh;
-use mrbrake_fem::newton::{AssembledSystem, NewtonOptions, NewtonSolver, norm2};
+use mrbrake_fem::workflow::assemble::Assembly;
+use mrbrake_fem::workflow::constraints::Constraints;
+use mrbrake_fem::workflow::newton::{AssembledSystem, NewtonOptions, NewtonSolver, norm2};
 use mrbrake_materials::{MU_0, Magnetic};
 
-pub use mrbrake_fem::newton::{NewtonReport, NewtonStep, SolveTimings};
+pub use mrbrake_fem::workflow::newton::{NewtonReport, NewtonStep, SolveTimings};
 
 use crate::MagneticsError;
 use crate::field::Solution;
@@ -84,7 +84,7 @@ impl SolverOptions {
 }
 
 /// Largest number of conjugate-gradient iterations tried with the previous factor before
-/// refactorising (see [`mrbrake_fem::newton`]).
+/// refactorising (see [`mrbrake_fem::workflow::newton`]).
 pub const TAIL_CG_MAX_ITERATIONS: usize = 4;
 
 impl SolverOptions {

@@ -12,14 +12,17 @@
 
 use std::sync::Arc;
 
-use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
-use mrbrake_magnetics::dynamics::transient::{Probe, Scheme, TimeStep, TransientOptions};
+use mrbrake_fem::mesh::locate::Probe;
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::workflow::time::{Scheme, TimeStep};
+use mrbrake_magnetics::dynamics::transient::{StepView, TransientOptions};
 use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use mrbrake_magnetics::exact::{conducting_cylinder_potential, cylinder_step_flux};
 use mrbrake_magnetics::material::MarroccoCurve;
 use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 use mrbrake_magnetics::{ElementOrder, Solver, SolverOptions};
 use mrbrake_materials::{MU_0, Magnetic};
+use mrbrake_observe::Flow;
 use num_complex::Complex64;
 
 const A: f64 = 0.01; // conductor radius (m)
@@ -267,10 +270,10 @@ fn eddy_current_density_carries_the_eddy_loss() {
     let options = TransientOptions::new(2e-3, Scheme::Bdf2, TimeStep::Fixed { dt_s: 2e-4 });
     let mut from_density = Vec::new();
     let result = dynamics
-        .transient_observed(&options, |view| {
-            let j = view.dynamics.eddy_current_density(view.rate)?;
+        .transient_observed(&options, |view: &StepView<'_>| {
+            let j = view.dynamics.eddy_current_density(view.rate).expect("one rate per DOF");
             from_density.push(loss_of_current_density(view.dynamics.solver().mesh(), &j, SIGMA));
-            Ok(())
+            Flow::Continue
         })
         .unwrap();
     assert!(from_density[0].abs() < f64::MIN_POSITIVE, "no eddy currents in the DC state");
@@ -287,11 +290,11 @@ fn eddy_current_density_carries_the_eddy_loss() {
 fn transient_flux(dynamics: &mut Dynamics, options: &TransientOptions) -> (Vec<f64>, Vec<f64>) {
     let mut flux = Vec::new();
     let result = dynamics
-        .transient_observed(options, |view| {
+        .transient_observed(options, |view: &StepView<'_>| {
             let solution = view.dynamics.solution(view.a.to_vec());
-            let a = view.dynamics.solver().a_phi_at(&solution, [A, 0.5 * H])?;
+            let a = view.dynamics.solver().a_phi_at(&solution, [A, 0.5 * H]).expect("inside");
             flux.push(2.0 * std::f64::consts::PI * A * a);
-            Ok(())
+            Flow::Continue
         })
         .unwrap();
     (result.time_s, flux)
@@ -564,19 +567,8 @@ fn reduced_sweep_matches_the_direct_sweep() {
 #[test]
 #[cfg_attr(debug_assertions, ignore = "release only: a 16 k-node sweep")]
 fn reduced_sweep_of_the_pot_core_matches_the_direct_sweep() {
-    use mrbrake_magnetics::benchmark::{COIL, STEEL, pot_core_problem};
     use mrbrake_magnetics::dynamics::harmonic::HarmonicMethod;
-    use mrbrake_magnetics::{Solver, SolverOptions};
-    let problem = pot_core_problem(16_000, Magnetic::Linear { mu_r: 1000.0 }, 1.0).unwrap();
-    let solver = Solver::new(problem, SolverOptions::default()).unwrap();
-    let conductors = [Conductor { tag: STEEL, conductivity_s_per_m: 5.8e6 }];
-    let coil = Coil {
-        tag: COIL,
-        turns: 500.0,
-        drive: Drive::Current { amplitude_a: 1.0 },
-        waveform: Waveform::Step { initial: 0.0 },
-    };
-    let mut dynamics = Dynamics::new(solver, &conductors, vec![coil]).unwrap();
+    let mut dynamics = mrbrake_magnetics::benchmark::conducting_pot_core(16_000).unwrap();
     let frequencies: Vec<f64> = (0..31).map(|k| 10f64.powf(k as f64 / 10.0)).collect();
     let method = HarmonicMethod::default();
     let (reduced, report) = dynamics.harmonic_potentials_by(&frequencies, None, method).unwrap();

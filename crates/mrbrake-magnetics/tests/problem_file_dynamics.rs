@@ -10,9 +10,10 @@
 use std::path::{Path, PathBuf};
 
 use mrbrake_error::Kind as _;
-use mrbrake_fem::gmsh::to_msh22;
 use mrbrake_fem::mesh::Mesh;
-use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::mesh::gmsh::to_msh22;
+use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
+use mrbrake_fem::workflow::time::TimeError;
 use mrbrake_magnetics::MagneticsError;
 use mrbrake_magnetics::problem_file::{SolveReport, solve_file};
 
@@ -240,7 +241,7 @@ fn newton_failure_at_a_step_is_numerical_with_step_time_and_history() {
          waveform = { kind = \"csv\", file = \"w.csv\" }\n",
     );
     match solve_in(dir.path(), &text) {
-        Err(e @ MagneticsError::TimeStep { .. }) => {
+        Err(e @ MagneticsError::Time(TimeError::Step { .. })) => {
             assert!(!e.is_input_error(), "{e}");
             let message = e.to_string();
             // Fixed steps are uniform (times n·dt): the first step ends at 2 ms.

@@ -8,7 +8,9 @@ use mrbrake_error::Kind as _;
 use std::sync::Arc;
 
 use mrbrake_fem::mesh::Mesh;
-use mrbrake_fem::structured::{SideTags, graded_lines, half_disc_mesh, join_lines, rectangle_mesh};
+use mrbrake_fem::mesh::structured::{
+    SideTags, graded_lines, half_disc_mesh, join_lines, rectangle_mesh,
+};
 use mrbrake_magnetics::exact::{
     CoilSection, long_solenoid_a_phi, long_solenoid_bz, loop_a_phi, sphere_a_phi, thick_coil_a_phi,
     thick_coil_axis_bz,
@@ -359,7 +361,7 @@ fn open_boundary_errors(order: ElementOrder, probes: &[[f64; 2]]) -> Vec<f64> {
     let half = std::f64::consts::PI / 16.0;
     let (t1, t2) = (std::f64::consts::FRAC_PI_2 - half, std::f64::consts::FRAC_PI_2 + half);
     let reference = move |p: [f64; 2]| {
-        let (x, w) = mrbrake_fem::quadrature::gauss_legendre_unit(12);
+        let (x, w) = mrbrake_fem::discretisation::quadrature::gauss_legendre_unit(12);
         let mut sum = 0.0;
         for (xr, wr) in x.iter().zip(&w) {
             for (xt, wt) in x.iter().zip(&w) {
@@ -641,7 +643,7 @@ fn iron_rod_study(order: ElementOrder) -> Study {
             return 0.0;
         }
         let seg = |s0: f64, s1: f64| -> f64 {
-            let (x, w) = mrbrake_fem::quadrature::gauss_legendre_unit(6);
+            let (x, w) = mrbrake_fem::discretisation::quadrature::gauss_legendre_unit(6);
             x.iter()
                 .zip(&w)
                 .map(|(x, w)| {

@@ -54,6 +54,15 @@ pub enum MaterialError {
         /// Every name the library knows.
         known: Vec<String>,
     },
+    /// A hysteretic solve asked for a material that has no hysteresis model (only the library's
+    /// steels have one).
+    #[error("material `{name}` has no hysteresis model; materials with one: {}", known.join(", "))]
+    NoHysteresisModel {
+        /// The material asked for.
+        name: String,
+        /// The materials that have a hysteresis model.
+        known: Vec<String>,
+    },
     /// A number outside its allowed range (an AWG size, a wire diameter, a temperature).
     #[error("{quantity} = {value} is out of range; allowed: {allowed}")]
     OutOfRange {
@@ -108,6 +117,7 @@ impl mrbrake_error::Kind for MaterialError {
             Self::Parse { .. }
             | Self::InvalidCurve { .. }
             | Self::UnknownMaterial { .. }
+            | Self::NoHysteresisModel { .. }
             | Self::OutOfRange { .. } => ErrorKind::Input,
         }
     }

@@ -10,6 +10,9 @@
 //! * [`MrFluid`] — B-H curve, `τ_y(B)`, `τ_y(H)`, viscosity, density, reference points.
 //! * [`Material`] and [`Magnetic`] — what a solver needs per region: `Linear { mu_r }` or
 //!   `NonLinear(Arc<BhCurve>)`, density, conductivity.
+//! * [`hysteresis`] — magnetic hysteresis of the flux-path steel: a scalar energy-based (play)
+//!   model driven by B for an A-formulation FEA (H and `dH/dB` per quadrature point from a small
+//!   `Copy` state), identification from measured loops, and parameter sets for the library's steels.
 //! * [`library`] — the built-in materials by name (`steel-1008`, `air`, `mrf-122eg`, …), vendored from
 //!   `data/` and parsed once.
 //! * [`thermal`] — thermal conductivity, density, specific heat (with sources) and the homogenised
@@ -31,6 +34,7 @@
 mod bh_curve;
 mod error;
 mod hermite;
+pub mod hysteresis;
 pub mod library;
 mod material;
 mod mr_fluid;

@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use mrbrake::fem::dofs::ElementOrder;
+use mrbrake::fem::discretisation::dofs::ElementOrder;
 use mrbrake::problem_file::{self, ProblemField};
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;

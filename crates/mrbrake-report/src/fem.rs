@@ -5,8 +5,9 @@
 
 use std::fmt::Write as _;
 
+use mrbrake_fem::workflow::time::Scheme;
 use mrbrake_magnetics::dynamics::harmonic::HarmonicPoint;
-use mrbrake_magnetics::dynamics::transient::{Scheme, TransientResult};
+use mrbrake_magnetics::dynamics::transient::TransientResult;
 use mrbrake_magnetics::problem_file::dynamics::TransientReport;
 use mrbrake_magnetics::problem_file::{DynamicsReport, SolveReport};
 
@@ -204,7 +205,7 @@ fn write_harmonic(points: &[HarmonicPoint], about: &str, seconds: f64, out: &mut
 #[cfg(test)]
 mod tests {
     use mrbrake_magnetics::problem_file::dynamics::{CoilBias, ConductorReport};
-    use mrbrake_magnetics::problem_file::{CoilReport, Timings};
+    use mrbrake_magnetics::problem_file::{CoilReport, MagneticsTimings};
 
     use super::*;
 
@@ -228,7 +229,7 @@ mod tests {
             elements: 12,
             order: 1,
             unknowns: 8,
-            timings_s: Timings::default(),
+            timings_s: MagneticsTimings::default(),
             dynamics,
         }
     }

@@ -18,7 +18,7 @@
 use std::path::{Path, PathBuf};
 
 use mrbrake_error::{ErrorKind, Kind};
-use mrbrake_fem::dofs::ElementOrder;
+use mrbrake_fem::discretisation::dofs::ElementOrder;
 use mrbrake_heat::problem_file::HeatReport;
 use mrbrake_heat::solver::HeatSolver;
 use mrbrake_magnetics::problem_file::SolveReport;
@@ -235,7 +235,7 @@ impl Solved {
                 mrbrake_magnetics::problem_file::vtu_files(report, solver, solution, path)
             }
             Self::Heat { solver, temperature_k, .. } => {
-                use mrbrake_fem::vtu::{Field, to_vtu};
+                use mrbrake_fem::mesh::vtu::{Field, to_vtu};
                 let mesh = solver.problem().mesh.as_ref();
                 let celsius = celsius_at_nodes(mesh.nodes.len(), temperature_k);
                 let regions: Vec<f64> = mesh.triangle_tags.iter().map(|&t| f64::from(t)).collect();

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use mrbrake::fem::dofs::ElementOrder;
+use mrbrake::fem::discretisation::dofs::ElementOrder;
 use mrbrake::problem_file::{self, Physics};
 use mrbrake::report::field_map::{FieldMap, View, save_field_map};
 

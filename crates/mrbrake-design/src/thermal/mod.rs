@@ -34,12 +34,14 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use mrbrake_fem::mesh::Mesh;
+use mrbrake_fem::workflow::time::{Event, Scheme, TimeOptions, TimeStep};
 use mrbrake_heat::{
     Boundary, BoundaryCondition, HeatError, HeatProblem, HeatSolver, Region, SolverOptions, Source,
-    TimeScheme, TransientSettings, celsius, convection, kelvin,
+    celsius, convection, kelvin,
 };
 use mrbrake_materials::thermal::{Winding, thermal};
 use mrbrake_materials::wire::{COPPER_RESISTIVITY_20C_OHM_M, COPPER_TEMPERATURE_COEFFICIENT_PER_K};
+use mrbrake_observe::Flow;
 use serde::Serialize;
 
 use crate::DesignError;
@@ -705,14 +707,19 @@ fn warmup(
     let coil_dofs = region_dofs(solver, &coil_tags);
     let start = solver.uniform(kelvin(options.ambient_c));
     let mut curve = Warmup { time_s: vec![0.0], coil_max_t_c: vec![options.ambient_c] };
-    let settings =
-        TransientSettings { dt_s: options.dt_s, t_end_s: options.time_s, scheme: TimeScheme::Bdf2 };
-    let (end, _) = solver.transient(&start, &settings, |time, t, _| {
-        curve.time_s.push(time);
-        curve.coil_max_t_c.push(celsius(coil_dofs.iter().map(|&d| t[d]).fold(f64::MIN, f64::max)));
-        Ok(())
+    let step = TimeStep::Fixed { dt_s: options.dt_s };
+    let time = TimeOptions::new(options.time_s, Scheme::Bdf2, step);
+    let outcome = solver.transient(&start, &time, |e: &Event<'_, HeatSolver>| {
+        if e.level.index > 0 {
+            let t = e.level.u;
+            curve.time_s.push(e.level.t);
+            curve
+                .coil_max_t_c
+                .push(celsius(coil_dofs.iter().map(|&d| t[d]).fold(f64::MIN, f64::max)));
+        }
+        Flow::Continue
     })?;
-    Ok((curve, end))
+    Ok((curve, outcome.u))
 }
 
 /// The first time the curve crosses `limit` (linear interpolation), if it does.

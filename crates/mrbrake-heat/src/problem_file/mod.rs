@@ -24,9 +24,12 @@
 //! T_amb_C = 25.0
 //! [transient]                     # optional
 //! t_end = 3600.0                  # s
-//! dt = 10.0                       # s
+//! dt = 10.0                       # s (fixed steps: t_end / ceil(t_end / dt), landing on t_end)
+//!                                 # or adaptive = { rtol = 1e-4, dt_initial = 1.0 } (steps from
+//!                                 # a local error estimate: mrbrake_fem::workflow::time)
 //! T_initial_C = 25.0
 //! scheme = "bdf2"                 # or "euler" (implicit Euler)
+//! max_steps = 1000000             # optional bound on the number of steps
 //! [[probe]]
 //! name = "coil_centre"
 //! r = 13.0
@@ -43,10 +46,12 @@ use std::sync::Arc;
 
 use mrbrake_error::{FieldError, FieldErrors};
 use mrbrake_fem::mesh::Mesh;
+use mrbrake_fem::mesh::locate::Probe;
+use mrbrake_fem::workflow::time::{StepKeys, TimeOptions};
 use mrbrake_materials::thermal::Winding;
 
 use crate::problem::{Boundary, BoundaryCondition, HeatProblem, Region, Source};
-use crate::solver::{SolverOptions, TimeScheme, TransientSettings};
+use crate::solver::SolverOptions;
 use crate::{ElementOrder, HeatError, kelvin};
 
 mod raw;
@@ -55,18 +60,9 @@ mod report;
 pub use raw::schema;
 use raw::{RawBoundary, RawFile, RawMaterial, RawRegion};
 pub use report::{
-    BoundaryReport, HeatReport, ProbeReport, ProbeSeries, RegionReport, RegionSeries, Timings,
+    BoundaryReport, HeatReport, HeatTimings, ProbeReport, ProbeSeries, RegionReport, RegionSeries,
     TransientReport, solve_file,
 };
-
-/// A named point (metres).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Probe {
-    /// Name from the file.
-    pub name: String,
-    /// `[r, z]` (m).
-    pub point: [f64; 2],
-}
 
 /// A heat problem file after reading and checking.
 #[derive(Debug, Clone)]
@@ -77,7 +73,7 @@ pub struct HeatFile {
     pub options: SolverOptions,
     /// The transient run and its initial temperature (K; `None`: the solver's reference
     /// temperature, the mean ambient), if any.
-    pub transient: Option<(TransientSettings, Option<f64>)>,
+    pub transient: Option<(TimeOptions, Option<f64>)>,
     /// Probes.
     pub probes: Vec<Probe>,
     /// The mesh file.
@@ -153,7 +149,7 @@ pub fn load(path: &Path) -> Result<HeatFile, HeatError> {
     };
     let mesh_path = path.parent().unwrap_or(Path::new(".")).join(&raw.mesh);
     let (gmsh, scale) =
-        mrbrake_fem::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
+        mrbrake_fem::mesh::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
     let mesh = Arc::new(gmsh.mesh);
     let mut errors = Errors { file: &file, text: &text, errors: FieldErrors::new() };
     let regions = regions_of(&raw.region, &mesh, &mut errors);
@@ -411,27 +407,22 @@ fn boundaries_of(raw: &[RawBoundary], mesh: &Mesh, errors: &mut Errors) -> Vec<B
     boundaries
 }
 
-fn transient_of(raw: &RawFile, errors: &mut Errors) -> Option<(TransientSettings, Option<f64>)> {
+fn transient_of(raw: &RawFile, errors: &mut Errors) -> Option<(TimeOptions, Option<f64>)> {
     let t = raw.transient.as_ref()?;
-    let scheme = match t.scheme.as_deref().unwrap_or("bdf2") {
-        "bdf2" => TimeScheme::Bdf2,
-        "euler" => TimeScheme::ImplicitEuler,
-        other => {
-            errors.add(
-                "transient",
-                0,
-                "scheme",
-                format!("= \"{other}\"; allowed: \"bdf2\", \"euler\""),
-            );
-            TimeScheme::Bdf2
-        }
+    let keys = StepKeys {
+        t_end: t.t_end,
+        dt: t.dt,
+        adaptive: t.adaptive,
+        scheme: t.scheme.as_deref(),
+        max_steps: t.max_steps,
     };
-    if !positive(t.t_end) {
-        errors.add("transient", 0, "t_end", format!("= {} s must be > 0", t.t_end));
-    }
-    if !positive(t.dt) || t.dt > t.t_end {
-        errors.add("transient", 0, "dt", format!("= {} s must be > 0 and <= t_end", t.dt));
-    }
+    let options = TimeOptions::from_keys(&keys)
+        .map_err(|bad| {
+            for e in bad.errors() {
+                errors.add("transient", 0, &e.field, e.message.clone());
+            }
+        })
+        .ok();
     let initial = match t.t_initial_c {
         Some(c) if c.is_finite() && c > -crate::ZERO_CELSIUS_K => Some(kelvin(c)),
         Some(c) => {
@@ -440,5 +431,5 @@ fn transient_of(raw: &RawFile, errors: &mut Errors) -> Option<(TransientSettings
         }
         None => None,
     };
-    Some((TransientSettings { dt_s: t.dt, t_end_s: t.t_end, scheme }, initial))
+    options.map(|o| (o, initial))
 }

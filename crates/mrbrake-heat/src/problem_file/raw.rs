@@ -2,6 +2,7 @@
 //! Schema ([`schema`]: structure and doc text from these types, the bounds the reader checks from
 //! the constants below, which the reader uses too).
 
+use mrbrake_fem::workflow::time::AdaptiveKeys;
 use mrbrake_schema::{Bounds, annotate, choice, generate, node_mut, order};
 use mrbrake_units::Dimension;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
@@ -217,8 +218,10 @@ fn boundary_kind(_: &mut SchemaGenerator) -> Schema {
 pub(super) struct RawTransient {
     /// End time (s).
     pub t_end: f64,
-    /// Time step (s), at most `t_end`.
-    pub dt: f64,
+    /// Fixed time step (s), at most `t_end`; or give `adaptive`.
+    pub dt: Option<f64>,
+    /// Adaptive steps instead of `dt`.
+    pub adaptive: Option<AdaptiveKeys>,
     /// Initial temperature, uniform (°C).
     #[serde(rename = "T_initial_C")]
     pub t_initial_c: Option<f64>,
@@ -226,6 +229,7 @@ pub(super) struct RawTransient {
     #[serde(default)]
     #[schemars(schema_with = "scheme")]
     pub scheme: Option<String>,
+    pub max_steps: Option<usize>,
 }
 
 fn scheme(_: &mut SchemaGenerator) -> Schema {

@@ -4,7 +4,9 @@
 use std::path::Path;
 use std::time::Instant;
 
-use serde::Serialize;
+use mrbrake_fem::workflow::time::{Event, Scheme, TimeStep};
+use mrbrake_observe::Flow;
+use serde::{Serialize, Serializer};
 
 use super::{HeatFile, load};
 use crate::solver::HeatSolver;
@@ -84,15 +86,28 @@ pub struct TransientReport {
     /// Largest |generated − out − stored| over the steps \[W\].
     #[serde(rename = "max_energy_imbalance_W")]
     pub max_energy_imbalance_w: f64,
-    /// Scheme used.
-    pub scheme: crate::TimeScheme,
+    /// Scheme used (`"Bdf2"` or `"ImplicitEuler"`, the names this report has always had).
+    #[serde(serialize_with = "scheme_name")]
+    pub scheme: Scheme,
     /// Numeric factorisations (linear) or Newton iterations (radiation) over the run.
     pub factorizations_or_iterations: usize,
+    /// Rejected steps of an adaptive run (absent for fixed steps).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rejected_steps: Option<usize>,
 }
 
-/// Seconds spent per phase.
+/// The scheme as heat reports have always named it (the magnetics report says `"bdf2"`): kept so
+/// that the `--json` output of existing files does not change.
+fn scheme_name<S: Serializer>(scheme: &Scheme, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(match scheme {
+        Scheme::Bdf2 => "Bdf2",
+        Scheme::ImplicitEuler => "ImplicitEuler",
+    })
+}
+
+/// Seconds spent per phase of a heat solve.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Timings {
+pub struct HeatTimings {
     /// Reading the file and the mesh.
     pub read: f64,
     /// Set-up and solves.
@@ -131,7 +146,7 @@ pub struct HeatReport {
     /// Unknowns.
     pub unknowns: usize,
     /// Timings.
-    pub timings_s: Timings,
+    pub timings_s: HeatTimings,
 }
 
 fn probes_at(
@@ -156,25 +171,34 @@ fn run_transient(
     file: &HeatFile,
     path: &Path,
 ) -> Result<(Vec<f64>, TransientReport), HeatError> {
-    let (settings, initial) = file.transient.expect("called for transient files");
+    let (options, initial) = file.transient.expect("called for transient files");
     let start = solver.uniform(initial.unwrap_or_else(|| solver.reference_temperature()));
-    let mut time_s = vec![0.0];
-    let mut probes: Vec<Vec<f64>> =
-        probes_at(solver, &start, file, path)?.into_iter().map(|t| vec![t]).collect();
-    let mut regions: Vec<Vec<f64>> =
-        solver.region_stats(&start).iter().map(|s| vec![celsius(s.max_k)]).collect();
+    let mut time_s = Vec::new();
+    let mut probes: Vec<Vec<f64>> = vec![Vec::new(); file.probes.len()];
+    let mut regions: Vec<Vec<f64>> = vec![Vec::new(); solver.problem().regions.len()];
     let mut worst: f64 = 0.0;
-    let (t, work) = solver.transient(&start, &settings, |time, t, s| {
-        time_s.push(time);
-        for (series, value) in probes.iter_mut().zip(probes_at(s, t, file, path)?) {
-            series.push(value);
+    let mut failure = None;
+    let outcome = solver.transient(&start, &options, |e: &Event<'_, HeatSolver>| {
+        let (s, t) = (e.problem, e.level.u);
+        time_s.push(e.level.t);
+        match probes_at(s, t, file, path) {
+            Ok(values) => probes.iter_mut().zip(values).for_each(|(series, v)| series.push(v)),
+            Err(error) => {
+                failure = Some(error);
+                return Flow::Stop;
+            }
         }
         for (series, stats) in regions.iter_mut().zip(s.region_stats(t)) {
             series.push(celsius(stats.max_k));
         }
-        worst = worst.max(s.energy_balance(t).imbalance_w.abs());
-        Ok(())
+        if e.level.index > 0 {
+            worst = worst.max(s.energy_balance(t).imbalance_w.abs());
+        }
+        Flow::Continue
     })?;
+    if let Some(error) = failure {
+        return Err(error);
+    }
     let report = TransientReport {
         time_s,
         probes: file
@@ -191,10 +215,16 @@ fn run_transient(
             .map(|(r, max_t_c)| RegionSeries { physical: r.tag, max_t_c })
             .collect(),
         max_energy_imbalance_w: worst,
-        scheme: settings.scheme,
-        factorizations_or_iterations: work,
+        scheme: options.scheme,
+        factorizations_or_iterations: if solver.radiation {
+            outcome.newton_iterations
+        } else {
+            outcome.factorizations
+        },
+        rejected_steps: matches!(options.step, TimeStep::Adaptive { .. })
+            .then_some(outcome.rejected_steps),
     };
-    Ok((t, report))
+    Ok((outcome.u, report))
 }
 
 /// Reads, solves and post-processes a heat problem file (`order` overrides the file's); returns
@@ -256,7 +286,7 @@ pub fn solve_file(
         elements: mesh.triangles.len(),
         order: solver.basis().order().degree(),
         unknowns: solver.unknowns(),
-        timings_s: Timings { read, solve, total: start.elapsed().as_secs_f64() },
+        timings_s: HeatTimings { read, solve, total: start.elapsed().as_secs_f64() },
     };
     Ok((report, solver, t))
 }

@@ -6,9 +6,9 @@
 //! Jacobian `ρ σ_e M_e`, constant for a fixed step: elements of linear materials keep a constant
 //! Jacobian, so a linear problem at a fixed step is factorised once.
 
-use mrbrake_fem::assemble::{ElementForm, packed_len, unpack_symmetric};
-use mrbrake_fem::basis::Element;
-use mrbrake_fem::element::TriangleBasis;
+use mrbrake_fem::discretisation::basis::Element;
+use mrbrake_fem::discretisation::element::TriangleBasis;
+use mrbrake_fem::workflow::assemble::{ElementForm, packed_len, unpack_symmetric};
 
 use crate::form::AphiForm;
 

@@ -20,25 +20,25 @@
 //! `P = ½ ω² ∫ σ |â|² 2π r dr dz`.
 //!
 //! Two solvers ([`HarmonicMethod`]): by default the core's reduced-basis sweep
-//! ([`mrbrake_fem::sweep`]: a few real shifted Cholesky factorisations for all frequencies, every
+//! ([`mrbrake_fem::linalg::sweep`]: a few real shifted Cholesky factorisations for all frequencies, every
 //! frequency's residual checked to [`SweepOptions::tolerance`], the energy-norm error bounded);
-//! or one complex sparse LU per frequency ([`mrbrake_fem::lu::SparseLu`], symbolic analysis once),
+//! or one complex sparse LU per frequency ([`mrbrake_fem::linalg::lu::SparseLu`], symbolic analysis once),
 //! the reference the sweep is validated against.
 
 use std::time::Instant;
 
-use mrbrake_fem::lu::SparseLu;
-use mrbrake_fem::sweep::{SweepOptions, SweepReport, sweep};
+use mrbrake_fem::linalg::lu::SparseLu;
+use mrbrake_fem::linalg::sweep::{SweepOptions, SweepReport, sweep};
 use num_complex::Complex64;
 use serde::Serialize;
 
-use super::transient::Probe;
 use super::{Drive, Dynamics, TWO_PI};
 use crate::MagneticsError;
+use mrbrake_fem::mesh::locate::Probe;
 
 /// One complex LU factorisation and solve per frequency.
 fn direct_sweep(
-    pattern: &mrbrake_fem::pattern::SymmetricPattern,
+    pattern: &mrbrake_fem::linalg::pattern::SymmetricPattern,
     jacobian: &[f64],
     mass: &[f64],
     rhs: &[f64],
@@ -120,7 +120,7 @@ pub struct HarmonicPotential {
 /// How a harmonic sweep is solved.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum HarmonicMethod {
-    /// The reduced-basis sweep of [`mrbrake_fem::sweep`] (the default).
+    /// The reduced-basis sweep of [`mrbrake_fem::linalg::sweep`] (the default).
     Reduced(SweepOptions),
     /// One complex sparse LU per frequency (the reference).
     Direct,

@@ -27,20 +27,24 @@
 //! Module map:
 //! - [`Dynamics`]: the set-up shared by both (the static [`Solver`], conductivities per element,
 //!   the element mass matrices, the coil vectors `c_k`), with flux linkage and eddy loss;
-//! - [`transient`]: implicit Euler and BDF2, fixed or adaptive steps, Newton per step;
+//! - [`transient`]: transients on the core's time integrator (implicit Euler and BDF2, fixed or
+//!   adaptive steps, Newton per step), recorded per level; `step` makes [`Dynamics`] the
+//!   integrator's physics (`mrbrake_fem::workflow::time::TransientProblem`: the eddy-current mass,
+//!   the coils as step loads and their flux linkages as auxiliary states);
 //! - [`harmonic`]: complex solves (linear, or linearised about a DC bias);
 //! - [`waveform`]: the drive waveforms.
 
 pub(crate) mod form;
 pub mod harmonic;
+mod step;
 pub mod transient;
 pub mod waveform;
 
-use mrbrake_fem::assemble::{
+use mrbrake_fem::by_order;
+use mrbrake_fem::discretisation::element::TriangleBasis;
+use mrbrake_fem::workflow::assemble::{
     element_matrices, element_matrix_product, packed_len, unpack_symmetric,
 };
-use mrbrake_fem::by_order;
-use mrbrake_fem::element::TriangleBasis;
 
 use crate::MagneticsError;
 use crate::field::Solution;
@@ -196,16 +200,16 @@ impl Dynamics {
     /// elements only, so its cost is the conductors' share of the mesh).
     pub(crate) fn mass_mul(&self, x: &[f64]) -> Vec<f64> {
         match self.solver.order() {
-            mrbrake_fem::dofs::ElementOrder::P1 => mass_product::<3>(self, x),
-            mrbrake_fem::dofs::ElementOrder::P2 => mass_product::<6>(self, x),
+            mrbrake_fem::discretisation::dofs::ElementOrder::P1 => mass_product::<3>(self, x),
+            mrbrake_fem::discretisation::dofs::ElementOrder::P2 => mass_product::<6>(self, x),
         }
     }
 
     /// `Σ_e σ_e x_eᵀ M_e x_e` (element order: the sum does not depend on threads).
     pub(crate) fn mass_norm2(&self, x: &[f64]) -> f64 {
         match self.solver.order() {
-            mrbrake_fem::dofs::ElementOrder::P1 => mass_quadratic::<3>(self, x),
-            mrbrake_fem::dofs::ElementOrder::P2 => mass_quadratic::<6>(self, x),
+            mrbrake_fem::discretisation::dofs::ElementOrder::P1 => mass_quadratic::<3>(self, x),
+            mrbrake_fem::discretisation::dofs::ElementOrder::P2 => mass_quadratic::<6>(self, x),
         }
     }
 
@@ -332,7 +336,7 @@ fn coil_vectors(
 
 /// `∫ φ_i φ_j r dr dz` of every element.
 fn mass_matrices<E: TriangleBasis<N>, const N: usize>(
-    basis: &mrbrake_fem::basis::Basis,
+    basis: &mrbrake_fem::discretisation::basis::Basis,
 ) -> Vec<f64> {
     element_matrices::<E, N>(basis, |_, q, m| {
         let mut p = 0;

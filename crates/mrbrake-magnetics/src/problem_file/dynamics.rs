@@ -54,11 +54,13 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use mrbrake_fem::workflow::time::{Scheme, StepKeys, TimeOptions};
+
 use super::raw::{RawBias, RawFile, RawHarmonic, RawRegion, RawTransient, RawWaveform};
 use super::{ProblemFile, SolveReport};
 use crate::MagneticsError;
 use crate::dynamics::harmonic::{HarmonicPoint, HarmonicPotential};
-use crate::dynamics::transient::{Probe, Scheme, TimeStep, TransientOptions, TransientResult};
+use crate::dynamics::transient::{TransientOptions, TransientResult};
 use crate::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use crate::field::{Solution, phasor_vtu};
 use crate::problem::{Problem, Source};
@@ -76,9 +78,9 @@ pub struct ConductorReport {
     pub source: String,
 }
 
-/// What a problem file asks beyond the static solve.
+/// The dynamic solve a problem file asks for beyond the static one.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Analysis {
+pub enum DynamicSolve {
     /// A transient; its `snapshot_times_s` are the file's `vtu_times` (default: `t_end`).
     Transient(TransientOptions),
     /// Harmonic solves at these frequencies, about the DC state at `bias_a` if given.
@@ -101,7 +103,7 @@ pub struct DynamicsSpec {
     /// The driven coils.
     pub coils: Vec<Coil>,
     /// Transient or harmonic.
-    pub analysis: Analysis,
+    pub analysis: DynamicSolve,
 }
 
 /// A transient in the report: the scheme and the traces (JSON keys of [`TransientResult`]).
@@ -209,7 +211,7 @@ pub(super) fn spec_of(
             )));
         }
         (Some(t), None) => (
-            Analysis::Transient(transient_of(t, file)?),
+            DynamicSolve::Transient(transient_of(t, file)?),
             waveform_of(t.waveform.as_ref(), dir, file)?,
         ),
         // The waveform of a harmonic solve is the phasor's `exp(+jωt)`; the coils' is unused.
@@ -336,51 +338,23 @@ fn coils_of(
 
 /// The `[transient]` table as solver options (the waveform goes to the coils separately).
 fn transient_of(raw: &RawTransient, file: &str) -> Result<TransientOptions, MagneticsError> {
-    let scheme = match raw.scheme.as_deref().unwrap_or("bdf2") {
-        "bdf2" => Scheme::Bdf2,
-        "euler" => Scheme::ImplicitEuler,
-        other => {
-            return Err(input(format!(
-                "{file}: transient.scheme = \"{other}\" is not known; allowed: \"bdf2\", \"euler\""
-            )));
-        }
+    let keys = StepKeys {
+        t_end: raw.t_end,
+        dt: raw.dt,
+        adaptive: raw.adaptive,
+        scheme: raw.scheme.as_deref(),
+        max_steps: raw.max_steps,
     };
-    let t_end = raw.t_end;
-    if !super::raw::DURATION.contains(t_end) {
-        return Err(input(format!("{file}: transient.t_end = {t_end} s must be finite and > 0")));
-    }
-    let step = match (raw.dt, &raw.adaptive) {
-        (Some(_), Some(_)) => {
-            return Err(input(format!(
-                "{file}: [transient] takes either `dt` (fixed steps) or `adaptive`, not both"
-            )));
-        }
-        (None, None) => {
-            return Err(input(format!(
-                "{file}: [transient] needs `dt` (s) or `adaptive = {{ rtol, dt_initial }}`"
-            )));
-        }
-        (Some(dt), None) => {
-            if !super::raw::DURATION.contains(dt) {
-                return Err(input(format!("{file}: transient.dt = {dt} s must be finite and > 0")));
-            }
-            if t_end < dt {
-                return Err(input(format!(
-                    "{file}: transient.t_end = {t_end} s is shorter than transient.dt = {dt} s"
-                )));
-            }
-            TimeStep::Fixed { dt_s: dt }
-        }
-        (None, Some(a)) => TimeStep::Adaptive { rtol: a.rtol, dt_initial_s: a.dt_initial },
-    };
-    let mut options = TransientOptions::new(t_end, scheme, step);
-    options.energy = true;
-    if let Some(m) = raw.max_steps {
-        options.max_steps = m;
-    }
-    options.snapshot_times_s = vtu_times_of(raw.vtu_times.as_deref(), t_end, file)?;
-    options.validate().map_err(|e| input(format!("{file}: [transient]: {e}")))?;
-    Ok(options)
+    let time = TimeOptions::from_keys(&keys).map_err(|errors| {
+        let first = &errors.errors()[0];
+        input(format!("{file}: transient.{} {}", first.field, first.message))
+    })?;
+    Ok(TransientOptions {
+        time,
+        probes: Vec::new(),
+        energy: true,
+        snapshot_times_s: vtu_times_of(raw.vtu_times.as_deref(), raw.t_end, file)?,
+    })
 }
 
 /// `vtu_times` (default: the final state), checked to lie in `[0, t_end]` and increase.
@@ -503,7 +477,11 @@ fn is_coil(problem: &Problem, physical: u32) -> bool {
     matches!(problem.region(physical).and_then(|x| x.source), Some(Source::Coil { .. }))
 }
 
-fn harmonic_of(raw: &RawHarmonic, coils: &[u32], file: &str) -> Result<Analysis, MagneticsError> {
+fn harmonic_of(
+    raw: &RawHarmonic,
+    coils: &[u32],
+    file: &str,
+) -> Result<DynamicSolve, MagneticsError> {
     if raw.frequencies_hz.is_empty() {
         return Err(input(format!("{file}: harmonic.frequencies_Hz is empty")));
     }
@@ -541,7 +519,11 @@ fn harmonic_of(raw: &RawHarmonic, coils: &[u32], file: &str) -> Result<Analysis,
             chosen.iter().enumerate().map(index_of).collect::<Result<Vec<_>, _>>()?
         }
     };
-    Ok(Analysis::Harmonic { frequencies_hz: raw.frequencies_hz.clone(), bias_a, vtu_frequencies })
+    Ok(DynamicSolve::Harmonic {
+        frequencies_hz: raw.frequencies_hz.clone(),
+        bias_a,
+        vtu_frequencies,
+    })
 }
 
 /// The most frequencies one `[harmonic]` table may list (every one's potential is kept while the
@@ -589,8 +571,12 @@ fn bias_of(raw: &RawBias, coils: &[u32], file: &str) -> Result<Vec<f64>, Magneti
 
 /// An input error of the library gets the problem file's name in front.
 fn named(error: MagneticsError, file: &str) -> MagneticsError {
+    use mrbrake_error::Kind;
     match error {
         MagneticsError::Input(message) => MagneticsError::Input(format!("{file}: {message}")),
+        MagneticsError::Time(e) if e.kind() == mrbrake_error::ErrorKind::Input => {
+            MagneticsError::Input(format!("{file}: {e}"))
+        }
         other => other,
     }
 }
@@ -611,11 +597,7 @@ pub(super) fn run(
         .collect();
     let mut dynamics =
         Dynamics::new(solver, &conductors, spec.coils.clone()).map_err(|e| named(e, &file))?;
-    let probes: Vec<Probe> = problem_file
-        .probes
-        .iter()
-        .map(|p| Probe { name: p.name.clone(), point: p.point })
-        .collect();
+    let probes = problem_file.probes.clone();
     let mut report = DynamicsReport {
         conductors: spec.conductors.clone(),
         transient: None,
@@ -626,12 +608,12 @@ pub(super) fn run(
         dynamics_s: 0.0,
     };
     match &spec.analysis {
-        Analysis::Transient(options) => {
+        DynamicSolve::Transient(options) => {
             let options = TransientOptions { probes, ..options.clone() };
             let result = dynamics.transient(&options).map_err(|e| named(e, &file))?;
-            report.transient = Some(TransientReport { scheme: options.scheme, result });
+            report.transient = Some(TransientReport { scheme: options.time.scheme, result });
         }
-        Analysis::Harmonic { frequencies_hz, bias_a, vtu_frequencies } => {
+        DynamicSolve::Harmonic { frequencies_hz, bias_a, vtu_frequencies } => {
             let potentials = dynamics
                 .harmonic_potentials(frequencies_hz, bias_a.as_deref())
                 .map_err(|e| named(e, &file))?;

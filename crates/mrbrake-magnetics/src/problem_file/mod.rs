@@ -42,6 +42,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use mrbrake_fem::mesh::Mesh;
+use mrbrake_fem::mesh::locate::Probe;
 
 use crate::ElementOrder;
 use crate::MagneticsError;
@@ -58,16 +59,9 @@ pub use dynamics::{DynamicsReport, DynamicsSpec, vtu_files};
 pub use raw::schema;
 use raw::{RawBoundary, RawFile, RawRegion, RawSolver};
 use report::probe_report;
-pub use report::{CoilReport, LineReport, ProbeReport, RegionReport, SolveReport, Timings};
-
-/// A named point where B is reported (coordinates in metres).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Probe {
-    /// Name from the file.
-    pub name: String,
-    /// `[r, z]` in metres.
-    pub point: [f64; 2],
-}
+pub use report::{
+    CoilReport, LineReport, MagneticsTimings, ProbeReport, RegionReport, SolveReport,
+};
 
 /// A named segment along which B is reported (metres).
 #[derive(Debug, Clone, PartialEq)]
@@ -124,7 +118,7 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     let mesh_path = dir.join(&raw.mesh);
     let start = Instant::now();
     let (gmsh, scale) =
-        mrbrake_fem::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
+        mrbrake_fem::mesh::gmsh::read_problem_mesh(path, &raw.mesh, raw.length_unit.as_deref())?;
     let mesh_read_s = start.elapsed().as_secs_f64();
     let regions = regions_of(&raw.region, dir, &file)?;
     let boundaries = boundaries_of(&raw.boundary, &gmsh.mesh, scale, &file, &mesh_path)?;
@@ -462,7 +456,7 @@ pub fn solve_file_with_order(
     }
     let incremental_s = inc_start.elapsed().as_secs_f64();
     let t = solution.report.timings;
-    let timings_s = Timings {
+    let timings_s = MagneticsTimings {
         read,
         assemble: t.assemble_s,
         solve: solver.symbolic_factorisation_s() + t.factor_s + t.solve_s + incremental_s,

@@ -2,6 +2,7 @@
 //! Schema ([`schema`]: structure and doc text from these types, the bounds the reader checks from
 //! the constants below, which the reader uses too).
 
+use mrbrake_fem::workflow::time::AdaptiveKeys;
 use mrbrake_schema::{Bounds, annotate, choice, generate, node_mut, order};
 use mrbrake_units::Dimension;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
@@ -285,7 +286,7 @@ pub(super) struct RawTransient {
     /// Fixed time step (s); or give `adaptive`.
     pub dt: Option<f64>,
     /// Adaptive steps instead of `dt`.
-    pub adaptive: Option<RawAdaptive>,
+    pub adaptive: Option<AdaptiveKeys>,
     /// The time integrator.
     #[serde(default)]
     #[schemars(schema_with = "scheme")]
@@ -305,16 +306,6 @@ fn scheme(_: &mut SchemaGenerator) -> Schema {
         json!("`bdf2` (second order, variable step) or `euler` (implicit Euler)."),
     );
     schema
-}
-
-/// `transient.adaptive`: step-size control.
-#[derive(Debug, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawAdaptive {
-    /// Relative tolerance of the local error estimate.
-    pub rtol: f64,
-    /// The first step (s).
-    pub dt_initial: f64,
 }
 
 /// `transient.waveform`.

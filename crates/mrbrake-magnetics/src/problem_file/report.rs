@@ -70,9 +70,9 @@ pub struct LineReport {
     pub points: Vec<ProbeReport>,
 }
 
-/// Timings of a file-driven solve (s).
+/// Timings of a file-driven magnetic solve (s).
 #[derive(Debug, Clone, Copy, Default, Serialize)]
-pub struct Timings {
+pub struct MagneticsTimings {
     /// Reading the problem and mesh files.
     pub read: f64,
     /// Assembly (all Newton iterations and line-search trials).
@@ -117,7 +117,7 @@ pub struct SolveReport {
     /// Free unknowns.
     pub unknowns: usize,
     /// Timings (s).
-    pub timings_s: Timings,
+    pub timings_s: MagneticsTimings,
     /// Conductivities and the transient or harmonic solve (absent for a static file).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
     pub dynamics: Option<super::DynamicsReport>,

@@ -12,7 +12,7 @@
 //! quality refinement. No external mesher is needed.
 //!
 //! ```
-//! use mrbrake_fem::mesher::{triangulate, MeshOptions, Pslg, SizeField};
+//! use mrbrake_fem::mesh::mesher::{triangulate, MeshOptions, Pslg, SizeField};
 //! let mut g = Pslg::new();
 //! g.add_rectangle(0.0, 0.01, 0.0, 0.01).unwrap();
 //! g.add_rectangle(0.01, 0.0105, 0.0, 0.01).unwrap(); // a 0.5 mm gap beside a 10 mm square

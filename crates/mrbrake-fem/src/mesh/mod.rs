@@ -6,6 +6,17 @@
 //! [`Mesh::validate`] checks the invariants every consumer relies on (indices in range, tag arrays of
 //! the right length, `r >= 0`, non-degenerate counter-clockwise triangles); the Gmsh reader, the
 //! structured generator and the mesher all produce meshes that pass it.
+//!
+//! The mesh side of the core, beside the [`Mesh`] type: [`structured`] (graded rectangle and
+//! half-disc meshes for tests and simple geometries), [`mesher`] (constrained Delaunay with
+//! refinement), [`gmsh`] (MSH 2.2 / 4.1 reader), [`vtu`] (ParaView output) and [`locate`] (point
+//! location).
+
+pub mod gmsh;
+pub mod locate;
+pub mod mesher;
+pub mod structured;
+pub mod vtu;
 
 use crate::FemError;
 
@@ -109,7 +120,7 @@ impl Mesh {
         }
         let scale = self.size_scale();
         // Indices here are the mesh's own, 0-based; a mesh read from a file is checked in the
-        // file's own tags first (`crate::gmsh`), so these messages are for meshes built in code.
+        // file's own tags first (`crate::mesh::gmsh`), so these messages are for meshes built in code.
         for (i, p) in self.nodes.iter().enumerate() {
             if !p[0].is_finite() || !p[1].is_finite() {
                 return Err(FemError::Input(format!(

@@ -17,7 +17,7 @@
 //! Element matrices are symmetric and stored as their upper triangle packed row by row (pairs
 //! `(i, j)`, `i <= j`: (0,0) (0,1) … (0,N−1) (1,1) …), [`packed_len`]`(N)` values; global matrices
 //! as the upper triangle on a [`SymmetricPattern`] of the free DOFs. Constrained DOFs (see
-//! [`crate::constraints`]) are dropped from rows and columns: their values act through the
+//! [`crate::workflow::constraints`]) are dropped from rows and columns: their values act through the
 //! residual. Constant DOF couplings outside the element loop (a boundary integral, e.g. the
 //! asymptotic open boundary of magnetostatics) are added with [`Assembly::set_couplings`].
 //!
@@ -30,11 +30,11 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use crate::FemError;
-use crate::basis::{Basis, Element, QuadraturePoint};
-use crate::constraints::Constraints;
-use crate::dofs::ElementOrder;
-use crate::element::{ElementTriP1, ElementTriP2, TriangleBasis};
-use crate::pattern::{CONSTRAINED, SymmetricPattern};
+use crate::discretisation::basis::{Basis, Element, QuadraturePoint};
+use crate::discretisation::dofs::ElementOrder;
+use crate::discretisation::element::{ElementTriP1, ElementTriP2, TriangleBasis};
+use crate::linalg::pattern::{CONSTRAINED, SymmetricPattern};
+use crate::workflow::constraints::Constraints;
 
 /// Elements per parallel task in the element loops.
 pub const MIN_ELEMENTS_PER_TASK: usize = 2048;
@@ -100,16 +100,16 @@ pub fn element_matrix_product<const N: usize>(
 }
 
 /// Calls the generic function `f::<Basis, N>(args)` instantiated for the element order `order`
-/// (a [`crate::dofs::ElementOrder`]): `ElementTriP1, 3` or `ElementTriP2, 6`.
+/// (a [`crate::discretisation::dofs::ElementOrder`]): `ElementTriP1, 3` or `ElementTriP2, 6`.
 #[macro_export]
 macro_rules! by_order {
     ($order:expr, $($f:ident)::+ ( $($arg:expr),* $(,)? )) => {
         match $order {
-            $crate::dofs::ElementOrder::P1 => {
-                $($f)::+::<$crate::element::ElementTriP1, 3>($($arg),*)
+            $crate::discretisation::dofs::ElementOrder::P1 => {
+                $($f)::+::<$crate::discretisation::element::ElementTriP1, 3>($($arg),*)
             }
-            $crate::dofs::ElementOrder::P2 => {
-                $($f)::+::<$crate::element::ElementTriP2, 6>($($arg),*)
+            $crate::discretisation::dofs::ElementOrder::P2 => {
+                $($f)::+::<$crate::discretisation::element::ElementTriP2, 6>($($arg),*)
             }
         }
     };
@@ -501,10 +501,10 @@ fn scatter<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::basis::Weighting;
-    use crate::dofs::ElementOrder;
-    use crate::element::ElementTriP2;
-    use crate::structured::{SideTags, graded_lines, rectangle_mesh};
+    use crate::discretisation::basis::Weighting;
+    use crate::discretisation::dofs::ElementOrder;
+    use crate::discretisation::element::ElementTriP2;
+    use crate::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
     use std::sync::Arc;
 
     /// The element-by-element product equals the product with the assembled matrix (P2 mass

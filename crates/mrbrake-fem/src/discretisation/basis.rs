@@ -16,10 +16,10 @@
 //!
 //! ```
 //! use std::sync::Arc;
-//! use mrbrake_fem::basis::{Basis, Weighting};
-//! use mrbrake_fem::dofs::ElementOrder;
-//! use mrbrake_fem::element::ElementTriP1;
-//! use mrbrake_fem::structured::{SideTags, graded_lines, rectangle_mesh};
+//! use mrbrake_fem::discretisation::basis::{Basis, Weighting};
+//! use mrbrake_fem::discretisation::dofs::ElementOrder;
+//! use mrbrake_fem::discretisation::element::ElementTriP1;
+//! use mrbrake_fem::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 //!
 //! let r = graded_lines(0.0, 1.0, 4, 1.0);
 //! let z = graded_lines(0.0, 1.0, 4, 1.0);
@@ -39,10 +39,10 @@
 use std::marker::PhantomData;
 use std::sync::Arc;
 
-use crate::dofs::{DofMap, ElementOrder};
-use crate::element::{P1Triangle, TriangleBasis};
+use crate::discretisation::dofs::{DofMap, ElementOrder};
+use crate::discretisation::element::{P1Triangle, TriangleBasis};
+use crate::discretisation::quadrature::{TrianglePoint, triangle_rule};
 use crate::mesh::Mesh;
-use crate::quadrature::{TrianglePoint, triangle_rule};
 
 /// How the quadrature weight is scaled.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -206,8 +206,8 @@ impl<'a, E: TriangleBasis<N>, const N: usize> Element<'a, E, N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::element::ElementTriP2;
-    use crate::structured::{SideTags, graded_lines, rectangle_mesh};
+    use crate::discretisation::element::ElementTriP2;
+    use crate::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 
     fn square(order: ElementOrder, weighting: Weighting) -> Basis {
         let r = graded_lines(0.5, 1.5, 3, 1.3);

@@ -13,8 +13,8 @@
 //! unless prescribed), and DOFs that belong to no element (constrained to zero). Where prescribed
 //! values overlap (a corner shared by two boundaries), the last value prescribed wins.
 
-use crate::dofs::DofMap;
-use crate::pattern::CONSTRAINED;
+use crate::discretisation::dofs::DofMap;
+use crate::linalg::pattern::CONSTRAINED;
 
 /// Which DOFs are free (with their index among the free DOFs) and the values of the constrained
 /// ones.
@@ -174,8 +174,8 @@ impl ConstraintsBuilder<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dofs::ElementOrder;
-    use crate::structured::{SideTags, graded_lines, rectangle_mesh};
+    use crate::discretisation::dofs::ElementOrder;
+    use crate::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
     use std::sync::Arc;
 
     fn map(order: ElementOrder) -> DofMap {

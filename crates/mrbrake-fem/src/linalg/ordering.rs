@@ -19,7 +19,7 @@
 
 use std::sync::atomic::{AtomicU32, Ordering};
 
-use crate::pattern::SymmetricPattern;
+use crate::linalg::pattern::SymmetricPattern;
 
 /// Subsets of at most this many vertices are numbered as they come.
 pub const LEAF_SIZE: usize = 8;
@@ -211,7 +211,7 @@ struct Separated {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cholesky::SparseCholesky;
+    use crate::linalg::cholesky::SparseCholesky;
 
     /// P1 pattern of an `nx × ny` grid of squares split into triangles, and its node coordinates.
     fn grid(nx: usize, ny: usize) -> (SymmetricPattern, Vec<[f64; 2]>) {

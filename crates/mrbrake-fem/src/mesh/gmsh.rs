@@ -6,7 +6,7 @@
 //! only) carry the tag of their physical curve. Triangles outside every physical surface are an
 //! error (the solver would not know their material); lines outside physical curves are dropped.
 //! Second-order files (`gmsh -order 2`) are therefore read as the straight-sided mesh of their
-//! corner nodes: the mid-side nodes are dropped, and the P2 space of [`crate::dofs::DofMap`] puts
+//! corner nodes: the mid-side nodes are dropped, and the P2 space of [`crate::discretisation::dofs::DofMap`] puts
 //! its edge DOFs at the midpoints of the straight edges (a curved boundary or interface is
 //! approximated by its chords, as with first-order files).
 //! Nodes not used by any triangle (geometry points, construction nodes) are removed and the rest

@@ -8,9 +8,20 @@
 //! For a handful of points, building the grid (two passes over the triangles with a bucket range
 //! each) costs more than testing every triangle once: [`locate_by_scan`] does that, with the same
 //! answer (the lowest-numbered triangle containing the point).
+//!
+//! A [`Probe`] is a named point where a physics samples its field (a problem file's `[[probe]]`).
 
-use crate::element::P1Triangle;
+use crate::discretisation::element::P1Triangle;
 use crate::mesh::Mesh;
+
+/// A named point where a field is sampled (every physics' `[[probe]]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Probe {
+    /// Name in the output.
+    pub name: String,
+    /// `[r, z]` (m).
+    pub point: [f64; 2],
+}
 
 /// Bucket grid for point-in-triangle queries on one mesh.
 #[derive(Debug, Clone)]
@@ -148,7 +159,7 @@ fn first_containing(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::structured::{SideTags, graded_lines, rectangle_mesh};
+    use crate::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 
     #[test]
     fn finds_points_and_rejects_outside() {

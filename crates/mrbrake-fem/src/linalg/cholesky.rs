@@ -2,7 +2,7 @@
 //!
 //! The symbolic step (fill-reducing ordering, elimination tree, supernode partition) depends only
 //! on the [`SymmetricPattern`]; the ordering is faer's AMD or one given by the caller (e.g. the
-//! geometric nested dissection of [`crate::ordering`]); it is computed in [`SparseCholesky::new`]
+//! geometric nested dissection of [`crate::linalg::ordering`]); it is computed in [`SparseCholesky::new`]
 //! and shared by every later numeric factorisation: all Newton iterations and all solves on the
 //! same mesh. The numeric factor and its workspace are allocated once and overwritten.
 //!
@@ -30,6 +30,7 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltError;
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
@@ -39,7 +40,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
 use crate::FemError;
-use crate::pattern::SymmetricPattern;
+use crate::linalg::pattern::SymmetricPattern;
 
 /// Reusable sparse `L Lᵀ` factorisation for matrices sharing one symmetric pattern.
 pub struct SparseCholesky {
@@ -176,7 +177,8 @@ impl SparseCholesky {
     }
 
     /// Numeric factorisation of the matrix with upper-triangle `values` (pattern order). Fails with
-    /// [`FemError::Numerical`] when the matrix is not numerically positive definite.
+    /// [`FemError::NotPositiveDefinite`] (naming the row of the failing pivot) when the matrix is not
+    /// numerically positive definite.
     pub fn factorize(&mut self, values: &[f64]) -> Result<(), FemError> {
         self.factorised = false;
         self.l_values_single.clear();
@@ -201,8 +203,9 @@ impl SparseCholesky {
                 MemStack::new(&mut self.factor_workspace),
                 Default::default(),
             )
-            .map_err(|e| {
-                FemError::Numerical(format!("sparse Cholesky factorisation failed: {e:?}"))
+            .map_err(|LltError::NonPositivePivot { index }| FemError::NotPositiveDefinite {
+                row: self.order.get(index).copied().unwrap_or(index),
+                rows: self.order.len(),
             })?;
         self.factorised = true;
         Ok(())
@@ -681,14 +684,14 @@ fn inverse_permutation(order: &[usize], n: usize) -> Result<Vec<usize>, FemError
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pattern::SymmetricPattern;
+    use crate::linalg::pattern::SymmetricPattern;
 
     #[test]
     fn solves_a_1d_laplacian() {
         // Chain of 2-node "elements" with stiffness [1 -1; -1 1], first node constrained.
         let n = 50;
         let mut dofs = Vec::new();
-        dofs.extend([crate::pattern::CONSTRAINED, 0]);
+        dofs.extend([crate::linalg::pattern::CONSTRAINED, 0]);
         for i in 0..n - 1 {
             dofs.extend([i, i + 1]);
         }
@@ -716,7 +719,7 @@ mod tests {
     #[test]
     fn custom_order_gives_the_same_solution_and_bad_orders_are_errors() {
         let n = 30;
-        let mut dofs = vec![crate::pattern::CONSTRAINED, 0];
+        let mut dofs = vec![crate::linalg::pattern::CONSTRAINED, 0];
         for i in 0..n - 1 {
             dofs.extend([i, i + 1]);
         }
@@ -746,7 +749,7 @@ mod tests {
     fn supernodal_solve_matches_the_matrix() {
         let side = 120;
         let node = |i: usize, j: usize| {
-            if i == 0 { crate::pattern::CONSTRAINED } else { (i - 1) * side + j }
+            if i == 0 { crate::linalg::pattern::CONSTRAINED } else { (i - 1) * side + j }
         };
         let mut dofs = Vec::new();
         for i in 0..side {
@@ -806,7 +809,7 @@ mod tests {
         let mut values = vec![0.0; pattern.nnz()];
         pattern.assemble(&upper, &mut values);
         let xy: Vec<[f64; 2]> = (0..n).map(|v| [(v % side) as f64, (v / side) as f64]).collect();
-        let order = crate::ordering::nested_dissection(&pattern, &xy);
+        let order = crate::linalg::ordering::nested_dissection(&pattern, &xy);
         let mut chol = SparseCholesky::with_order(&pattern, 1, Some(&order)).unwrap();
         assert!(matches!(chol.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)));
         let plan = chol.subtree_plan.as_ref().expect("nested dissection splits the tree");

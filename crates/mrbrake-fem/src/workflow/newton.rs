@@ -52,8 +52,9 @@
 //! does not reach it within the iteration limit the Jacobian is factorised as usual, so the
 //! outcome (the stopping rule on the true residual) is the same and only the work changes.
 //!
-//! A step that cannot be found (40 trials), a non-finite residual, a failed factorisation or the
-//! iteration limit gives a [`NewtonError`] with the whole residual history. A linear system
+//! A step that cannot be found (40 trials), a non-finite residual, a failed factorisation (a
+//! Jacobian that is not positive definite, with the failing pivot's unknown) or the iteration limit
+//! gives a [`NewtonError`]: the [`NewtonFailure`] that stopped it and the whole residual history. A linear system
 //! ([`NonlinearSystem::is_linear`]) is accepted after its first step unless the direct solver's
 //! round-off is abnormal (ill-conditioning).
 //!
@@ -67,12 +68,12 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::FemError;
-use crate::assemble::{Assembly, ElementForm};
-use crate::cholesky::SparseCholesky;
-use crate::constraints::Constraints;
-use crate::low_rank::{LowRankTerm, Woodbury};
-use crate::ordering::nested_dissection;
-use crate::pattern::{CONSTRAINED, SymmetricPattern};
+use crate::linalg::cholesky::SparseCholesky;
+use crate::linalg::low_rank::{LowRankTerm, Woodbury};
+use crate::linalg::ordering::nested_dissection;
+use crate::linalg::pattern::{CONSTRAINED, SymmetricPattern};
+use crate::workflow::assemble::{Assembly, ElementForm};
+use crate::workflow::constraints::Constraints;
 
 /// A non-linear system `R(u) = 0` on the free DOFs of a full DOF vector `u`, with a symmetric
 /// Jacobian that is positive definite (the gradient of a convex energy).
@@ -89,7 +90,7 @@ pub trait NonlinearSystem {
 
     /// Dense symmetric rank-one terms `w c cᵀ` of the Jacobian besides its sparse part (none by
     /// default), constant during a solve: the solver applies them with the sparse factor by the
-    /// Woodbury formula ([`crate::low_rank`]); the residual must include their contribution.
+    /// Woodbury formula ([`crate::linalg::low_rank`]); the residual must include their contribution.
     fn low_rank(&self) -> &[LowRankTerm] {
         &[]
     }
@@ -214,16 +215,68 @@ pub struct NewtonReport {
 /// Newton failed: why, and the history of the iterations up to the failure.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
-    "Newton-Raphson failed: {reason}; residual history (relative): {}",
+    "Newton-Raphson failed: {failure}; residual history (relative): {}",
     format_history(history)
 )]
 pub struct NewtonError {
     /// Why it stopped.
-    pub reason: String,
+    pub failure: NewtonFailure,
     /// One entry per iteration.
     pub history: Vec<NewtonStep>,
     /// Residual scale of the stopping rule.
     pub residual_scale: f64,
+}
+
+/// Why a Newton solve failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum NewtonFailure {
+    /// The stopping rule was not met within the iteration limit.
+    #[error("no convergence in {iterations} Newton iterations")]
+    IterationLimit {
+        /// The limit ([`NewtonOptions::max_iterations`]).
+        iterations: usize,
+    },
+    /// The Jacobian is not positive definite: its Cholesky factorisation met a pivot that is not
+    /// positive (a non-monotone material law, or a source that grows faster than the losses).
+    #[error(
+        "the Jacobian is not positive definite (the Cholesky pivot of unknown {row} of {rows} is \
+         not positive): is a material law non-monotone?"
+    )]
+    NotPositiveDefinite {
+        /// The free DOF whose pivot failed.
+        row: usize,
+        /// The number of free DOFs.
+        rows: usize,
+    },
+    /// The residual is NaN or infinite.
+    #[error("the residual is not finite (NaN or infinite material value?)")]
+    NonFiniteResidual,
+    /// No trial along the Newton direction lowered the energy.
+    #[error("the line search found no step lowering the energy in {trials} trials")]
+    LineSearch {
+        /// Trials made ([`NewtonOptions::max_line_search_trials`]).
+        trials: usize,
+    },
+    /// Another failure of the linear algebra (a singular low-rank correction, memory).
+    #[error("{0}")]
+    LinearAlgebra(String),
+}
+
+impl From<FemError> for NewtonFailure {
+    fn from(error: FemError) -> Self {
+        match error {
+            FemError::NotPositiveDefinite { row, rows } => Self::NotPositiveDefinite { row, rows },
+            other => Self::LinearAlgebra(other.to_string()),
+        }
+    }
+}
+
+impl NewtonError {
+    /// A failure before any iteration (e.g. the factorisation of a linear step's Jacobian).
+    pub fn before_iterating(failure: impl Into<NewtonFailure>, residual_scale: f64) -> Self {
+        Self { failure: failure.into(), history: Vec::new(), residual_scale }
+    }
 }
 
 impl mrbrake_error::Kind for NewtonError {
@@ -266,7 +319,7 @@ pub struct NewtonSolver {
 /// The fill-reducing elimination order of the sparse factor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EliminationOrder {
-    /// Geometric nested dissection ([`crate::ordering`]): the least work per numeric
+    /// Geometric nested dissection ([`crate::linalg::ordering`]): the least work per numeric
     /// factorisation on 2D meshes and two independent halves for parallel solves; the default,
     /// for Newton's many factorisations.
     NestedDissection,
@@ -280,7 +333,7 @@ pub enum EliminationOrder {
 impl NewtonSolver {
     /// The solver for systems on `pattern`, with a nested-dissection elimination order from the
     /// free DOFs' coordinates `free_coordinates` (less work per numeric factorisation than AMD on
-    /// 2D meshes, see [`crate::ordering`]). `threads` is the parallelism of the numeric
+    /// 2D meshes, see [`crate::linalg::ordering`]). `threads` is the parallelism of the numeric
     /// factorisation ([`SparseCholesky::new`]).
     pub fn new(
         pattern: &Arc<SymmetricPattern>,
@@ -399,9 +452,7 @@ impl NewtonSolver {
         self.work.resize(n_free);
         let free_index = system.constraints().free_index().to_vec();
         let mut iteration = Iteration::new(free_index, u.clone(), scale);
-        self.woodbury
-            .set_terms(system.low_rank())
-            .map_err(|e| iteration.failure(&e.to_string()))?;
+        self.woodbury.set_terms(system.low_rank()).map_err(|e| iteration.failure(e))?;
         let t = Instant::now();
         system.evaluate(u, &mut iteration.residual, Some(&mut self.values));
         iteration.timings.assemble_s += t.elapsed().as_secs_f64();
@@ -415,7 +466,7 @@ impl NewtonSolver {
         iteration.timings.total_s = start.elapsed().as_secs_f64();
         if !converged {
             return Err(NewtonError {
-                reason: format!("no convergence in {} Newton iterations", options.max_iterations),
+                failure: NewtonFailure::IterationLimit { iterations: options.max_iterations },
                 history: iteration.history,
                 residual_scale: scale,
             });
@@ -433,7 +484,7 @@ impl NewtonSolver {
     ) -> Result<StepOutcome, NewtonError> {
         let r_norm = norm2(&it.residual);
         if !r_norm.is_finite() {
-            return Err(it.failure("the residual is not finite (NaN or infinite material value?)"));
+            return Err(it.failure(NewtonFailure::NonFiniteResidual));
         }
         if r_norm <= options.residual_tolerance * it.scale {
             return Ok(StepOutcome::Converged);
@@ -455,7 +506,9 @@ impl NewtonSolver {
             cg_iterations,
         });
         if !accepted {
-            return Err(it.failure("the line search found no step lowering the energy"));
+            return Err(
+                it.failure(NewtonFailure::LineSearch { trials: options.max_line_search_trials })
+            );
         }
         it.previous = Some((r_norm, (alpha - 1.0).abs() <= f64::EPSILON));
         std::mem::swap(&mut it.u, &mut it.trial);
@@ -490,25 +543,21 @@ impl NewtonSolver {
             let t = Instant::now();
             let outcome = self
                 .stale_factor_cg(&it.residual, forcing, &mut it.delta, options)
-                .map_err(|e| it.failure(&e.to_string()))?;
+                .map_err(|e| it.failure(e))?;
             it.timings.solve_s += t.elapsed().as_secs_f64();
             if let Some(cg_iterations) = outcome {
                 return Ok(cg_iterations);
             }
         }
         let t = Instant::now();
-        if let Err(e) = self.factorize() {
-            return Err(it.failure(&format!(
-                "{e} (Jacobian not positive definite: is a material law non-monotone?)"
-            )));
-        }
+        self.factorize().map_err(|e| it.failure(e))?;
         it.factorizations += 1;
         it.timings.factor_s += t.elapsed().as_secs_f64();
         let t = Instant::now();
         for (d, r) in it.delta.iter_mut().zip(&it.residual) {
             *d = -r;
         }
-        self.solve_jacobian_in_place(&mut it.delta).map_err(|e| it.failure(&e.to_string()))?;
+        self.solve_jacobian_in_place(&mut it.delta).map_err(|e| it.failure(e))?;
         it.timings.solve_s += t.elapsed().as_secs_f64();
         Ok(0)
     }
@@ -671,9 +720,9 @@ impl Iteration {
         }
     }
 
-    fn failure(&self, reason: &str) -> NewtonError {
+    fn failure(&self, failure: impl Into<NewtonFailure>) -> NewtonError {
         NewtonError {
-            reason: reason.to_string(),
+            failure: failure.into(),
             history: self.history.clone(),
             residual_scale: self.scale,
         }

@@ -14,14 +14,14 @@
 //! whose residual `∫ g(x, u_h) φ_i` and Jacobian `∫ ∂g/∂u φ_i φ_j` (symmetric; positive
 //! semi-definite when `g` increases with `u`, as an outflow does) are re-evaluated at every
 //! iterate and added to an assembly's residual and Jacobian by the caller's
-//! [`crate::newton::NonlinearSystem`].
+//! [`crate::workflow::newton::NonlinearSystem`].
 
 use crate::FemError;
-use crate::assemble::{Assembly, LocalMatrix};
-use crate::basis::{Basis, Weighting};
-use crate::dofs::ElementOrder;
-use crate::pattern::CONSTRAINED;
-use crate::quadrature::gauss_legendre_unit;
+use crate::discretisation::basis::{Basis, Weighting};
+use crate::discretisation::dofs::ElementOrder;
+use crate::discretisation::quadrature::gauss_legendre_unit;
+use crate::linalg::pattern::CONSTRAINED;
+use crate::workflow::assemble::{Assembly, LocalMatrix};
 
 /// The values a boundary form needs at one quadrature point of an edge.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -266,7 +266,7 @@ impl EdgeFlux {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::structured::{SideTags, graded_lines, rectangle_mesh};
+    use crate::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
     use std::sync::Arc;
 
     /// The axisymmetric "mass" `∫ φ_a φ_b r dl` summed over all pairs is `∫ r dl`: on the side
@@ -294,7 +294,7 @@ mod tests {
     /// matches central differences of the residual.
     #[test]
     fn edge_flux_residual_total_and_jacobian() {
-        use crate::constraints::Constraints;
+        use crate::workflow::constraints::Constraints;
         let r = graded_lines(0.0, 2.0, 3, 1.0);
         let z = graded_lines(0.0, 3.0, 4, 1.2);
         let sides = SideTags { r_min: 1, r_max: 2, z_min: 3, z_max: 4 };

@@ -34,8 +34,8 @@
 use faer::{Mat, c64};
 
 use crate::FemError;
-use crate::cholesky::SparseCholesky;
-use crate::pattern::SymmetricPattern;
+use crate::linalg::cholesky::SparseCholesky;
+use crate::linalg::pattern::SymmetricPattern;
 
 /// Settings of a sweep.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,7 +1,7 @@
 //! Sparse LU for the symmetric but not Hermitian systems of time-harmonic problems, and any scalar.
 //!
 //! A time-harmonic eddy-current system `(K + jωσM) x = f` is complex symmetric (`Aᵀ = A`, not
-//! `Aᴴ = A`), so the Cholesky factorisation of [`crate::cholesky`] (real, symmetric positive
+//! `Aᴴ = A`), so the Cholesky factorisation of [`crate::linalg::cholesky`] (real, symmetric positive
 //! definite, with a hand-written supernodal solve) does not apply. Such systems go to faer's
 //! generic sparse LU (`faer::sparse::linalg::solvers::Lu`, COLAMD ordering and partial pivoting,
 //! generic over `T: ComplexField`, so the same code serves `f64` and `faer::c64` =
@@ -19,7 +19,7 @@ use faer::traits::ComplexField;
 use faer::{MatMut, c64};
 
 use crate::FemError;
-use crate::pattern::SymmetricPattern;
+use crate::linalg::pattern::SymmetricPattern;
 
 /// Sparse LU of symmetric matrices on one pattern, for any faer scalar (`f64`, [`c64`]).
 pub struct SparseLu<T> {
@@ -145,7 +145,7 @@ pub type ComplexLu = SparseLu<c64>;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::structured::{SideTags, graded_lines, rectangle_mesh};
+    use crate::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 
     /// A complex symmetric system `(K + jωM) x = b` on a mesh pattern: the residual of the
     /// solution is at round-off, and the real case matches the Cholesky solver.
@@ -195,7 +195,7 @@ mod tests {
         real_lu.factorize_symmetric(&real).unwrap();
         let mut x_lu: Vec<f64> = b.iter().map(|v| v.re).collect();
         real_lu.solve_in_place(&mut x_lu).unwrap();
-        let mut cholesky = crate::cholesky::SparseCholesky::new(&pattern, 1).unwrap();
+        let mut cholesky = crate::linalg::cholesky::SparseCholesky::new(&pattern, 1).unwrap();
         cholesky.factorize(&real).unwrap();
         let mut x_llt: Vec<f64> = b.iter().map(|v| v.re).collect();
         cholesky.solve_in_place(&mut x_llt).unwrap();

@@ -3,7 +3,7 @@
 //! Numbering: the mesh vertices first (DOF `v` is vertex `v`, so a P1 field and the vertex part of
 //! a P2 field are indexed alike), then, for order 2, one DOF per unique edge of the triangles, at
 //! the edge midpoint, numbered in the order the edges are first met when walking the triangles.
-//! Element DOF lists follow the local order of [`crate::element`]: vertices 0, 1, 2, then (P2) the
+//! Element DOF lists follow the local order of [`crate::discretisation::element`]: vertices 0, 1, 2, then (P2) the
 //! edges (0, 1), (1, 2), (2, 0).
 //!
 //! The map also gives what the forms and solvers need around it: the coordinates of every DOF
@@ -91,7 +91,7 @@ impl DofMap {
                 // Upper bound of the edges per lower vertex (shared edges are counted twice).
                 let mut count = vec![0usize; n_vertices + 1];
                 for tri in &mesh.triangles {
-                    for [i, j] in crate::element::P2_EDGES {
+                    for [i, j] in crate::discretisation::element::P2_EDGES {
                         count[tri[i].min(tri[j]) + 1] += 1;
                     }
                 }
@@ -103,7 +103,7 @@ impl DofMap {
                 let mut dofs = Vec::with_capacity(6 * mesh.triangles.len());
                 for tri in &mesh.triangles {
                     dofs.extend_from_slice(tri);
-                    for [i, j] in crate::element::P2_EDGES {
+                    for [i, j] in crate::discretisation::element::P2_EDGES {
                         let (a, b) = (tri[i].min(tri[j]), tri[i].max(tri[j]));
                         let known = slots[count[a]..count[a] + filled[a]]
                             .iter()
@@ -249,7 +249,7 @@ impl DofMap {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::structured::{SideTags, graded_lines, rectangle_mesh};
+    use crate::mesh::structured::{SideTags, graded_lines, rectangle_mesh};
 
     fn grid(nr: usize, nz: usize) -> Arc<Mesh> {
         let r = graded_lines(0.0, 1.0, nr, 2.0);
@@ -284,7 +284,7 @@ mod tests {
         for t in 0..t {
             let dofs = map.element(t);
             assert_eq!(&dofs[..3], &mesh.triangles[t]);
-            for (local, [i, j]) in crate::element::P2_EDGES.iter().enumerate() {
+            for (local, [i, j]) in crate::discretisation::element::P2_EDGES.iter().enumerate() {
                 let d = dofs[3 + local];
                 uses[d] += 1;
                 assert_eq!(map.edge_dof(dofs[*i], dofs[*j]), Some(d));
