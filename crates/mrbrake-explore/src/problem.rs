@@ -280,7 +280,8 @@ fn start(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
 }
 
 /// The JSON Schema of an optimisation problem file (`mrbrake optimize`); counts bounded by
-/// [`MAX_POPULATION`] and [`MAX_EVALUATIONS`], the limits the reader checks.
+/// [`MAX_POPULATION`], [`MAX_EVALUATIONS`], [`MAX_BATCH`] and [`MAX_INITIAL_SIZE`], the limits the
+/// reader checks.
 pub fn schema() -> serde_json::Value {
     use mrbrake_schema::{Bounds, annotate, node_mut, order};
     let mut schema = mrbrake_schema::generate::<RawProblem>();
@@ -298,6 +299,9 @@ pub fn schema() -> serde_json::Value {
         ("algorithm.population", Bounds::closed(4.0, MAX_POPULATION as f64)),
         ("algorithm.generations", Bounds::closed(0.0, MAX_EVALUATIONS as f64)),
         ("algorithm.max_evaluations", Bounds::closed(1.0, MAX_EVALUATIONS as f64)),
+        ("algorithm.batch", Bounds::closed(1.0, MAX_BATCH as f64)),
+        ("algorithm.initial_size", Bounds::closed(2.0, MAX_INITIAL_SIZE as f64)),
+        ("algorithm.stall_tolerance", Bounds::closed(0.0, 1.0)),
     ];
     for (path, bounds) in counts {
         if let Some(node) = node_mut(&mut schema, path) {
@@ -726,6 +730,9 @@ pub const MAX_EVALUATIONS: usize = 10_000_000;
 /// compares each proposal with all of them, and its point is to need few.
 pub const MAX_SURROGATE_EVALUATIONS: usize = 100_000;
 
+/// The largest initial plan of a surrogate-assisted run (at least variables + 1 designs).
+pub const MAX_INITIAL_SIZE: usize = 100_000;
+
 /// The most surrogate designs per iteration ([`mrbrake_optim::surrogate::SurrogateOptions::batch`]).
 pub const MAX_BATCH: usize = 1024;
 
@@ -837,11 +844,11 @@ fn surrogate_of(a: &RawAlgorithm, variables: usize, seed: u64) -> Result<Algorit
         );
     }
     if let Some(n) = a.initial_size {
-        if n <= variables || n > 100_000 {
+        if n <= variables || n > MAX_INITIAL_SIZE {
             return out_of_range(
                 "initial_size",
                 &n,
-                format!("{} (variables + 1) to 100000 designs", variables + 1),
+                format!("{} (variables + 1) to {MAX_INITIAL_SIZE} designs", variables + 1),
             );
         }
     }
