@@ -130,7 +130,8 @@ impl ProgressDisplay {
         };
         if let Some(status) = &p.iteration {
             let line = iteration_line(status);
-            self.bar.set_message(format!("{stage}: {line}"));
+            // Kept above the bar on a terminal: one line per iteration is the run's history.
+            self.bar.println(format!("{}: {stage}: {line}", self.what));
             let Some(rule) = &mut self.lines else { return };
             let now = Instant::now();
             if rule.due(now, p.done, p.total) {
