@@ -47,6 +47,24 @@ pub fn metric_axis(name: &str) -> (f64, String) {
     (scale, format!("{name} [{unit}]"))
 }
 
+/// A hypervolume's reference point, one `unit value` per objective in its metric's display unit
+/// (a maximised objective's value back to its sign), with `decimals` decimals.
+pub fn reference_point_text(
+    objectives: &[mrbrake_explore::problem::Objective],
+    reference: &[f64],
+    decimals: usize,
+) -> Vec<String> {
+    objectives
+        .iter()
+        .zip(reference)
+        .map(|(o, r)| {
+            let value = if o.goal == Goal::Maximize { -r } else { *r };
+            let (scale, unit) = metric_axis(&o.metric);
+            format!("{unit} {:.decimals$}", value * scale)
+        })
+        .collect()
+}
+
 /// The metrics a problem may constrain or optimise: name, unit and meaning, one per line.
 pub fn metrics_text() -> String {
     let mut out = String::new();
@@ -320,16 +338,7 @@ impl OptimizationReport<'_> {
         if let Some(h) = &result.hypervolume {
             let metrics: Vec<&str> = problem.objectives.iter().map(|o| o.metric.as_str()).collect();
             let (scale, label) = hypervolume_axis(&metrics);
-            let reference: Vec<String> = problem
-                .objectives
-                .iter()
-                .zip(&h.reference)
-                .map(|(o, r)| {
-                    let value = if o.goal == Goal::Maximize { -r } else { *r };
-                    let (s, unit) = metric_axis(&o.metric);
-                    format!("{} {:.6}", unit, value * s)
-                })
-                .collect();
+            let reference = reference_point_text(&problem.objectives, &h.reference, 6);
             let _ = writeln!(
                 out,
                 "{label}: {:.6} ({:.6e} in SI) against the reference point {}: {}",

@@ -144,16 +144,7 @@ impl StudyReport<'_> {
         };
         let metrics: Vec<&str> = self.objectives.iter().map(|o| o.metric.as_str()).collect();
         let (scale, label) = hypervolume_axis(&metrics);
-        let reference: Vec<String> = self
-            .objectives
-            .iter()
-            .zip(&h.reference)
-            .map(|(o, r)| {
-                let (ms, unit) = metric_axis(&o.metric);
-                let value = if o.goal == Goal::Maximize { -r } else { *r };
-                format!("{unit} {:.4}", value * ms)
-            })
-            .collect();
+        let reference = crate::study::reference_point_text(&self.objectives, &h.reference, 4);
         s.body.paragraph(&format!(
             "{label}: {:.4} after {} designs, against the reference point {} ({}).",
             h.value * scale,
