@@ -383,8 +383,9 @@ mod tests {
         let (models, fits) = fit(&data(-0.05)).expect("the constant constraint is not a failure");
         assert_eq!(models.constraints.len(), 1);
         assert!(fits.iter().all(|f| f.role != ModelRole::Constraint(1)), "{fits:?}");
+        // The modelled constraint `0.3 − x ≤ 0` is broken at x = 0.1 and met at x = 0.9.
         let predictions = models.predict(&[vec![0.1], vec![0.9]]);
-        assert!(predictions[0].feasibility > predictions[1].feasibility);
+        assert!(predictions[1].feasibility > predictions[0].feasibility, "{predictions:?}");
         let error = fit(&data(0.05)).unwrap_err();
         assert_eq!(error.role, ModelRole::Constraint(1));
     }
