@@ -336,7 +336,8 @@ fn studies_and_the_store_follow_the_convention() {
     );
     std::fs::write(&problem, text).expect("problem written");
     let opt_store = dir.path().join("opt.sqlite");
-    let nsga2 = assert_conventional(&["optimize", path_str(&problem), "--store", path_str(&opt_store)]);
+    let nsga2 =
+        assert_conventional(&["optimize", path_str(&problem), "--store", path_str(&opt_store)]);
     assert!(nsga2["hypervolume"]["value"].is_number(), "{nsga2}");
     // The surrogate's report: the hypervolume with its reference point and growth, every
     // iteration's model fits, the written front designs.

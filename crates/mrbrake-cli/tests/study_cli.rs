@@ -504,8 +504,11 @@ fn a_surrogate_optimisation_killed_at_a_random_point_resumes_without_loss() {
         let after = exported(store);
         // Every design stored before the kill is still there, unchanged, and none is computed
         // twice: what the resumed run computed is exactly what the store gained.
-        let kept: BTreeMap<_, _> =
-            after.iter().filter(|(k, _)| before.contains_key(*k)).map(|(k, v)| (k.clone(), v.clone())).collect();
+        let kept: BTreeMap<_, _> = after
+            .iter()
+            .filter(|(k, _)| before.contains_key(*k))
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
         assert_same_results(&before, &kept);
         let computed = v["computed"].as_u64().unwrap() as usize;
         assert_eq!(before.len() + computed, after.len(), "{v}");

@@ -80,10 +80,8 @@ pub fn designs(
     let mut planned = Vec::with_capacity(result.front.len());
     for &i in &result.front {
         let record = &result.evaluated[i].record;
-        let x: Vec<f64> = variables
-            .iter()
-            .map(|v| record.variable(&v.name).unwrap_or(f64::NAN))
-            .collect();
+        let x: Vec<f64> =
+            variables.iter().map(|v| record.variable(&v.name).unwrap_or(f64::NAN)).collect();
         let written: Vec<Written> = variables
             .iter()
             .zip(&x)
@@ -97,7 +95,8 @@ pub fn designs(
     let batch: Vec<Design> = planned.iter().map(|p| p.2.clone()).collect();
     let records = study.run_batch(&batch, Stage::FrontDesigns)?;
     let mut out = Vec::with_capacity(planned.len());
-    for (k, ((source, written, design, rounded), record)) in planned.into_iter().zip(records).enumerate()
+    for (k, ((source, written, design, rounded), record)) in
+        planned.into_iter().zip(records).enumerate()
     {
         let (spec_text, note) = writer.text(&variables, &written, &design, &problem.settings)?;
         let evaluation = study.evaluation_of(&record);
@@ -125,9 +124,9 @@ impl SpecWriter {
         problem: &crate::problem::OptimizationProblem,
         is_drum: bool,
     ) -> Result<Self, ExploreError> {
-        let mut document: DocumentMut = base_text.parse().map_err(|e| {
-            ExploreError::Input(format!("{}: {e}", problem.spec_path.display()))
-        })?;
+        let mut document: DocumentMut = base_text
+            .parse()
+            .map_err(|e| ExploreError::Input(format!("{}: {e}", problem.spec_path.display())))?;
         for (path, text) in &problem.overrides {
             let (path, value) = override_value(path, text, is_drum)?;
             set_value(&mut document, &path, value)?;
@@ -218,9 +217,11 @@ impl SpecWriter {
             (Err(_), _) => Ok((text, None)),
             _ => Ok((
                 design.spec_toml.clone(),
-                Some("written in SI: the text in the base spec's units did not read back as the \
+                Some(
+                    "written in SI: the text in the base spec's units did not read back as the \
                       evaluated design"
-                    .into()),
+                        .into(),
+                ),
             )),
         }
     }
@@ -272,7 +273,11 @@ fn get_value<'d>(document: &'d DocumentMut, path: &str) -> Option<&'d Value> {
 
 /// Sets (`Some`) or removes (`None`) the value at a dotted path, creating missing tables; a
 /// replaced value keeps its comments (decor).
-fn set_value(document: &mut DocumentMut, path: &str, value: Option<Value>) -> Result<(), ExploreError> {
+fn set_value(
+    document: &mut DocumentMut,
+    path: &str,
+    value: Option<Value>,
+) -> Result<(), ExploreError> {
     let mut parts: Vec<&str> = path.split('.').collect();
     let last = parts.pop().filter(|s| !s.is_empty()).ok_or_else(|| {
         ExploreError::Input(format!("'{path}' is not a dotted spec path such as drum.gap"))

@@ -130,9 +130,8 @@ pub fn trace(evaluations: &[Evaluation], reference: &[f64]) -> Vec<TracePoint> {
     let mut out = Vec::with_capacity(evaluations.len());
     for (k, e) in evaluations.iter().enumerate() {
         let point = e.objectives.as_slice();
-        let usable = e.feasible()
-            && point.len() == reference.len()
-            && point.iter().all(|v| v.is_finite());
+        let usable =
+            e.feasible() && point.len() == reference.len() && point.iter().all(|v| v.is_finite());
         let covered = front.iter().any(|f| dominates(f, point) || same(f, point));
         if usable && !covered {
             front.retain(|f| !dominates(point, f));
@@ -233,12 +232,12 @@ mod tests {
     #[test]
     fn the_trace_grows_with_each_new_front_point_and_ignores_the_rest() {
         let evaluations = [
-            e(3.0, 3.0, 1.0),    // infeasible: nothing
-            e(2.0, 2.0, 0.0),    // (4 − 2)(4 − 2) = 4
-            e(2.5, 2.5, 0.0),    // dominated: unchanged
-            e(1.0, 3.0, 0.0),    // adds (2 − 1)(4 − 3) = 1
+            e(3.0, 3.0, 1.0), // infeasible: nothing
+            e(2.0, 2.0, 0.0), // (4 − 2)(4 − 2) = 4
+            e(2.5, 2.5, 0.0), // dominated: unchanged
+            e(1.0, 3.0, 0.0), // adds (2 − 1)(4 − 3) = 1
             Evaluation::failed(2),
-            e(1.0, 1.0, 0.0),    // dominates both: (4 − 1)² = 9
+            e(1.0, 1.0, 0.0), // dominates both: (4 − 1)² = 9
         ];
         let t = trace(&evaluations, &[4.0, 4.0]);
         let values: Vec<f64> = t.iter().map(|p| p.hypervolume).collect();

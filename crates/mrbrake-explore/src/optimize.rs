@@ -476,8 +476,12 @@ fn space_and_bounds(
         }
         other => other,
     })?;
-    let bounds: Vec<Bounds> =
-        space.variables().iter().zip(&problem.variables).map(|(v, b)| optimiser_bounds(v, b)).collect();
+    let bounds: Vec<Bounds> = space
+        .variables()
+        .iter()
+        .zip(&problem.variables)
+        .map(|(v, b)| optimiser_bounds(v, b))
+        .collect();
     Ok((space, bounds))
 }
 
@@ -612,9 +616,11 @@ fn run_algorithm_phase(
     let hypervolume = study.hypervolume();
     let totals = match study.totals.clone() {
         Some(totals) => totals,
-        None if !study.evaluated.is_empty() => {
-            RunSummary { progress: idle_progress(Stage::Reference).run, evaluation_s: 0.0, store_s: 0.0 }
-        }
+        None if !study.evaluated.is_empty() => RunSummary {
+            progress: idle_progress(Stage::Reference).run,
+            evaluation_s: 0.0,
+            store_s: 0.0,
+        },
         None => return Err(ExploreError::Internal("the optimiser evaluated no design".into())),
     };
     Ok(OptimizationResult {
@@ -716,7 +722,11 @@ fn run_algorithm(
                 ..pattern_search::PatternSearchOptions::default()
             };
             let result = pattern_search::run(study, &options, &mut Silent).map_err(run_error)?;
-            Ok(Ran { iterations: result.iterations, converged: Some(result.converged), surrogate: None })
+            Ok(Ran {
+                iterations: result.iterations,
+                converged: Some(result.converged),
+                surrogate: None,
+            })
         }
     }
 }

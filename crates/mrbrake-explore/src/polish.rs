@@ -73,12 +73,8 @@ pub fn run(
 ) -> Result<Polished, ExploreError> {
     let evaluations: Vec<_> = result.evaluated.iter().map(|e| e.evaluation.clone()).collect();
     let front = front_of(problem, &evaluations);
-    let index = request
-        .design
-        .checked_sub(1)
-        .and_then(|k| front.get(k))
-        .copied()
-        .ok_or_else(|| {
+    let index =
+        request.design.checked_sub(1).and_then(|k| front.get(k)).copied().ok_or_else(|| {
             ExploreError::Input(format!(
                 "--polish {}: the front has {} design(s); give 1 to {}",
                 request.design,
@@ -135,17 +131,16 @@ fn derived_problem(
 ) -> Result<(OptimizationProblem, String), ExploreError> {
     let k = match &request.objective {
         None => 0,
-        Some(metric) => problem
-            .objectives
-            .iter()
-            .position(|o| o.metric == metric.trim())
-            .ok_or_else(|| {
-                let names: Vec<&str> = problem.objectives.iter().map(|o| o.metric.as_str()).collect();
+        Some(metric) => {
+            problem.objectives.iter().position(|o| o.metric == metric.trim()).ok_or_else(|| {
+                let names: Vec<&str> =
+                    problem.objectives.iter().map(|o| o.metric.as_str()).collect();
                 ExploreError::Input(format!(
                     "--polish-objective {metric}: not an objective of the problem ({})",
                     names.join(", ")
                 ))
-            })?,
+            })?
+        }
     };
     let mut derived = problem.clone();
     derived.objectives = vec![problem.objectives[k].clone()];
@@ -159,11 +154,8 @@ fn derived_problem(
         };
         derived.constraints.push(Constraint { metric: o.metric.clone(), min, max });
     }
-    let x: Vec<Option<f64>> = problem
-        .variables
-        .iter()
-        .map(|v| start.record.variable(&v.name))
-        .collect();
+    let x: Vec<Option<f64>> =
+        problem.variables.iter().map(|v| start.record.variable(&v.name)).collect();
     derived.reference = false;
     derived.hypervolume_reference = None;
     derived.algorithm = Algorithm::PatternSearch {

@@ -662,12 +662,17 @@ impl Algorithm {
         let bad = |what: String| ExploreError::Input(what);
         let not_nsga2 = |kind: &str, max_evaluations: usize| {
             if budget.generations.is_some() {
-                return Err(bad(format!("--generations applies to NSGA-II; {kind} takes --max-evaluations")));
+                return Err(bad(format!(
+                    "--generations applies to NSGA-II; {kind} takes --max-evaluations"
+                )));
             }
             let max = budget.max_evaluations.unwrap_or(max_evaluations);
-            let limit = if kind == "surrogate" { MAX_SURROGATE_EVALUATIONS } else { MAX_EVALUATIONS };
+            let limit =
+                if kind == "surrogate" { MAX_SURROGATE_EVALUATIONS } else { MAX_EVALUATIONS };
             if max == 0 || max > limit {
-                return Err(bad(format!("--max-evaluations {max} is not allowed; use 1 to {limit}")));
+                return Err(bad(format!(
+                    "--max-evaluations {max} is not allowed; use 1 to {limit}"
+                )));
             }
             Ok(max)
         };
@@ -739,14 +744,17 @@ pub const MAX_BATCH: usize = 1024;
 /// The keys of `[algorithm]` each kind reads (besides `kind`, `seed` and `hypervolume_reference`).
 const KEYS: [(&str, &[&str]); 3] = [
     ("nsga2", &["population", "generations"]),
-    ("surrogate", &[
-        "max_evaluations",
-        "initial_size",
-        "batch",
-        "acquisition",
-        "stall_iterations",
-        "stall_tolerance",
-    ]),
+    (
+        "surrogate",
+        &[
+            "max_evaluations",
+            "initial_size",
+            "batch",
+            "acquisition",
+            "stall_iterations",
+            "stall_tolerance",
+        ],
+    ),
     ("pattern-search", &["max_evaluations", "poll", "start"]),
 ];
 
@@ -791,10 +799,15 @@ fn check_keys_of(a: &RawAlgorithm, kind: &str) -> Result<(), String> {
         ("stall_iterations", a.stall_iterations.is_some()),
         ("stall_tolerance", a.stall_tolerance.is_some()),
     ];
-    let keys_of = |k: &str| KEYS.iter().find(|(name, _)| *name == k).map_or(&[][..], |(_, keys)| *keys);
+    let keys_of =
+        |k: &str| KEYS.iter().find(|(name, _)| *name == k).map_or(&[][..], |(_, keys)| *keys);
     let surrogate = keys_of("surrogate");
     let foreign = |key: &&str| {
-        if kind == "surrogate" { !surrogate.contains(key) } else { !keys_of(kind).contains(key) && surrogate.contains(key) }
+        if kind == "surrogate" {
+            !surrogate.contains(key)
+        } else {
+            !keys_of(kind).contains(key) && surrogate.contains(key)
+        }
     };
     for (key, _) in given.iter().filter(|(key, set)| *set && foreign(key)) {
         let owners: Vec<String> = KEYS
@@ -863,7 +876,11 @@ fn surrogate_of(a: &RawAlgorithm, variables: usize, seed: u64) -> Result<Algorit
     };
     let stall_tolerance = a.stall_tolerance.unwrap_or(1e-3);
     if !(stall_tolerance.is_finite() && (0.0..=1.0).contains(&stall_tolerance)) {
-        return out_of_range("stall_tolerance", &stall_tolerance, "a relative growth from 0 to 1".into());
+        return out_of_range(
+            "stall_tolerance",
+            &stall_tolerance,
+            "a relative growth from 0 to 1".into(),
+        );
     }
     Ok(Algorithm::Surrogate(SurrogateSettings {
         max_evaluations,
@@ -925,10 +942,14 @@ fn start_of(raw: Option<&RawStart>, variables: &[VariableBounds]) -> Result<Star
     let mut values = vec![None; variables.len()];
     for (name, value) in table {
         let where_ = format!("algorithm.start.{name}");
-        let index = variables.iter().position(|v| v.name.trim() == name.trim()).ok_or_else(|| {
-            let names: Vec<&str> = variables.iter().map(|v| v.name.as_str()).collect();
-            format!("{where_}: not a variable of this problem (variables: {})", names.join(", "))
-        })?;
+        let index =
+            variables.iter().position(|v| v.name.trim() == name.trim()).ok_or_else(|| {
+                let names: Vec<&str> = variables.iter().map(|v| v.name.as_str()).collect();
+                format!(
+                    "{where_}: not a variable of this problem (variables: {})",
+                    names.join(", ")
+                )
+            })?;
         let variable = &variables[index];
         let field = crate::variable::resolve(name, true)
             .or_else(|_| crate::variable::resolve(name, false))
@@ -936,13 +957,17 @@ fn start_of(raw: Option<&RawStart>, variables: &[VariableBounds]) -> Result<Star
         let si = match value {
             toml::Value::Float(x) => *x,
             toml::Value::Integer(i) => *i as f64,
-            toml::Value::String(text) => field.parse_value(text).map_err(|e| format!("{where_}: {e}"))?,
+            toml::Value::String(text) => {
+                field.parse_value(text).map_err(|e| format!("{where_}: {e}"))?
+            }
             other => return Err(format!("{where_}: {other} is not a number or a quantity")),
         };
         if field.field.quantity == crate::variable::Quantity::Integer
             && (si - si.round()).abs() > 1e-9
         {
-            return Err(format!("{where_}: {si} is not a whole number (this field counts something)"));
+            return Err(format!(
+                "{where_}: {si} is not a whole number (this field counts something)"
+            ));
         }
         if !(si.is_finite() && (variable.min..=variable.max).contains(&si)) {
             return Err(format!(
@@ -1195,10 +1220,8 @@ generations = 2
     /// `kind = "surrogate"`: defaults, every setting, and each bad setting named by its key.
     #[test]
     fn surrogate_settings_read_and_bad_ones_name_their_key() {
-        let surrogate = GOOD.replace(
-            "kind = \"nsga2\"\npopulation = 8\ngenerations = 2",
-            "kind = \"surrogate\"",
-        );
+        let surrogate = GOOD
+            .replace("kind = \"nsga2\"\npopulation = 8\ngenerations = 2", "kind = \"surrogate\"");
         let p = OptimizationProblem::from_toml_str(&surrogate, Path::new("p.toml")).unwrap();
         let Algorithm::Surrogate(s) = &p.algorithm else { panic!("{:?}", p.algorithm) };
         assert_eq!((s.max_evaluations, s.initial_size, s.batch), (200, None, None));
@@ -1221,13 +1244,13 @@ generations = 2
             max_evaluations: Some(30),
             seed: Some(4),
         });
-        assert!(matches!(quick, Ok(Algorithm::Surrogate(SurrogateSettings {
-            max_evaluations: 30,
-            seed: 4,
-            ..
-        }))));
+        assert!(matches!(
+            quick,
+            Ok(Algorithm::Surrogate(SurrogateSettings { max_evaluations: 30, seed: 4, .. }))
+        ));
         let bad = |line: &str, key: &str| {
-            let text = surrogate.replace("kind = \"surrogate\"", &format!("kind = \"surrogate\"\n{line}"));
+            let text =
+                surrogate.replace("kind = \"surrogate\"", &format!("kind = \"surrogate\"\n{line}"));
             let e = OptimizationProblem::from_toml_str(&text, Path::new("p.toml")).unwrap_err();
             assert!(e.is_input_error(), "{e}");
             let text = e.to_string();
@@ -1245,10 +1268,14 @@ generations = 2
         let nsga_batch = GOOD.replace("population = 8", "population = 8\nbatch = 2");
         let e = OptimizationProblem::from_toml_str(&nsga_batch, Path::new("p.toml")).unwrap_err();
         assert!(e.to_string().contains("algorithm.batch applies to kind = \"surrogate\""), "{e}");
-        let coarse = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\nmanufacturing_resolution = \"0.1mm\"");
+        let coarse = GOOD.replace(
+            "mesh = \"coarse\"",
+            "mesh = \"coarse\"\nmanufacturing_resolution = \"0.1mm\"",
+        );
         let p = OptimizationProblem::from_toml_str(&coarse, Path::new("p.toml")).unwrap();
         assert!((p.manufacturing_resolution - 1e-4).abs() < 1e-18);
-        let huge = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\nmanufacturing_resolution = \"2mm\"");
+        let huge = GOOD
+            .replace("mesh = \"coarse\"", "mesh = \"coarse\"\nmanufacturing_resolution = \"2mm\"");
         let e = OptimizationProblem::from_toml_str(&huge, Path::new("p.toml")).unwrap_err();
         assert!(e.to_string().contains("manufacturing_resolution"), "{e}");
     }
@@ -1256,11 +1283,15 @@ generations = 2
     /// `start` of a pattern search: a name, or values by variable name inside the bounds.
     #[test]
     fn a_pattern_search_starts_where_the_file_says() {
-        let single = GOOD
-            .replace("[[objective]]\nmetric = \"volume_m3\"\n", "")
-            .replace("kind = \"nsga2\"\npopulation = 8\ngenerations = 2", "kind = \"pattern-search\"");
+        let single = GOOD.replace("[[objective]]\nmetric = \"volume_m3\"\n", "").replace(
+            "kind = \"nsga2\"\npopulation = 8\ngenerations = 2",
+            "kind = \"pattern-search\"",
+        );
         let with = |start: &str| {
-            let text = single.replace("kind = \"pattern-search\"", &format!("kind = \"pattern-search\"\nstart = {start}"));
+            let text = single.replace(
+                "kind = \"pattern-search\"",
+                &format!("kind = \"pattern-search\"\nstart = {start}"),
+            );
             OptimizationProblem::from_toml_str(&text, Path::new("p.toml"))
         };
         let start_of = |p: OptimizationProblem| match p.algorithm {

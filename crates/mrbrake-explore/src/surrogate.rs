@@ -208,9 +208,5 @@ pub fn run(
 
 /// The analyses run at once for `jobs` (0: one per core).
 pub fn resolved_jobs(jobs: usize) -> usize {
-    if jobs > 0 {
-        jobs
-    } else {
-        std::thread::available_parallelism().map_or(1, usize::from)
-    }
+    if jobs > 0 { jobs } else { std::thread::available_parallelism().map_or(1, usize::from) }
 }

@@ -59,12 +59,26 @@ fn a_surrogate_study_runs_resumes_and_writes_its_front() {
     assert_eq!((surrogate.stop, surrogate.batch, surrogate.resumed_from), ("budget", 2, 0));
     assert_eq!(surrogate.iterations, iterations, "every iteration is shown and kept");
     assert_eq!(iterations[0].evaluations, 4, "the initial design");
-    assert!(iterations.iter().skip(1).all(|i| i.batch == 2 && (i.fallback.is_some() || !i.models.is_empty())));
+    assert!(
+        iterations
+            .iter()
+            .skip(1)
+            .all(|i| i.batch == 2 && (i.fallback.is_some() || !i.models.is_empty()))
+    );
     for status in iterations.iter().filter(|i| !i.models.is_empty()) {
-        assert!(status.models.iter().all(|m| m.loo_error.is_finite() && m.points >= 2), "{status:?}");
+        assert!(
+            status.models.iter().all(|m| m.loo_error.is_finite() && m.points >= 2),
+            "{status:?}"
+        );
     }
     // The constraint reaches the models as a signed margin.
-    assert!(result.evaluated.iter().filter(|e| e.evaluation.violation.is_finite()).all(|e| e.evaluation.constraints.len() == 1));
+    assert!(
+        result.evaluated.iter().filter(|e| e.evaluation.violation.is_finite()).all(|e| e
+            .evaluation
+            .constraints
+            .len()
+            == 1)
+    );
     let hv = result.hypervolume.as_ref().expect("a feasible design");
     assert_eq!(hv.trace.len(), 8);
     assert!(hv.value > 0.0 && hv.trace.windows(2).all(|w| w[1].hypervolume >= w[0].hypervolume));
@@ -142,10 +156,13 @@ fn a_stopped_surrogate_run_resumes_from_what_it_stored() {
 
     // A polish of front design 1 improves its inertia without losing torque, through the store.
     let request = PolishRequest { design: 1, objective: None, max_evaluations: 6 };
-    let polished = optimize::run_with(&problem, &mut store, 1, Some(&request), &mut Silent).unwrap();
+    let polished =
+        optimize::run_with(&problem, &mut store, 1, Some(&request), &mut Silent).unwrap();
     let polish = polished.polish.as_ref().unwrap();
     let metric = |e: &optimize::Evaluated, m: &str| e.record.metric(m).unwrap();
-    assert!(metric(&polish.best, "rotor_inertia_kg_m2") <= metric(&polish.start, "rotor_inertia_kg_m2"));
+    assert!(
+        metric(&polish.best, "rotor_inertia_kg_m2") <= metric(&polish.start, "rotor_inertia_kg_m2")
+    );
     assert!(metric(&polish.best, "torque_max_Nm") >= metric(&polish.start, "torque_max_Nm"));
     assert!(polish.evaluated.len() <= 6);
     let bad = PolishRequest { design: 99, objective: None, max_evaluations: 6 };

@@ -53,7 +53,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         return Err("usage: hypervolume_benchmark PROBLEM.toml OUT.svg LABEL=RUN ...".into());
     }
     let problem = OptimizationProblem::from_path(Path::new(&args[0]))?;
-    let runs: Vec<Run> = args[2..].iter().map(|a| read_run(&problem, a)).collect::<Result<_, _>>()?;
+    let runs: Vec<Run> =
+        args[2..].iter().map(|a| read_run(&problem, a)).collect::<Result<_, _>>()?;
     let references = references(&problem, &runs)?;
     let mut panels = Vec::new();
     for (name, reference) in &references {
@@ -142,7 +143,12 @@ fn at(trace: &[TracePoint], n: usize) -> f64 {
 
 /// The median over the `label` runs of the hypervolume after 1, 2, … evaluations, as a percentage
 /// of `target`.
-fn median_curve(runs: &[Run], traces: &[Vec<TracePoint>], label: &str, target: f64) -> Vec<(f64, f64)> {
+fn median_curve(
+    runs: &[Run],
+    traces: &[Vec<TracePoint>],
+    label: &str,
+    target: f64,
+) -> Vec<(f64, f64)> {
     let chosen: Vec<&Vec<TracePoint>> =
         runs.iter().zip(traces).filter(|(r, _)| r.label == label).map(|(_, t)| t).collect();
     let longest = chosen.iter().map(|t| t.len()).max().unwrap_or(0);
@@ -151,11 +157,23 @@ fn median_curve(runs: &[Run], traces: &[Vec<TracePoint>], label: &str, target: f
         .collect()
 }
 
-fn print_summary(name: &str, reference: &[f64], runs: &[Run], traces: &[Vec<TracePoint>], target: f64) {
+fn print_summary(
+    name: &str,
+    reference: &[f64],
+    runs: &[Run],
+    traces: &[Vec<TracePoint>],
+    target: f64,
+) {
     println!("reference '{name}' {reference:?}: NSGA-II's final hypervolume (median) {target:.6e}");
     println!(
         "  {:<18} {:>8} {:>9} {:>9} {:>22} {:>9} {:>9} {:>9}",
-        "run", "designs", "analysed", "final %", "99 % after (analysed)", "wall s", "models s",
+        "run",
+        "designs",
+        "analysed",
+        "final %",
+        "99 % after (analysed)",
+        "wall s",
+        "models s",
         "models %"
     );
     for (run, trace) in runs.iter().zip(traces) {
@@ -192,20 +210,28 @@ fn print_summary(name: &str, reference: &[f64], runs: &[Run], traces: &[Vec<Trac
 /// of NSGA-II's final hypervolume, with the 99 % line.
 fn panel(name: &str, runs: &[Run], traces: &[Vec<TracePoint>], target: f64) -> Panel {
     let longest = traces.iter().map(Vec::len).max().unwrap_or(1) as f64;
-    let mut panel = Panel::new("evaluations (designs analysed)", "hypervolume [% of NSGA-II's final]")
-        .caption(format!("reference point: {name}"))
-        .log_x()
-        .x_range(1.0, longest)
-        .y_range(0.0, 105.0);
+    let mut panel =
+        Panel::new("evaluations (designs analysed)", "hypervolume [% of NSGA-II's final]")
+            .caption(format!("reference point: {name}"))
+            .log_x()
+            .x_range(1.0, longest)
+            .y_range(0.0, 105.0);
     for (_, trace) in runs.iter().zip(traces).filter(|(r, _)| r.label == "surrogate") {
-        let points = trace.iter().map(|p| (p.evaluations as f64, 100.0 * p.hypervolume / target)).collect();
+        let points =
+            trace.iter().map(|p| (p.evaluations as f64, 100.0 * p.hypervolume / target)).collect();
         panel = panel.series(Series::line("", points).color(GREY).line_width(1));
     }
-    for (k, (run, trace)) in runs.iter().zip(traces).filter(|(r, _)| r.label == "nsga2").enumerate() {
-        let points = trace.iter().map(|p| (p.evaluations as f64, 100.0 * p.hypervolume / target)).collect();
-        panel = panel.series(Series::line(format!("NSGA-II ({})", run.name), points).color(1 + k).line_width(2));
+    for (k, (run, trace)) in runs.iter().zip(traces).filter(|(r, _)| r.label == "nsga2").enumerate()
+    {
+        let points =
+            trace.iter().map(|p| (p.evaluations as f64, 100.0 * p.hypervolume / target)).collect();
+        panel = panel.series(
+            Series::line(format!("NSGA-II ({})", run.name), points).color(1 + k).line_width(2),
+        );
     }
     let median = median_curve(runs, traces, "surrogate", target);
-    panel = panel.series(Series::line("surrogate, median of the seeds (grey)", median).color(0).line_width(3));
+    panel = panel.series(
+        Series::line("surrogate, median of the seeds (grey)", median).color(0).line_width(3),
+    );
     panel.series(Series::dashed("99 %", vec![(1.0, 99.0), (longest, 99.0)]).color(6))
 }

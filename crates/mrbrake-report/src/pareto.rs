@@ -213,7 +213,8 @@ mod tests {
         let (scale, label) = hypervolume_axis(&["rotor_inertia_kg_m2", "volume_m3"]);
         assert!((scale - 1e12).abs() < 1.0, "{scale}");
         assert_eq!(label, "hypervolume [kg·mm² × cm³]");
-        let figure = hypervolume_figure("t", &label, &[("run".into(), vec![(1.0, 0.0), (5.0, 3.0)])]);
+        let figure =
+            hypervolume_figure("t", &label, &[("run".into(), vec![(1.0, 0.0), (5.0, 3.0)])]);
         let dir = tempfile::tempdir().unwrap();
         figure.save(&dir.path().join("hv.svg")).unwrap();
     }

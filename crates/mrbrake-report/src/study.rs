@@ -11,9 +11,9 @@ use mrbrake_explore::evaluate::{METRICS, metric_info};
 use mrbrake_explore::front::FrontDesign;
 use mrbrake_explore::hypervolume::Hypervolume;
 use mrbrake_explore::optimize::{Evaluated, OptimizationResult};
-use mrbrake_explore::surrogate::SurrogateRun;
 use mrbrake_explore::plan::Shard;
 use mrbrake_explore::problem::{Constraint, Goal, OptimizationProblem};
+use mrbrake_explore::surrogate::SurrogateRun;
 use mrbrake_explore::variable::Variable;
 use mrbrake_explore::{Progress, RunSummary};
 use mrbrake_store::{MergeSummary, Record, Status};
@@ -354,7 +354,8 @@ impl OptimizationReport<'_> {
         out.push_str(&front_designs_text(problem, &result.front_designs));
         if let Some(p) = &result.polish {
             let (scale, label) = metric_axis(&p.objective);
-            let value = |e: &Evaluated| e.record.metric(&p.objective).map_or(f64::NAN, |v| v * scale);
+            let value =
+                |e: &Evaluated| e.record.metric(&p.objective).map_or(f64::NAN, |v| v * scale);
             let _ = writeln!(
                 out,
                 "polish of front design {} ({label}): {:.4} -> {:.4} in {} ({})",
@@ -561,12 +562,16 @@ impl OptimizationReport<'_> {
             let _ = writeln!(csv, "{},{:e}", p.evaluations, p.hypervolume);
         }
         write_atomic(&dir.join("hypervolume.csv"), csv.as_bytes())?;
-        let metrics: Vec<&str> = self.problem.objectives.iter().map(|o| o.metric.as_str()).collect();
+        let metrics: Vec<&str> =
+            self.problem.objectives.iter().map(|o| o.metric.as_str()).collect();
         let (scale, label) = hypervolume_axis(&metrics);
-        let points = h.trace.iter().map(|p| (p.evaluations as f64, p.hypervolume * scale)).collect();
+        let points =
+            h.trace.iter().map(|p| (p.evaluations as f64, p.hypervolume * scale)).collect();
         let name = self.problem.path.file_stem().and_then(|s| s.to_str()).unwrap_or("optimisation");
-        let title = format!("{name} — hypervolume against evaluations ({})", self.problem.algorithm.kind());
-        let figure = hypervolume_figure(&title, &label, &[(self.problem.algorithm.kind().into(), points)]);
+        let title =
+            format!("{name} — hypervolume against evaluations ({})", self.problem.algorithm.kind());
+        let figure =
+            hypervolume_figure(&title, &label, &[(self.problem.algorithm.kind().into(), points)]);
         figure.save(&dir.join("hypervolume.svg"))?;
         figure.save(&dir.join("hypervolume.png"))?;
         Ok(())
@@ -764,7 +769,12 @@ fn front_designs_text(problem: &OptimizationProblem, designs: &[FrontDesign]) ->
     if broken.is_empty() {
         out.push_str("; every one meets the constraints\n");
     } else {
-        let _ = writeln!(out, "; after rounding {} break a constraint: {}", broken.len(), broken.join("; "));
+        let _ = writeln!(
+            out,
+            "; after rounding {} break a constraint: {}",
+            broken.len(),
+            broken.join("; ")
+        );
     }
     out
 }
@@ -787,7 +797,11 @@ fn rounding_words(resolution: f64, rounded: bool) -> String {
 /// The constraints `record` breaks, with their limits, or why it has no metrics.
 fn broken_constraints(problem: &OptimizationProblem, record: &Record) -> String {
     if record.status != Status::Ok {
-        return format!("{}: {}", record.status.as_str(), record.reason.clone().unwrap_or_default());
+        return format!(
+            "{}: {}",
+            record.status.as_str(),
+            record.reason.clone().unwrap_or_default()
+        );
     }
     let broken: Vec<String> = problem
         .constraints

@@ -112,8 +112,7 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
         display.update_optimize(p);
         Flow::Continue
     };
-    let result =
-        optimize::run_with(&problem, &mut store, a.jobs, polish.as_ref(), &mut observer)?;
+    let result = optimize::run_with(&problem, &mut store, a.jobs, polish.as_ref(), &mut observer)?;
     display.finish();
 
     let report = OptimizationReport {

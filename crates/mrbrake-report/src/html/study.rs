@@ -14,10 +14,10 @@ use std::path::Path;
 
 use mrbrake_design::geometry;
 use mrbrake_design::spec::{BrakeSpec, Quantity};
+use mrbrake_explore::hypervolume::{self, Hypervolume, ReferenceSource};
 use mrbrake_explore::problem::{Constraint, Goal, Objective};
 use mrbrake_explore::variable::resolve;
 use mrbrake_optim::pareto::{Evaluation, pareto_front};
-use mrbrake_explore::hypervolume::{self, Hypervolume, ReferenceSource};
 use mrbrake_store::{Record, Status, Store};
 use serde_json::Value;
 
@@ -154,10 +154,11 @@ impl StudyReport<'_> {
         ));
         let points: Vec<(f64, f64)> =
             h.trace.iter().map(|p| (p.evaluations as f64, p.hypervolume * scale)).collect();
-        let chart = hypervolume_figure("Hypervolume of the feasible front", &label, &[(
-            "this store".into(),
-            points,
-        )]);
+        let chart = hypervolume_figure(
+            "Hypervolume of the feasible front",
+            &label,
+            &[("this store".into(), points)],
+        );
         let svg = inline_svg(&chart.to_svg()?, "Hypervolume against evaluations")?;
         figure(
             &mut s.body,
