@@ -561,8 +561,7 @@ pub fn run_with(
         let mut p = last.borrow().clone().unwrap_or_else(|| idle_progress(Stage::Reference));
         p.stage = Stage::Iteration { index: status.iteration };
         p.iteration = Some(status.clone());
-        let flow = outer.borrow_mut().observe(&p);
-        flow
+        outer.borrow_mut().observe(&p)
     };
     let mut result = run_algorithm_phase(problem, store, jobs, &mut relay, &mut on_iteration)?;
     if let (Some(request), false) = (polish, result.stopped) {

@@ -809,18 +809,18 @@ fn check_keys_of(a: &RawAlgorithm, kind: &str) -> Result<(), String> {
             !keys_of(kind).contains(key) && surrogate.contains(key)
         }
     };
-    for (key, _) in given.iter().filter(|(key, set)| *set && foreign(key)) {
-        let owners: Vec<String> = KEYS
-            .iter()
-            .filter(|(_, keys)| keys.contains(key))
-            .map(|(k, _)| format!("\"{k}\""))
-            .collect();
-        return Err(format!(
-            "algorithm.{key} applies to kind = {}, not to kind = \"{kind}\"",
-            owners.join(" or ")
-        ));
-    }
-    Ok(())
+    let Some((key, _)) = given.iter().find(|(key, set)| *set && foreign(key)) else {
+        return Ok(());
+    };
+    let owners: Vec<String> = KEYS
+        .iter()
+        .filter(|(_, keys)| keys.contains(key))
+        .map(|(k, _)| format!("\"{k}\""))
+        .collect();
+    Err(format!(
+        "algorithm.{key} applies to kind = {}, not to kind = \"{kind}\"",
+        owners.join(" or ")
+    ))
 }
 
 fn nsga2_of(a: &RawAlgorithm, seed: u64) -> Result<Algorithm, String> {

@@ -103,11 +103,14 @@ fn read_run(problem: &OptimizationProblem, arg: &str) -> Result<Run, Box<dyn std
     Ok(Run { label: label.to_string(), name, evaluations, analysed, base, report })
 }
 
+/// A reference point and its name.
+type NamedReference = (&'static str, Vec<f64>);
+
 /// The two common reference points (module docs).
 fn references(
     problem: &OptimizationProblem,
     runs: &[Run],
-) -> Result<Vec<(&'static str, Vec<f64>)>, Box<dyn std::error::Error>> {
+) -> Result<Vec<NamedReference>, Box<dyn std::error::Error>> {
     let objectives = problem.objectives.len();
     let thesis = runs
         .iter()
