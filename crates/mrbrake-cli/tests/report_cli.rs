@@ -154,7 +154,9 @@ fn study_report_of_a_small_optimisation() {
     std::fs::write(
         &problem,
         format!(
-            "spec = \"{SINGLE_DISC}\"\nmesh = \"coarse\"\n\
+            // Written as evaluated: rounded front designs would join the store, and the store's
+            // front (the page's) would no longer be the optimiser's.
+            "spec = \"{SINGLE_DISC}\"\nmesh = \"coarse\"\nmanufacturing_resolution = 0\n\
              [[variable]]\nname = \"g\"\nmin = \"0.3mm\"\nmax = \"1mm\"\n\
              [[variable]]\nname = \"d\"\nmin = \"1mm\"\nmax = \"2mm\"\n\
              [[constraint]]\nmetric = \"torque_max_Nm\"\nmin = \"0.5Nm\"\n\

@@ -167,7 +167,9 @@ impl SpecWriter {
         let step = match variable.field.quantity {
             Quantity::Integer => return exact(),
             Quantity::Length => resolution,
-            Quantity::Current => CURRENT_RESOLUTION,
+            // A resolution of 0 writes every value as evaluated, currents too.
+            Quantity::Current if resolution > 0.0 => CURRENT_RESOLUTION,
+            Quantity::Current => 0.0,
         };
         if step <= 0.0 || !value.is_finite() {
             return exact();
