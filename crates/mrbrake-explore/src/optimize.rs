@@ -15,7 +15,8 @@
 //! [`run`] returns every evaluated design, the feasible Pareto front (the non-dominated set of the
 //! *evaluated* designs), its hypervolume ([`crate::hypervolume`]), the reference design, and the
 //! front's designs as they are written ([`crate::front`]: rounded to the manufacturing resolution
-//! and evaluated again); [`polish`] refines one front design by a pattern search started at it.
+//! and evaluated again); [`crate::polish`] refines one front design by a pattern search started
+//! at it.
 //!
 //! The caller's [`Observer`] sees an [`OptimizeProgress`] after every stored evaluation, and after
 //! every surrogate iteration (with its [`IterationStatus`]); a [`Flow::Stop`] ends the
@@ -531,9 +532,9 @@ pub fn run(
     run_with(problem, store, jobs, None, observer)
 }
 
-/// [`run`], then, with `polish`, a pattern search from one of the front's designs ([`polish`]):
-/// its designs join the evaluated ones before the front, its hypervolume and its written designs
-/// are made.
+/// [`run`], then, with `polish`, a pattern search from one of the front's designs
+/// ([`crate::polish`]): its designs join the evaluated ones before the front, its hypervolume and
+/// its written designs are made.
 pub fn run_with(
     problem: &OptimizationProblem,
     store: &mut Store,
