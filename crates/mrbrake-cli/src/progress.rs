@@ -16,6 +16,7 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressStyle};
 use mrbrake::explore::Progress;
 use mrbrake::explore::optimize::{OptimizeProgress, Stage};
+use mrbrake::explore::surrogate::IterationStatus;
 
 /// Work that ends sooner than this prints no progress lines.
 pub const QUIET_FOR: Duration = Duration::from_secs(2);
@@ -123,7 +124,23 @@ impl ProgressDisplay {
             Stage::Generation { index, of } => format!("generation {index}/{of}"),
             Stage::Poll { index: 0 } => "start point".to_string(),
             Stage::Poll { index } => format!("poll {index}"),
+            Stage::Iteration { index: 0 } => "initial design".to_string(),
+            Stage::Iteration { index } => format!("iteration {index}"),
+            Stage::FrontDesigns => "front designs, rounded".to_string(),
         };
+        if let Some(status) = &p.iteration {
+            let line = iteration_line(status);
+            // Kept above the bar on a terminal: one line per iteration is the run's history.
+            self.bar.println(format!("{}: {stage}: {line}", self.what));
+            let Some(rule) = &mut self.lines else { return };
+            let now = Instant::now();
+            if rule.due(now, p.done, p.total) {
+                let elapsed = now.duration_since(rule.start).as_secs_f64();
+                let text = format!("{}: {stage}: {line} ({elapsed:.0} s elapsed)", self.what);
+                let _ = writeln!(std::io::stderr().lock(), "{text}");
+            }
+            return;
+        }
         let r = &p.run;
         let detail =
             format!("({} reused, {} infeasible, {} failed)", r.reused, r.infeasible, r.failed);
@@ -133,9 +150,12 @@ impl ProgressDisplay {
         if p.done <= self.last_done {
             return;
         }
-        // Pattern search may converge before its budget: the total is an upper bound there.
+        // Pattern search may converge, and the surrogate stall, before the budget: the total is
+        // an upper bound there.
         let of = match p.stage {
-            Stage::Poll { .. } => format!("{} of at most {}", p.done, p.total),
+            Stage::Poll { .. } | Stage::Iteration { .. } => {
+                format!("{} of at most {}", p.done, p.total)
+            }
             _ => format!("{}/{}", p.done, p.total),
         };
         let what = format!("{}: {stage}, {of}", self.what);
@@ -175,6 +195,24 @@ impl ProgressDisplay {
     pub fn finish(&mut self) {
         self.bar.finish_and_clear();
     }
+}
+
+/// A surrogate iteration in words: its batch, the evaluations, the hypervolume and each model's
+/// leave-one-out error (or the fallback), and the time the models took.
+fn iteration_line(s: &IterationStatus) -> String {
+    let models = if let Some(fallback) = &s.fallback {
+        fallback.clone()
+    } else if s.models.is_empty() {
+        "no models yet".to_string()
+    } else {
+        let fits: Vec<String> =
+            s.models.iter().map(|m| format!("{} {:.3}", m.model, m.loo_error)).collect();
+        format!("leave-one-out error {}", fits.join(", "))
+    };
+    format!(
+        "batch of {}, {} evaluations, hypervolume {:.6e}; {models}; fit {:.2} s, acquisition {:.2} s",
+        s.batch, s.evaluations, s.hypervolume, s.fit_s, s.acquisition_s
+    )
 }
 
 fn visible_bar(what: &str, unit: &str) -> ProgressBar {

@@ -336,7 +336,25 @@ fn studies_and_the_store_follow_the_convention() {
     );
     std::fs::write(&problem, text).expect("problem written");
     let opt_store = dir.path().join("opt.sqlite");
-    assert_conventional(&["optimize", path_str(&problem), "--store", path_str(&opt_store)]);
+    let nsga2 =
+        assert_conventional(&["optimize", path_str(&problem), "--store", path_str(&opt_store)]);
+    assert!(nsga2["hypervolume"]["value"].is_number(), "{nsga2}");
+    // The surrogate's report: the hypervolume with its reference point and growth, every
+    // iteration's model fits, the written front designs.
+    let surrogate = dir.path().join("surrogate.toml");
+    let text = std::fs::read_to_string(&problem).expect("problem");
+    let text = text.replace(
+        "kind = \"nsga2\"\npopulation = 4\ngenerations = 1\n",
+        "kind = \"surrogate\"\nmax_evaluations = 6\ninitial_size = 3\nbatch = 1\n",
+    );
+    std::fs::write(&surrogate, text).expect("surrogate problem written");
+    let s_store = dir.path().join("surrogate.sqlite");
+    let v = assert_conventional(&["optimize", path_str(&surrogate), "--store", path_str(&s_store)]);
+    for key in ["hypervolume", "surrogate", "front_designs"] {
+        assert!(!v[key].is_null(), "{key}: {v}");
+    }
+    assert!(v["hypervolume"]["reference"]["volume_m3"].is_number(), "{v}");
+    assert!(v["surrogate"]["iterations"][1]["models"][0]["loo_error"].is_number(), "{v}");
     // The text of --list-metrics names the same metrics.
     let listed = mrbrake(&["optimize", "--list-metrics"]);
     assert!(String::from_utf8_lossy(&listed.stdout).contains("torque_max_Nm"));

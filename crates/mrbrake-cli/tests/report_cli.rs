@@ -145,7 +145,8 @@ const SINGLE_DISC: &str =
     concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/specs/single-disc.toml");
 
 /// A small two-objective optimisation; the study report's front is the optimiser's front, its
-/// numbers those of `mrbrake export --json`, and every front design has its own section.
+/// numbers those of `mrbrake export --json`, every front design has its own section, and the
+/// hypervolume is shown with the reference point the run recorded.
 #[test]
 fn study_report_of_a_small_optimisation() {
     let dir = tempfile::tempdir().unwrap();
@@ -153,7 +154,9 @@ fn study_report_of_a_small_optimisation() {
     std::fs::write(
         &problem,
         format!(
-            "spec = \"{SINGLE_DISC}\"\nmesh = \"coarse\"\n\
+            // Written as evaluated: rounded front designs would join the store, and the store's
+            // front (the page's) would no longer be the optimiser's.
+            "spec = \"{SINGLE_DISC}\"\nmesh = \"coarse\"\nmanufacturing_resolution = 0\n\
              [[variable]]\nname = \"g\"\nmin = \"0.3mm\"\nmax = \"1mm\"\n\
              [[variable]]\nname = \"d\"\nmin = \"1mm\"\nmax = \"2mm\"\n\
              [[constraint]]\nmetric = \"torque_max_Nm\"\nmin = \"0.5Nm\"\n\
@@ -179,8 +182,13 @@ fn study_report_of_a_small_optimisation() {
         assert!(page.contains(&format!("<section id=\"front-{:02}\">", k + 1)));
     }
     assert_eq!(page.matches("<section id=\"front-0").count(), front.len(), "the same front");
-    // Objective and constraint plots, and one cross-section per front design.
-    assert_eq!(svgs, 2 + front.len());
+    // Objective and constraint plots, the hypervolume against evaluations, and one cross-section
+    // per front design.
+    assert_eq!(svgs, 3 + front.len());
+    // The hypervolume against the reference point the run fixed and recorded in the store.
+    assert!(optimized["hypervolume"]["value"].as_f64().is_some_and(|v| v > 0.0), "{optimized}");
+    assert!(page.contains("<section id=\"hypervolume\">"), "no hypervolume section");
+    assert!(page.contains("recorded in the store by the run that fixed it"), "reference source");
     check_in_browser(&[&dir.path().join("study.html")]);
 }
 

@@ -1,7 +1,8 @@
 //! Design studies end to end through the binary: shards in separate processes merge to the
 //! single-process result; a sweep killed with SIGKILL at a random point resumes without losing or
 //! duplicating a design; corrupt or foreign stores are refused untouched; a small optimisation writes
-//! its outputs and replays from the store.
+//! its outputs and replays from the store; a surrogate-assisted optimisation killed with SIGKILL
+//! resumes from its stored designs without losing or recomputing one.
 //!
 //! The plans use the single-disc example on the coarse mesh so the debug suite stays quick.
 
@@ -136,49 +137,62 @@ fn a_sweep_killed_at_a_random_point_resumes_without_loss_or_duplicates() {
     let reference = exported(&reference_store);
 
     // Kill at pseudo-random points until two kills have landed inside a running sweep (the
-    // process killed with designs still to compute). A kill that comes after the sweep finished
-    // (the reference run, the first, pays for cold caches) halves the time scale for the next try.
+    // process killed with designs still to compute).
+    let args = |store: &Path| {
+        let mut args: Vec<String> = vec!["sweep".into()];
+        args.extend(plan_args(store));
+        args.extend(["--jobs".to_string(), "1".to_string()]);
+        args
+    };
+    kill_and_resume(dir.path(), duration, &args, |store, killed| {
+        let before = if store.exists() { exported(store) } else { BTreeMap::new() };
+        for key in before.keys() {
+            assert!(reference.contains_key(key), "a design not in the plan: {key}");
+        }
+        let v = sweep(store, &["--resume", "--jobs", "1"]);
+        let computed = v["summary"]["computed"].as_u64().unwrap() as usize;
+        let reused = v["summary"]["reused"].as_u64().unwrap() as usize;
+        assert_eq!(reused, before.len(), "every stored design is reused");
+        assert_eq!(computed + reused, 12, "nothing recomputed, nothing missing");
+        assert_same_results(&reference, &exported(store));
+        eprintln!("{} of 12 designs stored; resume computed {computed}", before.len());
+        killed && before.len() < 12
+    });
+}
+
+/// `mrbrake ARGS`'s JSON on stdout.
+fn run_json(args: &[String]) -> serde_json::Value {
+    json(&args.iter().map(String::as_str).collect::<Vec<_>>())
+}
+
+/// Runs `mrbrake ARGS(store)` into fresh stores and SIGKILLs it at pseudo-random points (10 % to
+/// 90 % of `duration`, the uninterrupted run's) until two kills have landed mid-run; `resume`
+/// checks each store after its kill (whether the process was killed, not finished) and says
+/// whether the kill landed mid-run. A kill after the run finished (the reference run, the first,
+/// pays for cold caches) halves the time scale for the next try.
+fn kill_and_resume(
+    dir: &Path,
+    duration: std::time::Duration,
+    args: &dyn Fn(&Path) -> Vec<String>,
+    mut resume: impl FnMut(&Path, bool) -> bool,
+) {
     let (mut interrupted, mut scale) = (0, 1.0);
     for attempt in 0.. {
-        assert!(attempt < 10, "no kill landed inside a running sweep in 10 attempts");
-        // A pseudo-random kill time, different on every run, between 10 % and 90 % of the
-        // uninterrupted run's duration (times the scale).
+        assert!(attempt < 10, "no kill landed inside a running study in 10 attempts");
         let nanos = SystemTime::now().duration_since(UNIX_EPOCH).unwrap().subsec_nanos();
         let fraction = scale * (0.1 + 0.8 * f64::from(nanos % 1000) / 1000.0);
-        let store = dir.path().join(format!("killed-{attempt}.sqlite"));
-        let mut args: Vec<String> = vec!["sweep".into()];
-        args.extend(plan_args(&store));
-        args.extend(["--jobs".to_string(), "1".to_string()]);
+        let store = dir.join(format!("killed-{attempt}.sqlite"));
         let mut child = Command::new(env!("CARGO_BIN_EXE_mrbrake"))
-            .args(&args)
+            .args(args(&store))
             .stdout(Stdio::null())
             .stderr(Stdio::null())
             .spawn()
             .unwrap();
         std::thread::sleep(duration.mul_f64(fraction));
-        child.kill().expect("SIGKILL the sweep"); // SIGKILL on Unix
+        child.kill().expect("SIGKILL the study"); // SIGKILL on Unix
         let killed = !child.wait().unwrap().success();
-
-        let before = if store.exists() { exported(&store) } else { BTreeMap::new() };
-        for key in before.keys() {
-            assert!(reference.contains_key(key), "a design not in the plan: {key}");
-        }
-        let v = sweep(&store, &["--resume", "--jobs", "1"]);
-        let computed = v["summary"]["computed"].as_u64().unwrap() as usize;
-        let reused = v["summary"]["reused"].as_u64().unwrap() as usize;
-        assert_eq!(reused, before.len(), "every stored design is reused");
-        assert_eq!(computed + reused, 12, "nothing recomputed, nothing missing");
-        assert_same_results(&reference, &exported(&store));
-        let mid_run = killed && before.len() < 12;
-        eprintln!(
-            "kill at {:.0} % of {:.2} s ({}): {} of 12 designs stored; resume computed {}",
-            fraction * 100.0,
-            duration.as_secs_f64(),
-            if mid_run { "killed mid-run" } else { "the sweep had already finished" },
-            before.len(),
-            computed
-        );
-        if mid_run {
+        eprint!("kill at {:.0} % of {:.2} s: ", fraction * 100.0, duration.as_secs_f64());
+        if resume(&store, killed) {
             interrupted += 1;
             if interrupted == 2 {
                 break;
@@ -420,4 +434,115 @@ fn a_store_with_the_old_metric_names_exports_merges_and_resumes() {
     assert_current_names(&resumed["designs"]);
     assert_eq!(resumed["designs"].as_array().map(Vec::len), Some(3), "{resumed}");
     assert_current_names(&json(&["export", path_str(&old), "--json"]));
+}
+
+/// A surrogate-assisted problem on the single-disc example: 10 designs from an initial plan of 4,
+/// batch 2, written as evaluated (no rounding, so every stored design is one the algorithm chose).
+fn surrogate_problem(dir: &Path) -> std::path::PathBuf {
+    let problem = dir.join("surrogate.toml");
+    std::fs::write(
+        &problem,
+        format!(
+            r#"
+spec = "{SPEC}"
+mesh = "coarse"
+manufacturing_resolution = 0
+[[variable]]
+name = "g"
+min = "0.3mm"
+max = "1mm"
+[[variable]]
+name = "R2"
+min = "24mm"
+max = "30mm"
+[[constraint]]
+metric = "torque_max_Nm"
+min = "0.8Nm"
+[[objective]]
+metric = "rotor_inertia_kg_m2"
+[[objective]]
+metric = "torque_max_Nm"
+goal = "maximize"
+[algorithm]
+kind = "surrogate"
+max_evaluations = 10
+initial_size = 4
+batch = 2
+seed = 11
+"#
+        ),
+    )
+    .unwrap();
+    problem
+}
+
+#[test]
+fn a_surrogate_optimisation_killed_at_a_random_point_resumes_without_loss() {
+    let dir = tempfile::tempdir().unwrap();
+    let problem = surrogate_problem(dir.path());
+    let args_with = |store: &Path, extra: &[&str]| -> Vec<String> {
+        let mut a: Vec<String> = ["optimize", path_str(&problem), "--store", path_str(store)]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        a.extend(["--jobs", "1", "--json"].iter().chain(extra).map(|s| s.to_string()));
+        a
+    };
+    let reference_store = dir.path().join("reference.sqlite");
+    let t0 = Instant::now();
+    let full = run_json(&args_with(&reference_store, &[]));
+    let duration = t0.elapsed();
+    assert_eq!(full["evaluated"], 10, "{full}");
+    assert_eq!(full["algorithm"], "surrogate");
+    assert_eq!(full["surrogate"]["stop"], "budget");
+    assert!(full["hypervolume"]["value"].as_f64().is_some_and(|v| v > 0.0), "{full}");
+
+    let args = |store: &Path| args_with(store, &[]);
+    kill_and_resume(dir.path(), duration, &args, |store, killed| {
+        let before = if store.exists() { exported(store) } else { BTreeMap::new() };
+        let v = run_json(&args_with(store, &["--resume"]));
+        let after = exported(store);
+        // Every design stored before the kill is still there, unchanged, and none is computed
+        // twice: what the resumed run computed is exactly what the store gained.
+        let kept: BTreeMap<_, _> = after
+            .iter()
+            .filter(|(k, _)| before.contains_key(*k))
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        assert_same_results(&before, &kept);
+        let computed = v["computed"].as_u64().unwrap() as usize;
+        assert_eq!(before.len() + computed, after.len(), "{v}");
+        assert_eq!(v["evaluated"], 10, "the budget counts the stored designs: {v}");
+        // The reference design (the base spec) is stored first and is not a design of the search.
+        let designs_before = before.len().saturating_sub(1);
+        let mid_run = killed && designs_before < 10;
+        if mid_run {
+            assert_eq!(v["surrogate"]["resumed_from"], designs_before, "{v}");
+        }
+        eprintln!("{} records stored; resume computed {computed}", before.len());
+        mid_run
+    });
+}
+
+#[test]
+fn surrogate_settings_out_of_range_are_input_errors_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let problem = surrogate_problem(dir.path());
+    let text = std::fs::read_to_string(&problem).unwrap();
+    for (from, to, key) in [
+        ("batch = 2", "batch = 0", "algorithm.batch"),
+        ("initial_size = 4", "initial_size = 2", "algorithm.initial_size"),
+        ("seed = 11", "seed = 11\nacquisition = \"parego\"", "acquisition"),
+    ] {
+        let bad = dir.path().join("bad.toml");
+        std::fs::write(&bad, text.replace(from, to)).unwrap();
+        let store = dir.path().join("bad.sqlite");
+        expect_input_error(&["optimize", path_str(&bad), "--store", path_str(&store)], &[key]);
+        assert!(!store.exists(), "a refused problem leaves no store");
+    }
+    let store = dir.path().join("g.sqlite");
+    expect_input_error(
+        &["optimize", path_str(&problem), "--store", path_str(&store), "--generations", "2"],
+        &["--generations applies to NSGA-II"],
+    );
 }

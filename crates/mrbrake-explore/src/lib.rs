@@ -14,7 +14,10 @@
 //! * [`stored`]: reading and merging stores under the current metric names;
 //! * [`plan`]: sweep plans (lists, ranges, Latin hypercube, Sobol') and deterministic shards;
 //! * [`problem`] and [`optimize`]: optimisation problem files (variables, constraints, objectives)
-//!   solved by NSGA-II or pattern search from [`mrbrake_optim`], every evaluation through the store.
+//!   solved by NSGA-II, the surrogate-assisted optimiser ([`surrogate`]) or pattern search from
+//!   [`mrbrake_optim`], every evaluation through the store; [`hypervolume`] measures every run,
+//!   [`front`] writes the front's designs (in the base spec's units, rounded and evaluated again),
+//!   [`polish`] refines one by a local pattern search.
 //!
 //! Runs and optimisations report to an [`mrbrake_observe::Observer`] ([`Progress`] per stored
 //! design, [`optimize::OptimizeProgress`] over a whole optimisation), which may stop them; every
@@ -22,11 +25,15 @@
 
 pub mod design;
 pub mod evaluate;
+pub mod front;
+pub mod hypervolume;
 pub mod optimize;
 pub mod plan;
+pub mod polish;
 pub mod problem;
 pub mod runner;
 pub mod stored;
+pub mod surrogate;
 pub mod variable;
 
 pub use design::{Design, DesignSpace};

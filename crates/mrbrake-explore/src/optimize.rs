@@ -1,31 +1,43 @@
-//! Optimisation of a brake design: an [`OptimizationProblem`] solved by NSGA-II or pattern search,
-//! every evaluation analysed by the FEA through the results store.
+//! Optimisation of a brake design: an [`OptimizationProblem`] solved by NSGA-II, the
+//! surrogate-assisted optimiser ([`crate::surrogate`]) or pattern search, every evaluation analysed
+//! by the FEA through the results store.
 //!
 //! Brief overview: [`StudyProblem`] adapts a problem file to [`mrbrake_optim::Problem`]: a vector
 //! of variable values becomes a [`crate::Design`], each batch (one NSGA-II generation, one
-//! pattern-search poll) goes through the [`Runner`] (parallel, stored, never recomputed), and each
-//! record becomes an [`Evaluation`]: the objectives (maximised ones negated) and the total normalised
-//! constraint violation ([`crate::problem::Constraint::violation`]); infeasible or failed designs get
-//! an infinite violation so that every evaluated design beats them (Deb's feasibility rules).
-//! Because the algorithms are seeded and deterministic, re-running an interrupted optimisation on
-//! the same store replays the same designs: stored ones are read back, the rest are computed.
-//! [`run`] returns every evaluated design, the feasible Pareto front and the reference design.
+//! surrogate iteration, one pattern-search poll) goes through the [`Runner`] (parallel, stored,
+//! never recomputed), and each record becomes an [`Evaluation`]: the objectives (maximised ones
+//! negated), the total normalised constraint violation ([`crate::problem::Constraint::violation`])
+//! and each constraint's signed value (`−margin`, [`crate::problem::Constraint::margin`]);
+//! infeasible or failed designs get an infinite violation so that every evaluated design beats them
+//! (Deb's feasibility rules). Because NSGA-II and pattern search are seeded and deterministic,
+//! re-running an interrupted optimisation on the same store replays the same designs: stored ones
+//! are read back, the rest are computed; the surrogate continues from the stored designs instead.
+//! [`run`] returns every evaluated design, the feasible Pareto front (the non-dominated set of the
+//! *evaluated* designs), its hypervolume ([`crate::hypervolume`]), the reference design, and the
+//! front's designs as they are written ([`crate::front`]: rounded to the manufacturing resolution
+//! and evaluated again); [`crate::polish`] refines one front design by a pattern search started
+//! at it.
 //!
-//! The caller's [`Observer`] sees an [`OptimizeProgress`] after every stored evaluation; a
-//! [`Flow::Stop`] ends the optimisation once the designs in flight
-//! are stored, and [`run`] returns what was evaluated until then with
-//! [`OptimizationResult::stopped`] set (running it again on the same store resumes it).
+//! The caller's [`Observer`] sees an [`OptimizeProgress`] after every stored evaluation, and after
+//! every surrogate iteration (with its [`IterationStatus`]); a [`Flow::Stop`] ends the
+//! optimisation once the designs in flight are stored, and [`run`] returns what was evaluated until
+//! then with [`OptimizationResult::stopped`] set (running it again on the same store resumes it).
+
+use std::cell::{Cell, RefCell};
 
 use mrbrake_observe::{Flow, Observer, Silent};
 use mrbrake_optim::pareto::{Evaluation, pareto_front};
-use mrbrake_optim::space::Bounds;
+use mrbrake_optim::space::{Bounds, validate_design};
+use mrbrake_optim::surrogate::EvaluatedDesign;
 use mrbrake_optim::{Problem, RunError, nsga2, pattern_search};
 use mrbrake_store::{Record, Status, Store};
 
 use crate::design::DesignSpace;
-use crate::problem::{Algorithm, Goal, OptimizationProblem};
+use crate::front::FrontDesign;
+use crate::hypervolume::{self, Hypervolume, ReferenceSource};
+use crate::problem::{Algorithm, Goal, OptimizationProblem, Start};
 use crate::runner::{Progress, RunSummary, Runner};
-use crate::variable::Quantity;
+use crate::surrogate::{IterationStatus, SurrogateRun, optimiser_bounds};
 use crate::{Design, ExploreError};
 
 /// One evaluated design of an optimisation.
@@ -63,6 +75,16 @@ pub struct OptimizationResult {
     /// True when the observer stopped the optimisation: `evaluated` holds the designs stored
     /// until then, `iterations` the generations or polls completed.
     pub stopped: bool,
+    /// The hypervolume of `evaluated` with its reference point and its growth (`None` while no
+    /// design is feasible).
+    pub hypervolume: Option<Hypervolume>,
+    /// A surrogate run's iterations (model fits, timings) and why it stopped.
+    pub surrogate: Option<SurrogateRun>,
+    /// The front's designs as written (`designs/front-NN.toml`), in the front's order: rounded to
+    /// the manufacturing resolution and evaluated again (empty for a stopped run).
+    pub front_designs: Vec<FrontDesign>,
+    /// The polish of a front design ([`run_with`]), whose designs are among `evaluated`.
+    pub polish: Option<crate::polish::Polished>,
 }
 
 /// Which batch of an optimisation is being evaluated.
@@ -82,13 +104,20 @@ pub enum Stage {
         /// 0 for the start point, then 1, 2, …
         index: usize,
     },
+    /// Surrogate: the initial design (0), then iteration `index`.
+    Iteration {
+        /// 0 for the initial design, then 1, 2, …
+        index: usize,
+    },
+    /// The front's designs rounded to the manufacturing resolution, evaluated again.
+    FrontDesigns,
 }
 
 /// Where an optimisation stands, over the whole run, reported after every stored evaluation.
 ///
 /// Why not the runner's [`Progress`]: the optimiser runs one batch per generation (or poll), and
 /// a batch's progress restarts at zero, so its lines would read "0/N" at every generation.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct OptimizeProgress {
     /// The batch being evaluated.
     pub stage: Stage,
@@ -101,6 +130,9 @@ pub struct OptimizeProgress {
     /// The counts of every batch so far summed (this batch's included); `elapsed_s` is the time
     /// spent in batches.
     pub run: Progress,
+    /// Set once per surrogate iteration, after its batch: the iteration's hypervolume and model
+    /// fits (the counts above are those of the last stored evaluation).
+    pub iteration: Option<IterationStatus>,
 }
 
 /// The [`mrbrake_optim::Problem`] of an optimisation problem file.
@@ -116,11 +148,18 @@ pub struct StudyProblem<'s, 'p> {
     totals: Option<RunSummary>,
     /// Batches the algorithm asked for (the reference design not counted).
     algorithm_batches: usize,
+    /// Designs of the store read as the data of a continued (surrogate) run.
+    preloaded: usize,
+    /// The hypervolume's reference point and where it comes from, once known.
+    reference: Option<(Vec<f64>, ReferenceSource)>,
+    /// Whether a reference point this study fixes is recorded in the store.
+    records_reference: bool,
     observer: &'p mut dyn Observer<OptimizeProgress>,
 }
 
 impl<'s, 'p> StudyProblem<'s, 'p> {
-    /// Sets up the problem: reads the base spec, resolves the variables and their bounds;
+    /// Sets up the problem: reads the base spec, resolves the variables and their bounds, and the
+    /// hypervolume's reference point if the problem gives one or the store records one;
     /// `observer` sees the progress of every batch.
     pub fn new(
         problem: &'p OptimizationProblem,
@@ -129,6 +168,11 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         observer: &'p mut dyn Observer<OptimizeProgress>,
     ) -> Result<Self, ExploreError> {
         let (space, bounds) = space_and_bounds(problem)?;
+        let reference = match &problem.hypervolume_reference {
+            Some(r) => Some((r.clone(), ReferenceSource::Problem)),
+            None => hypervolume::stored_reference(store, &problem.objectives)?
+                .map(|r| (r, ReferenceSource::Store)),
+        };
         Ok(Self {
             problem,
             space,
@@ -140,6 +184,9 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             requested: 0,
             totals: None,
             algorithm_batches: 0,
+            preloaded: 0,
+            reference,
+            records_reference: true,
             observer,
         })
     }
@@ -149,34 +196,26 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         &self.space
     }
 
-    /// What the optimiser sees of a record.
+    /// The problem.
+    pub fn problem(&self) -> &OptimizationProblem {
+        self.problem
+    }
+
+    /// What the optimiser sees of a record ([`evaluation_for`]).
     pub fn evaluation_of(&self, record: &Record) -> Evaluation {
-        let n = self.problem.objectives.len();
-        if record.status != Status::Ok {
-            return Evaluation::failed(n);
-        }
-        let metric = |name: &str| {
-            record.metrics.iter().find(|(k, _)| k == name).map_or(f64::NAN, |(_, v)| *v)
-        };
-        let objectives: Vec<f64> = self
-            .problem
-            .objectives
-            .iter()
-            .map(|o| {
-                let v = metric(&o.metric);
-                let v = if v.is_finite() { v } else { f64::INFINITY };
-                match o.goal {
-                    Goal::Minimize => v,
-                    Goal::Maximize => -v,
-                }
-            })
-            .collect();
-        let violation: f64 =
-            self.problem.constraints.iter().map(|c| c.violation(metric(&c.metric))).sum();
-        if objectives.iter().any(|v| !v.is_finite()) {
-            return Evaluation::failed(n);
-        }
-        Evaluation::new(objectives, violation)
+        evaluation_for(self.problem, record)
+    }
+
+    /// This study no longer records the hypervolume's reference point in the store (a polish,
+    /// whose derived objectives are not the study's).
+    pub fn without_recording(mut self) -> Self {
+        self.records_reference = false;
+        self
+    }
+
+    /// The designs evaluated, in order, and the summed run statistics (`None`: nothing run).
+    pub fn into_parts(self) -> (Vec<Evaluated>, Option<RunSummary>) {
+        (self.evaluated, self.totals)
     }
 
     /// The base spec's value of every variable, clamped into its bounds (a start point).
@@ -208,11 +247,87 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         Ok(point)
     }
 
+    /// The start point of a pattern search (`algorithm.start`): `None` for the centre.
+    pub fn start_point(&self, start: &Start) -> Result<Option<Vec<f64>>, ExploreError> {
+        match start {
+            Start::Centre => Ok(None),
+            Start::Base => self.base_point().map(Some),
+            Start::Values(values) => Ok(Some(
+                values
+                    .iter()
+                    .zip(&self.bounds)
+                    .map(|(v, b)| {
+                        let (lo, hi) = b.feasible_range();
+                        b.repair(v.unwrap_or(0.5 * (lo + hi)))
+                    })
+                    .collect(),
+            )),
+        }
+    }
+
+    /// Every record of the store that is a design of this problem (its variables inside the
+    /// bounds and its key the one this problem gives them), in the store's order, kept among the
+    /// evaluated designs: the data a surrogate run continues from.
+    pub fn stored_designs(&mut self) -> Result<Vec<EvaluatedDesign>, ExploreError> {
+        let records = crate::stored::read_records(self.runner.store())?;
+        let mut designs = Vec::new();
+        for record in records {
+            let x: Option<Vec<f64>> =
+                self.space.variables().iter().map(|v| record.variable(&v.name)).collect();
+            let Some(x) = x.filter(|x| !x.is_empty()) else { continue };
+            if validate_design(&self.bounds, &x, "stored design").is_err()
+                || self.seen.contains_key(&record.key)
+                || self.space.design(&x)?.key != record.key
+            {
+                continue;
+            }
+            let evaluation = self.keep(record);
+            designs.push(EvaluatedDesign { x, evaluation });
+        }
+        self.preloaded = designs.len();
+        Ok(designs)
+    }
+
+    /// The hypervolume's reference point, once known (given, recorded, or fixed by this run).
+    pub fn hypervolume_reference(&self) -> Option<Vec<f64>> {
+        self.reference.as_ref().map(|(r, _)| r.clone())
+    }
+
+    /// The evaluations of the designs evaluated so far, in order.
+    pub fn evaluations(&self) -> Vec<Evaluation> {
+        self.evaluated.iter().map(|e| e.evaluation.clone()).collect()
+    }
+
+    /// Fixes the hypervolume's reference point by the rule of [`crate::hypervolume`] once a design
+    /// is feasible, and records it in the store (a resumed run and the study report use it).
+    fn fix_reference(&mut self) -> Result<(), ExploreError> {
+        if self.reference.is_none() {
+            let objectives = self.problem.objectives.len();
+            if let Some(r) = hypervolume::reference_of(&self.evaluations(), objectives) {
+                self.reference = Some((r, ReferenceSource::FirstFeasibleBatch));
+            }
+        }
+        if let (Some((r, ReferenceSource::FirstFeasibleBatch)), true) =
+            (&self.reference, self.records_reference)
+        {
+            let store = self.runner.store_mut();
+            hypervolume::record_reference(store, &self.problem.objectives, r)?;
+        }
+        Ok(())
+    }
+
+    /// The hypervolume of the evaluated designs, in order.
+    fn hypervolume(&self) -> Option<Hypervolume> {
+        let (reference, source) = self.reference.clone()?;
+        Some(Hypervolume::of(&self.evaluations(), reference, source))
+    }
+
     /// Designs the whole run asks for (see [`OptimizeProgress::total`]).
     fn planned_designs(&self) -> usize {
-        let algorithm = match self.problem.algorithm {
+        let algorithm = match &self.problem.algorithm {
             Algorithm::Nsga2 { population, generations, .. } => population * (generations + 1),
-            Algorithm::PatternSearch { max_evaluations, .. } => max_evaluations,
+            Algorithm::Surrogate(s) => s.max_evaluations.saturating_sub(self.preloaded),
+            Algorithm::PatternSearch { max_evaluations, .. } => *max_evaluations,
         };
         algorithm + usize::from(self.problem.reference)
     }
@@ -222,11 +337,17 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         let index = self.algorithm_batches;
         match self.problem.algorithm {
             Algorithm::Nsga2 { generations, .. } => Stage::Generation { index, of: generations },
+            Algorithm::Surrogate(_) => Stage::Iteration { index },
             Algorithm::PatternSearch { .. } => Stage::Poll { index },
         }
     }
 
-    fn run_batch(&mut self, designs: &[Design], stage: Stage) -> Result<Vec<Record>, ExploreError> {
+    /// Evaluates `designs` as the batch `stage` through the runner, relaying its progress.
+    pub(crate) fn run_batch(
+        &mut self,
+        designs: &[Design],
+        stage: Stage,
+    ) -> Result<Vec<Record>, ExploreError> {
         // The batch's progress made cumulative: designs and counts of the earlier batches added.
         let done_before = self.requested;
         let before = self.totals.as_ref().map(|t| t.progress);
@@ -241,7 +362,7 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
                 run.add(b);
             }
             let done = done_before + designs.len() - waiting;
-            observer.observe(&OptimizeProgress { stage, done, total, run })
+            observer.observe(&OptimizeProgress { stage, done, total, run, iteration: None })
         };
         let outcome = self.runner.run(designs, &mut relay);
         self.batches += 1;
@@ -314,7 +435,9 @@ impl Problem for StudyProblem<'_, '_> {
         let stage = self.next_algorithm_stage();
         self.algorithm_batches += 1;
         let records = self.run_batch(&designs, stage)?;
-        Ok(records.into_iter().map(|record| self.keep(record)).collect())
+        let evaluations = records.into_iter().map(|record| self.keep(record)).collect();
+        self.fix_reference()?;
+        Ok(evaluations)
     }
 }
 
@@ -358,15 +481,13 @@ fn space_and_bounds(
         .variables()
         .iter()
         .zip(&problem.variables)
-        .map(|(v, b)| match v.field.quantity {
-            Quantity::Integer => Bounds::integer(b.min, b.max),
-            _ => Bounds::continuous(b.min, b.max),
-        })
+        .map(|(v, b)| optimiser_bounds(v, b))
         .collect();
     Ok((space, bounds))
 }
 
-fn run_error(e: RunError<ExploreError>) -> ExploreError {
+/// An optimiser's error as the study's: its own set-up errors wrapped, the study's unchanged.
+pub(crate) fn run_error(e: RunError<ExploreError>) -> ExploreError {
     match e {
         RunError::Optim(e) => ExploreError::Optim(e),
         RunError::Problem(e) => e,
@@ -408,44 +529,98 @@ pub fn run(
     jobs: usize,
     observer: &mut dyn Observer<OptimizeProgress>,
 ) -> Result<OptimizationResult, ExploreError> {
-    let mut study = StudyProblem::new(problem, store, jobs, observer)?;
-    let reference = if problem.reference {
-        let base = study.space.base_design()?;
-        match study.run_batch(std::slice::from_ref(&base), Stage::Reference) {
-            Ok(mut records) => {
-                let record = records.pop().ok_or_else(|| {
-                    ExploreError::Internal("the reference design was not stored".into())
-                })?;
-                let evaluation = study.evaluation_of(&record);
-                Ok(Some(Evaluated { record, evaluation }))
-            }
-            Err(e) => Err(e),
+    run_with(problem, store, jobs, None, observer)
+}
+
+/// [`run`], then, with `polish`, a pattern search from one of the front's designs
+/// ([`crate::polish`]): its designs join the evaluated ones before the front, its hypervolume and
+/// its written designs are made.
+pub fn run_with(
+    problem: &OptimizationProblem,
+    store: &mut Store,
+    jobs: usize,
+    polish: Option<&crate::polish::PolishRequest>,
+    observer: &mut dyn Observer<OptimizeProgress>,
+) -> Result<OptimizationResult, ExploreError> {
+    // One observer for the batches (through each study) and the surrogate's iterations: the
+    // iteration's line carries the counts of the last stored evaluation.
+    let outer = RefCell::new(observer);
+    let last: RefCell<Option<OptimizeProgress>> = RefCell::new(None);
+    let next_iteration = Cell::new(0);
+    let mut relay = |p: &OptimizeProgress| {
+        let mut p = p.clone();
+        if let Stage::Iteration { .. } = p.stage {
+            // The surrogate numbers its iterations; a resumed run may skip the initial design.
+            p.stage = Stage::Iteration { index: next_iteration.get() };
         }
-    } else {
-        Ok(None)
+        let flow = outer.borrow_mut().observe(&p);
+        *last.borrow_mut() = Some(p);
+        flow
     };
+    let mut on_iteration = |status: &IterationStatus| {
+        next_iteration.set(status.iteration + 1);
+        let mut p = last.borrow().clone().unwrap_or_else(|| idle_progress(Stage::Reference));
+        p.stage = Stage::Iteration { index: status.iteration };
+        p.iteration = Some(status.clone());
+        outer.borrow_mut().observe(&p)
+    };
+    let mut result = run_algorithm_phase(problem, store, jobs, &mut relay, &mut on_iteration)?;
+    if let (Some(request), false) = (polish, result.stopped) {
+        let polished = crate::polish::run(problem, store, jobs, &result, request, &mut relay)?;
+        crate::polish::merge(&mut result, polished);
+    }
+    finish(problem, store, jobs, result, &mut relay)
+}
+
+/// A progress with nothing done yet, at `stage`.
+fn idle_progress(stage: Stage) -> OptimizeProgress {
+    let run = Progress {
+        to_compute: 0,
+        computed: 0,
+        reused: 0,
+        infeasible: 0,
+        failed: 0,
+        elapsed_s: 0.0,
+    };
+    OptimizeProgress { stage, done: 0, total: 0, run, iteration: None }
+}
+
+/// The reference design and the algorithm on one study: everything of the result but the front,
+/// the hypervolume and the written designs ([`finish`]).
+fn run_algorithm_phase(
+    problem: &OptimizationProblem,
+    store: &mut Store,
+    jobs: usize,
+    relay: &mut dyn Observer<OptimizeProgress>,
+    on_iteration: &mut dyn FnMut(&IterationStatus) -> Flow,
+) -> Result<OptimizationResult, ExploreError> {
+    let mut study = StudyProblem::new(problem, store, jobs, relay)?;
+    let reference = if problem.reference { reference_design(&mut study) } else { Ok(None) };
     let (reference, algorithm) = match reference {
-        Ok(reference) => (reference, run_algorithm(&mut study, problem)),
+        Ok(reference) => (reference, run_algorithm(&mut study, problem, jobs, on_iteration)),
         Err(e) => (None, Err(e)),
     };
-    let (iterations, converged, stopped) = match algorithm {
-        Ok((iterations, converged)) => (iterations, converged, false),
+    let (iterations, converged, surrogate, stopped) = match algorithm {
+        Ok(Ran { iterations, converged, surrogate }) => {
+            let stopped = surrogate.as_ref().is_some_and(|s| s.stop == "observer");
+            (iterations, converged, surrogate, stopped)
+        }
         Err(ExploreError::Stopped { .. }) => {
             // The batches that finished: the start (initial population or start point) is not an
             // iteration, and the stopped batch did not finish.
-            (study.algorithm_batches.saturating_sub(2), None, true)
+            (study.algorithm_batches.saturating_sub(2), None, None, true)
         }
         Err(e) => return Err(e),
     };
-    let evaluations: Vec<Evaluation> =
-        study.evaluated.iter().map(|e| e.evaluation.clone()).collect();
-    let front = if problem.objectives.len() == 1 {
-        best_feasible(&evaluations).into_iter().collect()
-    } else {
-        pareto_front(&evaluations)
-    };
+    study.fix_reference()?;
+    let hypervolume = study.hypervolume();
     let totals = match study.totals.clone() {
         Some(totals) => totals,
+        None if !study.evaluated.is_empty() => RunSummary {
+            progress: idle_progress(Stage::Reference).run,
+            evaluation_s: 0.0,
+            store_s: 0.0,
+        },
         None => return Err(ExploreError::Internal("the optimiser evaluated no design".into())),
     };
     Ok(OptimizationResult {
@@ -454,38 +629,92 @@ pub fn run(
         stopped,
         variables: study.space.variables().to_vec(),
         evaluated: study.evaluated,
-        front,
+        front: Vec::new(),
         reference,
         batches: study.batches,
         requested: study.requested,
         totals,
+        hypervolume,
+        surrogate,
+        front_designs: Vec::new(),
+        polish: None,
     })
 }
 
-/// Runs the problem's algorithm on `study`: the generations (NSGA-II) or polls (pattern search)
-/// run, and whether a pattern search converged.
+/// The base spec, evaluated as the reference design.
+fn reference_design(study: &mut StudyProblem<'_, '_>) -> Result<Option<Evaluated>, ExploreError> {
+    let base = study.space.base_design()?;
+    let mut records = study.run_batch(std::slice::from_ref(&base), Stage::Reference)?;
+    let record = records
+        .pop()
+        .ok_or_else(|| ExploreError::Internal("the reference design was not stored".into()))?;
+    let evaluation = study.evaluation_of(&record);
+    Ok(Some(Evaluated { record, evaluation }))
+}
+
+/// The front of the evaluated designs, their hypervolume (over every evaluated design, in order,
+/// against the run's reference point) and, for a run that was not stopped, the written designs.
+fn finish(
+    problem: &OptimizationProblem,
+    store: &mut Store,
+    jobs: usize,
+    mut result: OptimizationResult,
+    relay: &mut dyn Observer<OptimizeProgress>,
+) -> Result<OptimizationResult, ExploreError> {
+    let evaluations: Vec<Evaluation> =
+        result.evaluated.iter().map(|e| e.evaluation.clone()).collect();
+    result.front = front_of(problem, &evaluations);
+    if let Some(h) = &result.hypervolume {
+        result.hypervolume = Some(Hypervolume::of(&evaluations, h.reference.clone(), h.source));
+    }
+    if !result.stopped {
+        let mut study = StudyProblem::new(problem, store, jobs, relay)?;
+        match crate::front::designs(&mut study, &result) {
+            Ok(designs) => result.front_designs = designs,
+            Err(ExploreError::Stopped { .. }) => result.stopped = true,
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(result)
+}
+
+/// What an algorithm's run returns to [`run_algorithm_phase`].
+struct Ran {
+    iterations: usize,
+    converged: Option<bool>,
+    surrogate: Option<SurrogateRun>,
+}
+
+/// Runs the problem's algorithm on `study`: the generations (NSGA-II), iterations (surrogate) or
+/// polls (pattern search) run, whether a pattern search converged, and a surrogate run's record.
 fn run_algorithm(
     study: &mut StudyProblem<'_, '_>,
     problem: &OptimizationProblem,
-) -> Result<(usize, Option<bool>), ExploreError> {
-    match problem.algorithm {
+    jobs: usize,
+    on_iteration: &mut dyn FnMut(&IterationStatus) -> Flow,
+) -> Result<Ran, ExploreError> {
+    match &problem.algorithm {
         Algorithm::Nsga2 { population, generations, seed } => {
             let options = nsga2::Nsga2Options {
-                population,
-                generations,
-                seed,
+                population: *population,
+                generations: *generations,
+                seed: *seed,
                 ..nsga2::Nsga2Options::default()
             };
             let result = nsga2::run(study, &options, &mut Silent).map_err(run_error)?;
-            Ok((result.generations, None))
+            Ok(Ran { iterations: result.generations, converged: None, surrogate: None })
         }
-        Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base } => {
-            let start = if start_at_base { Some(study.base_point()?) } else { None };
+        Algorithm::Surrogate(settings) => {
+            let (iterations, record) =
+                crate::surrogate::run(study, problem, settings, jobs, on_iteration)?;
+            Ok(Ran { iterations, converged: None, surrogate: Some(record) })
+        }
+        Algorithm::PatternSearch { max_evaluations, seed, random_poll, start } => {
             let options = pattern_search::PatternSearchOptions {
-                max_evaluations,
-                seed,
-                start,
-                poll: if random_poll {
+                max_evaluations: *max_evaluations,
+                seed: *seed,
+                start: study.start_point(start)?,
+                poll: if *random_poll {
                     pattern_search::PollDirections::RandomOrthogonal
                 } else {
                     pattern_search::PollDirections::Compass
@@ -493,8 +722,53 @@ fn run_algorithm(
                 ..pattern_search::PatternSearchOptions::default()
             };
             let result = pattern_search::run(study, &options, &mut Silent).map_err(run_error)?;
-            Ok((result.iterations, Some(result.converged)))
+            Ok(Ran {
+                iterations: result.iterations,
+                converged: Some(result.converged),
+                surrogate: None,
+            })
         }
+    }
+}
+
+/// What the optimiser sees of a record of `problem`: the objectives (maximised ones negated), the
+/// total violation and each constraint's signed value `−margin` (satisfied when `≤ 0`); a record
+/// that is not `ok`, or lacks a metric, is a failed evaluation.
+pub fn evaluation_for(problem: &OptimizationProblem, record: &Record) -> Evaluation {
+    let n = problem.objectives.len();
+    if record.status != Status::Ok {
+        return Evaluation::failed(n);
+    }
+    let metric =
+        |name: &str| record.metrics.iter().find(|(k, _)| k == name).map_or(f64::NAN, |(_, v)| *v);
+    let objectives: Vec<f64> = problem
+        .objectives
+        .iter()
+        .map(|o| {
+            let v = metric(&o.metric);
+            let v = if v.is_finite() { v } else { f64::INFINITY };
+            match o.goal {
+                Goal::Minimize => v,
+                Goal::Maximize => -v,
+            }
+        })
+        .collect();
+    let violation: f64 = problem.constraints.iter().map(|c| c.violation(metric(&c.metric))).sum();
+    if objectives.iter().any(|v| !v.is_finite()) || !violation.is_finite() {
+        return Evaluation::failed(n);
+    }
+    let signed: Vec<f64> =
+        problem.constraints.iter().map(|c| -c.margin(metric(&c.metric))).collect();
+    Evaluation::new(objectives, violation).with_constraints(signed)
+}
+
+/// The front of `evaluations` (indices): the feasible non-dominated set, or for one objective the
+/// best feasible design.
+pub fn front_of(problem: &OptimizationProblem, evaluations: &[Evaluation]) -> Vec<usize> {
+    if problem.objectives.len() == 1 {
+        best_feasible(evaluations).into_iter().collect()
+    } else {
+        pareto_front(evaluations)
     }
 }
 

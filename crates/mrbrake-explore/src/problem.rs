@@ -18,17 +18,26 @@
 //! metric = "rotor_inertia_kg_m2"
 //! goal = "minimize"                            # or "maximize"
 //! [algorithm]
-//! kind = "nsga2"                               # or "pattern-search" (one objective)
+//! kind = "nsga2"                               # or "surrogate", "pattern-search" (one objective)
 //! population = 24
 //! generations = 10
 //! seed = 1
 //! # pattern-search only: max_evaluations = 200, poll = "compass" | "random",
-//! # start = "centre" | "base" (the base spec's values)
+//! # start = "centre" | "base" (the base spec's values) | { R0 = "20mm", n = 2 } (per variable;
+//! # the others at the centre of their bounds)
+//! # surrogate only: max_evaluations = 200, initial_size = 10 x variables, batch = --jobs,
+//! # acquisition = "ehvi", stall_iterations = 15, stall_tolerance = 1e-3
+//! # any kind: hypervolume_reference = [..] (one value per objective, in its metric's unit)
 //! ```
+//!
+//! `manufacturing_resolution = "0.01mm"` (the default; 0 writes the designs as evaluated) is the
+//! resolution the front designs' lengths are rounded to when they are written (see
+//! [`crate::front`]).
 //!
 //! Every field is checked when the file is read; an error names the file, the table and the field
 //! and what is allowed. Counts are bounded before anything is sized by them: `population` ≤
-//! [`MAX_POPULATION`], `generations` and `max_evaluations` ≤ [`MAX_EVALUATIONS`] designs.
+//! [`MAX_POPULATION`], `generations` and `max_evaluations` ≤ [`MAX_EVALUATIONS`] designs, the
+//! surrogate's `max_evaluations` ≤ [`MAX_SURROGATE_EVALUATIONS`] (its models grow with the data).
 
 use std::path::{Path, PathBuf};
 
@@ -89,6 +98,20 @@ struct RawProblem {
     objectives: Vec<RawObjective>,
     /// The optimiser and its budget.
     algorithm: RawAlgorithm,
+    /// The resolution the lengths of the front designs are rounded to when they are written
+    /// (`designs/front-NN.toml`, re-evaluated after rounding); 0 writes them as evaluated, in SI.
+    #[serde(default)]
+    #[schemars(schema_with = "resolution_quantity")]
+    manufacturing_resolution: Option<RawQuantity>,
+}
+
+/// `manufacturing_resolution`: a length.
+fn resolution_quantity(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    let mut schema = mrbrake_schema::quantity(Dimension::Length, "0.01mm");
+    if let Some(object) = schema.as_object_mut() {
+        object.insert("default".into(), serde_json::json!("0.01mm"));
+    }
+    schema
 }
 
 /// `mesh`: coarse, default or fine.
@@ -167,7 +190,8 @@ fn minimize() -> String {
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawAlgorithm {
-    /// `nsga2` (NSGA-II, one or more objectives) or `pattern-search` (one objective).
+    /// `nsga2` (NSGA-II, one or more objectives), `surrogate` (Gaussian-process models and
+    /// expected hypervolume improvement: far fewer evaluations) or `pattern-search` (one objective).
     #[schemars(schema_with = "algorithm_kind")]
     kind: String,
     /// NSGA-II: the population, an even number from 4.
@@ -176,7 +200,7 @@ struct RawAlgorithm {
     /// NSGA-II: generations after the initial population.
     #[serde(default)]
     generations: Option<usize>,
-    /// Pattern search: the most designs evaluated.
+    /// Pattern search and surrogate: the most designs evaluated (default 200).
     #[serde(default)]
     max_evaluations: Option<usize>,
     /// Seed of the random numbers (reproducible runs).
@@ -186,14 +210,54 @@ struct RawAlgorithm {
     #[serde(default)]
     #[schemars(schema_with = "poll")]
     poll: Option<String>,
-    /// Pattern search: start at the `centre` of the bounds or at the `base` spec's values.
+    /// Pattern search: start at the `centre` of the bounds, at the `base` spec's values, or at the
+    /// values of a table `{ R0 = "20mm", n = 2 }` (variables not named start at their centre).
     #[serde(default)]
     #[schemars(schema_with = "start")]
-    start: Option<String>,
+    start: Option<RawStart>,
+    /// Surrogate: designs of the initial space-filling (Sobol') plan; default 10 × variables, at
+    /// least variables + 1.
+    #[serde(default)]
+    initial_size: Option<usize>,
+    /// Surrogate: designs chosen per iteration, 1 to 1024; default `--jobs` (one per core), so
+    /// every core analyses.
+    #[serde(default)]
+    batch: Option<usize>,
+    /// Surrogate: the acquisition, `ehvi` (expected hypervolume improvement × probability of
+    /// feasibility).
+    #[serde(default)]
+    #[schemars(schema_with = "acquisition")]
+    acquisition: Option<String>,
+    /// Surrogate: stop when the hypervolume grew by at most `stall_tolerance` over this many
+    /// iterations (default 15; 0 never stops on a stall).
+    #[serde(default)]
+    stall_iterations: Option<usize>,
+    /// Surrogate: the relative hypervolume growth that counts as a stall (default 1e-3).
+    #[serde(default)]
+    stall_tolerance: Option<f64>,
+    /// Any kind: the hypervolume's reference point, one value per objective in its metric's unit
+    /// (a number in SI or a quantity such as `"3Nm"`). Default: 10 % of the feasible designs'
+    /// range beyond their worst value, fixed at the first batch with a feasible design.
+    #[serde(default)]
+    hypervolume_reference: Option<Vec<RawQuantity>>,
+}
+
+/// `algorithm.start`: a named start or a value per variable.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+enum RawStart {
+    /// `centre` or `base`.
+    Named(String),
+    /// Variable names to values.
+    Values(toml::Table),
 }
 
 fn algorithm_kind(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
-    mrbrake_schema::choice(&["nsga2", "pattern-search"], None)
+    mrbrake_schema::choice(&["nsga2", "surrogate", "pattern-search"], None)
+}
+
+fn acquisition(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    mrbrake_schema::choice(&["ehvi"], Some("ehvi"))
 }
 
 fn poll(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
@@ -201,11 +265,23 @@ fn poll(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
 }
 
 fn start(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
-    mrbrake_schema::choice(&["centre", "base"], Some("centre"))
+    let named = mrbrake_schema::choice(&["centre", "base"], Some("centre"));
+    schemars::json_schema!({
+        "anyOf": [
+            named,
+            {
+                "type": "object",
+                "description": "A start value per variable name (a number in SI or a quantity).",
+                "additionalProperties": { "type": ["number", "string", "integer"] },
+            },
+        ],
+        "default": "centre",
+    })
 }
 
 /// The JSON Schema of an optimisation problem file (`mrbrake optimize`); counts bounded by
-/// [`MAX_POPULATION`] and [`MAX_EVALUATIONS`], the limits the reader checks.
+/// [`MAX_POPULATION`], [`MAX_EVALUATIONS`], [`MAX_BATCH`] and [`MAX_INITIAL_SIZE`], the limits the
+/// reader checks.
 pub fn schema() -> serde_json::Value {
     use mrbrake_schema::{Bounds, annotate, node_mut, order};
     let mut schema = mrbrake_schema::generate::<RawProblem>();
@@ -223,6 +299,9 @@ pub fn schema() -> serde_json::Value {
         ("algorithm.population", Bounds::closed(4.0, MAX_POPULATION as f64)),
         ("algorithm.generations", Bounds::closed(0.0, MAX_EVALUATIONS as f64)),
         ("algorithm.max_evaluations", Bounds::closed(1.0, MAX_EVALUATIONS as f64)),
+        ("algorithm.batch", Bounds::closed(1.0, MAX_BATCH as f64)),
+        ("algorithm.initial_size", Bounds::closed(2.0, MAX_INITIAL_SIZE as f64)),
+        ("algorithm.stall_tolerance", Bounds::closed(0.0, 1.0)),
     ];
     for (path, bounds) in counts {
         if let Some(node) = node_mut(&mut schema, path) {
@@ -308,6 +387,10 @@ pub enum Algorithm {
         /// Seed.
         seed: u64,
     },
+    /// Surrogate-assisted (Bayesian) optimisation, [`mrbrake_optim::surrogate`]: Gaussian-process
+    /// models of every objective and constraint choose each batch by expected hypervolume
+    /// improvement.
+    Surrogate(SurrogateSettings),
     /// Pattern search (one objective).
     PatternSearch {
         /// Evaluation budget.
@@ -317,9 +400,40 @@ pub enum Algorithm {
         /// Poll with a fresh random orthogonal basis each iteration instead of the coordinate
         /// directions: slower, but it can follow constraints oblique to the axes.
         random_poll: bool,
-        /// Start at the base spec's values (clamped into the bounds) instead of the bounds' centre.
-        start_at_base: bool,
+        /// Where the search starts.
+        start: Start,
     },
+}
+
+/// The settings of a surrogate-assisted run (`kind = "surrogate"`), checked when the file is read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurrogateSettings {
+    /// Budget: designs evaluated by the algorithm, those of an earlier run on the same store
+    /// included (default 200).
+    pub max_evaluations: usize,
+    /// Designs of the initial space-filling plan (`None`: 10 × variables).
+    pub initial_size: Option<usize>,
+    /// Designs per iteration (`None`: the run's `--jobs`, one per core by default).
+    pub batch: Option<usize>,
+    /// The acquisition.
+    pub acquisition: mrbrake_optim::surrogate::Acquisition,
+    /// Stall rule: iterations without relative hypervolume growth above `stall_tolerance` (0: off).
+    pub stall_iterations: usize,
+    /// Stall rule: the relative growth that counts as none.
+    pub stall_tolerance: f64,
+    /// Seed of every random choice.
+    pub seed: u64,
+}
+
+/// Where a pattern search starts.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Start {
+    /// The centre of the bounds (integers rounded).
+    Centre,
+    /// The base spec's values, clamped into the bounds.
+    Base,
+    /// A value per variable, in the problem's order (SI); `None` for the centre of its bounds.
+    Values(Vec<Option<f64>>),
 }
 
 /// A whole, checked problem file.
@@ -343,6 +457,13 @@ pub struct OptimizationProblem {
     pub objectives: Vec<Objective>,
     /// Algorithm.
     pub algorithm: Algorithm,
+    /// The hypervolume's reference point given in the file (`algorithm.hypervolume_reference`),
+    /// in minimised units (a maximised objective's value negated); `None`: the run fixes it
+    /// ([`crate::hypervolume`]).
+    pub hypervolume_reference: Option<Vec<f64>>,
+    /// The resolution (m) the lengths of the written front designs are rounded to; 0: written as
+    /// evaluated ([`crate::front`]).
+    pub manufacturing_resolution: f64,
     /// Notes for the user that do not stop the run: a metric named by its legacy name (see
     /// [`crate::evaluate::LEGACY_METRIC_NAMES`]), with its current name.
     pub notes: Vec<String>,
@@ -368,7 +489,11 @@ impl OptimizationProblem {
         let constraints = constraints_of(&raw.constraints).map_err(bad)?;
         let objectives = objectives_of(&raw.objectives).map_err(bad)?;
         let notes = legacy_name_notes(&raw, &origin);
-        let algorithm = algorithm_of(&raw.algorithm, objectives.len()).map_err(bad)?;
+        let algorithm = algorithm_of(&raw.algorithm, &objectives, &variables).map_err(bad)?;
+        let hypervolume_reference =
+            hypervolume_reference_of(&raw.algorithm, &objectives).map_err(bad)?;
+        let manufacturing_resolution =
+            resolution_of(raw.manufacturing_resolution.as_ref()).map_err(bad)?;
         Ok(Self {
             path: path.to_path_buf(),
             spec_path: folder.join(&raw.spec),
@@ -379,6 +504,8 @@ impl OptimizationProblem {
             constraints,
             objectives,
             algorithm,
+            hypervolume_reference,
+            manufacturing_resolution,
             notes,
         })
     }
@@ -516,59 +643,81 @@ fn objectives_of(raw: &[RawObjective]) -> Result<Vec<Objective>, String> {
 }
 
 /// A budget override from the command line (`mrbrake optimize --generations N
-/// --max-evaluations M`), for a quick run of a problem file without editing it.
+/// --max-evaluations M --seed S`), for a quick run of a problem file without editing it.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct BudgetOverride {
     /// NSGA-II generations after the initial population.
     pub generations: Option<usize>,
-    /// The most designs evaluated: pattern search's budget; for NSGA-II, the generations are cut
-    /// to the most whose `population × (generations + 1)` designs fit.
+    /// The most designs evaluated: the budget of pattern search and of the surrogate; for NSGA-II,
+    /// the generations are cut to the most whose `population × (generations + 1)` designs fit.
     pub max_evaluations: Option<usize>,
+    /// The seed, overriding `algorithm.seed` (e.g. repeated runs of a benchmark).
+    pub seed: Option<u64>,
 }
 
 impl Algorithm {
     /// The algorithm with `budget` applied; an override the algorithm has no use for
     /// (`--generations` for pattern search) or out of range is an input error naming the flag.
     pub fn with_budget(&self, budget: BudgetOverride) -> Result<Algorithm, ExploreError> {
-        let bad = |what: String| Err(ExploreError::Input(what));
-        match *self {
+        let bad = |what: String| ExploreError::Input(what);
+        let not_nsga2 = |kind: &str, max_evaluations: usize| {
+            if budget.generations.is_some() {
+                return Err(bad(format!(
+                    "--generations applies to NSGA-II; {kind} takes --max-evaluations"
+                )));
+            }
+            let max = budget.max_evaluations.unwrap_or(max_evaluations);
+            let limit =
+                if kind == "surrogate" { MAX_SURROGATE_EVALUATIONS } else { MAX_EVALUATIONS };
+            if max == 0 || max > limit {
+                return Err(bad(format!(
+                    "--max-evaluations {max} is not allowed; use 1 to {limit}"
+                )));
+            }
+            Ok(max)
+        };
+        match self.clone() {
             Algorithm::Nsga2 { population, mut generations, seed } => {
                 if let Some(g) = budget.generations {
                     generations = g;
                 }
                 if let Some(max) = budget.max_evaluations {
                     if max < population {
-                        return bad(format!(
+                        return Err(bad(format!(
                             "--max-evaluations {max} is less than one generation of NSGA-II \
                              (population {population}); use at least {population}"
-                        ));
+                        )));
                     }
                     generations = generations.min(max / population - 1);
                 }
                 let designs = generations.checked_add(1).and_then(|g| g.checked_mul(population));
                 if designs.is_none_or(|d| d > MAX_EVALUATIONS) {
-                    return bad(format!(
+                    return Err(bad(format!(
                         "--generations {generations} of {population} is more than \
                          {MAX_EVALUATIONS} designs; use fewer"
-                    ));
+                    )));
                 }
-                Ok(Algorithm::Nsga2 { population, generations, seed })
+                Ok(Algorithm::Nsga2 { population, generations, seed: budget.seed.unwrap_or(seed) })
             }
-            Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base } => {
-                if budget.generations.is_some() {
-                    return bad("--generations applies to NSGA-II; pattern search takes \
-                                --max-evaluations"
-                        .into());
-                }
-                let max_evaluations = budget.max_evaluations.unwrap_or(max_evaluations);
-                if max_evaluations == 0 || max_evaluations > MAX_EVALUATIONS {
-                    return bad(format!(
-                        "--max-evaluations {max_evaluations} is not allowed; use 1 to \
-                         {MAX_EVALUATIONS}"
-                    ));
-                }
-                Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base })
+            Algorithm::Surrogate(mut settings) => {
+                settings.max_evaluations = not_nsga2("surrogate", settings.max_evaluations)?;
+                settings.seed = budget.seed.unwrap_or(settings.seed);
+                Ok(Algorithm::Surrogate(settings))
             }
+            Algorithm::PatternSearch { max_evaluations, seed, random_poll, start } => {
+                let max_evaluations = not_nsga2("pattern search", max_evaluations)?;
+                let seed = budget.seed.unwrap_or(seed);
+                Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start })
+            }
+        }
+    }
+
+    /// The algorithm's key in problem files (`nsga2`, `surrogate`, `pattern-search`).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Algorithm::Nsga2 { .. } => "nsga2",
+            Algorithm::Surrogate(_) => "surrogate",
+            Algorithm::PatternSearch { .. } => "pattern-search",
         }
     }
 }
@@ -581,40 +730,179 @@ pub const MAX_POPULATION: usize = 100_000;
 /// study that can finish, and it keeps every count the optimisers allocate from sane.
 pub const MAX_EVALUATIONS: usize = 10_000_000;
 
-/// The `[algorithm]` table, for a problem with `objectives` objectives.
-fn algorithm_of(a: &RawAlgorithm, objectives: usize) -> Result<Algorithm, String> {
+/// The most designs of a surrogate-assisted run: its models train on at most 300 designs
+/// ([`mrbrake_optim::surrogate::SurrogateOptions::max_training`]) but it keeps every design and
+/// compares each proposal with all of them, and its point is to need few.
+pub const MAX_SURROGATE_EVALUATIONS: usize = 100_000;
+
+/// The largest initial plan of a surrogate-assisted run (at least variables + 1 designs).
+pub const MAX_INITIAL_SIZE: usize = 100_000;
+
+/// The most surrogate designs per iteration ([`mrbrake_optim::surrogate::SurrogateOptions::batch`]).
+pub const MAX_BATCH: usize = 1024;
+
+/// The keys of `[algorithm]` each kind reads (besides `kind`, `seed` and `hypervolume_reference`).
+const KEYS: [(&str, &[&str]); 3] = [
+    ("nsga2", &["population", "generations"]),
+    (
+        "surrogate",
+        &[
+            "max_evaluations",
+            "initial_size",
+            "batch",
+            "acquisition",
+            "stall_iterations",
+            "stall_tolerance",
+        ],
+    ),
+    ("pattern-search", &["max_evaluations", "poll", "start"]),
+];
+
+/// The `[algorithm]` table, for a problem with these objectives and variables.
+fn algorithm_of(
+    a: &RawAlgorithm,
+    objectives: &[Objective],
+    variables: &[VariableBounds],
+) -> Result<Algorithm, String> {
     let seed = a.seed.unwrap_or(1);
-    match a.kind.trim().to_ascii_lowercase().as_str() {
-        "nsga2" | "nsga-ii" => {
-            let population = a.population.unwrap_or(24);
-            if population < 4 || population % 2 == 1 || population > MAX_POPULATION {
-                return Err(format!(
-                    "algorithm.population: {population} is not allowed; use an even number from 4 \
-                     to {MAX_POPULATION}"
-                ));
-            }
-            let generations = a.generations.unwrap_or(10);
-            let designs = generations.checked_add(1).and_then(|g| g.checked_mul(population));
-            if designs.is_none_or(|d| d > MAX_EVALUATIONS) {
-                return Err(format!(
-                    "algorithm.generations: {generations} generations of {population} is more than \
-                     {MAX_EVALUATIONS} designs; use fewer"
-                ));
-            }
-            Ok(Algorithm::Nsga2 { population, generations, seed })
-        }
-        "pattern-search" | "pattern_search" => pattern_search_of(a, objectives, seed),
+    let kind = match a.kind.trim().to_ascii_lowercase().as_str() {
+        "nsga2" | "nsga-ii" => "nsga2",
+        "surrogate" | "bayesian" => "surrogate",
+        "pattern-search" | "pattern_search" => "pattern-search",
         other => {
-            Err(format!("algorithm.kind: '{other}' is not allowed; use nsga2 or pattern-search"))
+            return Err(format!(
+                "algorithm.kind: '{other}' is not allowed; use nsga2, surrogate or pattern-search"
+            ));
         }
+    };
+    check_keys_of(a, kind)?;
+    match kind {
+        "nsga2" => nsga2_of(a, seed),
+        "surrogate" => surrogate_of(a, variables.len(), seed),
+        _ => pattern_search_of(a, objectives.len(), variables, seed),
     }
 }
 
-fn pattern_search_of(a: &RawAlgorithm, objectives: usize, seed: u64) -> Result<Algorithm, String> {
+/// Refuses a key of another kind of algorithm that would otherwise be silently ignored: a
+/// surrogate key (`batch`) with another kind, any other kind's key with the surrogate. (NSGA-II and
+/// pattern search keep ignoring each other's keys, as files written before the surrogate expect.)
+fn check_keys_of(a: &RawAlgorithm, kind: &str) -> Result<(), String> {
+    let given = [
+        ("population", a.population.is_some()),
+        ("generations", a.generations.is_some()),
+        ("max_evaluations", a.max_evaluations.is_some()),
+        ("poll", a.poll.is_some()),
+        ("start", a.start.is_some()),
+        ("initial_size", a.initial_size.is_some()),
+        ("batch", a.batch.is_some()),
+        ("acquisition", a.acquisition.is_some()),
+        ("stall_iterations", a.stall_iterations.is_some()),
+        ("stall_tolerance", a.stall_tolerance.is_some()),
+    ];
+    let keys_of =
+        |k: &str| KEYS.iter().find(|(name, _)| *name == k).map_or(&[][..], |(_, keys)| *keys);
+    let surrogate = keys_of("surrogate");
+    let foreign = |key: &&str| {
+        if kind == "surrogate" {
+            !surrogate.contains(key)
+        } else {
+            !keys_of(kind).contains(key) && surrogate.contains(key)
+        }
+    };
+    let Some((key, _)) = given.iter().find(|(key, set)| *set && foreign(key)) else {
+        return Ok(());
+    };
+    let owners: Vec<String> = KEYS
+        .iter()
+        .filter(|(_, keys)| keys.contains(key))
+        .map(|(k, _)| format!("\"{k}\""))
+        .collect();
+    Err(format!(
+        "algorithm.{key} applies to kind = {}, not to kind = \"{kind}\"",
+        owners.join(" or ")
+    ))
+}
+
+fn nsga2_of(a: &RawAlgorithm, seed: u64) -> Result<Algorithm, String> {
+    let population = a.population.unwrap_or(24);
+    if population < 4 || population % 2 == 1 || population > MAX_POPULATION {
+        return Err(format!(
+            "algorithm.population: {population} is not allowed; use an even number from 4 to \
+             {MAX_POPULATION}"
+        ));
+    }
+    let generations = a.generations.unwrap_or(10);
+    let designs = generations.checked_add(1).and_then(|g| g.checked_mul(population));
+    if designs.is_none_or(|d| d > MAX_EVALUATIONS) {
+        return Err(format!(
+            "algorithm.generations: {generations} generations of {population} is more than \
+             {MAX_EVALUATIONS} designs; use fewer"
+        ));
+    }
+    Ok(Algorithm::Nsga2 { population, generations, seed })
+}
+
+/// The surrogate's settings, each checked against the range
+/// [`mrbrake_optim::surrogate::SurrogateOptions::validate`] allows (which checks them again).
+fn surrogate_of(a: &RawAlgorithm, variables: usize, seed: u64) -> Result<Algorithm, String> {
+    let out_of_range = |key: &str, value: &dyn std::fmt::Display, allowed: String| {
+        Err(format!("algorithm.{key}: {value} is not allowed; use {allowed}"))
+    };
+    let max_evaluations = a.max_evaluations.unwrap_or(200);
+    if max_evaluations == 0 || max_evaluations > MAX_SURROGATE_EVALUATIONS {
+        return out_of_range(
+            "max_evaluations",
+            &max_evaluations,
+            format!("1 to {MAX_SURROGATE_EVALUATIONS}"),
+        );
+    }
+    if let Some(n) = a.initial_size {
+        if n <= variables || n > MAX_INITIAL_SIZE {
+            return out_of_range(
+                "initial_size",
+                &n,
+                format!("{} (variables + 1) to {MAX_INITIAL_SIZE} designs", variables + 1),
+            );
+        }
+    }
+    if let Some(b) = a.batch {
+        if b == 0 || b > MAX_BATCH {
+            return out_of_range("batch", &b, format!("1 to {MAX_BATCH} designs per iteration"));
+        }
+    }
+    let acquisition = match a.acquisition.as_deref() {
+        None => mrbrake_optim::surrogate::Acquisition::default(),
+        Some(text) => text.parse().map_err(|e| format!("algorithm.acquisition: {e}"))?,
+    };
+    let stall_tolerance = a.stall_tolerance.unwrap_or(1e-3);
+    if !(stall_tolerance.is_finite() && (0.0..=1.0).contains(&stall_tolerance)) {
+        return out_of_range(
+            "stall_tolerance",
+            &stall_tolerance,
+            "a relative growth from 0 to 1".into(),
+        );
+    }
+    Ok(Algorithm::Surrogate(SurrogateSettings {
+        max_evaluations,
+        initial_size: a.initial_size,
+        batch: a.batch,
+        acquisition,
+        stall_iterations: a.stall_iterations.unwrap_or(15),
+        stall_tolerance,
+        seed,
+    }))
+}
+
+fn pattern_search_of(
+    a: &RawAlgorithm,
+    objectives: usize,
+    variables: &[VariableBounds],
+    seed: u64,
+) -> Result<Algorithm, String> {
     if objectives != 1 {
         return Err(format!(
             "algorithm.kind = pattern-search optimises one objective; {objectives} are given \
-             (use nsga2 for several)"
+             (use nsga2 or surrogate for several)"
         ));
     }
     let random_poll = match a.poll.as_deref().map(str::trim) {
@@ -624,21 +912,132 @@ fn pattern_search_of(a: &RawAlgorithm, objectives: usize, seed: u64) -> Result<A
             return Err(format!("algorithm.poll: '{other}' is not allowed; use compass or random"));
         }
     };
-    let start_at_base = match a.start.as_deref().map(str::trim) {
-        None | Some("centre" | "center") => false,
-        Some("base") => true,
-        Some(other) => {
-            return Err(format!("algorithm.start: '{other}' is not allowed; use centre or base"));
-        }
-    };
+    let start = start_of(a.start.as_ref(), variables)?;
     let max_evaluations = a.max_evaluations.unwrap_or(200);
     if max_evaluations == 0 || max_evaluations > MAX_EVALUATIONS {
         return Err(format!(
             "algorithm.max_evaluations: {max_evaluations} is not allowed; use 1 to {MAX_EVALUATIONS}"
         ));
     }
-    Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base })
+    Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start })
 }
+
+/// `algorithm.start`: `centre`, `base`, or a table of values by variable name (each inside its
+/// bounds, read with the variable's unit).
+fn start_of(raw: Option<&RawStart>, variables: &[VariableBounds]) -> Result<Start, String> {
+    let table = match raw {
+        None => return Ok(Start::Centre),
+        Some(RawStart::Named(name)) => {
+            return match name.trim() {
+                "centre" | "center" => Ok(Start::Centre),
+                "base" => Ok(Start::Base),
+                other => Err(format!(
+                    "algorithm.start: '{other}' is not allowed; use centre, base or a table of \
+                     values by variable name"
+                )),
+            };
+        }
+        Some(RawStart::Values(table)) => table,
+    };
+    let mut values = vec![None; variables.len()];
+    for (name, value) in table {
+        let where_ = format!("algorithm.start.{name}");
+        let index =
+            variables.iter().position(|v| v.name.trim() == name.trim()).ok_or_else(|| {
+                let names: Vec<&str> = variables.iter().map(|v| v.name.as_str()).collect();
+                format!(
+                    "{where_}: not a variable of this problem (variables: {})",
+                    names.join(", ")
+                )
+            })?;
+        let variable = &variables[index];
+        let field = crate::variable::resolve(name, true)
+            .or_else(|_| crate::variable::resolve(name, false))
+            .map_err(|e| format!("{where_}: {e}"))?;
+        let si = match value {
+            toml::Value::Float(x) => *x,
+            toml::Value::Integer(i) => *i as f64,
+            toml::Value::String(text) => {
+                field.parse_value(text).map_err(|e| format!("{where_}: {e}"))?
+            }
+            other => return Err(format!("{where_}: {other} is not a number or a quantity")),
+        };
+        if field.field.quantity == crate::variable::Quantity::Integer
+            && (si - si.round()).abs() > 1e-9
+        {
+            return Err(format!(
+                "{where_}: {si} is not a whole number (this field counts something)"
+            ));
+        }
+        if !(si.is_finite() && (variable.min..=variable.max).contains(&si)) {
+            return Err(format!(
+                "{where_}: {} is outside the variable's bounds {} to {}",
+                field.display_value(si),
+                field.display_value(variable.min),
+                field.display_value(variable.max)
+            ));
+        }
+        values[index] = Some(si);
+    }
+    Ok(Start::Values(values))
+}
+
+/// `algorithm.hypervolume_reference`, one value per objective in its metric's unit, returned in
+/// minimised units (a maximised objective's value negated).
+fn hypervolume_reference_of(
+    a: &RawAlgorithm,
+    objectives: &[Objective],
+) -> Result<Option<Vec<f64>>, String> {
+    let Some(raw) = &a.hypervolume_reference else { return Ok(None) };
+    if raw.len() != objectives.len() {
+        return Err(format!(
+            "algorithm.hypervolume_reference: {} values for {} objectives; give one per objective, \
+             in the order of the [[objective]] tables",
+            raw.len(),
+            objectives.len()
+        ));
+    }
+    let mut reference = Vec::with_capacity(raw.len());
+    for (k, (q, objective)) in raw.iter().zip(objectives).enumerate() {
+        let where_ = format!("algorithm.hypervolume_reference[{}] ({})", k + 1, objective.metric);
+        let unit = metric_info(&objective.metric).map_or("", |m| m.unit);
+        let value = metric_value(q, unit).map_err(|e| format!("{where_}: {e}"))?;
+        if !value.is_finite() {
+            return Err(format!("{where_}: {value} is not a finite number"));
+        }
+        reference.push(match objective.goal {
+            Goal::Minimize => value,
+            Goal::Maximize => -value,
+        });
+    }
+    Ok(Some(reference))
+}
+
+/// The largest manufacturing resolution (1 mm): a coarser rounding would move a design far from
+/// the one the optimiser evaluated.
+pub const MAX_MANUFACTURING_RESOLUTION: f64 = 1e-3;
+
+/// `manufacturing_resolution`: a length from 0 to [`MAX_MANUFACTURING_RESOLUTION`] (default
+/// 0.01 mm).
+fn resolution_of(raw: Option<&RawQuantity>) -> Result<f64, String> {
+    let Some(q) = raw else { return Ok(DEFAULT_MANUFACTURING_RESOLUTION) };
+    let value = match q {
+        RawQuantity::Number(x) => *x,
+        RawQuantity::Integer(i) => *i as f64,
+        RawQuantity::Text(text) => {
+            parse(text, Dimension::Length).map_err(|e| format!("manufacturing_resolution: {e}"))?
+        }
+    };
+    if !(value.is_finite() && (0.0..=MAX_MANUFACTURING_RESOLUTION).contains(&value)) {
+        return Err(format!(
+            "manufacturing_resolution: {value} m is not allowed; use 0 (no rounding) to 1mm"
+        ));
+    }
+    Ok(value)
+}
+
+/// The default manufacturing resolution of the written front designs: 0.01 mm.
+pub const DEFAULT_MANUFACTURING_RESOLUTION: f64 = 1e-5;
 
 fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
     metric_info(current_metric_name(name.trim()).0).ok_or_else(|| {
@@ -762,7 +1161,9 @@ generations = 2
     #[test]
     fn budget_overrides_shorten_the_run() {
         let nsga = Algorithm::Nsga2 { population: 8, generations: 10, seed: 1 };
-        let quick = |g, m| nsga.with_budget(BudgetOverride { generations: g, max_evaluations: m });
+        let quick = |g, m| {
+            nsga.with_budget(BudgetOverride { generations: g, max_evaluations: m, seed: None })
+        };
         assert_eq!(
             quick(Some(2), None).unwrap(),
             Algorithm::Nsga2 { population: 8, generations: 2, seed: 1 }
@@ -780,9 +1181,11 @@ generations = 2
             max_evaluations: 200,
             seed: 1,
             random_poll: false,
-            start_at_base: false,
+            start: Start::Centre,
         };
-        let b = |g, m| ps.with_budget(BudgetOverride { generations: g, max_evaluations: m });
+        let b = |g, m| {
+            ps.with_budget(BudgetOverride { generations: g, max_evaluations: m, seed: Some(5) })
+        };
         assert!(matches!(
             b(None, Some(12)).unwrap(),
             Algorithm::PatternSearch { max_evaluations: 12, .. }
@@ -814,6 +1217,103 @@ generations = 2
         );
     }
 
+    /// `kind = "surrogate"`: defaults, every setting, and each bad setting named by its key.
+    #[test]
+    fn surrogate_settings_read_and_bad_ones_name_their_key() {
+        let surrogate = GOOD
+            .replace("kind = \"nsga2\"\npopulation = 8\ngenerations = 2", "kind = \"surrogate\"");
+        let p = OptimizationProblem::from_toml_str(&surrogate, Path::new("p.toml")).unwrap();
+        let Algorithm::Surrogate(s) = &p.algorithm else { panic!("{:?}", p.algorithm) };
+        assert_eq!((s.max_evaluations, s.initial_size, s.batch), (200, None, None));
+        assert_eq!((s.stall_iterations, s.seed), (15, 1));
+        assert_eq!(p.algorithm.kind(), "surrogate");
+        assert!((p.manufacturing_resolution - 1e-5).abs() < 1e-18);
+        let full = surrogate.replace(
+            "kind = \"surrogate\"",
+            "kind = \"surrogate\"\nmax_evaluations = 60\ninitial_size = 12\nbatch = 3\n\
+             acquisition = \"ehvi\"\nstall_iterations = 0\nstall_tolerance = 0.01\nseed = 9\n\
+             hypervolume_reference = [\"0.001\", 5e-4]",
+        );
+        let p = OptimizationProblem::from_toml_str(&full, Path::new("p.toml")).unwrap();
+        let Algorithm::Surrogate(s) = &p.algorithm else { panic!() };
+        assert_eq!((s.max_evaluations, s.initial_size, s.batch), (60, Some(12), Some(3)));
+        assert_eq!((s.stall_iterations, s.seed), (0, 9));
+        assert_eq!(p.hypervolume_reference, Some(vec![1e-3, 5e-4]));
+        let quick = p.algorithm.with_budget(BudgetOverride {
+            generations: None,
+            max_evaluations: Some(30),
+            seed: Some(4),
+        });
+        assert!(matches!(
+            quick,
+            Ok(Algorithm::Surrogate(SurrogateSettings { max_evaluations: 30, seed: 4, .. }))
+        ));
+        let bad = |line: &str, key: &str| {
+            let text =
+                surrogate.replace("kind = \"surrogate\"", &format!("kind = \"surrogate\"\n{line}"));
+            let e = OptimizationProblem::from_toml_str(&text, Path::new("p.toml")).unwrap_err();
+            assert!(e.is_input_error(), "{e}");
+            let text = e.to_string();
+            assert!(text.contains("p.toml") && text.contains(key), "{line}: {text}");
+        };
+        bad("batch = 0", "algorithm.batch");
+        bad("batch = 5000", "algorithm.batch");
+        bad("initial_size = 2", "algorithm.initial_size");
+        bad("acquisition = \"qparego\"", "acquisition");
+        bad("max_evaluations = 0", "algorithm.max_evaluations");
+        bad("stall_tolerance = -1.0", "algorithm.stall_tolerance");
+        bad("population = 8", "algorithm.population applies to kind = \"nsga2\"");
+        bad("start = \"base\"", "algorithm.start");
+        bad("hypervolume_reference = [1.0]", "algorithm.hypervolume_reference");
+        let nsga_batch = GOOD.replace("population = 8", "population = 8\nbatch = 2");
+        let e = OptimizationProblem::from_toml_str(&nsga_batch, Path::new("p.toml")).unwrap_err();
+        assert!(e.to_string().contains("algorithm.batch applies to kind = \"surrogate\""), "{e}");
+        let coarse = GOOD.replace(
+            "mesh = \"coarse\"",
+            "mesh = \"coarse\"\nmanufacturing_resolution = \"0.1mm\"",
+        );
+        let p = OptimizationProblem::from_toml_str(&coarse, Path::new("p.toml")).unwrap();
+        assert!((p.manufacturing_resolution - 1e-4).abs() < 1e-18);
+        let huge = GOOD
+            .replace("mesh = \"coarse\"", "mesh = \"coarse\"\nmanufacturing_resolution = \"2mm\"");
+        let e = OptimizationProblem::from_toml_str(&huge, Path::new("p.toml")).unwrap_err();
+        assert!(e.to_string().contains("manufacturing_resolution"), "{e}");
+    }
+
+    /// `start` of a pattern search: a name, or values by variable name inside the bounds.
+    #[test]
+    fn a_pattern_search_starts_where_the_file_says() {
+        let single = GOOD.replace("[[objective]]\nmetric = \"volume_m3\"\n", "").replace(
+            "kind = \"nsga2\"\npopulation = 8\ngenerations = 2",
+            "kind = \"pattern-search\"",
+        );
+        let with = |start: &str| {
+            let text = single.replace(
+                "kind = \"pattern-search\"",
+                &format!("kind = \"pattern-search\"\nstart = {start}"),
+            );
+            OptimizationProblem::from_toml_str(&text, Path::new("p.toml"))
+        };
+        let start_of = |p: OptimizationProblem| match p.algorithm {
+            Algorithm::PatternSearch { start, .. } => start,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(start_of(with("\"base\"").unwrap()), Start::Base);
+        assert_eq!(start_of(with("\"centre\"").unwrap()), Start::Centre);
+        let values = start_of(with("{ R0 = \"20mm\" }").unwrap());
+        let Start::Values(v) = values else { panic!() };
+        assert!((v[0].unwrap() - 0.02).abs() < 1e-15 && v[1].is_none());
+        for (start, key) in [
+            ("{ R0 = \"40mm\" }", "outside the variable's bounds"),
+            ("{ Q = 1 }", "not a variable of this problem"),
+            ("{ n = 2.5 }", "algorithm.start.n"),
+            ("\"middle\"", "algorithm.start"),
+        ] {
+            let e = with(start).unwrap_err().to_string();
+            assert!(e.contains(key), "{start}: {e}");
+        }
+    }
+
     #[test]
     fn violation_and_margin_are_relative() {
         let c = Constraint { metric: "torque_max_Nm".into(), min: Some(3.0), max: None };
@@ -836,6 +1336,9 @@ mod schema_tests {
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/optimize");
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
+            if path.extension().and_then(|e| e.to_str()) != Some("toml") {
+                continue; // the benchmark script beside the problem files
+            }
             let table: toml::Table =
                 toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
             for (key, value) in &table {

@@ -97,6 +97,12 @@ impl<'a> Runner<'a> {
         self.store
     }
 
+    /// The store, to record a study's meta data between batches (e.g. the hypervolume's
+    /// reference point an optimisation fixed).
+    pub fn store_mut(&mut self) -> &mut Store {
+        self.store
+    }
+
     /// Evaluates `designs` (see the module docs), showing `observer` the [`Progress`] before the
     /// first evaluation and after each stored result, and returns every design's record, in
     /// order, with the run's summary. A stop asked for before every design is stored ends the

@@ -1,5 +1,5 @@
-//! Plots of an optimisation: the objective scatter with the Pareto front and a reference design, and
-//! the constraint activity of the front's designs.
+//! Plots of an optimisation: the objective scatter with the Pareto front and a reference design, the
+//! constraint activity of the front's designs, and the hypervolume against evaluations.
 //!
 //! Built on [`crate::chart`]: feasible designs are green points, infeasible ones grey crosses under
 //! them, the front a line with markers, and the reference design (the thesis's) a large triangle
@@ -161,9 +161,63 @@ pub fn constraint_activity_figure(activity: &ConstraintActivity) -> Figure {
     Figure::new(activity.title.clone()).panel(panel)
 }
 
+/// One curve of hypervolume against evaluations: its label and `(evaluations, hypervolume)` points
+/// (in the displayed unit).
+pub type HypervolumeCurve = (String, Vec<(f64, f64)>);
+
+/// The hypervolume against evaluations, one line per curve (a run, or the median of several), as a
+/// step function: the hypervolume holds until the next evaluation that changes it.
+pub fn hypervolume_figure(title: &str, y_label: &str, curves: &[HypervolumeCurve]) -> Figure {
+    let mut panel = Panel::new("evaluations (designs analysed)", y_label.to_string());
+    for (k, (label, points)) in curves.iter().enumerate() {
+        panel = panel.series(Series::line(label.clone(), steps(points)).color(k));
+    }
+    let values = curves.iter().flat_map(|(_, p)| p.iter().map(|q| q.1));
+    panel.y_range = legend_headroom(values, Some(0.0));
+    Figure::new(title.to_string()).panel(panel)
+}
+
+/// The points of a step function through `points` (sorted by x): each value held until the next x.
+fn steps(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut out = Vec::with_capacity(2 * points.len());
+    for (k, &(x, y)) in points.iter().enumerate() {
+        if k > 0 {
+            out.push((x, points[k - 1].1));
+        }
+        out.push((x, y));
+    }
+    out
+}
+
+/// The display scale and unit of a hypervolume of these objective metrics: the product of their
+/// displayed units (`kg·mm² × cm³`).
+pub fn hypervolume_axis(metrics: &[&str]) -> (f64, String) {
+    let mut scale = 1.0;
+    let mut units = Vec::with_capacity(metrics.len());
+    for metric in metrics {
+        let (s, label) = metric_plot_axis(metric);
+        scale *= s;
+        let unit = label.rsplit_once('[').and_then(|(_, u)| u.strip_suffix(']')).unwrap_or("–");
+        units.push(unit.to_string());
+    }
+    (scale, format!("hypervolume [{}]", units.join(" × ")))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_hypervolume_curve_is_a_step_function_in_display_units() {
+        assert_eq!(steps(&[(1.0, 0.0), (3.0, 2.0)]), vec![(1.0, 0.0), (3.0, 0.0), (3.0, 2.0)]);
+        let (scale, label) = hypervolume_axis(&["rotor_inertia_kg_m2", "volume_m3"]);
+        assert!((scale - 1e12).abs() < 1.0, "{scale}");
+        assert_eq!(label, "hypervolume [kg·mm² × cm³]");
+        let figure =
+            hypervolume_figure("t", &label, &[("run".into(), vec![(1.0, 0.0), (5.0, 3.0)])]);
+        let dir = tempfile::tempdir().unwrap();
+        figure.save(&dir.path().join("hv.svg")).unwrap();
+    }
 
     #[test]
     fn both_figures_render() {

@@ -8,9 +8,12 @@ use std::path::Path;
 
 use mrbrake_design::study::StudyTable;
 use mrbrake_explore::evaluate::{METRICS, metric_info};
+use mrbrake_explore::front::FrontDesign;
+use mrbrake_explore::hypervolume::Hypervolume;
 use mrbrake_explore::optimize::{Evaluated, OptimizationResult};
 use mrbrake_explore::plan::Shard;
-use mrbrake_explore::problem::{Constraint, OptimizationProblem};
+use mrbrake_explore::problem::{Constraint, Goal, OptimizationProblem};
+use mrbrake_explore::surrogate::SurrogateRun;
 use mrbrake_explore::variable::Variable;
 use mrbrake_explore::{Progress, RunSummary};
 use mrbrake_store::{MergeSummary, Record, Status};
@@ -18,7 +21,7 @@ use serde_json::{Value, json};
 
 use crate::pareto::{
     ConstraintActivity, ObjectivePlot, constraint_activity_figure, constraint_legend,
-    metric_plot_axis, objective_figure,
+    hypervolume_axis, hypervolume_figure, metric_plot_axis, objective_figure,
 };
 use crate::wording::count;
 use crate::{ReportError, write_atomic};
@@ -42,6 +45,24 @@ pub fn metric_axis(name: &str) -> (f64, String) {
         _ => (1.0, metric_info(name).map_or("", |m| m.unit)),
     };
     (scale, format!("{name} [{unit}]"))
+}
+
+/// A hypervolume's reference point, one `unit value` per objective in its metric's display unit
+/// (a maximised objective's value back to its sign), with `decimals` decimals.
+pub fn reference_point_text(
+    objectives: &[mrbrake_explore::problem::Objective],
+    reference: &[f64],
+    decimals: usize,
+) -> Vec<String> {
+    objectives
+        .iter()
+        .zip(reference)
+        .map(|(o, r)| {
+            let value = if o.goal == Goal::Maximize { -r } else { *r };
+            let (scale, unit) = metric_axis(&o.metric);
+            format!("{unit} {:.decimals$}", value * scale)
+        })
+        .collect()
 }
 
 /// The metrics a problem may constrain or optimise: name, unit and meaning, one per line.
@@ -227,22 +248,55 @@ impl OptimizationReport<'_> {
         self.result.front.iter().map(|&i| self.result.evaluated[i].record.clone()).collect()
     }
 
-    /// The JSON report: the run's counts and the front and reference designs.
+    /// The JSON report: the run's counts, the front and reference designs, the hypervolume with
+    /// its reference point and growth, a surrogate run's iterations, the written front designs
+    /// and a polish.
     pub fn json(&self) -> Value {
         let (result, totals) = (self.result, &self.result.totals.progress);
         json!({
             "problem": self.problem_path.display().to_string(),
             "store": self.store.display().to_string(),
+            "algorithm": self.problem.algorithm.kind(),
             "evaluated": result.evaluated.len(),
             "requested": result.requested,
             "iterations": result.iterations,
             "converged": result.converged,
+            "stopped": result.stopped,
             "computed": totals.computed,
             "reused": totals.reused,
             "elapsed_s": totals.elapsed_s,
             "evaluations_per_min": evaluations_per_min(totals),
             "front": mrbrake_store::to_json(&self.front()),
             "reference": result.reference.as_ref().map(|r| mrbrake_store::to_json(std::slice::from_ref(&r.record))),
+            "hypervolume": result.hypervolume.as_ref().map(|h| self.hypervolume_json(h)),
+            "surrogate": result.surrogate.as_ref().map(surrogate_json),
+            "manufacturing_resolution_m": self.problem.manufacturing_resolution,
+            "front_designs": result.front_designs.iter().map(front_design_json).collect::<Vec<_>>(),
+            "polish": result.polish.as_ref().map(|p| json!({
+                "design": p.design,
+                "objective": p.objective,
+                "evaluations": p.evaluated.len(),
+                "iterations": p.iterations,
+                "converged": p.converged,
+                "start": record_json(&p.start.record),
+                "best": record_json(&p.best.record),
+            })),
+        })
+    }
+
+    /// The hypervolume: its value, its reference point by metric and where it comes from, and
+    /// its value after every evaluation.
+    fn hypervolume_json(&self, h: &Hypervolume) -> Value {
+        let trace: Vec<Value> = h
+            .trace
+            .iter()
+            .map(|p| json!({ "evaluations": p.evaluations, "hypervolume": p.hypervolume }))
+            .collect();
+        json!({
+            "value": h.value,
+            "reference": h.reference_json(&self.problem.objectives),
+            "reference_source": h.source.key(),
+            "trace": trace,
         })
     }
 
@@ -269,8 +323,48 @@ impl OptimizationReport<'_> {
         if let Some(reference) = &result.reference {
             self.designs_table(&mut out, std::iter::once(reference), "reference (base spec)");
         }
+        out.push_str(&self.extras_text());
         if let Some(dir) = out_dir {
             let _ = writeln!(out, "outputs in {}", dir.display());
+        }
+        out
+    }
+
+    /// The hypervolume, a surrogate run's models, the written front designs and a polish, a line
+    /// each.
+    fn extras_text(&self) -> String {
+        let (problem, result) = (self.problem, self.result);
+        let mut out = String::new();
+        if let Some(h) = &result.hypervolume {
+            let metrics: Vec<&str> = problem.objectives.iter().map(|o| o.metric.as_str()).collect();
+            let (scale, label) = hypervolume_axis(&metrics);
+            let reference = reference_point_text(&problem.objectives, &h.reference, 6);
+            let _ = writeln!(
+                out,
+                "{label}: {:.6} ({:.6e} in SI) against the reference point {}: {}",
+                h.value * scale,
+                h.value,
+                reference.join(", "),
+                h.source.describe()
+            );
+        }
+        if let Some(s) = &result.surrogate {
+            let _ = writeln!(out, "{}", surrogate_text(s, result.totals.progress.elapsed_s));
+        }
+        out.push_str(&front_designs_text(problem, &result.front_designs));
+        if let Some(p) = &result.polish {
+            let (scale, label) = metric_axis(&p.objective);
+            let value =
+                |e: &Evaluated| e.record.metric(&p.objective).map_or(f64::NAN, |v| v * scale);
+            let _ = writeln!(
+                out,
+                "polish of front design {} ({label}): {:.4} -> {:.4} in {} ({})",
+                p.design,
+                value(&p.start),
+                value(&p.best),
+                count(p.evaluated.len(), "design", "designs"),
+                if p.converged { "converged" } else { "budget spent" }
+            );
         }
         out
     }
@@ -278,12 +372,17 @@ impl OptimizationReport<'_> {
     /// How the run ended, the designs and what they cost (one line).
     fn run_summary(&self) -> String {
         let (result, totals) = (self.result, &self.result.totals.progress);
-        let how = match result.converged {
-            None => count(result.iterations, "generation", "generations"),
-            Some(true) => {
+        let how = match (&result.surrogate, result.converged) {
+            (Some(s), _) => format!(
+                "{} after the initial design (stopped: {})",
+                count(result.iterations, "iteration", "iterations"),
+                stop_words(s)
+            ),
+            (None, None) => count(result.iterations, "generation", "generations"),
+            (None, Some(true)) => {
                 format!("converged after {}", count(result.iterations, "iteration", "iterations"))
             }
-            Some(false) => format!(
+            (None, Some(false)) => format!(
                 "evaluation budget spent after {} (not converged)",
                 count(result.iterations, "iteration", "iterations")
             ),
@@ -356,9 +455,12 @@ impl OptimizationReport<'_> {
         }
     }
 
-    /// Writes the output folder `dir`: `evaluations.csv`, `pareto.csv`, `designs/front-NN.toml`
-    /// and `designs/reference.toml`, the objective plot `pareto.svg/.png` and the constraint
-    /// activity `constraints.svg/.png` (creating the folder if needed).
+    /// Writes the output folder `dir`: `evaluations.csv`, `pareto.csv` (the front as evaluated),
+    /// `front-designs.csv` and `designs/front-NN.toml` (the front's designs as written: in the base
+    /// spec's units, rounded and evaluated again), `designs/reference.toml`, the objective plot
+    /// `pareto.svg/.png`, the constraint activity `constraints.svg/.png`, and the hypervolume
+    /// against evaluations `hypervolume.csv` and `hypervolume.svg/.png` (creating the folder if
+    /// needed).
     pub fn write_outputs(&self, dir: &Path) -> Result<(), ReportError> {
         let designs = dir.join("designs");
         std::fs::create_dir_all(&designs)
@@ -367,16 +469,7 @@ impl OptimizationReport<'_> {
         write_atomic(&dir.join("evaluations.csv"), &mrbrake_store::to_csv(&all)?)?;
         let front = self.front();
         write_atomic(&dir.join("pareto.csv"), &mrbrake_store::to_csv(&front)?)?;
-        for (k, record) in front.iter().enumerate() {
-            let text = format!(
-                "# Design {} of the front of {} (key {}).\n{}",
-                k + 1,
-                self.problem.path.display(),
-                record.key,
-                record.spec_toml
-            );
-            write_atomic(&designs.join(format!("front-{:02}.toml", k + 1)), text.as_bytes())?;
-        }
+        self.write_front_designs(&designs, &front)?;
         if let Some(reference) = &self.result.reference {
             write_atomic(&designs.join("reference.toml"), reference.record.spec_toml.as_bytes())?;
         }
@@ -390,6 +483,97 @@ impl OptimizationReport<'_> {
             figure.save(&dir.join("constraints.svg"))?;
             figure.save(&dir.join("constraints.png"))?;
         }
+        if let Some(h) = &self.result.hypervolume {
+            self.write_hypervolume(dir, h)?;
+        }
+        Ok(())
+    }
+
+    /// `designs/front-NN.toml` and `front-designs.csv`: the written designs when the run made
+    /// them, else the front's records as evaluated.
+    fn write_front_designs(&self, designs: &Path, front: &[Record]) -> Result<(), ReportError> {
+        let written = &self.result.front_designs;
+        if written.is_empty() {
+            for (k, record) in front.iter().enumerate() {
+                let text = format!(
+                    "# Design {} of the front of {} (key {}).\n{}",
+                    k + 1,
+                    self.problem.path.display(),
+                    record.key,
+                    record.spec_toml
+                );
+                write_atomic(&designs.join(format!("front-{:02}.toml", k + 1)), text.as_bytes())?;
+            }
+            return Ok(());
+        }
+        for d in written {
+            let text = format!("{}{}", self.front_design_header(d), d.spec_text);
+            write_atomic(&designs.join(format!("front-{:02}.toml", d.number)), text.as_bytes())?;
+        }
+        let records: Vec<Record> = written.iter().map(|d| d.evaluated.record.clone()).collect();
+        let folder = designs.parent().unwrap_or(designs);
+        write_atomic(&folder.join("front-designs.csv"), &mrbrake_store::to_csv(&records)?)?;
+        Ok(())
+    }
+
+    /// The comment lines above a written front design: where it comes from, its metrics, how it
+    /// was rounded, and a warning if the rounding broke a constraint.
+    fn front_design_header(&self, d: &FrontDesign) -> String {
+        let problem = self.problem;
+        let record = &d.evaluated.record;
+        let mut out = format!(
+            "# Design {} of the front of {} (key {}).\n",
+            d.number,
+            problem.path.display(),
+            record.key
+        );
+        let metrics: Vec<String> = problem
+            .objectives
+            .iter()
+            .map(|o| &o.metric)
+            .chain(problem.constraints.iter().map(|c| &c.metric))
+            .filter_map(|m| {
+                let (scale, label) = metric_axis(m);
+                record.metric(m).map(|v| format!("{label} {:.4}", v * scale))
+            })
+            .collect();
+        if !metrics.is_empty() {
+            let _ = writeln!(out, "# Its evaluation: {}.", metrics.join(", "));
+        }
+        let _ = writeln!(out, "# {}", rounding_words(problem.manufacturing_resolution, d.rounded));
+        if let Some(note) = &d.note {
+            let _ = writeln!(out, "# NOTE: {note}.");
+        }
+        if !d.evaluated.evaluation.feasible() {
+            let _ = writeln!(out, "# WARNING: {}", broken_constraints(problem, record));
+        }
+        let _ = writeln!(
+            out,
+            "# Below: the base spec {} with the problem's [set] changes, its comments kept.\n",
+            problem.spec_path.display()
+        );
+        out
+    }
+
+    /// `hypervolume.csv` (evaluations, hypervolume in SI) and its plot.
+    fn write_hypervolume(&self, dir: &Path, h: &Hypervolume) -> Result<(), ReportError> {
+        let mut csv = String::from("evaluations,hypervolume\n");
+        for p in &h.trace {
+            let _ = writeln!(csv, "{},{:e}", p.evaluations, p.hypervolume);
+        }
+        write_atomic(&dir.join("hypervolume.csv"), csv.as_bytes())?;
+        let metrics: Vec<&str> =
+            self.problem.objectives.iter().map(|o| o.metric.as_str()).collect();
+        let (scale, label) = hypervolume_axis(&metrics);
+        let points =
+            h.trace.iter().map(|p| (p.evaluations as f64, p.hypervolume * scale)).collect();
+        let name = self.problem.path.file_stem().and_then(|s| s.to_str()).unwrap_or("optimisation");
+        let title =
+            format!("{name} — hypervolume against evaluations ({})", self.problem.algorithm.kind());
+        let figure =
+            hypervolume_figure(&title, &label, &[(self.problem.algorithm.kind().into(), points)]);
+        figure.save(&dir.join("hypervolume.svg"))?;
+        figure.save(&dir.join("hypervolume.png"))?;
         Ok(())
     }
 
@@ -468,6 +652,168 @@ impl OptimizationReport<'_> {
                 .collect(),
         }
     }
+}
+
+/// One record as JSON (`mrbrake export --json`'s form).
+fn record_json(record: &Record) -> Value {
+    mrbrake_store::to_json(std::slice::from_ref(record))
+        .as_array()
+        .and_then(|a| a.first().cloned())
+        .unwrap_or(Value::Null)
+}
+
+/// A written front design as JSON: its number and file, whether it was rounded and is feasible,
+/// and its record.
+fn front_design_json(d: &FrontDesign) -> Value {
+    json!({
+        "number": d.number,
+        "file": format!("designs/front-{:02}.toml", d.number),
+        "rounded": d.rounded,
+        "feasible": d.evaluated.evaluation.feasible(),
+        "note": d.note,
+        "design": record_json(&d.evaluated.record),
+    })
+}
+
+/// A surrogate run as JSON: its settings as run, why it stopped, the models' total times and
+/// every iteration.
+fn surrogate_json(s: &SurrogateRun) -> Value {
+    let iterations: Vec<Value> = s
+        .iterations
+        .iter()
+        .map(|i| {
+            let models: Vec<Value> = i
+                .models
+                .iter()
+                .map(|m| json!({ "model": m.model, "points": m.points, "loo_error": m.loo_error }))
+                .collect();
+            json!({
+                "iteration": i.iteration,
+                "batch": i.batch,
+                "evaluations": i.evaluations,
+                "hypervolume": i.hypervolume,
+                "models": models,
+                "fallback": i.fallback,
+                "fit_s": i.fit_s,
+                "acquisition_s": i.acquisition_s,
+            })
+        })
+        .collect();
+    json!({
+        "stop": s.stop,
+        "resumed_from": s.resumed_from,
+        "batch": s.batch,
+        "initial_size": s.initial_size,
+        "max_evaluations": s.max_evaluations,
+        "fit_s": s.fit_s(),
+        "acquisition_s": s.acquisition_s(),
+        "iterations": iterations,
+    })
+}
+
+/// Why a surrogate run stopped, in words.
+fn stop_words(s: &SurrogateRun) -> String {
+    match s.stop {
+        "budget" => format!("budget of {} evaluations", s.max_evaluations),
+        "stall" => "the hypervolume stalled".into(),
+        "observer" => "interrupted".into(),
+        _ => "no design left to propose".into(),
+    }
+}
+
+/// A surrogate run's models in one line: iterations, fallbacks, the last fit's worst
+/// leave-one-out error, and the models' share of the wall time.
+fn surrogate_text(s: &SurrogateRun, elapsed_s: f64) -> String {
+    let fallbacks = s.iterations.iter().filter(|i| i.fallback.is_some()).count();
+    let last = s.iterations.iter().rev().find(|i| !i.models.is_empty());
+    let fits = last.map_or("no model fitted".to_string(), |i| {
+        let each: Vec<String> =
+            i.models.iter().map(|m| format!("{} {:.3}", m.model, m.loo_error)).collect();
+        format!("last leave-one-out errors: {}", each.join(", "))
+    });
+    let overhead = s.fit_s() + s.acquisition_s();
+    let share = if elapsed_s > 0.0 { 100.0 * overhead / (overhead + elapsed_s) } else { 0.0 };
+    format!(
+        "surrogate: batch {}, initial design {}{}; {} fell back to space-filling designs; {fits}; \
+         models {:.1} s + acquisition {:.1} s ({share:.1} % of the run's wall time)",
+        s.batch,
+        s.initial_size,
+        if s.resumed_from > 0 {
+            format!(", continued from {} stored designs", s.resumed_from)
+        } else {
+            String::new()
+        },
+        count(fallbacks, "iteration", "iterations"),
+        s.fit_s(),
+        s.acquisition_s()
+    )
+}
+
+/// One line on the written front designs: their rounding, and those it made infeasible.
+fn front_designs_text(problem: &OptimizationProblem, designs: &[FrontDesign]) -> String {
+    if designs.is_empty() {
+        return String::new();
+    }
+    let rounded = designs.iter().filter(|d| d.rounded).count();
+    let broken: Vec<String> = designs
+        .iter()
+        .filter(|d| !d.evaluated.evaluation.feasible())
+        .map(|d| format!("#{} ({})", d.number, broken_constraints(problem, &d.evaluated.record)))
+        .collect();
+    let mut out = format!(
+        "front designs written in the base spec's units: {} ({} changed by the rounding, \
+         evaluated again)",
+        rounding_words(problem.manufacturing_resolution, true).trim_end_matches('.'),
+        rounded
+    );
+    if broken.is_empty() {
+        out.push_str("; every one meets the constraints\n");
+    } else {
+        let _ = writeln!(
+            out,
+            "; after rounding {} break a constraint: {}",
+            broken.len(),
+            broken.join("; ")
+        );
+    }
+    out
+}
+
+/// How a written design was rounded, in words.
+fn rounding_words(resolution: f64, rounded: bool) -> String {
+    if resolution <= 0.0 {
+        "Values as evaluated, in SI (manufacturing_resolution = 0).".into()
+    } else if rounded {
+        format!(
+            "Lengths rounded to {} mm, currents to 1 mA, in the base spec's units; the metrics \
+             above are those of the rounded design.",
+            resolution * 1e3
+        )
+    } else {
+        format!("Lengths on the {} mm resolution already: nothing rounded.", resolution * 1e3)
+    }
+}
+
+/// The constraints `record` breaks, with their limits, or why it has no metrics.
+fn broken_constraints(problem: &OptimizationProblem, record: &Record) -> String {
+    if record.status != Status::Ok {
+        return format!(
+            "{}: {}",
+            record.status.as_str(),
+            record.reason.clone().unwrap_or_default()
+        );
+    }
+    let broken: Vec<String> = problem
+        .constraints
+        .iter()
+        .filter(|c| record.metric(&c.metric).is_none_or(|v| c.violation(v) > 0.0))
+        .map(|c| {
+            let (scale, _) = metric_axis(&c.metric);
+            let value = record.metric(&c.metric).map_or(f64::NAN, |v| v * scale);
+            format!("{} at {value:.4}", constraint_label(c))
+        })
+        .collect();
+    format!("breaks {}", broken.join(", "))
 }
 
 /// A constraint as a legend label in displayed units, e.g. `torque max ≥ 3 N·m`.

@@ -56,6 +56,7 @@ impl Study {
             objectives: objectives.clone(),
             constraints: constraints.clone(),
             objectives_source: String::new(),
+            hypervolume_reference: None,
         };
         let front = report.front();
         let json = document(path, &records, &objectives, &constraints, &front);

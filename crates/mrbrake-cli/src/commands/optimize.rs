@@ -1,11 +1,14 @@
 //! `mrbrake optimize PROBLEM.toml`: constrained single- or multi-objective optimisation of a brake
-//! design (NSGA-II or pattern search), every evaluation by the FEA through the results store; writes
-//! all evaluations and the Pareto front (CSV), plots, and the front's designs as spec files.
+//! design (NSGA-II, surrogate-assisted, or pattern search), every evaluation by the FEA through the
+//! results store; writes all evaluations and the Pareto front (CSV), plots (the front, the
+//! constraints, the hypervolume against evaluations), and the front's designs as spec files;
+//! `--polish N` refines front design N by a pattern search started at it.
 
 use std::path::PathBuf;
 
 use clap::Args;
 use mrbrake::explore::optimize::{self, OptimizeProgress};
+use mrbrake::explore::polish::{DEFAULT_POLISH_EVALUATIONS, PolishRequest};
 use mrbrake::explore::problem::{BudgetOverride, OptimizationProblem};
 use mrbrake::observe::Flow;
 use mrbrake::report::study::{self as study_report, OptimizationReport};
@@ -26,25 +29,42 @@ pub struct OptimizeArgs {
     /// store needs --resume.
     #[arg(long, value_name = "FILE")]
     store: Option<PathBuf>,
-    /// Continue an existing store: the seeded optimiser replays its designs, stored ones are read
-    /// back instead of recomputed.
+    /// Continue an existing store: NSGA-II and pattern search replay their designs (stored ones
+    /// are read back instead of recomputed); the surrogate rebuilds its models from the stored
+    /// designs and continues.
     #[arg(long)]
     resume: bool,
-    /// Analyses run at the same time (0: one per core).
+    /// Analyses run at the same time (0: one per core); also the surrogate's designs per
+    /// iteration unless the problem sets `algorithm.batch`.
     #[arg(long, default_value_t = 0)]
     jobs: usize,
-    /// Output folder: evaluations.csv, pareto.csv, pareto.svg/.png, constraints.svg/.png,
-    /// designs/front-NN.toml and designs/reference.toml.
+    /// Output folder: evaluations.csv, pareto.csv, hypervolume.csv, pareto.svg/.png,
+    /// constraints.svg/.png, hypervolume.svg/.png, designs/front-NN.toml (in the base spec's
+    /// units, rounded to the problem's manufacturing_resolution) and designs/reference.toml.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// NSGA-II generations after the initial population, overriding the problem file's
     /// `algorithm.generations` (e.g. 1 for a quick run).
     #[arg(long, value_name = "N")]
     generations: Option<usize>,
-    /// The most designs to evaluate, overriding the problem file's budget: pattern search's
-    /// `algorithm.max_evaluations`; for NSGA-II, the generations that fit in N designs.
+    /// The most designs to evaluate, overriding the problem file's budget: the surrogate's and
+    /// pattern search's `algorithm.max_evaluations` (a finished surrogate run continues with
+    /// --resume and a larger N); for NSGA-II, the generations that fit in N designs.
     #[arg(long, value_name = "N")]
     max_evaluations: Option<usize>,
+    /// The seed, overriding the problem file's `algorithm.seed` (repeated runs of a benchmark).
+    #[arg(long, value_name = "N")]
+    seed: Option<u64>,
+    /// After the run, polish front design N (as in designs/front-NN.toml) by a pattern search
+    /// started at it: it improves one objective (--polish-objective) without worsening the others.
+    #[arg(long, value_name = "N")]
+    polish: Option<usize>,
+    /// The objective the polish improves (its metric; default the first objective).
+    #[arg(long, value_name = "METRIC", requires = "polish")]
+    polish_objective: Option<String>,
+    /// The most designs the polish evaluates.
+    #[arg(long, value_name = "N", requires = "polish", default_value_t = DEFAULT_POLISH_EVALUATIONS)]
+    polish_evaluations: usize,
     /// List the metrics a problem may constrain or optimise, and exit.
     #[arg(long)]
     list_metrics: bool,
@@ -63,15 +83,36 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     for note in &problem.notes {
         eprintln!("note: {note}");
     }
-    let budget = BudgetOverride { generations: a.generations, max_evaluations: a.max_evaluations };
+    let budget = BudgetOverride {
+        generations: a.generations,
+        max_evaluations: a.max_evaluations,
+        seed: a.seed,
+    };
     problem.algorithm = problem.algorithm.with_budget(budget)?;
+    let polish = match a.polish {
+        Some(0) => {
+            return Err(InputError("--polish 0: front designs are numbered from 1".into()).into());
+        }
+        Some(design) => {
+            if a.polish_evaluations == 0 {
+                return Err(InputError("--polish-evaluations 0: give at least 1".into()).into());
+            }
+            Some(PolishRequest {
+                design,
+                objective: a.polish_objective.clone(),
+                max_evaluations: a.polish_evaluations,
+            })
+        }
+        None => None,
+    };
     let store_path = a.store.clone().unwrap_or_else(|| optimize::default_store_path(path));
     let mut store = optimize::open_problem_store(&problem, &store_path, a.resume)?;
     let mut display = ProgressDisplay::new("optimize", a.json);
-    let result = optimize::run(&problem, &mut store, a.jobs, &mut |p: &OptimizeProgress| {
+    let mut observer = |p: &OptimizeProgress| {
         display.update_optimize(p);
         Flow::Continue
-    })?;
+    };
+    let result = optimize::run_with(&problem, &mut store, a.jobs, polish.as_ref(), &mut observer)?;
     display.finish();
 
     let report = OptimizationReport {

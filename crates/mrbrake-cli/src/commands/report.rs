@@ -168,6 +168,7 @@ mod study {
                 objectives: p.objectives,
                 constraints: p.constraints,
                 objectives_source: format!("problem {source}"),
+                hypervolume_reference: p.hypervolume_reference,
             },
             None => StudyReport {
                 store,
@@ -179,6 +180,7 @@ mod study {
                     .collect(),
                 constraints: Vec::new(),
                 objectives_source: "no problem recorded: the default pair".into(),
+                hypervolume_reference: None,
             },
         };
         Ok(report.html()?)

@@ -574,8 +574,10 @@ impl<'o> Driver<'o> {
 }
 
 /// In each objective, 10 % of the points' range beyond their worst value (a small positive width
-/// when the range is degenerate): the reference-point rule of Ishibuchi et al. (2018).
-fn beyond_worst(points: &[&[f64]], objectives: usize) -> Vec<f64> {
+/// when the range is degenerate): the reference-point rule of Ishibuchi et al. (2018), the default
+/// of [`SurrogateOptions::reference`]. Public so that a study measures other algorithms' runs with
+/// the same rule.
+pub fn beyond_worst(points: &[&[f64]], objectives: usize) -> Vec<f64> {
     (0..objectives)
         .map(|j| {
             let worst = points.iter().map(|p| p[j]).fold(f64::NEG_INFINITY, f64::max);

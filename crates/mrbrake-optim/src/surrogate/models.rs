@@ -16,7 +16,10 @@
 //!   learn from, never a crash.
 //!
 //! The probability of feasibility is the product over the models (constraints assumed independent,
-//! as in the references above).
+//! as in the references above). A constraint whose value is the same, and satisfied, at every
+//! design of the data (a limit no variable moves, e.g. the current against the wire's rating when
+//! neither is a variable) has no model: its probability is 1. Every other model that cannot be
+//! fitted makes the iteration fall back to space-filling designs.
 
 use std::collections::HashMap;
 use std::fmt;
@@ -203,7 +206,10 @@ impl Models {
         let mut models = Self { objectives: Vec::new(), constraints: Vec::new(), classifier: None };
         let mut fits = Vec::with_capacity(jobs.len());
         for ((role, _), gp) in jobs.iter().zip(fitted) {
-            let (gp, loo_error) = gp?;
+            let (gp, loo_error) = match gp {
+                Err(fallback) if always_satisfied(&fallback) => continue,
+                other => other?,
+            };
             warm.record(*role, gp.hyperparameters(), gp.len(), settings);
             let hyperparameters = gp.hyperparameters().clone();
             fits.push(ModelFit { role: *role, points: gp.len(), loo_error, hyperparameters });
@@ -275,6 +281,15 @@ impl Models {
     }
 }
 
+/// True when `fallback` is a constraint whose every value in the data is the same and satisfied
+/// (module docs): no model is needed, its probability of feasibility is 1.
+fn always_satisfied(fallback: &Fallback) -> bool {
+    matches!(
+        (fallback.role, &fallback.reason),
+        (ModelRole::Constraint(_), FitFailure::ConstantOutput { value, .. }) if *value <= 0.0
+    )
+}
+
 /// Each model's training rows `(index into evaluations, output)`: objectives, constraints, then the
 /// classifier's labels (only when both labels occur; module docs).
 fn training_sets(
@@ -340,4 +355,38 @@ pub(crate) fn training_subset(
         non_dominated_sort(&evaluations).into_iter().flatten().take(max_training).collect();
     chosen.sort_unstable();
     chosen.into_iter().map(|i| &data[i]).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::space::Bounds;
+
+    /// A constraint satisfied by the same margin everywhere has no model; one violated everywhere
+    /// by the same amount still falls back.
+    #[test]
+    fn a_constant_satisfied_constraint_needs_no_model() {
+        let data = |margin: f64| -> Vec<EvaluatedDesign> {
+            (0..8)
+                .map(|i| {
+                    let x = i as f64 / 7.0;
+                    let evaluation = Evaluation::new(vec![x, (1.0 - x).powi(2)], margin.max(0.0))
+                        .with_constraints(vec![0.3 - x, margin]);
+                    EvaluatedDesign { x: vec![x], evaluation }
+                })
+                .collect()
+        };
+        let encoding = Encoding::new(&[Bounds::continuous(0.0, 1.0)]);
+        let fit = |d: &[EvaluatedDesign]| {
+            Models::fit(d, 2, &encoding, &FitSettings::default(), 300, &mut WarmStarts::default())
+        };
+        let (models, fits) = fit(&data(-0.05)).expect("the constant constraint is not a failure");
+        assert_eq!(models.constraints.len(), 1);
+        assert!(fits.iter().all(|f| f.role != ModelRole::Constraint(1)), "{fits:?}");
+        // The modelled constraint `0.3 − x ≤ 0` is broken at x = 0.1 and met at x = 0.9.
+        let predictions = models.predict(&[vec![0.1], vec![0.9]]);
+        assert!(predictions[1].feasibility > predictions[0].feasibility, "{predictions:?}");
+        let error = fit(&data(0.05)).unwrap_err();
+        assert_eq!(error.role, ModelRole::Constraint(1));
+    }
 }

@@ -14,18 +14,19 @@ use std::path::Path;
 
 use mrbrake_design::geometry;
 use mrbrake_design::spec::{BrakeSpec, Quantity};
+use mrbrake_explore::hypervolume::{self, Hypervolume, ReferenceSource};
 use mrbrake_explore::problem::{Constraint, Goal, Objective};
 use mrbrake_explore::variable::resolve;
 use mrbrake_optim::pareto::{Evaluation, pareto_front};
-use mrbrake_store::{Record, Status};
+use mrbrake_store::{Record, Status, Store};
 use serde_json::Value;
 
 use super::writer::{Cell, Table};
 use super::{Page, Section, cross_section, figure, inline_svg};
 use crate::ReportError;
 use crate::pareto::{
-    ConstraintActivity, ObjectivePlot, constraint_activity_figure, metric_plot_axis,
-    objective_figure,
+    ConstraintActivity, ObjectivePlot, constraint_activity_figure, hypervolume_axis,
+    hypervolume_figure, metric_plot_axis, objective_figure,
 };
 use crate::study::metric_axis;
 
@@ -48,6 +49,10 @@ pub struct StudyReport<'a> {
     pub constraints: Vec<Constraint>,
     /// Where the objectives come from (the problem file, the store, or the default).
     pub objectives_source: String,
+    /// The hypervolume's reference point the problem gives (`algorithm.hypervolume_reference`,
+    /// minimised units); `None`: the one the store records, else from every feasible design
+    /// ([`mrbrake_explore::hypervolume`]).
+    pub hypervolume_reference: Option<Vec<f64>>,
 }
 
 impl StudyReport<'_> {
@@ -101,12 +106,67 @@ impl StudyReport<'_> {
         ];
         let stem =
             self.store.file_stem().map_or("study".into(), |s| s.to_string_lossy().to_string());
-        let mut sections =
-            vec![self.problem_section(), self.plots_section(&front)?, self.front_table(&front)];
+        let mut sections = vec![self.problem_section(), self.plots_section(&front)?];
+        sections.push(self.hypervolume_section()?);
+        sections.push(self.front_table(&front));
         for (k, &i) in front.iter().enumerate() {
             sections.push(self.design_section(k, i));
         }
         Ok(Page { title: format!("Design study {stem}"), facts, sections }.render())
+    }
+
+    /// The hypervolume of the store's designs in the store's order (the order they were
+    /// evaluated in), against the problem's reference point, the store's, or one from every
+    /// feasible design; `None` when no design is feasible.
+    pub fn hypervolume(&self) -> Result<Option<Hypervolume>, ReportError> {
+        let evaluations: Vec<Evaluation> =
+            self.records.iter().filter(|r| !is_reference(r)).map(|r| self.evaluation(r)).collect();
+        let store = Store::open_read_only(self.store).ok();
+        let resolved = match &store {
+            Some(store) => hypervolume::store_reference(
+                self.hypervolume_reference.as_deref(),
+                store,
+                &self.objectives,
+                &evaluations,
+            )?,
+            None => hypervolume::reference_of(&evaluations, self.objectives.len())
+                .map(|r| (r, ReferenceSource::AllFeasible)),
+        };
+        Ok(resolved.map(|(reference, source)| Hypervolume::of(&evaluations, reference, source)))
+    }
+
+    /// The hypervolume, its reference point and its growth with the evaluations.
+    fn hypervolume_section(&self) -> Result<Section, ReportError> {
+        let mut s = Section::new("hypervolume", "Hypervolume against evaluations");
+        let Some(h) = self.hypervolume()? else {
+            s.body.paragraph("No design meets every constraint: no hypervolume yet.");
+            return Ok(s);
+        };
+        let metrics: Vec<&str> = self.objectives.iter().map(|o| o.metric.as_str()).collect();
+        let (scale, label) = hypervolume_axis(&metrics);
+        let reference = crate::study::reference_point_text(&self.objectives, &h.reference, 4);
+        s.body.paragraph(&format!(
+            "{label}: {:.4} after {} designs, against the reference point {} ({}).",
+            h.value * scale,
+            h.trace.len(),
+            reference.join(", "),
+            h.source.describe()
+        ));
+        let points: Vec<(f64, f64)> =
+            h.trace.iter().map(|p| (p.evaluations as f64, p.hypervolume * scale)).collect();
+        let chart = hypervolume_figure(
+            "Hypervolume of the feasible front",
+            &label,
+            &[("this store".into(), points)],
+        );
+        let svg = inline_svg(&chart.to_svg()?, "Hypervolume against evaluations")?;
+        figure(
+            &mut s.body,
+            &svg,
+            "The hypervolume of the feasible front of the designs analysed so far, in the order they \
+             were stored.",
+        );
+        Ok(s)
     }
 
     /// The metrics of the objectives, then of the constraints (each once).
