@@ -238,7 +238,8 @@ mod tests {
         let e = FieldError::out_of_range("poles", 0, ">= 1");
         assert_eq!((e.value.as_deref(), e.allowed.as_deref()), (Some("0"), Some(">= 1")));
         assert_eq!(e.to_string(), "poles: got 0; allowed: >= 1");
-        let e = FieldError::new("dt", "must be a time step").with_value(-1.0).in_file("p.toml", None);
+        let e =
+            FieldError::new("dt", "must be a time step").with_value(-1.0).in_file("p.toml", None);
         assert_eq!(e.to_string(), "p.toml: dt: must be a time step (got -1)");
         let e = FieldError::out_of_range("turns", 0, "> 0").under("coil[2]");
         assert_eq!(e.field, "coil[2].turns");
