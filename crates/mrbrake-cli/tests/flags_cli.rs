@@ -202,7 +202,7 @@ fn negative_quantities_get_the_range_message() {
         (&["thermal", "--current", "-2A"], &["--current", "(0, 100] A"]),
         (&["thermal", "--period", "-1s"], &["--period", "> 0"]),
         (&["thermal", "--duty", "-0.5"], &["--duty", "(0, 1]"]),
-        (&["freqresp", manifest, "--settle", "-1s"], &["--settle", "non-negative"]),
+        (&["freqresp", manifest, "--settle", "-1s"], &["--settle: got -1 s", ">= 0 s"]),
         (
             &["haptic", "wall", "--device", "conventional", "--duration", "-1s"],
             &["duration_s = -1"],

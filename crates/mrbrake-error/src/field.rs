@@ -16,7 +16,8 @@ pub struct FieldError {
     pub file: Option<String>,
     /// 1-based line of the field in that file, when known.
     pub line: Option<usize>,
-    /// Dotted path of the field (`drum.gap`, `coil.turns`, `region[2].material`, `dt`).
+    /// Dotted path of the field (`drum.gap`, `coil.turns`, `region[2].material`, `dt`); empty for
+    /// an error about a whole file (it does not parse).
     pub field: String,
     /// What is wrong, e.g. `must be > 0 mm, got -0.5 mm`; may be empty when the value and the
     /// allowed range say it all.
@@ -106,7 +107,10 @@ impl fmt::Display for FieldError {
             (Some(file), None) => write!(f, "{file}: ")?,
             _ => {}
         }
-        write!(f, "{}: {}", self.field, self.message)?;
+        if !self.field.is_empty() {
+            write!(f, "{}: ", self.field)?;
+        }
+        f.write_str(&self.message)?;
         let got = self.value.as_ref().map(|v| format!("got {v}"));
         let allowed = self.allowed.as_ref().map(|a| format!("allowed: {a}"));
         let detail: Vec<String> = got.into_iter().chain(allowed).collect();

@@ -42,6 +42,29 @@ impl Default for CharacterizeOptions {
     }
 }
 
+impl CharacterizeOptions {
+    /// The highest branch order: beyond it the Chebyshev fit of a loop's few current levels is
+    /// interpolation of noise.
+    pub const MAX_ORDER: usize = 12;
+
+    /// Checks the order (`1..=12`) and the bins (at least two per coefficient): the field errors
+    /// name `order` and `bins`. [`characterize`] checks them too; a front end calls this before
+    /// reading a log, whose minimum length depends on the order.
+    pub fn check(&self) -> Result<(), SysidError> {
+        if !(1..=Self::MAX_ORDER).contains(&self.order) {
+            let allowed = format!("1..={}", Self::MAX_ORDER);
+            return Err(FieldError::out_of_range("order", self.order, allowed).into());
+        }
+        if self.bins < 2 * (self.order + 1) {
+            return Err(FieldError::new("bins", format!("too few for order {}", self.order))
+                .with_value(self.bins)
+                .with_allowed(format!(">= {}", 2 * (self.order + 1)))
+                .into());
+        }
+        Ok(())
+    }
+}
+
 /// One fitted branch.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct BranchFit {
@@ -251,16 +274,7 @@ fn check_options(
             .with_allowed(format!("{} samples, as the current", current_a.len()))
             .into());
     }
-    if options.order == 0 || options.order > 12 {
-        return Err(FieldError::out_of_range("order", options.order, "1..=12").into());
-    }
-    if options.bins < 2 * (options.order + 1) {
-        return Err(FieldError::new("bins", format!("too few for order {}", options.order))
-            .with_value(options.bins)
-            .with_allowed(format!(">= {}", 2 * (options.order + 1)))
-            .into());
-    }
-    Ok(())
+    options.check()
 }
 
 /// The log's samples with its repetitions and current range.

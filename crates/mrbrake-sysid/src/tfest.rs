@@ -65,6 +65,24 @@ impl TfestOptions {
             max_lm_iterations: 300,
         }
     }
+
+    /// Checks the orders (at least one pole, no more zeros than poles: fields `poles`, `zeros`)
+    /// and the delay (finite and ≥ 0: `delay`). [`tfest`] checks them too; a front end calls this
+    /// before reading data.
+    pub fn check(&self) -> Result<(), SysidError> {
+        let (m, n) = (self.zeros, self.poles);
+        if n == 0 {
+            return Err(FieldError::out_of_range("poles", n, ">= 1").into());
+        }
+        if m > n {
+            return Err(FieldError::out_of_range("zeros", m, format!("<= poles ({n})")).into());
+        }
+        if !(self.delay_s >= 0.0 && self.delay_s.is_finite()) {
+            let e = FieldError::out_of_range("delay", format!("{} s", self.delay_s), ">= 0 s");
+            return Err(e.into());
+        }
+        Ok(())
+    }
 }
 
 /// The estimated model and how well it fits.
@@ -305,13 +323,8 @@ const MAX_DECADES_TIMES_DEGREE: f64 = 40.0;
 
 /// Checks the model orders, the number of points, the delay and the data.
 fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
+    options.check()?;
     let (m, n) = (options.zeros, options.poles);
-    if n == 0 {
-        return Err(FieldError::out_of_range("poles", n, ">= 1").into());
-    }
-    if m > n {
-        return Err(FieldError::out_of_range("zeros", m, format!("<= poles ({n})")).into());
-    }
     let count = frd.len();
     if let Some(w) = frd.weight.as_ref().filter(|w| w.len() != count) {
         return Err(FieldError::new("weight", "tfest: one weight per frequency point")
@@ -327,10 +340,6 @@ fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
         .with_value(format!("{count} points"))
         .with_allowed(format!(">= {} points", (m + 1 + n).div_ceil(2)))
         .into());
-    }
-    if !(options.delay_s >= 0.0 && options.delay_s.is_finite()) {
-        let e = FieldError::out_of_range("delay", format!("{} s", options.delay_s), ">= 0 s");
-        return Err(e.into());
     }
     if frd.responses().any(|g| !g.is_finite()) || frd.omegas().any(|w| !(w.is_finite() && w > 0.0))
     {

@@ -159,7 +159,8 @@ fn probes_at(
         .iter()
         .map(|p| {
             solver.temperature_at(t, p.point).map(celsius).map_err(|e| {
-                HeatError::Input(format!("{}: probe `{}`: {e}", path.display(), p.name))
+                let e = mrbrake_error::FieldError::new(format!("probe.{}", p.name), e.to_string());
+                HeatError::from(e.in_file(path.display().to_string(), None))
             })
         })
         .collect()
