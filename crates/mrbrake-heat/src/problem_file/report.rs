@@ -159,8 +159,13 @@ fn probes_at(
         .iter()
         .map(|p| {
             solver.temperature_at(t, p.point).map(celsius).map_err(|e| {
-                let e = mrbrake_error::FieldError::new(format!("probe.{}", p.name), e.to_string());
-                HeatError::from(e.in_file(path.display().to_string(), None))
+                let table = format!("probe[{}]", p.name);
+                match e {
+                    HeatError::Input(e) => {
+                        HeatError::from(e.under(table).in_file(path.display().to_string(), None))
+                    }
+                    other => other,
+                }
             })
         })
         .collect()
