@@ -196,7 +196,7 @@ fn negative_quantities_get_the_range_message() {
     let dir = tempfile::tempdir().unwrap();
     let manifest = write_manifest(dir.path());
     let manifest = path_str(&manifest);
-    let cases: [(&[&str], &[&str]); 7] = [
+    let cases: [(&[&str], &[&str]); 8] = [
         (&["response", "--duration", "-1s"], &["duration = -1", "> 0"]),
         (&["response", "--fluid-lag", "-1ms"], &["fluid lag", ">= 0"]),
         (&["thermal", "--current", "-2A"], &["--current", "(0, 100] A"]),
@@ -204,8 +204,12 @@ fn negative_quantities_get_the_range_message() {
         (&["thermal", "--duty", "-0.5"], &["--duty", "(0, 1]"]),
         (&["freqresp", manifest, "--settle", "-1s"], &["--settle: got -1 s", ">= 0 s"]),
         (
+            &["haptic", "wall", "--device", "conventional", "--stiffness", "-1"],
+            &["--stiffness: haptic (got -1; allowed: [0, 100000])"],
+        ),
+        (
             &["haptic", "wall", "--device", "conventional", "--duration", "-1s"],
-            &["duration_s = -1"],
+            &["--duration: haptic (got -1; allowed: [0.001, 3600])"],
         ),
     ];
     for (args, needles) in cases {

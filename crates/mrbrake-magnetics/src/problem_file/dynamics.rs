@@ -172,9 +172,8 @@ pub(super) fn voltage_drive(value: &toml::Value, field: &str) -> Result<Drive, M
     let table = value.as_table().ok_or_else(|| {
         input(
             field,
-            format!(
-                "source.drive must be a table {{ voltage_V = ..., series_resistance_ohm = ... }}"
-            ),
+            "source.drive must be a table { voltage_V = ..., series_resistance_ohm = ... }"
+                .to_string(),
         )
     })?;
     for key in table.keys() {
@@ -201,14 +200,13 @@ pub(super) fn voltage_drive(value: &toml::Value, field: &str) -> Result<Drive, M
             .transpose()
     };
     let amplitude_v = number("voltage_V")?
-        .ok_or_else(|| input(field, format!("source.drive needs `voltage_V` (V)")))?;
+        .ok_or_else(|| input(field, "source.drive needs `voltage_V` (V)".to_string()))?;
     let resistance = number("series_resistance_ohm")?.ok_or_else(|| {
         input(
             field,
-            format!(
-                "a voltage drive needs `series_resistance_ohm` (Ω, > 0: the winding's \
+            "a voltage drive needs `series_resistance_ohm` (Ω, > 0: the winding's \
              resistance plus the source's)"
-            ),
+                .to_string(),
         )
     })?;
     if resistance <= 0.0 {
@@ -230,7 +228,7 @@ pub(super) fn spec_of(
             return Err(input_in(
                 file,
                 "transient",
-                format!("cannot be solved together with [harmonic]; give one of them"),
+                "cannot be solved together with [harmonic]; give one of them".to_string(),
             ));
         }
         (Some(t), None) => (
@@ -363,10 +361,9 @@ fn coils_of(
         return Err(input_in(
             file,
             "region",
-            format!(
-                "a [transient] or [harmonic] solve needs a coil: a region with source = \
-             {{ turns, current_A }} or {{ turns, drive = {{ voltage_V, series_resistance_ohm }} }}"
-            ),
+            "a [transient] or [harmonic] solve needs a coil: a region with source = \
+             { turns, current_A } or { turns, drive = { voltage_V, series_resistance_ohm } }"
+                .to_string(),
         ));
     }
     Ok(coils)
@@ -566,7 +563,7 @@ fn harmonic_of(
             return Err(input_in(
                 file,
                 "harmonic.vtu_frequencies_Hz",
-                format!("is empty (omit it for every frequency)"),
+                "is empty (omit it for every frequency)".to_string(),
             ));
         }
         Some(chosen) => {
@@ -638,10 +635,9 @@ fn bias_of(raw: &RawBias, coils: &[u32], file: &str) -> Result<Vec<f64>, Magneti
         _ => Err(input_in(
             file,
             "harmonic.bias",
-            format!(
-                "harmonic.bias takes either current_A (every coil) or coils = [{{ physical, \
-             current_A }}, ...], not both or neither"
-            ),
+            "harmonic.bias takes either current_A (every coil) or coils = [{ physical, \
+             current_A }, ...], not both or neither"
+                .to_string(),
         )),
     }
 }

@@ -262,7 +262,7 @@ fn secant_inductance(
         return Ok(incremental_h);
     }
     Err(MagneticsError::in_file(
-        &file,
+        file,
         "region",
         format!(
             "region physical = {}: source current_A = {} links {:.4e} Wb from other sources, so \
@@ -314,7 +314,7 @@ fn check_regions(problem: &Problem, file: &str, mesh_path: &Path) -> Result<(), 
     for region in &problem.regions {
         if tags.binary_search(&region.tag).is_err() {
             return Err(MagneticsError::in_file(
-                &file,
+                file,
                 "region",
                 format!(
                     "region physical = {} is not a physical surface of the mesh {} (its surfaces: {tags:?})",
@@ -327,7 +327,7 @@ fn check_regions(problem: &Problem, file: &str, mesh_path: &Path) -> Result<(), 
     for tag in tags {
         if problem.region(tag).is_none() {
             return Err(MagneticsError::in_file(
-                &file,
+                file,
                 "region",
                 format!("the mesh's physical surface {tag} has no [[region]] with a material"),
             ));
@@ -340,15 +340,14 @@ fn material_of(value: &toml::Value, dir: &Path, field: &str) -> Result<Magnetic,
     match value {
         toml::Value::String(name) => {
             // The library's error names the material; the region (file and physical tag) is ours.
-            let material = mrbrake_materials::library::get(name).map_err(|e| {
-                MagneticsError::field(&field, format!("material = \"{name}\": {e}"))
-            })?;
+            let material = mrbrake_materials::library::get(name)
+                .map_err(|e| MagneticsError::field(field, format!("material = \"{name}\": {e}")))?;
             Ok(material.magnetic.clone())
         }
         toml::Value::Table(table) => {
             if let Some(mu) = table.get("mu_r") {
                 let mu_r = mu.as_float().or_else(|| mu.as_integer().map(|i| i as f64)).ok_or_else(
-                    || MagneticsError::field(&field, "material.mu_r must be a number"),
+                    || MagneticsError::field(field, "material.mu_r must be a number"),
                 )?;
                 if !(mu_r.is_finite() && mu_r > 0.0) {
                     let e = FieldError::out_of_range("material.mu_r", mu_r, "finite, > 0");
@@ -357,24 +356,21 @@ fn material_of(value: &toml::Value, dir: &Path, field: &str) -> Result<Magnetic,
                 Ok(Magnetic::Linear { mu_r })
             } else if let Some(csv) = table.get("bh_csv") {
                 let csv = csv.as_str().ok_or_else(|| {
-                    MagneticsError::field(&field, "material.bh_csv must be a path string")
+                    MagneticsError::field(field, "material.bh_csv must be a path string")
                 })?;
                 let curve = mrbrake_materials::BhCurve::from_csv_file(&dir.join(csv))?;
                 Ok(Magnetic::NonLinear(Arc::new(curve)))
             } else {
                 Err(MagneticsError::field(
-                    &field,
-                    format!(
-                        "material table needs `mu_r` or `bh_csv` (or give a library name such as \"steel-1010\")"
-                    ),
+                    field,
+                    "material table needs `mu_r` or `bh_csv` (or give a library name such as \"steel-1010\")".to_string(),
                 ))
             }
         }
         _ => Err(MagneticsError::field(
-            &field,
-            format!(
-                "material must be a library name, {{ mu_r = ... }} or {{ bh_csv = \"file.csv\" }}"
-            ),
+            field,
+            "material must be a library name, { mu_r = ... } or { bh_csv = \"file.csv\" }"
+                .to_string(),
         )),
     }
 }
@@ -388,7 +384,7 @@ fn number(table: &toml::Table, key: &str, field: &str) -> Result<Option<f64>, Ma
             .filter(|x| x.is_finite())
             .map(Some)
             .ok_or_else(|| {
-                MagneticsError::field(&field, format!("source.{key} must be a finite number"))
+                MagneticsError::field(field, format!("source.{key} must be a finite number"))
             }),
     }
 }
@@ -396,14 +392,14 @@ fn number(table: &toml::Table, key: &str, field: &str) -> Result<Option<f64>, Ma
 fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError> {
     let table = value.as_table().ok_or_else(|| {
         MagneticsError::field(
-            &field,
-            format!("source must be a table such as {{ turns = 100, current_A = 1.0 }}"),
+            field,
+            "source must be a table such as { turns = 100, current_A = 1.0 }".to_string(),
         )
     })?;
     for key in table.keys() {
         if !["turns", "current_A", "current_density_A_per_m2", "drive"].contains(&key.as_str()) {
             return Err(MagneticsError::field(
-                &field,
+                field,
                 format!(
                     "unknown source field `{key}`; allowed: turns, current_A, current_density_A_per_m2, drive"
                 ),
@@ -426,8 +422,8 @@ fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError>
             Ok(Source::Coil { turns, current_a })
         }
         _ => Err(MagneticsError::field(
-            &field,
-            format!("source needs both `turns` and `current_A`, or `current_density_A_per_m2`"),
+            field,
+            "source needs both `turns` and `current_A`, or `current_density_A_per_m2`".to_string(),
         )),
     }
 }
@@ -438,13 +434,13 @@ fn voltage_source(
     drive: &toml::Value,
     field: &str,
 ) -> Result<Source, MagneticsError> {
-    let turns = number(table, "turns", field)?.filter(|&n| n > 0.0).ok_or_else(|| {
-        MagneticsError::field(&field, "a voltage-driven source needs `turns` > 0")
-    })?;
+    let turns = number(table, "turns", field)?
+        .filter(|&n| n > 0.0)
+        .ok_or_else(|| MagneticsError::field(field, "a voltage-driven source needs `turns` > 0"))?;
     if table.contains_key("current_A") || table.contains_key("current_density_A_per_m2") {
         return Err(MagneticsError::field(
-            &field,
-            format!("source takes `current_A` or `drive`, not both"),
+            field,
+            "source takes `current_A` or `drive`, not both".to_string(),
         ));
     }
     let current_a = match dynamics::voltage_drive(drive, field)? {
