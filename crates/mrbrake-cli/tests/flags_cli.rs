@@ -62,8 +62,14 @@ fn haptic_wall_gains_take_units_and_the_old_flags_still_work() {
         args
     };
     expect_input_error(&with("--stiffness", "30Nms/rad"), &["--stiffness", "N·m/rad"]);
-    expect_input_error(&with("--stiffness", "-5Nm/rad"), &["--stiffness", "≥ 0"]);
-    expect_input_error(&with("--damping", "-1mNms/rad"), &["--damping", "≥ 0"]);
+    expect_input_error(
+        &with("--stiffness", "-5Nm/rad"),
+        &["--stiffness: haptic (got -5;", "allowed: [0, 100000]"],
+    );
+    expect_input_error(
+        &with("--damping", "-1mNms/rad"),
+        &["--damping: haptic (got -0.001;", "allowed: [0, 100]"],
+    );
 }
 
 #[test]

@@ -228,7 +228,8 @@ pub(super) fn spec_of(
             return Err(input_in(
                 file,
                 "transient",
-                "cannot be solved together with [harmonic]; give one of them".to_string(),
+                "[transient] and [harmonic] cannot be solved together; give one of them"
+                    .to_string(),
             ));
         }
         (Some(t), None) => (
