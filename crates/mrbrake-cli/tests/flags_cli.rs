@@ -62,8 +62,14 @@ fn haptic_wall_gains_take_units_and_the_old_flags_still_work() {
         args
     };
     expect_input_error(&with("--stiffness", "30Nms/rad"), &["--stiffness", "N·m/rad"]);
-    expect_input_error(&with("--stiffness", "-5Nm/rad"), &["--stiffness", "≥ 0"]);
-    expect_input_error(&with("--damping", "-1mNms/rad"), &["--damping", "≥ 0"]);
+    expect_input_error(
+        &with("--stiffness", "-5Nm/rad"),
+        &["--stiffness: haptic (got -5;", "allowed: [0, 100000]"],
+    );
+    expect_input_error(
+        &with("--damping", "-1mNms/rad"),
+        &["--damping: haptic (got -0.001;", "allowed: [0, 100]"],
+    );
 }
 
 #[test]
@@ -196,16 +202,20 @@ fn negative_quantities_get_the_range_message() {
     let dir = tempfile::tempdir().unwrap();
     let manifest = write_manifest(dir.path());
     let manifest = path_str(&manifest);
-    let cases: [(&[&str], &[&str]); 7] = [
+    let cases: [(&[&str], &[&str]); 8] = [
         (&["response", "--duration", "-1s"], &["duration = -1", "> 0"]),
         (&["response", "--fluid-lag", "-1ms"], &["fluid lag", ">= 0"]),
         (&["thermal", "--current", "-2A"], &["--current", "(0, 100] A"]),
         (&["thermal", "--period", "-1s"], &["--period", "> 0"]),
         (&["thermal", "--duty", "-0.5"], &["--duty", "(0, 1]"]),
-        (&["freqresp", manifest, "--settle", "-1s"], &["--settle", "non-negative"]),
+        (&["freqresp", manifest, "--settle", "-1s"], &["--settle: got -1 s", ">= 0 s"]),
+        (
+            &["haptic", "wall", "--device", "conventional", "--stiffness", "-1"],
+            &["--stiffness: haptic (got -1; allowed: [0, 100000])"],
+        ),
         (
             &["haptic", "wall", "--device", "conventional", "--duration", "-1s"],
-            &["duration_s = -1"],
+            &["--duration: haptic (got -1; allowed: [0.001, 3600])"],
         ),
     ];
     for (args, needles) in cases {

@@ -61,7 +61,7 @@ fn minor_loops_identify_an_operator_model_that_tracks() {
     // Bad input: more operators than the controller holds, in the flag and in a file.
     expect_input_error(
         &["characterize", path_str(&log), "--operators", "40"],
-        &["--operators 40", "1..=32"],
+        &["--operators: ", "got 40; allowed: 1..=32"],
     );
     let text = std::fs::read_to_string(&model).unwrap();
     let thresholds: Vec<String> = (0..33).map(|k| format!("{}", k as f64 * 0.01)).collect();
@@ -92,6 +92,6 @@ fn a_log_without_minor_loops_is_refused() {
     std::fs::write(&log, csv).unwrap();
     expect_input_error(
         &["characterize", path_str(&log), "--operators", "8"],
-        &["reverses only 0 time(s) inside its range", "rig minor-loops"],
+        &["got 0 reversal(s); allowed: >= 2 reversals", "rig minor-loops"],
     );
 }

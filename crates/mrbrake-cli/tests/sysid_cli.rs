@@ -128,7 +128,11 @@ fn tfest_recovers_exact_poles_and_rejects_more_zeros_than_poles() {
     assert!((fitted[1] - 2000.0).abs() < 2e-2, "{fitted:?}");
     assert!((number(&v, "dc_gain") - 1.0).abs() < 1e-6, "{v}");
 
-    expect_input_error(&["tfest", path_str(&frd), "--poles", "2", "--zeros", "3"], &["--zeros"]);
+    expect_input_error(
+        &["tfest", path_str(&frd), "--poles", "2", "--zeros", "3"],
+        &["--zeros: got 3", "allowed: <= poles (2)"],
+    );
+    expect_input_error(&["tfest", path_str(&frd), "--poles", "0"], &["--poles: got 0", ">= 1"]);
     expect_input_error(&["tfest", path_str(&frd), "--poles", "2", "--delay", "0.5kg"], &["kg"]);
 }
 
@@ -148,4 +152,10 @@ fn characterize_rejects_a_nan_torque_naming_the_line() {
 
     let missing = dir.path().join("missing.csv");
     expect_input_error(&["characterize", path_str(&missing)], &["missing.csv"]);
+    // The order is the library's rule, checked before the log is read, named by the CLI's flag.
+    let order = ["characterize", path_str(&missing), "--order", "13"];
+    expect_input_error(&order, &["--order: got 13", "allowed: 1..=12"]);
+    let out = dir.path().join("r.html");
+    let report = ["report", "--log", path_str(&missing), "--fit-order", "0", "-o", path_str(&out)];
+    expect_input_error(&report, &["--fit-order: got 0", "1..=12"]);
 }

@@ -28,6 +28,7 @@ use mrbrake_sim::brake_model::{
 };
 
 use crate::DeviceError;
+use mrbrake_error::FieldError;
 
 /// Why a predicted model has no hysteresis.
 pub const NO_HYSTERESIS_NOTE: &str = "the finite-element analysis uses anhysteretic B–H curves: it predicts no loop; identify one on a rig (mrbrake characterize --save-model)";
@@ -154,10 +155,10 @@ pub fn add_dynamics(
     source: &str,
 ) -> Result<f64, DeviceError> {
     if model.name != response.name {
-        return Err(DeviceError::Input(format!(
-            "the brake model is of '{}', the response of '{}': analyse and respond the same design",
-            model.name, response.name
-        )));
+        return Err(FieldError::new("name", "analyse and respond the same design")
+            .with_value(format!("'{}' in the brake model", model.name))
+            .with_allowed(format!("'{}', the design of the response", response.name))
+            .into());
     }
     let frd = &response.frequency_response;
     let fitted = fit_dynamics(frd)?;
@@ -201,16 +202,19 @@ pub fn add_thermal(
     source: &str,
 ) -> Result<(), DeviceError> {
     if model.name != spec_name {
-        return Err(DeviceError::Input(format!(
-            "the brake model is of '{}', the thermal analysis of '{spec_name}': use the same design",
-            model.name
-        )));
+        return Err(FieldError::new("name", "use the same design")
+            .with_value(format!("'{}' in the brake model", model.name))
+            .with_allowed(format!("'{spec_name}', the design of the thermal analysis"))
+            .into());
     }
     let Some(steady) = thermal.steady else {
-        return Err(DeviceError::Input(format!(
-            "no steady state at {} A (thermal runaway): no hot resistance to save",
-            thermal.current_a
-        )));
+        return Err(FieldError::new(
+            "current",
+            "no steady state (thermal runaway): no hot resistance to save",
+        )
+        .with_value(format!("{} A", thermal.current_a))
+        .with_allowed(format!("<= {} A (continuous)", thermal.continuous_current_a))
+        .into());
     };
     let data = Thermal {
         hot_temperature_c: steady.coil_mean_t_c,

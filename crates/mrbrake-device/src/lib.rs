@@ -18,14 +18,21 @@ pub mod brake_model;
 pub enum DeviceError {
     /// A result the model cannot be amended with: of another design (names both), or a thermal
     /// analysis without a steady state.
-    #[error("{0}")]
-    Input(String),
+    /// The field is the model file's design `name` or the thermal analysis's `current`.
+    #[error(transparent)]
+    Input(Box<mrbrake_error::FieldError>),
     /// The design key of the spec (its settings, materials).
     #[error(transparent)]
     Explore(#[from] mrbrake_explore::ExploreError),
     /// The brake model: a fit, an invalid predicted value (names the field), a refused model.
     #[error(transparent)]
     Sim(#[from] mrbrake_sim::SimError),
+}
+
+impl From<mrbrake_error::FieldError> for DeviceError {
+    fn from(error: mrbrake_error::FieldError) -> Self {
+        Self::Input(Box::new(error))
+    }
 }
 
 impl mrbrake_error::Kind for DeviceError {

@@ -49,9 +49,10 @@ pub mod workflow;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum FemError {
-    /// Invalid input (file, line, field) with a message naming what was expected.
-    #[error("{0}")]
-    Input(String),
+    /// Invalid input: the file when known, the field (an argument such as `radii`, `seeds`,
+    /// `nodes`, or a problem-file key such as `mesh`), the value and what is allowed.
+    #[error(transparent)]
+    Input(Box<mrbrake_error::FieldError>),
     /// A malformed mesh file: the file, the 1-based line number and what was expected there.
     #[error("{file}:{line}: {message}")]
     Parse {
@@ -85,6 +86,19 @@ pub enum FemError {
     /// Another numerical failure (a singular dense system, memory for a factorisation, …).
     #[error("{0}")]
     Numerical(String),
+}
+
+impl From<mrbrake_error::FieldError> for FemError {
+    fn from(error: mrbrake_error::FieldError) -> Self {
+        Self::Input(Box::new(error))
+    }
+}
+
+impl FemError {
+    /// An input error about `field` (no value or range: the message says what is wrong).
+    pub(crate) fn field(field: &str, message: impl Into<String>) -> Self {
+        mrbrake_error::FieldError::new(field, message).into()
+    }
 }
 
 impl mrbrake_error::Kind for FemError {

@@ -224,8 +224,14 @@ fn mesh_errors_use_the_files_tags() {
     assert!(message.contains("triangle 7") && message.contains("[11, 12, 13]"), "{message}");
 
     let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n21 0 0 0\n22 1 0 0\n23 -1 1 0\n$EndNodes\n$Elements\n1\n1 2 2 7 5 21 22 23\n$EndElements\n";
-    let err = parse_msh(text, "neg.msh", 1.0).unwrap_err().to_string();
-    assert!(err.contains("node 23 has r = -1 m"), "{err}");
+    let err = parse_msh(text, "neg.msh", 1.0).unwrap_err();
+    let mrbrake_fem::FemError::Input(field) = &err else { panic!("{err:?}") };
+    assert_eq!((field.file.as_deref(), field.field.as_str()), (Some("neg.msh"), "nodes"));
+    assert_eq!(
+        (field.value.as_deref(), field.allowed.as_deref()),
+        (Some("r = -1 m"), Some("r >= 0"))
+    );
+    assert!(err.to_string().contains("node 23"), "{err}");
 }
 
 /// Issue 19: `nan` and `inf` (which Rust parses as numbers) are refused while the nodes are read,

@@ -18,6 +18,7 @@
 //! radiation boundary with an emissivity).
 
 use crate::HeatError;
+use mrbrake_error::FieldError;
 
 /// Standard gravity \[m/s²\] (CGPM 1901, exact).
 pub const STANDARD_GRAVITY: f64 = 9.806_65;
@@ -64,12 +65,14 @@ impl Air {
 pub fn air(t_k: f64) -> Result<Air, HeatError> {
     let (lo, hi) = (AIR[0].0, AIR[AIR.len() - 1].0);
     if !(lo..=hi).contains(&t_k) {
-        return Err(HeatError::Input(format!(
-            "natural convection: film temperature {:.1} °C is outside the air table ({:.0} to {:.0} °C)",
-            t_k - crate::ZERO_CELSIUS_K,
-            lo - crate::ZERO_CELSIUS_K,
-            hi - crate::ZERO_CELSIUS_K
-        )));
+        let celsius = |t: f64| t - crate::ZERO_CELSIUS_K;
+        return Err(FieldError::new(
+            "t_k",
+            "natural convection: film temperature outside the air table",
+        )
+        .with_value(format!("{:.1} °C", celsius(t_k)))
+        .with_allowed(format!("{:.0} to {:.0} °C", celsius(lo), celsius(hi)))
+        .into());
     }
     let k = AIR.windows(2).position(|w| t_k <= w[1].0).unwrap_or(AIR.len() - 2);
     let (a, b) = (AIR[k], AIR[k + 1]);
@@ -122,10 +125,11 @@ pub fn horizontal_brake(
     t_s: f64,
     t_inf: f64,
 ) -> Result<NaturalConvection, HeatError> {
-    if !(d.is_finite() && d > 0.0 && length.is_finite() && length > 0.0) {
-        return Err(HeatError::Input(format!(
-            "natural convection: diameter {d} m and length {length} m must be > 0"
-        )));
+    let positive_finite = |v: f64| v.is_finite() && v > 0.0;
+    if !(positive_finite(d) && positive_finite(length)) {
+        let (field, value) = if positive_finite(d) { ("length", length) } else { ("d", d) };
+        let e = FieldError::out_of_range(field, format!("{value} m"), "finite, > 0 m");
+        return Err(e.into());
     }
     let (ra, a) = rayleigh(d, t_s, t_inf)?;
     let pr = a.prandtl();

@@ -56,9 +56,10 @@ pub const T20_K: f64 = ZERO_CELSIUS_K + 20.0;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum HeatError {
-    /// Invalid input: the file (if any), the field and the allowed range.
-    #[error("{0}")]
-    Input(String),
+    /// Invalid input: the file (if any), the field (a problem-file key or an argument such as
+    /// `point`), the value and what is allowed.
+    #[error(transparent)]
+    Input(Box<mrbrake_error::FieldError>),
     /// Every invalid field of a problem file.
     #[error(transparent)]
     Fields(#[from] mrbrake_error::FieldErrors),
@@ -87,6 +88,12 @@ pub enum HeatError {
     /// A broken invariant of the solver (a bug: please report it).
     #[error("internal error of the heat solver: {0}")]
     Internal(String),
+}
+
+impl From<mrbrake_error::FieldError> for HeatError {
+    fn from(error: mrbrake_error::FieldError) -> Self {
+        Self::Input(Box::new(error))
+    }
 }
 
 impl mrbrake_error::Kind for HeatError {

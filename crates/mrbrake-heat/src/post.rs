@@ -113,10 +113,8 @@ impl HeatSolver {
     pub fn temperature_at(&self, t: &[f64], point: [f64; 2]) -> Result<f64, HeatError> {
         let mesh = self.problem.mesh.as_ref();
         let (triangle, bary) = self.locator.locate(mesh, point).ok_or_else(|| {
-            HeatError::Input(format!(
-                "the point (r, z) = ({}, {}) m is outside the mesh",
-                point[0], point[1]
-            ))
+            let e = mrbrake_error::FieldError::new("point", "outside the mesh");
+            HeatError::from(e.with_value(format!("(r, z) = ({}, {}) m", point[0], point[1])))
         })?;
         let dofs = self.assembly.basis().dofs().element(triangle);
         Ok(mrbrake_fem::by_order!(self.assembly.basis().order(), interpolate(dofs, bary, t)))

@@ -7,6 +7,7 @@ use mrbrake_fem::mesh::Mesh;
 use serde::Serialize;
 
 use crate::{HeatError, T20_K};
+use mrbrake_error::{FieldError, FieldErrors};
 
 /// A heat source in a region.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -139,81 +140,84 @@ impl HeatProblem {
     }
 
     /// Checks every value against its allowed range and the tags against the mesh; the error lists
-    /// every problem found.
+    /// every problem found, each field named `region[physical=3].k_radial`,
+    /// `boundary[physical=5].h`, ….
     pub fn validate(&self) -> Result<(), HeatError> {
-        let mut problems = Vec::new();
+        let mut errors = FieldErrors::new();
+        let tags = self.mesh.region_tags();
         for r in &self.regions {
-            let name = format!("region physical = {}", r.tag);
+            let name = format!("region[physical={}]", r.tag);
             for (field, value) in
                 [("k_radial", r.k_radial), ("k_axial", r.k_axial), ("rho_c", r.rho_c)]
             {
                 if !positive(value) {
-                    problems.push(format!("{name}: {field} = {value} must be > 0"));
+                    errors.push(FieldError::out_of_range(field, value, "> 0").under(&name));
                 }
             }
             if let Source::Joule { resistance_20c_ohm, alpha_per_k, current_a } = r.source {
-                if !(positive(resistance_20c_ohm) && alpha_per_k.is_finite() && alpha_per_k >= 0.0)
-                {
-                    problems.push(format!("{name}: Joule source needs R20 > 0 and alpha >= 0"));
+                if !positive(resistance_20c_ohm) {
+                    let e = FieldError::out_of_range("resistance_20C", resistance_20c_ohm, "> 0 Ω");
+                    errors.push(e.under(&name));
+                }
+                if !(alpha_per_k.is_finite() && alpha_per_k >= 0.0) {
+                    let e = FieldError::out_of_range("alpha", alpha_per_k, ">= 0 1/K");
+                    errors.push(e.under(&name));
                 }
                 if !current_a.is_finite() {
-                    problems.push(format!("{name}: current = {current_a} must be finite"));
+                    errors.push(
+                        FieldError::out_of_range("current", current_a, "finite").under(&name),
+                    );
                 }
             }
-        }
-        let tags = self.mesh.region_tags();
-        for tag in &tags {
-            if self.region(*tag).is_none() {
-                problems.push(format!(
-                    "the mesh's physical surface {tag} has no region (thermal data)"
-                ));
-            }
-        }
-        for r in &self.regions {
             if tags.binary_search(&r.tag).is_err() {
-                problems.push(format!(
-                    "region physical = {}: not a surface of the mesh {tags:?}",
-                    r.tag
-                ));
+                let e = FieldError::new("physical", "not a surface of the mesh").with_value(r.tag);
+                errors.push(e.with_allowed(format!("{tags:?}")).under(&name));
             }
+        }
+        for tag in tags.iter().filter(|t| self.region(**t).is_none()) {
+            let message = "the mesh's physical surface has no region (thermal data)";
+            errors.push(FieldError::new("region", message).with_value(tag));
         }
         let edge_tags = self.mesh.boundary_tags();
         for b in &self.boundaries {
-            let name = format!("boundary physical = {}", b.tag);
+            let name = format!("boundary[physical={}]", b.tag);
             if edge_tags.binary_search(&b.tag).is_err() {
-                problems.push(format!("{name}: not a boundary of the mesh {edge_tags:?}"));
+                let e = FieldError::new("physical", "not a boundary of the mesh").with_value(b.tag);
+                errors.push(e.with_allowed(format!("{edge_tags:?}")).under(&name));
             }
-            problems.extend(check_condition(&b.condition).map(|m| format!("{name}: {m}")));
+            if let Some(e) = check_condition(&b.condition) {
+                errors.push(e.under(&name));
+            }
         }
-        if problems.is_empty() { Ok(()) } else { Err(HeatError::Input(problems.join("; "))) }
+        Ok(errors.into_result(())?)
     }
 }
 
-/// The range check of one boundary condition, or `None`.
-fn check_condition(condition: &BoundaryCondition) -> Option<String> {
+/// The range check of one boundary condition (the field relative to the boundary), or `None`.
+fn check_condition(condition: &BoundaryCondition) -> Option<FieldError> {
     let below_zero = |t: f64| !(t.is_finite() && t > 0.0);
+    let absolute =
+        |field: &str, t_k: f64| FieldError::out_of_range(field, format!("{t_k} K"), "> 0 K");
     match *condition {
         BoundaryCondition::Convection { h_w_per_m2k, ambient_k } => {
             if !(h_w_per_m2k.is_finite() && h_w_per_m2k >= 0.0) {
-                Some(format!("h = {h_w_per_m2k} W/(m2 K) must be >= 0"))
+                Some(FieldError::out_of_range("h", format!("{h_w_per_m2k} W/(m2 K)"), ">= 0"))
             } else if below_zero(ambient_k) {
-                Some(format!("T_amb = {ambient_k} K is below absolute zero"))
+                Some(absolute("T_amb", ambient_k))
             } else {
                 None
             }
         }
         BoundaryCondition::Radiation { emissivity, ambient_k } => {
             if !(0.0..=1.0).contains(&emissivity) {
-                Some(format!("emissivity = {emissivity} must be in [0, 1]"))
+                Some(FieldError::out_of_range("emissivity", emissivity, "[0, 1]"))
             } else if below_zero(ambient_k) {
-                Some(format!("T_amb = {ambient_k} K is below absolute zero"))
+                Some(absolute("T_amb", ambient_k))
             } else {
                 None
             }
         }
-        BoundaryCondition::Temperature { t_k } => {
-            below_zero(t_k).then(|| format!("T = {t_k} K is below absolute zero"))
-        }
+        BoundaryCondition::Temperature { t_k } => below_zero(t_k).then(|| absolute("T", t_k)),
         BoundaryCondition::Adiabatic => None,
     }
 }

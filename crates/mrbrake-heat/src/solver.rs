@@ -30,6 +30,7 @@ use mrbrake_fem::workflow::time::TimeError;
 use crate::form::{Coefficients, HeatForm};
 use crate::problem::{BoundaryCondition, HeatProblem};
 use crate::{HeatError, STEFAN_BOLTZMANN};
+use mrbrake_error::FieldError;
 
 /// Settings of the discretisation and of Newton.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -283,12 +284,10 @@ impl HeatSolver {
 
     /// Replaces the source of region `tag` (e.g. a new current) without a new set-up.
     pub fn set_source(&mut self, tag: u32, source: crate::Source) -> Result<(), HeatError> {
-        let k = self
-            .problem
-            .regions
-            .iter()
-            .position(|r| r.tag == tag)
-            .ok_or_else(|| HeatError::Input(format!("no region with physical tag {tag}")))?;
+        let k = self.problem.regions.iter().position(|r| r.tag == tag).ok_or_else(|| {
+            let e = FieldError::new("tag", "no region with this physical tag").with_value(tag);
+            HeatError::from(e)
+        })?;
         self.problem.regions[k].source = source;
         let volume = self.volumes.iter().find(|(t, _)| *t == tag).map_or(1.0, |v| v.1);
         let (q0, q1) = source.affine(volume);
@@ -310,16 +309,19 @@ impl HeatSolver {
         ambient_k: f64,
     ) -> Result<(), HeatError> {
         if !(h_w_per_m2k.is_finite() && h_w_per_m2k >= 0.0 && ambient_k.is_finite()) {
-            return Err(HeatError::Input(format!(
-                "convection on boundary {tag}: h = {h_w_per_m2k} W/(m² K) must be >= 0"
-            )));
+            let value = format!("h = {h_w_per_m2k} W/(m² K), T_amb = {ambient_k} K");
+            let e = FieldError::new("h_w_per_m2k", format!("convection on boundary {tag}"));
+            return Err(e.with_value(value).with_allowed("h >= 0, T_amb finite").into());
         }
         let boundary = self
             .problem
             .boundaries
             .iter_mut()
             .find(|b| b.tag == tag && matches!(b.condition, BoundaryCondition::Convection { .. }))
-            .ok_or_else(|| HeatError::Input(format!("no convection boundary with tag {tag}")))?;
+            .ok_or_else(|| {
+                let e = FieldError::new("tag", "no convection boundary with this tag");
+                HeatError::from(e.with_value(tag))
+            })?;
         boundary.condition = BoundaryCondition::Convection { h_w_per_m2k, ambient_k };
         self.laws = flux_laws(&self.problem);
         self.prepared = None;

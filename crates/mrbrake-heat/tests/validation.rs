@@ -468,8 +468,17 @@ fn bad_values_are_input_errors() {
     };
     let error = HeatSolver::new(problem, options(ElementOrder::P1)).unwrap_err();
     let message = error.to_string();
-    for needle in ["k_radial = -1", "h = -5", "emissivity = 1.5", "below absolute zero"] {
+    let needles = [
+        "region[physical=1].k_radial: got -1; allowed: > 0",
+        "boundary[physical=2].h: got -5",
+        "boundary[physical=3].emissivity: got 1.5; allowed: [0, 1]",
+        "boundary[physical=4].T: got -3 K; allowed: > 0 K",
+    ];
+    for needle in needles {
         assert!(message.contains(needle), "{message}");
     }
     assert_eq!(mrbrake_error::Kind::kind(&error), mrbrake_error::ErrorKind::Input);
+    let mrbrake_heat::HeatError::Fields(fields) = &error else { panic!("{error:?}") };
+    let first = &fields.errors()[0];
+    assert_eq!((first.value.as_deref(), first.allowed.as_deref()), (Some("-1"), Some("> 0")));
 }

@@ -337,10 +337,8 @@ impl Solver {
             None => cache.locator.get_or_init(|| PointLocator::new(mesh)).locate(mesh, p),
         };
         found.ok_or_else(|| {
-            MagneticsError::Input(format!(
-                "point (r = {} m, z = {} m) is outside the mesh",
-                p[0], p[1]
-            ))
+            let e = mrbrake_error::FieldError::new("point", "outside the mesh");
+            MagneticsError::from(e.with_value(format!("(r = {} m, z = {} m)", p[0], p[1])))
         })
     }
 
@@ -640,7 +638,7 @@ impl Solver {
             .regions
             .iter()
             .position(|r| r.tag == tag)
-            .ok_or_else(|| MagneticsError::Input(format!("no region with physical = {tag}")))
+            .ok_or_else(|| MagneticsError::field("tag", format!("no region with physical = {tag}")))
     }
 }
 

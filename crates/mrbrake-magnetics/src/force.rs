@@ -130,13 +130,14 @@ impl Solver {
     /// empty list).
     fn body_nodes(&self, tags: &[u32]) -> Result<Vec<bool>, MagneticsError> {
         if tags.is_empty() {
-            return Err(MagneticsError::Input("a force needs at least one region".into()));
+            return Err(MagneticsError::field("regions", "a force needs at least one region"));
         }
         for &tag in tags {
             if self.problem.region(tag).is_none() {
-                return Err(MagneticsError::Input(format!(
-                    "force on region {tag}: no region with physical = {tag}"
-                )));
+                return Err(MagneticsError::field(
+                    "regions",
+                    format!("force on region {tag}: no region with physical = {tag}"),
+                ));
             }
         }
         let mesh = &self.problem.mesh;
@@ -153,7 +154,10 @@ impl Solver {
     /// region without a source): `(J e_φ × B)_z = −J_φ B_r`.
     pub fn lorentz_force_z(&self, solution: &Solution, tag: u32) -> Result<f64, MagneticsError> {
         let region = self.problem.region(tag).ok_or_else(|| {
-            MagneticsError::Input(format!("force on region {tag}: no region with physical = {tag}"))
+            MagneticsError::field(
+                "regions",
+                format!("force on region {tag}: no region with physical = {tag}"),
+            )
         })?;
         if region.source.is_none() {
             return Ok(0.0);

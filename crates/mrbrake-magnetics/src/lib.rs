@@ -70,9 +70,11 @@ pub use solver::{NewtonStep, Solver, SolverOptions};
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum MagneticsError {
-    /// Invalid input (file, field, value) with a message naming what was expected.
-    #[error("{0}")]
-    Input(String),
+    /// Invalid input: the file when known, the field (a problem-file key such as
+    /// `region[2].source.turns`, or an argument such as `frequencies`), the value and what is
+    /// allowed.
+    #[error(transparent)]
+    Input(Box<mrbrake_error::FieldError>),
     /// An error of the mesh / finite-element layer (mesh file, invalid mesh, factorisation).
     #[error(transparent)]
     Fem(#[from] mrbrake_fem::FemError),
@@ -89,6 +91,28 @@ pub enum MagneticsError {
     /// why: Newton's residual history is the next error of the chain).
     #[error(transparent)]
     Time(#[from] mrbrake_fem::workflow::time::TimeError),
+}
+
+impl From<mrbrake_error::FieldError> for MagneticsError {
+    fn from(error: mrbrake_error::FieldError) -> Self {
+        Self::Input(Box::new(error))
+    }
+}
+
+impl MagneticsError {
+    /// An input error about `field` (the message says what is wrong and what is allowed).
+    pub(crate) fn field(field: impl std::fmt::Display, message: impl Into<String>) -> Self {
+        mrbrake_error::FieldError::new(field.to_string(), message).into()
+    }
+
+    /// An input error about `field` of the problem file `file` (`field` empty: the whole file).
+    pub(crate) fn in_file(
+        file: &str,
+        field: impl std::fmt::Display,
+        message: impl Into<String>,
+    ) -> Self {
+        mrbrake_error::FieldError::new(field.to_string(), message).in_file(file, None).into()
+    }
 }
 
 impl mrbrake_error::Kind for MagneticsError {

@@ -32,7 +32,7 @@ pub(crate) fn open_boundary_couplings(
             let big_r = 0.5 * (radius(pa) + radius(pb));
             q.weight * q.phi[a] * q.phi[b] / (MU_0 * big_r)
         })
-        .map_err(|e| MagneticsError::Input(format!("open {e}")))?;
+        .map_err(|e| MagneticsError::field("boundary", format!("open {e}")))?;
         couplings.extend(matrices);
     }
     Ok(couplings)
@@ -56,10 +56,13 @@ fn check_on_circle(
     let r_min = radii.iter().cloned().fold(f64::INFINITY, f64::min);
     let r_max = radii.iter().cloned().fold(0.0, f64::max);
     if r_min.is_nan() || r_min <= 0.0 || (r_max - r_min) > 0.02 * r_max {
-        return Err(MagneticsError::Input(format!(
-            "open boundary {tag}: its nodes must lie on a circle centred on the axis at z = {centre_z_m} m \
+        return Err(MagneticsError::field(
+            format!("boundary[physical={tag}]"),
+            format!(
+                "open boundary {tag}: its nodes must lie on a circle centred on the axis at z = {centre_z_m} m \
              (distances range from {r_min:.4e} to {r_max:.4e} m)"
-        )));
+            ),
+        ));
     }
     Ok(())
 }

@@ -107,13 +107,19 @@ impl Problem {
         let mut sorted_tags: Vec<u32> = self.regions.iter().map(|r| r.tag).collect();
         sorted_tags.sort_unstable();
         if let Some(w) = sorted_tags.windows(2).find(|w| w[0] == w[1]) {
-            return Err(MagneticsError::Input(format!("region {} is defined twice", w[0])));
+            return Err(MagneticsError::field(
+                "regions",
+                format!("region {} is defined twice", w[0]),
+            ));
         }
         let mesh_tags = self.mesh.region_tags();
         if let Some(tag) = mesh_tags.iter().find(|tag| self.region(**tag).is_none()) {
-            return Err(MagneticsError::Input(format!(
-                "mesh region (physical surface) {tag} has no material: add a region with physical = {tag}"
-            )));
+            return Err(MagneticsError::field(
+                "regions",
+                format!(
+                    "mesh region (physical surface) {tag} has no material: add a region with physical = {tag}"
+                ),
+            ));
         }
         for region in &self.regions {
             self.check_region(region, &mesh_tags)?;
@@ -121,10 +127,13 @@ impl Problem {
         let edge_tags = self.mesh.boundary_tags();
         for boundary in &self.boundaries {
             if edge_tags.binary_search(&boundary.tag).is_err() {
-                return Err(MagneticsError::Input(format!(
-                    "boundary physical = {} is not a curve of the mesh (mesh curves: {edge_tags:?})",
-                    boundary.tag
-                )));
+                return Err(MagneticsError::field(
+                    format!("boundary[physical={}]", boundary.tag),
+                    format!(
+                        "boundary physical = {} is not a curve of the mesh (mesh curves: {edge_tags:?})",
+                        boundary.tag
+                    ),
+                ));
             }
         }
         let index = |tag: &u32| self.regions.iter().position(|r| r.tag == *tag);
@@ -138,18 +147,19 @@ impl Problem {
 
     fn check_region(&self, region: &Region, mesh_tags: &[u32]) -> Result<(), MagneticsError> {
         if mesh_tags.binary_search(&region.tag).is_err() {
-            return Err(MagneticsError::Input(format!(
-                "region physical = {} is not a surface of the mesh (mesh surfaces: {mesh_tags:?})",
-                region.tag
-            )));
+            return Err(MagneticsError::field(
+                format!("region[physical={}]", region.tag),
+                format!(
+                    "region physical = {} is not a surface of the mesh (mesh surfaces: {mesh_tags:?})",
+                    region.tag
+                ),
+            ));
         }
         if let Magnetic::Linear { mu_r } = region.material
             && !(mu_r.is_finite() && mu_r > 0.0)
         {
-            return Err(MagneticsError::Input(format!(
-                "region {}: mu_r = {mu_r} must be finite and > 0",
-                region.tag
-            )));
+            let field = format!("region[physical={}].mu_r", region.tag);
+            return Err(mrbrake_error::FieldError::out_of_range(field, mu_r, "finite, > 0").into());
         }
         Ok(())
     }

@@ -205,7 +205,7 @@ impl Solver {
     /// symbolic factorisation are kept.
     pub fn set_source(&mut self, tag: u32, source: Option<Source>) -> Result<(), MagneticsError> {
         let region = self.problem.regions.iter_mut().find(|r| r.tag == tag).ok_or_else(|| {
-            MagneticsError::Input(format!("set_source: no region with physical = {tag}"))
+            MagneticsError::field("tag", format!("set_source: no region with physical = {tag}"))
         })?;
         region.source = source;
         self.update_sources()
@@ -220,19 +220,22 @@ impl Solver {
                 Some(Source::CurrentDensity { a_per_m2 }) => a_per_m2,
                 Some(Source::Coil { turns, current_a }) => {
                     if self.region_area[i] <= 0.0 {
-                        return Err(MagneticsError::Input(format!(
-                            "coil region {} has zero area: it needs triangles in the mesh",
-                            region.tag
-                        )));
+                        return Err(MagneticsError::field(
+                            "regions",
+                            format!(
+                                "coil region {} has zero area: it needs triangles in the mesh",
+                                region.tag
+                            ),
+                        ));
                     }
                     turns * current_a / self.region_area[i]
                 }
             };
             if !density[i].is_finite() {
-                return Err(MagneticsError::Input(format!(
-                    "region {}: source is not finite",
-                    region.tag
-                )));
+                return Err(MagneticsError::field(
+                    format!("region[physical={}].source", region.tag),
+                    format!("region {}: source is not finite", region.tag),
+                ));
             }
         }
         for (j, &ri) in self.form.current_density.iter_mut().zip(&self.form.element_region) {
@@ -274,12 +277,15 @@ impl Solver {
         let mut a = match initial {
             Some(init) if init.len() == n_dofs => init.to_vec(),
             Some(init) => {
-                return Err(MagneticsError::Input(format!(
-                    "warm start has {} values but the {} solver has {n_dofs} degrees of freedom \
+                return Err(MagneticsError::field(
+                    "init",
+                    format!(
+                        "warm start has {} values but the {} solver has {n_dofs} degrees of freedom \
                      (one per mesh node for P1; nodes then edges for P2)",
-                    init.len(),
-                    self.options.order
-                )));
+                        init.len(),
+                        self.options.order
+                    ),
+                ));
             }
             None => vec![0.0; n_dofs],
         };
@@ -301,16 +307,14 @@ impl Solver {
         solution: &Solution,
         tag: u32,
     ) -> Result<f64, MagneticsError> {
-        let ri = self
-            .problem
-            .regions
-            .iter()
-            .position(|r| r.tag == tag)
-            .ok_or_else(|| MagneticsError::Input(format!("no region with physical = {tag}")))?;
+        let ri = self.problem.regions.iter().position(|r| r.tag == tag).ok_or_else(|| {
+            MagneticsError::field("tag", format!("no region with physical = {tag}"))
+        })?;
         let Some(Source::Coil { turns, .. }) = self.problem.regions[ri].source else {
-            return Err(MagneticsError::Input(format!(
-                "region {tag} is not a coil (turns × current)"
-            )));
+            return Err(MagneticsError::field(
+                "tag",
+                format!("region {tag} is not a coil (turns × current)"),
+            ));
         };
         let mut system = AssembledSystem { assembly: &mut self.assembly, form: &self.form };
         self.newton.factorize_at(&mut system, solution.a_phi())?;

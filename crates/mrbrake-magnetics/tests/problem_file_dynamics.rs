@@ -378,9 +378,15 @@ fn bad_per_coil_bias_is_an_input_error_naming_the_field() {
 fn harmonic_frequency_lists_are_bounded_and_vtu_frequencies_checked() {
     let many: Vec<String> = (0..=10_000).map(|k| format!("{}.0", k + 1)).collect();
     let too_many = format!("[harmonic]\nfrequencies_Hz = [{}]\n", many.join(", "));
-    bad(LINEAR_CORE, CURRENT, &too_many, &[], "at most 10000");
+    bad(
+        LINEAR_CORE,
+        CURRENT,
+        &too_many,
+        &[],
+        "harmonic.frequencies_Hz: got 10001 frequencies; allowed: <= 10000",
+    );
     let empty = "[harmonic]\nfrequencies_Hz = [1.0]\nvtu_frequencies_Hz = []\n";
-    bad(LINEAR_CORE, CURRENT, empty, &[], "harmonic.vtu_frequencies_Hz is empty");
+    bad(LINEAR_CORE, CURRENT, empty, &[], "harmonic.vtu_frequencies_Hz: is empty");
     let unknown = "[harmonic]\nfrequencies_Hz = [1.0]\nvtu_frequencies_Hz = [1.0, 2.0]\n";
-    bad(LINEAR_CORE, CURRENT, unknown, &[], "harmonic.vtu_frequencies_Hz[1] = 2 Hz");
+    bad(LINEAR_CORE, CURRENT, unknown, &[], "harmonic.vtu_frequencies_Hz[1]: 2 Hz is not one of");
 }

@@ -71,11 +71,6 @@ fn haptic_wall<'py>(
     duration: Option<&Bound<'py, PyAny>>,
     model: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    for (name, value) in [("stiffness", stiffness), ("damping", damping)] {
-        if !(value.is_finite() && value >= 0.0) {
-            return Err(error::input(format!("{name} = {value} must be a number ≥ 0")));
-        }
-    }
     let (device, scenario) = kinds(device, scenario)?;
     let mut config = HapticConfig::new(device, scenario);
     config.wall_stiffness_nm_per_rad = stiffness;
@@ -83,6 +78,13 @@ fn haptic_wall<'py>(
     if duration.is_some_and(|d| !d.is_none()) {
         config.duration_s = quantity(duration, "", Dimension::Time, "duration")?;
     }
+    // The ranges are the library's, named by this function's keywords.
+    let keywords = [
+        ("wall_stiffness_nm_per_rad", "stiffness"),
+        ("wall_damping_nms_per_rad", "damping"),
+        ("duration_s", "duration"),
+    ];
+    config.validate().map_err(|e| error::to_py(e.with_field_names(&keywords)))?;
     let run = py.detach(|| {
         if let Some(path) = &model {
             config.use_inverse_model(read_inverse_model(path).map_err(error::to_py)?);

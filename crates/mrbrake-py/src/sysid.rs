@@ -51,9 +51,9 @@ fn sysid_characterize<'py>(
     order: usize,
     bins: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if order == 0 || order > 12 {
-        return Err(error::input(format!("order {order} is outside 1..=12")));
-    }
+    // The library's rules, named by the keywords (`order`, `bins`) the binding shares with it.
+    let options = CharacterizeOptions { order, bins };
+    options.check().map_err(error::to_py)?;
     let (t, i, tau) =
         (slice(&time, "time")?, slice(&current, "current")?, slice(&torque, "torque")?);
     let source = Path::new(ARRAYS);
@@ -65,7 +65,7 @@ fn sysid_characterize<'py>(
                 &[("current", i), ("torque", tau)],
                 2 * (order + 1),
             )?;
-            characterize(i, tau, CharacterizeOptions { order, bins })
+            characterize(i, tau, options)
         })
         .map_err(error::to_py)?;
     let report = CharacterizationReport {
@@ -91,10 +91,6 @@ fn sysid_freqresp<'py>(
     discard_periods: f64,
     settle: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let non_negative = |v: f64| v.is_finite() && v >= 0.0;
-    if !non_negative(settle) || !non_negative(discard_periods) {
-        return Err(error::input("settle and discard_periods must be non-negative"));
-    }
     let (t, u, y) = (slice(&time, "time")?, slice(&input, "input")?, slice(&output, "output")?);
     let options = FreqRespOptions {
         time_col: "time".into(),
@@ -104,6 +100,7 @@ fn sysid_freqresp<'py>(
         settle_s: settle,
         ..FreqRespOptions::default()
     };
+    options.check().map_err(error::to_py)?;
     let source = Path::new(ARRAYS);
     let point = py
         .detach(|| {
@@ -127,11 +124,6 @@ fn sysid_tfest(
     delay: f64,
     weight: Option<PyReadonlyArray1<'_, f64>>,
 ) -> PyResult<PyTfestFit> {
-    if poles == 0 || zeros > poles {
-        return Err(error::input(format!(
-            "poles must be ≥ 1 and zeros ≤ poles (got {poles} and {zeros})"
-        )));
-    }
     let mut options = TfestOptions::new(poles, zeros);
     options.delay_s = delay;
     options.weighting = match weighting {
@@ -143,6 +135,7 @@ fn sysid_tfest(
             )));
         }
     };
+    options.check().map_err(error::to_py)?;
     let (omega, response) = (omega.as_array(), response.as_array());
     if omega.len() != response.len() {
         return Err(error::input(format!(

@@ -33,8 +33,11 @@ def test_wall_metrics_and_trace_equal_the_cli(cli, tmp_path, device, scenario):
 def test_wall_bad_input(cli):
     with pytest.raises(ValueError, match="device 'brake'"):
         mrbrake.haptic.wall("brake")
-    with pytest.raises(ValueError, match="must be a number"):
+    # The library's range, named by the keyword (the CLI names its flag --stiffness).
+    with pytest.raises(ValueError, match=r"^stiffness: haptic \(got -1; allowed: \[0, 100000\]\)"):
         mrbrake.haptic.wall("motor", stiffness=-1.0)
+    with pytest.raises(ValueError, match=r"^damping: haptic \(got NaN"):
+        mrbrake.haptic.wall("motor", damping=float("nan"))
     code, message = cli.fail("haptic", "wall", "--device", "motor", "--duration", "5000s")
     with pytest.raises(ValueError) as caught:
         mrbrake.haptic.wall("motor", duration="5000s")

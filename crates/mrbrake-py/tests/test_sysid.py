@@ -49,7 +49,7 @@ def test_characterize_rejects_bad_input():
         mrbrake.sysid.characterize(time[::-1], current, torque)
     with pytest.raises(ValueError, match="samples"):
         mrbrake.sysid.characterize(time, current[:-1], torque)
-    with pytest.raises(ValueError, match="order"):
+    with pytest.raises(ValueError, match=r"^order: got 13; allowed: 1\.\.=12$"):
         mrbrake.sysid.characterize(time, current, torque, order=13)
 
 
@@ -81,7 +81,9 @@ def test_tfest_recovers_a_second_order_model_as_the_cli(cli, tmp_path):
     assert np.allclose(fit.response(omega), g, rtol=1e-6, atol=1e-9)
     den = fit.denominator / fit.denominator[0]
     assert den == pytest.approx([1.0, 28.0, 400.0], rel=1e-6)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"^zeros: got 2; allowed: <= poles \(1\)$"):
         mrbrake.sysid.tfest(omega, g, poles=1, zeros=2)
+    with pytest.raises(ValueError, match=r"^delay: got -1 s; allowed: >= 0 s$"):
+        mrbrake.sysid.tfest(omega, g, poles=2, delay=-1.0)
     with pytest.raises(ValueError):
         mrbrake.sysid.tfest(omega, g, poles=2, weighting="cubic")

@@ -19,9 +19,10 @@ pub mod rig;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SimError {
-    /// Invalid input (file, field, value) with a message naming what was expected.
-    #[error("{0}")]
-    Input(String),
+    /// Invalid input: the file when known, the field (a configuration key such as
+    /// `hysteresis.levels`, or an argument such as `dt`), the value and what is allowed.
+    #[error(transparent)]
+    Input(Box<mrbrake_error::FieldError>),
     /// A configuration file is not valid TOML, or has an unknown or mistyped field.
     #[error("{file}")]
     Toml {
@@ -70,6 +71,25 @@ pub enum SimError {
         /// The controller's error.
         source: mrbrake_control::ControlError,
     },
+}
+
+impl From<mrbrake_error::FieldError> for SimError {
+    fn from(error: mrbrake_error::FieldError) -> Self {
+        Self::Input(Box::new(error))
+    }
+}
+
+impl SimError {
+    /// The same error with the field of an input error named as a front end names it (see
+    /// [`mrbrake_error::FieldError::renamed`]: the CLI's `--stiffness` for
+    /// `wall_stiffness_nm_per_rad`); other errors are unchanged.
+    pub fn with_field_names(self, names: &[(&str, &str)]) -> Self {
+        match self {
+            Self::Input(field) => Self::Input(Box::new(field.renamed(names))),
+            Self::Sysid(e) => Self::Sysid(e.with_field_names(names)),
+            other => other,
+        }
+    }
 }
 
 impl mrbrake_error::Kind for SimError {

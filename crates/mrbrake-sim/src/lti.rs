@@ -53,7 +53,9 @@ impl DiscreteStateSpace {
     /// Discretises `tf` exactly for a zero-order-hold input with step `dt_s`.
     pub fn zoh(tf: &TransferFunction, dt_s: f64) -> Result<Self, SimError> {
         if !(dt_s > 0.0 && dt_s.is_finite()) {
-            return Err(SimError::Input(format!("time step {dt_s} s must be positive")));
+            let e =
+                mrbrake_error::FieldError::out_of_range("dt", format!("{dt_s} s"), "finite, > 0 s");
+            return Err(e.into());
         }
         let n = tf.order();
         let den_asc: Vec<f64> = tf.denominator.iter().rev().copied().collect();
@@ -104,10 +106,11 @@ impl DiscreteStateSpace {
             gamma[i] = e[i * size + n];
         }
         if phi.iter().chain(&gamma).any(|v| !v.is_finite()) {
-            return Err(SimError::Input(
-                "transfer function: the discretisation overflowed (unstable or badly scaled model)"
-                    .into(),
-            ));
+            return Err(mrbrake_error::FieldError::new(
+                "tf",
+                "the discretisation overflowed (unstable or badly scaled model)",
+            )
+            .into());
         }
         Ok(Self {
             n,

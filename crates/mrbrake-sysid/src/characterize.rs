@@ -17,6 +17,7 @@
 //!    the branch (all repetitions), like the thesis's fit to the raw torque signal.
 
 use mrbrake_control::{ControlError, InverseModel};
+use mrbrake_error::FieldError;
 
 use crate::SysidError;
 use crate::polynomial::{Polynomial, fit};
@@ -38,6 +39,29 @@ pub struct CharacterizeOptions {
 impl Default for CharacterizeOptions {
     fn default() -> Self {
         Self { order: DEFAULT_ORDER, bins: DEFAULT_BINS }
+    }
+}
+
+impl CharacterizeOptions {
+    /// The highest branch order: beyond it the Chebyshev fit of a loop's few current levels is
+    /// interpolation of noise.
+    pub const MAX_ORDER: usize = 12;
+
+    /// Checks the order (`1..=12`) and the bins (at least two per coefficient): the field errors
+    /// name `order` and `bins`. [`characterize`] checks them too; a front end calls this before
+    /// reading a log, whose minimum length depends on the order.
+    pub fn check(&self) -> Result<(), SysidError> {
+        if !(1..=Self::MAX_ORDER).contains(&self.order) {
+            let allowed = format!("1..={}", Self::MAX_ORDER);
+            return Err(FieldError::out_of_range("order", self.order, allowed).into());
+        }
+        if self.bins < 2 * (self.order + 1) {
+            return Err(FieldError::new("bins", format!("too few for order {}", self.order))
+                .with_value(self.bins)
+                .with_allowed(format!(">= {}", 2 * (self.order + 1)))
+                .into());
+        }
+        Ok(())
     }
 }
 
@@ -121,9 +145,12 @@ pub fn segment(current_a: &[f64]) -> Result<(Vec<Repetition>, f64, f64), SysidEr
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
     let range = hi - lo;
     if range.is_nan() || range <= 0.0 {
-        return Err(SysidError::Input(
-            "characterize: the current never changes, there is no ramp to analyse".into(),
-        ));
+        return Err(FieldError::new(
+            "current",
+            "characterize: the current never changes, there is no ramp to analyse",
+        )
+        .with_value(format!("{lo} A throughout"))
+        .into());
     }
     let low_th = lo + 0.1 * range;
     let high_th = lo + 0.9 * range;
@@ -165,10 +192,14 @@ pub fn segment(current_a: &[f64]) -> Result<(Vec<Repetition>, f64, f64), SysidEr
         i += 1;
     }
     if reps.is_empty() {
-        return Err(SysidError::Input(format!(
-            "characterize: no complete ramp found (the current must rise from near {lo:.4} A to above \
-             {high_th:.4} A and come back)"
-        )));
+        return Err(FieldError::new(
+            "current",
+            format!(
+                "characterize: no complete ramp found (the current must rise from near {lo:.4} A \
+                 to above {high_th:.4} A and come back)"
+            ),
+        )
+        .into());
     }
     Ok((reps, lo, hi))
 }
@@ -200,7 +231,7 @@ pub fn characterize(
         .iter()
         .all(|v| v.is_finite())
     {
-        return Err(SysidError::Input(non_finite_fit(torque_nm)));
+        return Err(non_finite_fit(torque_nm).into());
     }
     Ok(Characterization {
         rising,
@@ -218,17 +249,17 @@ pub fn characterize(
 }
 
 /// Why a fit came out non-finite: the largest torque sample (issue 18: one 1e308 sample).
-fn non_finite_fit(torque_nm: &[f64]) -> String {
+fn non_finite_fit(torque_nm: &[f64]) -> FieldError {
     let (k, v) = torque_nm
         .iter()
         .enumerate()
         .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
         .map_or((0, f64::NAN), |(k, v)| (k, *v));
-    format!(
-        "characterize: the branch fit is not finite; the torque's largest sample is {v} N·m \
-         (sample {}): remove the corrupted samples",
-        k + 1
+    FieldError::new(
+        format!("torque[{k}]"),
+        "characterize: the branch fit is not finite: remove the corrupted samples",
     )
+    .with_value(format!("{v} N·m (the largest sample)"))
 }
 
 /// Checks that the signals match and the order and bin count are usable.
@@ -238,25 +269,12 @@ fn check_options(
     options: CharacterizeOptions,
 ) -> Result<(), SysidError> {
     if current_a.len() != torque_nm.len() {
-        return Err(SysidError::Input(
-            "characterize: current and torque have different lengths".into(),
-        ));
+        return Err(FieldError::new("torque", "characterize: current and torque differ in length")
+            .with_value(format!("{} samples", torque_nm.len()))
+            .with_allowed(format!("{} samples, as the current", current_a.len()))
+            .into());
     }
-    if options.order == 0 || options.order > 12 {
-        return Err(SysidError::Input(format!(
-            "characterize: polynomial order {} is outside 1..=12",
-            options.order
-        )));
-    }
-    if options.bins < 2 * (options.order + 1) {
-        return Err(SysidError::Input(format!(
-            "characterize: {} bins are too few for order {} (need at least {})",
-            options.bins,
-            options.order,
-            2 * (options.order + 1)
-        )));
-    }
-    Ok(())
+    options.check()
 }
 
 /// The log's samples with its repetitions and current range.
@@ -278,12 +296,13 @@ impl Samples<'_> {
     ) -> Result<(BranchFit, Vec<(f64, f64)>), SysidError> {
         let mean = self.bin_average(pick, options.bins);
         if mean.len() < options.order + 1 {
-            return Err(SysidError::Input(format!(
-                "characterize: only {} current levels were visited; order {} needs at least {}",
-                mean.len(),
-                options.order,
-                options.order + 1
-            )));
+            return Err(FieldError::new(
+                "current",
+                format!("characterize: too few current levels visited for order {}", options.order),
+            )
+            .with_value(format!("{} levels", mean.len()))
+            .with_allowed(format!(">= {} levels", options.order + 1))
+            .into());
         }
         let (xs, ys): (Vec<f64>, Vec<f64>) = mean.iter().copied().unzip();
         let p = fit(&xs, &ys, options.order)?;
@@ -400,6 +419,19 @@ mod tests {
             }
         }
         (i_a, t_nm)
+    }
+
+    #[test]
+    fn an_order_outside_its_range_names_the_field_value_and_range() {
+        let (i_a, t_nm) = protocol(3);
+        let e =
+            characterize(&i_a, &t_nm, CharacterizeOptions { order: 13, bins: 200 }).unwrap_err();
+        let SysidError::Input(f) = &e else { panic!("{e:?}") };
+        assert_eq!((f.field.as_str(), f.value.as_deref()), ("order", Some("13")));
+        assert_eq!(f.allowed.as_deref(), Some("1..=12"));
+        let e = characterize(&i_a, &t_nm, CharacterizeOptions { order: 5, bins: 3 }).unwrap_err();
+        let SysidError::Input(f) = &e else { panic!("{e:?}") };
+        assert_eq!((f.field.as_str(), f.allowed.as_deref()), ("bins", Some(">= 12")));
     }
 
     #[test]

@@ -2,14 +2,16 @@
 
 use std::path::PathBuf;
 
+use mrbrake_error::FieldError;
+
 /// Errors of `mrbrake-sysid`.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SysidError {
-    /// Invalid argument or data (a value out of range, too few points), with a message naming the
-    /// field and the allowed range.
-    #[error("{0}")]
-    Input(String),
+    /// Invalid argument or data (a value out of range, too few points): the field (an argument
+    /// such as `poles`, `order`, `torque`), the value and what is allowed.
+    #[error(transparent)]
+    Input(Box<FieldError>),
     /// A log, manifest or FRD file is malformed: the message names the file, the line (1-based, the
     /// header being line 1) when known, and what was expected.
     #[error("{file}{}: {message}", line.map(|l| format!(", line {l}")).unwrap_or_default())]
@@ -92,7 +94,22 @@ impl mrbrake_error::Kind for SysidError {
     }
 }
 
+impl From<FieldError> for SysidError {
+    fn from(error: FieldError) -> Self {
+        Self::Input(Box::new(error))
+    }
+}
+
 impl SysidError {
+    /// The same error with the field of an input error named as a front end names it (see
+    /// [`FieldError::renamed`]: the CLI's `--poles` for `poles`); other errors are unchanged.
+    pub fn with_field_names(self, names: &[(&str, &str)]) -> Self {
+        match self {
+            Self::Input(field) => Self::Input(Box::new(field.renamed(names))),
+            other => other,
+        }
+    }
+
     pub(crate) fn numerical(message: impl Into<String>, history: Vec<f64>) -> Self {
         Self::Numerical { message: message.into(), history }
     }

@@ -15,6 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
+use mrbrake_error::FieldError;
 use num_complex::Complex64;
 
 use crate::SysidError;
@@ -47,6 +48,28 @@ pub struct FreqRespOptions {
     /// stops with an error naming the log (a manifest frequency that does not match the log's sine
     /// gives ~0 %); 0 accepts every point.
     pub min_quality_percent: f64,
+}
+
+impl FreqRespOptions {
+    /// Checks the discards (finite and ≥ 0: fields `settle` and `discard_periods`) and the minimum
+    /// quality (a percentage: `min_quality`).
+    pub fn check(&self) -> Result<(), SysidError> {
+        let non_negative = |v: f64| v.is_finite() && v >= 0.0;
+        if !non_negative(self.settle_s) {
+            let value = format!("{} s", self.settle_s);
+            return Err(FieldError::out_of_range("settle", value, "finite, >= 0 s").into());
+        }
+        if !non_negative(self.discard_periods) {
+            let e =
+                FieldError::out_of_range("discard_periods", self.discard_periods, "finite, >= 0");
+            return Err(e.into());
+        }
+        if !(0.0..=100.0).contains(&self.min_quality_percent) {
+            let e = FieldError::out_of_range("min_quality", self.min_quality_percent, "0..=100 %");
+            return Err(e.into());
+        }
+        Ok(())
+    }
 }
 
 impl Default for FreqRespOptions {
@@ -153,6 +176,7 @@ pub fn analyse_test(
     output: &[f64],
     options: &FreqRespOptions,
 ) -> Result<MeasuredPoint, SysidError> {
+    options.check()?;
     let file_err =
         |message: String| SysidError::File { file: source.to_path_buf(), line: None, message };
     if !(omega_rad_s > 0.0 && omega_rad_s.is_finite()) {
@@ -284,6 +308,7 @@ pub fn frequency_response(
     manifest: &Path,
     options: &FreqRespOptions,
 ) -> Result<Vec<MeasuredPoint>, SysidError> {
+    options.check()?;
     let entries = read_manifest(manifest)?;
     let mut points = Vec::with_capacity(entries.len());
     for e in &entries {

@@ -6,6 +6,7 @@
 //! badly scaled but well-posed problem is not mistaken for a singular one.
 
 use crate::SysidError;
+use mrbrake_error::FieldError;
 
 /// Column-major dense matrix with `rows × cols` entries.
 #[derive(Debug, Clone)]
@@ -53,15 +54,16 @@ impl Matrix {
 pub fn least_squares(a: &Matrix, b: &[f64]) -> Result<Vec<f64>, SysidError> {
     let (m, n) = (a.rows, a.cols);
     if b.len() != m {
-        return Err(SysidError::Input(format!(
-            "least squares: {m} rows but {} right-hand sides",
-            b.len()
-        )));
+        return Err(FieldError::new("b", "least squares: one right-hand side per row")
+            .with_value(b.len())
+            .with_allowed(format!("{m} (the rows)"))
+            .into());
     }
     if m < n || n == 0 {
-        return Err(SysidError::Input(format!(
-            "least squares: {m} equations cannot determine {n} unknowns (need at least as many equations)"
-        )));
+        return Err(FieldError::new("a", format!("least squares: {n} unknowns"))
+            .with_value(format!("{m} equations"))
+            .with_allowed(format!(">= {n} equations, >= 1 unknown"))
+            .into());
     }
     if a.data.iter().chain(b).any(|v| !v.is_finite()) {
         return Err(SysidError::numerical(

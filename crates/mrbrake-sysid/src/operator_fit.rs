@@ -25,6 +25,7 @@
 //! **Bad input.** A minor-loop identification needs reversals of the current inside its range; a log
 //! whose current turns only at its extremes (the characterisation's full ramps) is refused.
 
+use mrbrake_error::FieldError;
 use std::path::Path;
 
 use mrbrake_control::{OperatorModel, OperatorParts, OperatorState};
@@ -86,12 +87,18 @@ pub fn fit_operator_model(
     let (lo, hi) = range(current_a);
     let inner_reversals = inner_reversals(current_a, lo, hi);
     if inner_reversals < 2 {
-        return Err(SysidError::Input(format!(
-            "characterize --operators: the current reverses only {inner_reversals} time(s) inside its \
-             range {lo:.4}..{hi:.4} A (turning points at the extremes do not count); a minor-loop \
-             identification needs minor loops: record them with `mrbrake rig minor-loops` or the \
-             same current program on the real brake"
-        )));
+        return Err(FieldError::new(
+            "current",
+            format!(
+                "characterize --operators: too few reversals inside its range {lo:.4}..{hi:.4} A \
+                 (turning points at the extremes do not count); a minor-loop identification needs \
+                 minor loops: record them with `mrbrake rig minor-loops` or the same current \
+                 program on the real brake"
+            ),
+        )
+        .with_value(format!("{inner_reversals} reversal(s)"))
+        .with_allowed(">= 2 reversals")
+        .into());
     }
     // From the first visit of the lowest current on, the plays' rest state is known.
     let start = current_a.iter().position(|&i| i <= lo + 1e-3 * (hi - lo)).unwrap_or(0);
@@ -113,7 +120,10 @@ pub fn fit_operator_model(
         current_max_a: hi,
     })
     .map_err(|e| {
-        SysidError::Input(format!("characterize --operators: identified model refused: {e}"))
+        SysidError::from(FieldError::new(
+            "current",
+            format!("characterize --operators: identified model refused: {e}"),
+        ))
     })?;
     let predicted = simulate(&model, x);
     let n = y.len() as f64;
@@ -140,23 +150,28 @@ fn check_inputs(
     o: OperatorOptions,
 ) -> Result<(), SysidError> {
     if current_a.len() != torque_nm.len() || current_a.len() < 10 {
-        return Err(SysidError::Input(format!(
-            "characterize --operators: need equally long current and torque signals of at least 10 \
-             samples (got {} and {})",
-            current_a.len(),
-            torque_nm.len()
-        )));
+        return Err(FieldError::new(
+            "torque",
+            "characterize --operators: need equally long current and torque signals",
+        )
+        .with_value(format!("{} and {} samples", current_a.len(), torque_nm.len()))
+        .with_allowed(">= 10 samples each, equally many")
+        .into());
     }
     let (p, s) = (mrbrake_control::MAX_PLAYS, mrbrake_control::MAX_SEGMENTS);
-    if !(1..=p).contains(&o.plays) || !(1..=s).contains(&o.segments) {
-        return Err(SysidError::Input(format!(
-            "characterize: --operators {} must be within 1..={p} and --segments {} within 1..={s} \
-             (the controller's fixed capacity)",
-            o.plays, o.segments
-        )));
+    let capacity = "the controller's fixed capacity";
+    if !(1..=p).contains(&o.plays) {
+        let e = FieldError::new("plays", capacity).with_value(o.plays);
+        return Err(e.with_allowed(format!("1..={p}")).into());
+    }
+    if !(1..=s).contains(&o.segments) {
+        let e = FieldError::new("segments", capacity).with_value(o.segments);
+        return Err(e.with_allowed(format!("1..={s}")).into());
     }
     if current_a.iter().chain(torque_nm).any(|v| !v.is_finite()) {
-        return Err(SysidError::Input("characterize --operators: non-finite sample".into()));
+        return Err(FieldError::new("current", "characterize --operators: non-finite sample")
+            .with_allowed("finite samples")
+            .into());
     }
     Ok(())
 }

@@ -4,6 +4,7 @@
 //! grows like a few times 2ⁿ instead of (x_max)ⁿ·…), solve by Householder QR, and only at the end expand
 //! the result back to ascending powers of the physical variable, which is the form the JSON files carry.
 
+use mrbrake_error::FieldError;
 use num_complex::Complex64;
 
 use crate::SysidError;
@@ -68,23 +69,24 @@ impl Polynomial {
 /// The abscissa is mapped to u = (2x − (a + b))/(b − a) ∈ [−1, 1] for the solve (see module docs).
 pub fn fit(x: &[f64], y: &[f64], order: usize) -> Result<Polynomial, SysidError> {
     if x.len() != y.len() {
-        return Err(SysidError::Input(format!(
-            "polynomial fit: {} abscissae but {} values",
-            x.len(),
-            y.len()
-        )));
+        return Err(FieldError::new("y", "polynomial fit: one value per abscissa")
+            .with_value(format!("{} values", y.len()))
+            .with_allowed(format!("{} values", x.len()))
+            .into());
     }
     if x.len() < order + 1 {
-        return Err(SysidError::Input(format!(
-            "polynomial fit of order {order} needs at least {} points, got {}",
-            order + 1,
-            x.len()
-        )));
+        return Err(FieldError::new(
+            "x",
+            format!("polynomial fit of order {order}: too few points"),
+        )
+        .with_value(x.len())
+        .with_allowed(format!(">= {} points", order + 1))
+        .into());
     }
     let (lo, hi) =
         x.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
     if (hi - lo).is_nan() || hi - lo <= 0.0 {
-        return Err(SysidError::Input("polynomial fit: the abscissae span no interval".into()));
+        return Err(FieldError::new("x", "polynomial fit: the abscissae span no interval").into());
     }
     let alpha = 2.0 / (hi - lo);
     let beta = -(hi + lo) / (hi - lo);

@@ -85,6 +85,8 @@ impl CharacterizationRequest {
     /// Reads the log, characterises it and, with frequency-response data, fits the transfer
     /// function; errors name the file.
     pub fn run(&self) -> Result<Characterized, SysidError> {
+        self.options.check()?;
+        self.tfest.check()?;
         let [time, current, torque] = &self.columns;
         let min_samples = 2 * (self.options.order + 1);
         let log = read_log(&self.log, time, &[current, torque], min_samples)?;

@@ -17,6 +17,7 @@
 //! Frequencies are scaled by ω_s = √(ω_min ω_max) during the fit (s = ω_s p), which keeps the powers of
 //! jω within a few decades of 1; D(0) = 1 is unaffected by that scaling.
 
+use mrbrake_error::FieldError;
 use num_complex::Complex64;
 
 use crate::SysidError;
@@ -63,6 +64,24 @@ impl TfestOptions {
             max_sk_iterations: 30,
             max_lm_iterations: 300,
         }
+    }
+
+    /// Checks the orders (at least one pole, no more zeros than poles: fields `poles`, `zeros`)
+    /// and the delay (finite and ≥ 0: `delay`). [`tfest`] checks them too; a front end calls this
+    /// before reading data.
+    pub fn check(&self) -> Result<(), SysidError> {
+        let (m, n) = (self.zeros, self.poles);
+        if n == 0 {
+            return Err(FieldError::out_of_range("poles", n, ">= 1").into());
+        }
+        if m > n {
+            return Err(FieldError::out_of_range("zeros", m, format!("<= poles ({n})")).into());
+        }
+        if !(self.delay_s >= 0.0 && self.delay_s.is_finite()) {
+            let e = FieldError::out_of_range("delay", format!("{} s", self.delay_s), ">= 0 s");
+            return Err(e.into());
+        }
+        Ok(())
     }
 }
 
@@ -304,52 +323,49 @@ const MAX_DECADES_TIMES_DEGREE: f64 = 40.0;
 
 /// Checks the model orders, the number of points, the delay and the data.
 fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
+    options.check()?;
     let (m, n) = (options.zeros, options.poles);
-    if n == 0 || m > n {
-        return Err(SysidError::Input(format!(
-            "tfest: need at least one pole and no more zeros than poles (got {n} poles, {m} zeros)"
-        )));
-    }
     let count = frd.len();
     if let Some(w) = frd.weight.as_ref().filter(|w| w.len() != count) {
-        return Err(SysidError::Input(format!(
-            "tfest: {} weights for {count} frequency points (one weight per point)",
-            w.len()
-        )));
+        return Err(FieldError::new("weight", "tfest: one weight per frequency point")
+            .with_value(format!("{} weights", w.len()))
+            .with_allowed(format!("{count} weights"))
+            .into());
     }
     if 2 * count < m + 1 + n {
-        return Err(SysidError::Input(format!(
-            "tfest: {count} frequency points cannot determine {} parameters (need at least {})",
-            m + 1 + n,
-            (m + 1 + n).div_ceil(2)
-        )));
-    }
-    if !(options.delay_s >= 0.0 && options.delay_s.is_finite()) {
-        return Err(SysidError::Input(format!(
-            "tfest: delay {} s must be a non-negative number",
-            options.delay_s
-        )));
+        return Err(FieldError::new(
+            "frd",
+            format!("tfest: too few frequency points for {} parameters", m + 1 + n),
+        )
+        .with_value(format!("{count} points"))
+        .with_allowed(format!(">= {} points", (m + 1 + n).div_ceil(2)))
+        .into());
     }
     if frd.responses().any(|g| !g.is_finite()) || frd.omegas().any(|w| !(w.is_finite() && w > 0.0))
     {
-        return Err(SysidError::Input(
-            "tfest: frequencies must be positive and responses finite".into(),
-        ));
+        return Err(FieldError::new("frd", "tfest: invalid data")
+            .with_allowed("finite frequencies > 0 and finite responses")
+            .into());
     }
     if frd.responses().all(|g| g.norm() <= 0.0) {
-        return Err(SysidError::Input("tfest: every response is zero: nothing to fit".into()));
+        return Err(FieldError::new("frd", "tfest: every response is zero: nothing to fit").into());
     }
     let w_min = frd.omegas().fold(f64::INFINITY, f64::min);
     let w_max = frd.omegas().fold(0.0, f64::max);
     let decades = (w_max / w_min).log10();
     let span = decades * m.max(n) as f64;
     if span.is_nan() || span > MAX_DECADES_TIMES_DEGREE {
-        return Err(SysidError::Input(format!(
-            "tfest: the frequencies span {decades:.1} decades ({w_min:e} to {w_max:e} rad/s); a \
-             degree-{} model can be fitted over at most {:.1} decades: remove the extreme points",
-            m.max(n),
-            MAX_DECADES_TIMES_DEGREE / m.max(n) as f64
-        )));
+        return Err(FieldError::new(
+            "frd",
+            format!(
+                "tfest: the frequencies span too many decades ({w_min:e} to {w_max:e} rad/s) for a \
+                 degree-{} model: remove the extreme points",
+                m.max(n)
+            ),
+        )
+        .with_value(format!("{decades:.1} decades"))
+        .with_allowed(format!("<= {:.1} decades", MAX_DECADES_TIMES_DEGREE / m.max(n) as f64))
+        .into());
     }
     Ok(())
 }
@@ -542,6 +558,30 @@ mod tests {
 
     fn frd_of(g: &TransferFunction, omega: &[f64]) -> Frd {
         Frd::sample(omega, |w| g.response(w))
+    }
+
+    /// Each range rule names its argument, the value and what is allowed, so that a front end can
+    /// name its own flag or keyword.
+    #[test]
+    fn bad_orders_and_delays_are_field_errors() {
+        let g = TransferFunction::new(vec![1.0], vec![0.01, 1.0]).unwrap();
+        let frd = frd_of(&g, &logspace(1.0, 100.0, 9));
+        let field = |options: TfestOptions| match tfest(&frd, &options) {
+            Err(SysidError::Input(f)) => *f,
+            other => panic!("{other:?}"),
+        };
+        let e = field(TfestOptions::new(0, 0));
+        assert_eq!((e.field.as_str(), e.value.as_deref()), ("poles", Some("0")));
+        assert_eq!(e.allowed.as_deref(), Some(">= 1"));
+        let e = field(TfestOptions::new(1, 2));
+        assert_eq!((e.field.as_str(), e.value.as_deref()), ("zeros", Some("2")));
+        let mut options = TfestOptions::new(1, 0);
+        options.delay_s = f64::NAN;
+        assert_eq!(field(options).field, "delay");
+        let renamed = SysidError::from(FieldError::out_of_range("poles", 0, ">= 1"))
+            .with_field_names(&[("poles", "--poles")]);
+        assert!(renamed.is_input_error());
+        assert!(renamed.to_string().starts_with("--poles: got 0"), "{renamed}");
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! Torque-tracking error between a demanded and a measured torque signal, thesis equation (5.2).
 
 use crate::SysidError;
+use mrbrake_error::FieldError;
 
 /// Root-mean-square tracking error.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -17,11 +18,10 @@ pub struct TrackingError {
 /// RMSE (5.2) between the demanded torque `demand_nm` and the measured torque `measured_nm`.
 pub fn tracking_error(demand_nm: &[f64], measured_nm: &[f64]) -> Result<TrackingError, SysidError> {
     if demand_nm.len() != measured_nm.len() || demand_nm.is_empty() {
-        return Err(SysidError::Input(format!(
-            "tracking error: need two equally long, non-empty signals (got {} and {} samples)",
-            demand_nm.len(),
-            measured_nm.len()
-        )));
+        return Err(FieldError::new("measured", "tracking error: two equally long signals")
+            .with_value(format!("{} and {} samples", demand_nm.len(), measured_nm.len()))
+            .with_allowed(">= 1 sample each, equally many")
+            .into());
     }
     let n = demand_nm.len();
     let sum_sq: f64 = demand_nm.iter().zip(measured_nm).map(|(d, m)| (d - m) * (d - m)).sum();

@@ -5,6 +5,7 @@
 //! one continuous-time model type of mrbrake: [`crate::tfest`] estimates it, and `mrbrake-sim`
 //! discretises it exactly (zero-order hold) for the virtual rig's brake and motor.
 
+use mrbrake_error::FieldError;
 use num_complex::Complex64;
 
 use crate::SysidError;
@@ -41,28 +42,25 @@ impl TransferFunction {
     /// numerator of higher degree than the denominator (improper).
     pub fn new(numerator: Vec<f64>, denominator: Vec<f64>) -> Result<Self, SysidError> {
         if numerator.iter().chain(&denominator).any(|c| !c.is_finite()) {
-            return Err(SysidError::Input(
-                "transfer function: coefficients must be finite numbers".into(),
-            ));
+            return Err(FieldError::new("coefficients", "transfer function")
+                .with_allowed("finite numbers")
+                .into());
         }
         let numerator = without_leading_zeros(numerator);
         let denominator = without_leading_zeros(denominator);
         if denominator.iter().all(|c| c.abs() <= 0.0) {
-            return Err(SysidError::Input(
-                "transfer function: the denominator must not be zero".into(),
-            ));
+            return Err(
+                FieldError::new("denominator", "transfer function: must not be zero").into()
+            );
         }
         if numerator.is_empty() {
-            return Err(SysidError::Input(
-                "transfer function: the numerator must not be empty".into(),
-            ));
+            return Err(FieldError::new("numerator", "transfer function: must not be empty").into());
         }
         if numerator.len() > denominator.len() {
-            return Err(SysidError::Input(format!(
-                "transfer function: numerator degree {} exceeds denominator degree {} (improper)",
-                numerator.len() - 1,
-                denominator.len() - 1
-            )));
+            return Err(FieldError::new("numerator", "transfer function: improper")
+                .with_value(format!("degree {}", numerator.len() - 1))
+                .with_allowed(format!("degree <= {} (the denominator's)", denominator.len() - 1))
+                .into());
         }
         Ok(Self { numerator, denominator })
     }

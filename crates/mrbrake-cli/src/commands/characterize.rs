@@ -11,7 +11,6 @@ use mrbrake::sysid::log::read_log;
 use mrbrake::sysid::operator_fit::{OperatorOptions, fit_operator_model};
 use mrbrake::sysid::outliers::check_outliers;
 
-use crate::error::InputError;
 use crate::error::{CommandResult, Context as _};
 use crate::output::{print_json, print_text};
 
@@ -66,15 +65,22 @@ pub struct CharacterizeArgs {
     json: bool,
 }
 
+/// The flags of the library's field names (its field errors name `order`, `plays`, …).
+const FLAGS: &[(&str, &str)] = &[
+    ("order", "--order"),
+    ("bins", "--bins"),
+    ("plays", "--operators"),
+    ("segments", "--segments"),
+];
+
 /// Runs `mrbrake characterize`.
 pub fn run(args: CharacterizeArgs) -> CommandResult {
     crate::output::check_plot_path("--plot", args.plot.as_deref())?;
     if let Some(plays) = args.operators {
         return run_operators(&args, plays);
     }
-    if args.order == 0 || args.order > 12 {
-        return Err(InputError(format!("--order {} is outside 1..=12", args.order)).into());
-    }
+    let options = CharacterizeOptions { order: args.order, bins: args.bins };
+    options.check().map_err(|e| e.with_field_names(FLAGS))?;
     let log = read_log(
         &args.log,
         &args.time_col,
@@ -86,9 +92,9 @@ pub fn run(args: CharacterizeArgs) -> CommandResult {
         check_outliers(&args.log, &args.current_col, &log.time_s, current)?;
         check_outliers(&args.log, &args.torque_col, &log.time_s, torque)?;
     }
-    let c =
-        characterize(current, torque, CharacterizeOptions { order: args.order, bins: args.bins })
-            .with_context(|| args.log.display().to_string())?;
+    let c = characterize(current, torque, options)
+        .map_err(|e| e.with_field_names(FLAGS))
+        .with_context(|| args.log.display().to_string())?;
     let report = CharacterizationReport {
         characterization: &c,
         log: &args.log,
@@ -125,7 +131,8 @@ fn run_operators(args: &CharacterizeArgs, plays: usize) -> CommandResult {
     let log = read_log(&args.log, &args.time_col, &[&args.current_col, &args.torque_col], 10)?;
     let (current, torque) = (&log.channels[0], &log.channels[1]);
     let options = OperatorOptions { plays, segments: args.segments };
-    let fit = fit_operator_model(current, torque, options)?;
+    let fit =
+        fit_operator_model(current, torque, options).map_err(|e| e.with_field_names(FLAGS))?;
     if let Some(path) = &args.save_model {
         let text = crate::output::json_text(&fit)?;
         mrbrake::report::write_atomic(path, text.as_bytes())?;

@@ -10,7 +10,6 @@ use mrbrake::report::identification::{
 use mrbrake::sysid::freqresp::{FreqRespOptions, frd_csv, frequency_response};
 use mrbrake::units::{Dimension, parse};
 
-use crate::error::InputError;
 use crate::error::{CommandResult, Context as _};
 use crate::output::{print_json, print_text};
 
@@ -58,13 +57,6 @@ pub struct FreqRespArgs {
 pub fn run(args: FreqRespArgs) -> CommandResult {
     crate::output::check_plot_path("--plot", args.plot.as_deref())?;
     let settle_s = parse(&args.settle, Dimension::Time).context("--settle")?;
-    let non_negative = |v: f64| v.is_finite() && v >= 0.0;
-    if !non_negative(settle_s) || !non_negative(args.discard_periods) {
-        return Err(InputError("--settle and --discard-periods must be non-negative".into()).into());
-    }
-    if !(0.0..=100.0).contains(&args.min_quality) {
-        return Err(InputError("--min-quality must be a percentage from 0 to 100".into()).into());
-    }
     let options = FreqRespOptions {
         time_col: args.time_col.clone(),
         input_col: args.input_col.clone(),
@@ -73,6 +65,12 @@ pub fn run(args: FreqRespArgs) -> CommandResult {
         settle_s,
         min_quality_percent: args.min_quality,
     };
+    let flags = [
+        ("settle", "--settle"),
+        ("discard_periods", "--discard-periods"),
+        ("min_quality", "--min-quality"),
+    ];
+    options.check().map_err(|e| e.with_field_names(&flags))?;
     let points = frequency_response(&args.manifest, &options)?;
     let out = args.output.clone().unwrap_or_else(|| args.manifest.with_file_name("frd.csv"));
     mrbrake::report::write_atomic(&out, frd_csv(&points).as_bytes())?;

@@ -18,7 +18,6 @@ use mrbrake::sysid::model_file::read_inverse_model;
 use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
-use crate::error::InputError;
 use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
 
@@ -198,17 +197,20 @@ fn quantity(flag: &str, text: &str, dimension: Dimension) -> CommandResult<f64> 
     parse(text, dimension).context(flag.to_string())
 }
 
-/// The wall's K and B (N·m/rad, N·m·s/rad), each finite and ≥ 0.
+/// The wall's K and B (N·m/rad, N·m·s/rad) as given; their ranges are the library's
+/// ([`HapticConfig::validate`], with [`WALL_FLAGS`]).
 fn wall_gains(args: &WallArgs) -> CommandResult<(f64, f64)> {
     let k = quantity("--stiffness", &args.stiffness, Dimension::RotationalStiffness)?;
     let b = quantity("--damping", &args.damping, Dimension::RotationalDamping)?;
-    for (flag, value, unit) in [("--stiffness", k, "N·m/rad"), ("--damping", b, "N·m·s/rad")] {
-        if value < 0.0 {
-            return Err(InputError(format!("{flag} = {value} {unit} must be ≥ 0")).into());
-        }
-    }
     Ok((k, b))
 }
+
+/// The flags of the [`HapticConfig`] fields its range errors name.
+const WALL_FLAGS: &[(&str, &str)] = &[
+    ("wall_stiffness_nm_per_rad", "--stiffness"),
+    ("wall_damping_nms_per_rad", "--damping"),
+    ("duration_s", "--duration"),
+];
 
 fn wall_config(args: &WallArgs, device: DeviceKind) -> CommandResult<HapticConfig> {
     let mut config = HapticConfig::new(device, args.scenario.into());
@@ -216,6 +218,7 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> CommandResult<HapticConfi
     if let Some(text) = &args.duration {
         config.duration_s = parse(text, Dimension::Time).context("--duration")?;
     }
+    config.validate().map_err(|e| e.with_field_names(WALL_FLAGS))?;
     if let Some(path) = &args.model {
         config.use_inverse_model(read_inverse_model(path)?);
     }

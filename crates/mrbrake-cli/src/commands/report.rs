@@ -197,7 +197,7 @@ mod characterization {
     use mrbrake::sysid::request::CharacterizationRequest;
     use mrbrake::sysid::tfest::TfestOptions;
 
-    use crate::error::{CommandResult, InputError};
+    use crate::error::CommandResult;
 
     /// The page of `log` (columns `time_s`, `current_A`, `torque_Nm`, as the rig writes them) and,
     /// with `frd`, of a `poles`/`zeros` transfer function fitted to it.
@@ -208,22 +208,14 @@ mod characterization {
         poles: usize,
         zeros: usize,
     ) -> CommandResult<String> {
-        if order == 0 || order > 12 {
-            return Err(InputError(format!("--fit-order {order} is outside 1..=12")).into());
-        }
-        if poles == 0 || zeros > poles {
-            return Err(InputError(format!(
-                "--poles must be ≥ 1 and --zeros ≤ --poles (got {poles} and {zeros})"
-            ))
-            .into());
-        }
         let request = CharacterizationRequest {
             options: CharacterizeOptions { order, ..CharacterizeOptions::default() },
             frd: frd_path.map(Path::to_path_buf),
             tfest: TfestOptions::new(poles, zeros),
             ..CharacterizationRequest::new(log_path)
         };
-        let run = request.run()?;
+        let flags = [("order", "--fit-order"), ("poles", "--poles"), ("zeros", "--zeros")];
+        let run = request.run().map_err(|e| e.with_field_names(&flags))?;
         let report = CharacterizationReport {
             characterization: &run.characterization,
             log: log_path,

@@ -9,7 +9,6 @@ use mrbrake::sysid::frd::read_frd;
 use mrbrake::sysid::tfest::{TfestOptions, Weighting, tfest};
 use mrbrake::units::{Dimension, parse};
 
-use crate::error::InputError;
 use crate::error::{CommandResult, Context as _};
 use crate::output::{print_json, print_text};
 
@@ -53,25 +52,25 @@ pub struct TfestArgs {
     json: bool,
 }
 
+/// The flags of the library's [`TfestOptions`] fields (named in its field errors).
+pub const FLAGS: &[(&str, &str)] =
+    &[("poles", "--poles"), ("zeros", "--zeros"), ("delay", "--delay")];
+
 /// Runs `mrbrake tfest`.
 pub fn run(args: TfestArgs) -> CommandResult {
-    if args.poles == 0 || args.zeros > args.poles {
-        return Err(InputError(format!(
-            "--poles must be ≥ 1 and --zeros ≤ --poles (got {} and {})",
-            args.poles, args.zeros
-        ))
-        .into());
-    }
     crate::output::check_plot_path("--plot", args.plot.as_deref())?;
     let delay_s = parse(&args.delay, Dimension::Time).context("--delay")?;
-    let frd = read_frd(&args.frd, args.weight_col.as_deref())?;
     let mut options = TfestOptions::new(args.poles, args.zeros);
     options.delay_s = delay_s;
     options.weighting = match args.weighting {
         WeightingArg::Uniform => Weighting::Uniform,
         WeightingArg::Relative => Weighting::InverseMagnitude,
     };
-    let fit = tfest(&frd, &options).with_context(|| args.frd.display().to_string())?;
+    options.check().map_err(|e| e.with_field_names(FLAGS))?;
+    let frd = read_frd(&args.frd, args.weight_col.as_deref())?;
+    let fit = tfest(&frd, &options)
+        .map_err(|e| e.with_field_names(FLAGS))
+        .with_context(|| args.frd.display().to_string())?;
     let summary = fit.summary()?;
     if let Some(path) = &args.save_model {
         mrbrake::report::write_atomic(path, crate::output::json_text(&summary)?.as_bytes())?;

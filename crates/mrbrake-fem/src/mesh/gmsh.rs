@@ -23,6 +23,7 @@ use std::path::Path;
 
 use crate::FemError;
 use crate::mesh::Mesh;
+use mrbrake_error::FieldError;
 
 /// A mesh read from a Gmsh file with its physical-group names.
 #[derive(Debug, Clone, Default)]
@@ -53,16 +54,19 @@ pub fn read_problem_mesh(
     mesh: &str,
     length_unit: Option<&str>,
 ) -> Result<(GmshMesh, f64), FemError> {
-    let file = problem_file.display();
+    let file = problem_file.display().to_string();
     let unit = length_unit.unwrap_or("m");
-    let scale = mrbrake_units::unit_scale(unit, mrbrake_units::Dimension::Length)
-        .map_err(|e| FemError::Input(format!("{file}: length_unit = \"{unit}\": {e}")))?;
+    let scale = mrbrake_units::unit_scale(unit, mrbrake_units::Dimension::Length).map_err(|e| {
+        let e = FieldError::new("length_unit", e.to_string()).with_value(format!("\"{unit}\""));
+        FemError::from(e.in_file(&file, None))
+    })?;
     let mesh_path = problem_file.parent().unwrap_or(Path::new(".")).join(mesh);
     let gmsh = read_msh(&mesh_path, scale).map_err(|e| match e {
-        FemError::Io { source, .. } => FemError::Input(format!(
-            "{file}: mesh = \"{mesh}\": cannot read {}: {source}",
-            mesh_path.display()
-        )),
+        FemError::Io { source, .. } => {
+            let message = format!("cannot read {}: {source}", mesh_path.display());
+            let e = FieldError::new("mesh", message).with_value(format!("\"{mesh}\""));
+            FemError::from(e.in_file(&file, None))
+        }
         other => other,
     })?;
     Ok((gmsh, scale))
@@ -296,7 +300,7 @@ fn compact_mesh(
     check_in_file_terms(&mesh, &node_tags, &elements.triangles, file)?;
     // Name the file in the mesh's own message; other kinds of error pass unchanged.
     mesh.validate().map_err(|e| match e {
-        FemError::Input(message) => FemError::Input(format!("{file}: {message}")),
+        FemError::Input(e) => FemError::from(e.in_file(file, None)),
         other => other,
     })?;
     Ok(mesh)
@@ -315,10 +319,10 @@ fn check_in_file_terms(
     let scale = mesh.size_scale();
     for (i, p) in mesh.nodes.iter().enumerate() {
         if p[0] < -1e-9 * scale {
-            return Err(FemError::Input(format!(
-                "{file}: node {} has r = {} m < 0: an axisymmetric mesh must lie in r >= 0",
-                node_tags[i], p[0]
-            )));
+            let e =
+                FieldError::new("nodes", format!("node {}: an axisymmetric mesh", node_tags[i]));
+            let e = e.with_value(format!("r = {} m", p[0])).with_allowed("r >= 0");
+            return Err(e.in_file(file, None).into());
         }
     }
     for (t, (corners, _, line, element)) in triangles.iter().enumerate() {

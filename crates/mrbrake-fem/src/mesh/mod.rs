@@ -102,58 +102,73 @@ impl Mesh {
     /// `1e-14 ×` the squared bounding-box diagonal. The error names the first offending item.
     pub fn validate(&self) -> Result<(), FemError> {
         if self.triangles.len() != self.triangle_tags.len() {
-            return Err(FemError::Input(format!(
-                "mesh has {} triangles but {} triangle tags",
-                self.triangles.len(),
-                self.triangle_tags.len()
-            )));
+            return Err(FemError::field(
+                "triangle_tags",
+                format!(
+                    "mesh has {} triangles but {} triangle tags",
+                    self.triangles.len(),
+                    self.triangle_tags.len()
+                ),
+            ));
         }
         if self.edges.len() != self.edge_tags.len() {
-            return Err(FemError::Input(format!(
-                "mesh has {} edges but {} edge tags",
-                self.edges.len(),
-                self.edge_tags.len()
-            )));
+            return Err(FemError::field(
+                "edge_tags",
+                format!(
+                    "mesh has {} edges but {} edge tags",
+                    self.edges.len(),
+                    self.edge_tags.len()
+                ),
+            ));
         }
         if self.triangles.is_empty() {
-            return Err(FemError::Input("mesh has no triangles".into()));
+            return Err(FemError::field("triangles", "mesh has no triangles"));
         }
         let scale = self.size_scale();
         // Indices here are the mesh's own, 0-based; a mesh read from a file is checked in the
         // file's own tags first (`crate::mesh::gmsh`), so these messages are for meshes built in code.
         for (i, p) in self.nodes.iter().enumerate() {
             if !p[0].is_finite() || !p[1].is_finite() {
-                return Err(FemError::Input(format!(
-                    "mesh node {i} (0-based index) has a non-finite coordinate {p:?}"
-                )));
+                return Err(FemError::field(
+                    "nodes",
+                    format!("mesh node {i} (0-based index) has a non-finite coordinate {p:?}"),
+                ));
             }
             if p[0] < -1e-9 * scale {
-                return Err(FemError::Input(format!(
-                    "mesh node {i} has r = {} m < 0: an axisymmetric mesh must lie in r >= 0",
-                    p[0]
-                )));
+                return Err(FemError::field(
+                    "nodes",
+                    format!(
+                        "mesh node {i} has r = {} m < 0: an axisymmetric mesh must lie in r >= 0",
+                        p[0]
+                    ),
+                ));
             }
         }
         let n = self.nodes.len();
         for (t, tri) in self.triangles.iter().enumerate() {
             if tri.iter().any(|&v| v >= n) {
-                return Err(FemError::Input(format!(
-                    "triangle {t} references node {tri:?} but the mesh has {n} nodes"
-                )));
+                return Err(FemError::field(
+                    "triangles",
+                    format!("triangle {t} references node {tri:?} but the mesh has {n} nodes"),
+                ));
             }
             let area = self.signed_area(t);
             if area <= 1e-14 * scale * scale {
-                return Err(FemError::Input(format!(
-                    "triangle {t} (0-based index; nodes {tri:?}) is degenerate or clockwise (signed area \
+                return Err(FemError::field(
+                    "triangles",
+                    format!(
+                        "triangle {t} (0-based index; nodes {tri:?}) is degenerate or clockwise (signed area \
                      {area:e} m²)"
-                )));
+                    ),
+                ));
             }
         }
         for (e, edge) in self.edges.iter().enumerate() {
             if edge.iter().any(|&v| v >= n) || edge[0] == edge[1] {
-                return Err(FemError::Input(format!(
-                    "edge {e} has invalid nodes {edge:?} ({n} nodes)"
-                )));
+                return Err(FemError::field(
+                    "edges",
+                    format!("edge {e} has invalid nodes {edge:?} ({n} nodes)"),
+                ));
             }
         }
         Ok(())

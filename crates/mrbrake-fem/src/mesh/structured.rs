@@ -10,6 +10,7 @@
 
 use crate::FemError;
 use crate::mesh::{Mesh, signed_area};
+use mrbrake_error::FieldError;
 
 /// Edge tags of the four sides of a rectangle mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -121,11 +122,11 @@ pub fn half_disc_mesh(
     axis_tag: u32,
 ) -> Result<Mesh, FemError> {
     check_increasing("radii", radii)?;
-    if radii[0] <= 0.0 || n_theta < 2 {
-        return Err(FemError::Input(format!(
-            "half_disc_mesh needs radii[0] > 0 (got {}) and n_theta >= 2 (got {n_theta})",
-            radii[0]
-        )));
+    if radii[0] <= 0.0 {
+        return Err(FieldError::out_of_range("radii[0]", radii[0], "> 0").into());
+    }
+    if n_theta < 2 {
+        return Err(FieldError::out_of_range("n_theta", n_theta, ">= 2").into());
     }
     let nt = n_theta + 1;
     let mut mesh = Mesh { nodes: vec![[0.0, 0.0]], ..Mesh::default() };
@@ -183,22 +184,17 @@ pub fn half_disc_mesh(
 
 fn check_increasing(name: &str, lines: &[f64]) -> Result<(), FemError> {
     if lines.len() < 2 {
-        return Err(FemError::Input(format!(
-            "{name} needs at least two values, got {}",
-            lines.len()
-        )));
+        let e = FieldError::out_of_range(name, format!("{} values", lines.len()), ">= 2 values");
+        return Err(e.into());
     }
     for (k, w) in lines.windows(2).enumerate() {
         if w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater)
             || !w[0].is_finite()
             || !w[1].is_finite()
         {
-            return Err(FemError::Input(format!(
-                "{name} must be finite and strictly increasing: {name}[{k}] = {}, {name}[{}] = {}",
-                w[0],
-                k + 1,
-                w[1]
-            )));
+            let e = FieldError::new(format!("{name}[{}]", k + 1), "not after the value before it");
+            let e = e.with_value(w[1]).with_allowed(format!("finite, > {name}[{k}] = {}", w[0]));
+            return Err(e.into());
         }
     }
     Ok(())

@@ -230,14 +230,20 @@ impl Assembly {
     /// and the element work arrays. Fails when every DOF is constrained.
     pub fn new(basis: Basis, constraints: Constraints) -> Result<Self, FemError> {
         if constraints.len() != basis.dofs().len() {
-            return Err(FemError::Input(format!(
-                "{} constrained-DOF entries for a basis with {} DOFs",
-                constraints.len(),
-                basis.dofs().len()
-            )));
+            return Err(FemError::field(
+                "constraints",
+                format!(
+                    "{} constrained-DOF entries for a basis with {} DOFs",
+                    constraints.len(),
+                    basis.dofs().len()
+                ),
+            ));
         }
         if constraints.n_free() == 0 {
-            return Err(FemError::Input("every node is constrained: nothing to solve".into()));
+            return Err(FemError::field(
+                "constraints",
+                "every node is constrained: nothing to solve",
+            ));
         }
         let k = basis.dofs().dofs_per_triangle();
         // The free index of each element DOF is needed only to build the pattern: the scatters
@@ -305,10 +311,13 @@ impl Assembly {
                     let (di, dj) = (free[term.dofs[i]], free[term.dofs[j]]);
                     if di != CONSTRAINED && dj != CONSTRAINED && i <= j {
                         let position = self.pattern.position(di, dj).ok_or_else(|| {
-                            FemError::Input(format!(
-                                "coupled DOFs {} and {} share no element",
-                                term.dofs[i], term.dofs[j]
-                            ))
+                            FemError::field(
+                                "coupling",
+                                format!(
+                                    "coupled DOFs {} and {} share no element",
+                                    term.dofs[i], term.dofs[j]
+                                ),
+                            )
                         })?;
                         couplings.matrix.push((position, m));
                     }

@@ -55,10 +55,13 @@ pub fn edge_matrices(
         let mut dofs = vec![edge[0], edge[1]];
         if quadratic {
             dofs.push(basis.dofs().edge_dof(edge[0], edge[1]).ok_or_else(|| {
-                FemError::Input(format!(
-                    "boundary {tag}: edge ({}, {}) is not the side of a triangle",
-                    edge[0], edge[1]
-                ))
+                FemError::field(
+                    "edges",
+                    format!(
+                        "boundary {tag}: edge ({}, {}) is not the side of a triangle",
+                        edge[0], edge[1]
+                    ),
+                )
             })?);
         }
         let k = dofs.len();
@@ -98,10 +101,13 @@ fn tagged_edges(basis: &Basis, tag: u32) -> Result<Vec<FluxEdge>, FemError> {
         let mut dofs = vec![edge[0], edge[1]];
         if quadratic {
             dofs.push(basis.dofs().edge_dof(edge[0], edge[1]).ok_or_else(|| {
-                FemError::Input(format!(
-                    "boundary {tag}: edge ({}, {}) is not the side of a triangle",
-                    edge[0], edge[1]
-                ))
+                FemError::field(
+                    "edges",
+                    format!(
+                        "boundary {tag}: edge ({}, {}) is not the side of a triangle",
+                        edge[0], edge[1]
+                    ),
+                )
             })?);
         }
         let points = x
@@ -164,10 +170,13 @@ impl EdgeFlux {
                             continue;
                         }
                         let position = assembly.pattern().position(fa, fb).ok_or_else(|| {
-                            FemError::Input(format!(
-                                "boundary {tag}: DOFs {} and {} share no element",
-                                edge.dofs[a], edge.dofs[b]
-                            ))
+                            FemError::field(
+                                "edges",
+                                format!(
+                                    "boundary {tag}: DOFs {} and {} share no element",
+                                    edge.dofs[a], edge.dofs[b]
+                                ),
+                            )
                         })?;
                         edge.positions.push((a, b, position));
                     }

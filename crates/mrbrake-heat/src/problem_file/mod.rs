@@ -128,23 +128,25 @@ fn positive(v: f64) -> bool {
     raw::POSITIVE.contains(v)
 }
 
+/// An error about the whole file (a read or TOML error: no one field).
+fn file_error(message: String, file: &str) -> HeatError {
+    FieldError::new("", message).in_file(file, None).into()
+}
+
 /// Reads and checks a heat problem file and its mesh.
 pub fn load(path: &Path) -> Result<HeatFile, HeatError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path)
-        .map_err(|e| HeatError::Input(format!("{file}: cannot read: {e}")))?;
-    let raw: RawFile =
-        toml::from_str(&text).map_err(|e| HeatError::Input(format!("{file}: {e}")))?;
+        .map_err(|e| file_error(format!("cannot read: {e}"), &file))?;
+    let raw: RawFile = toml::from_str(&text).map_err(|e| file_error(e.to_string(), &file))?;
     if raw.physics != "heat" {
-        return Err(HeatError::Input(format!(
-            "{file}: physics = \"{}\": this reader takes \"heat\"",
-            raw.physics
-        )));
+        let e = FieldError::out_of_range("physics", format!("\"{}\"", raw.physics), "\"heat\"");
+        return Err(e.in_file(file, None).into());
     }
     let order = match raw.order {
         None => ElementOrder::P1,
         Some(d) => ElementOrder::from_degree(d).ok_or_else(|| {
-            HeatError::Input(format!("{file}: order = {d} is not allowed; allowed: 1 or 2"))
+            HeatError::from(FieldError::out_of_range("order", d, "1 or 2").in_file(&file, None))
         })?,
     };
     let mesh_path = path.parent().unwrap_or(Path::new(".")).join(&raw.mesh);

@@ -159,7 +159,13 @@ fn probes_at(
         .iter()
         .map(|p| {
             solver.temperature_at(t, p.point).map(celsius).map_err(|e| {
-                HeatError::Input(format!("{}: probe `{}`: {e}", path.display(), p.name))
+                let table = format!("probe[{}]", p.name);
+                match e {
+                    HeatError::Input(e) => {
+                        HeatError::from(e.under(table).in_file(path.display().to_string(), None))
+                    }
+                    other => other,
+                }
             })
         })
         .collect()

@@ -238,21 +238,27 @@ impl Dynamics {
         bias_a: Option<&[f64]>,
     ) -> Result<(), MagneticsError> {
         if frequencies_hz.is_empty() {
-            return Err(MagneticsError::Input("harmonic: no frequencies".into()));
+            return Err(MagneticsError::field("frequencies", "harmonic: no frequencies"));
         }
         if let Some(f) = frequencies_hz.iter().find(|f| !(**f >= 0.0 && f.is_finite())) {
-            return Err(MagneticsError::Input(format!(
-                "harmonic: frequency {f} Hz must be finite and >= 0"
-            )));
+            let e = mrbrake_error::FieldError::out_of_range(
+                "frequencies",
+                format!("{f} Hz"),
+                "finite, >= 0 Hz",
+            );
+            return Err(e.into());
         }
         if let Some(bias) = bias_a
             && (bias.len() != self.coils.len() || bias.iter().any(|b| !b.is_finite()))
         {
-            return Err(MagneticsError::Input(format!(
-                "harmonic: {} finite bias currents needed (one per coil), got {:?}",
-                self.coils.len(),
-                bias
-            )));
+            return Err(MagneticsError::field(
+                "bias",
+                format!(
+                    "harmonic: {} finite bias currents needed (one per coil), got {:?}",
+                    self.coils.len(),
+                    bias
+                ),
+            ));
         }
         Ok(())
     }
@@ -261,15 +267,21 @@ impl Dynamics {
     fn excitation(&self, coil: &super::CoilData) -> Result<f64, MagneticsError> {
         match coil.coil.drive {
             Drive::Current { amplitude_a } if amplitude_a.abs() > 0.0 => Ok(amplitude_a),
-            Drive::Current { .. } => Err(MagneticsError::Input(format!(
-                "coil {}: a harmonic solve needs a non-zero current amplitude",
-                coil.coil.tag
-            ))),
-            Drive::Voltage { .. } => Err(MagneticsError::Input(format!(
-                "coil {}: harmonic solves drive coils by current (give current_A); the reported \
+            Drive::Current { .. } => Err(MagneticsError::field(
+                format!("coils[{}].current_A", coil.coil.tag),
+                format!(
+                    "coil {}: a harmonic solve needs a non-zero current amplitude",
+                    coil.coil.tag
+                ),
+            )),
+            Drive::Voltage { .. } => Err(MagneticsError::field(
+                format!("coils[{}].drive", coil.coil.tag),
+                format!(
+                    "coil {}: harmonic solves drive coils by current (give current_A); the reported \
                  impedance Z gives a voltage drive's current V/(R + Z)",
-                coil.coil.tag
-            ))),
+                    coil.coil.tag
+                ),
+            )),
         }
     }
 

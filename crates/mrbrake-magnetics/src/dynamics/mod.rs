@@ -50,6 +50,7 @@ use crate::MagneticsError;
 use crate::field::Solution;
 use crate::problem::Source;
 use crate::solver::Solver;
+use mrbrake_error::FieldError;
 pub use waveform::Waveform;
 
 const TWO_PI: f64 = 2.0 * std::f64::consts::PI;
@@ -181,11 +182,14 @@ impl Dynamics {
     pub fn eddy_current_density(&self, rate: &[f64]) -> Result<Vec<f64>, MagneticsError> {
         let dofs = self.solver.basis().dofs();
         if rate.len() != self.solver.dof_count() {
-            return Err(MagneticsError::Input(format!(
-                "eddy current density: {} rates for {} DOFs",
-                rate.len(),
-                self.solver.dof_count()
-            )));
+            return Err(MagneticsError::field(
+                "rate",
+                format!(
+                    "eddy current density: {} rates for {} DOFs",
+                    rate.len(),
+                    self.solver.dof_count()
+                ),
+            ));
         }
         let per_element = dofs.element_dofs().len() / self.sigma.len().max(1);
         let mut out = Vec::with_capacity(3 * self.sigma.len());
@@ -239,27 +243,35 @@ impl Dynamics {
 fn check_coil(coil: &Coil) -> Result<(), MagneticsError> {
     coil.waveform.validate()?;
     if !(coil.turns > 0.0 && coil.turns.is_finite()) {
-        return Err(MagneticsError::Input(format!(
-            "coil {}: turns = {} must be finite and > 0",
-            coil.tag, coil.turns
-        )));
+        let e = FieldError::out_of_range(
+            format!("coil[{}].turns", coil.tag),
+            coil.turns,
+            "finite, > 0",
+        );
+        return Err(e.into());
     }
     match coil.drive {
         Drive::Current { amplitude_a } if !amplitude_a.is_finite() => {
-            Err(MagneticsError::Input(format!("coil {}: current_A must be finite", coil.tag)))
+            let e = FieldError::out_of_range(
+                format!("coil[{}].current_A", coil.tag),
+                amplitude_a,
+                "finite",
+            );
+            Err(e.into())
         }
         Drive::Voltage { amplitude_v, series_resistance_ohm } => {
             if !amplitude_v.is_finite() {
-                return Err(MagneticsError::Input(format!(
-                    "coil {}: voltage_V must be finite",
-                    coil.tag
-                )));
+                let e = FieldError::out_of_range(
+                    format!("coil[{}].voltage_V", coil.tag),
+                    amplitude_v,
+                    "finite",
+                );
+                return Err(e.into());
             }
             if !(series_resistance_ohm > 0.0 && series_resistance_ohm.is_finite()) {
-                return Err(MagneticsError::Input(format!(
-                    "coil {}: a voltage drive needs series_resistance_ohm finite and > 0 (got {})",
-                    coil.tag, series_resistance_ohm
-                )));
+                let field = format!("coil[{}].series_resistance_ohm", coil.tag);
+                let e = FieldError::out_of_range(field, series_resistance_ohm, "finite, > 0 Ω");
+                return Err(e.into());
             }
             Ok(())
         }
@@ -273,7 +285,7 @@ fn region_index(solver: &Solver, tag: u32) -> Result<usize, MagneticsError> {
         .regions
         .iter()
         .position(|r| r.tag == tag)
-        .ok_or_else(|| MagneticsError::Input(format!("no region with physical = {tag}")))
+        .ok_or_else(|| MagneticsError::field("tag", format!("no region with physical = {tag}")))
 }
 
 /// σ of every region (0 unless listed), checked.
@@ -286,17 +298,18 @@ fn region_conductivities(
     for conductor in conductors {
         let s = conductor.conductivity_s_per_m;
         if !(s >= 0.0 && s.is_finite()) {
-            return Err(MagneticsError::Input(format!(
-                "region {}: conductivity_S_per_m = {s} must be finite and >= 0",
-                conductor.tag
-            )));
+            let field = format!("conductor[{}].conductivity_S_per_m", conductor.tag);
+            return Err(FieldError::out_of_range(field, s, "finite, >= 0 S/m").into());
         }
         if s > 0.0 && coils.iter().any(|c| c.tag == conductor.tag) {
-            return Err(MagneticsError::Input(format!(
-                "region {} is a stranded coil: it cannot also be a solid conductor (set its \
+            return Err(MagneticsError::field(
+                format!("conductor[{}]", conductor.tag),
+                format!(
+                    "region {} is a stranded coil: it cannot also be a solid conductor (set its \
                  conductivity to 0)",
-                conductor.tag
-            )));
+                    conductor.tag
+                ),
+            ));
         }
         sigma[region_index(solver, conductor.tag)?] = s;
     }
@@ -311,10 +324,13 @@ fn coil_vectors(
 ) -> Result<(Vec<f64>, Vec<f64>), MagneticsError> {
     let area = solver.region_area[region];
     if area <= 0.0 {
-        return Err(MagneticsError::Input(format!(
-            "coil region {} has zero area: it needs triangles in the mesh",
-            solver.problem.regions[region].tag
-        )));
+        return Err(MagneticsError::field(
+            "coils",
+            format!(
+                "coil region {} has zero area: it needs triangles in the mesh",
+                solver.problem.regions[region].tag
+            ),
+        ));
     }
     let density = turns / area;
     let regions = &solver.form.element_region;

@@ -6,6 +6,7 @@
 //! a sine is `offset + sin(2π f t)`; a table is interpolated linearly (held constant outside).
 
 use crate::MagneticsError;
+use mrbrake_error::FieldError;
 
 /// A drive waveform (dimensionless: it scales the drive's amplitude).
 #[derive(Debug, Clone, PartialEq)]
@@ -37,22 +38,20 @@ pub enum Waveform {
 impl Waveform {
     /// Checks the parameters (finite, positive rise time and frequency, increasing table).
     pub fn validate(&self) -> Result<(), MagneticsError> {
-        let bad = |m: String| Err(MagneticsError::Input(m));
+        let bad = |field: &str, value: f64, allowed: &str| {
+            Err(FieldError::out_of_range(field, value, allowed).into())
+        };
         match self {
-            Self::Step { initial } if !initial.is_finite() => {
-                bad(format!("step waveform: initial = {initial} must be finite"))
-            }
+            Self::Step { initial } if !initial.is_finite() => bad("initial", *initial, "finite"),
             Self::Ramp { rise_s } if !(*rise_s > 0.0 && rise_s.is_finite()) => {
-                bad(format!("ramp waveform: rise_s = {rise_s} must be finite and > 0"))
+                bad("rise_s", *rise_s, "finite, > 0 s")
             }
-            Self::Sine { frequency_hz, offset }
-                if !(*frequency_hz > 0.0 && frequency_hz.is_finite() && offset.is_finite()) =>
+            Self::Sine { frequency_hz, .. }
+                if !(*frequency_hz > 0.0 && frequency_hz.is_finite()) =>
             {
-                bad(format!(
-                    "sine waveform: frequency_Hz = {frequency_hz} must be finite and > 0, offset \
-                     = {offset} finite"
-                ))
+                bad("frequency_Hz", *frequency_hz, "finite, > 0 Hz")
             }
+            Self::Sine { offset, .. } if !offset.is_finite() => bad("offset", *offset, "finite"),
             Self::Table { points } => check_table(points),
             _ => Ok(()),
         }
@@ -89,24 +88,25 @@ impl Waveform {
 
 fn check_table(points: &[(f64, f64)]) -> Result<(), MagneticsError> {
     if points.is_empty() {
-        return Err(MagneticsError::Input("table waveform: no points".into()));
+        return Err(MagneticsError::field("points", "table waveform: no points"));
     }
     for (k, p) in points.iter().enumerate() {
         if !(p.0.is_finite() && p.1.is_finite()) {
-            return Err(MagneticsError::Input(format!(
-                "table waveform: point {} ({}, {}) is not finite",
-                k + 1,
-                p.0,
-                p.1
-            )));
+            return Err(MagneticsError::field(
+                format!("points[{k}]"),
+                format!("table waveform: point {} ({}, {}) is not finite", k + 1, p.0, p.1),
+            ));
         }
         if k > 0 && p.0 <= points[k - 1].0 {
-            return Err(MagneticsError::Input(format!(
-                "table waveform: time must increase strictly (point {} at t = {} s follows t = {} s)",
-                k + 1,
-                p.0,
-                points[k - 1].0
-            )));
+            return Err(MagneticsError::field(
+                format!("points[{k}]"),
+                format!(
+                    "table waveform: time must increase strictly (point {} at t = {} s follows t = {} s)",
+                    k + 1,
+                    p.0,
+                    points[k - 1].0
+                ),
+            ));
         }
     }
     Ok(())
@@ -127,6 +127,16 @@ fn interpolate(points: &[(f64, f64)], t: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_bad_parameter_is_a_field_error_with_its_value_and_range() {
+        let e = Waveform::Ramp { rise_s: -1.0 }.validate().unwrap_err();
+        let MagneticsError::Input(f) = &e else { panic!("{e:?}") };
+        assert_eq!((f.field.as_str(), f.value.as_deref()), ("rise_s", Some("-1")));
+        assert_eq!(f.allowed.as_deref(), Some("finite, > 0 s"));
+        let e = Waveform::Sine { frequency_hz: 50.0, offset: f64::NAN }.validate().unwrap_err();
+        assert!(e.to_string().starts_with("offset: got NaN"), "{e}");
+    }
 
     #[test]
     fn values_and_breakpoints() {

@@ -65,6 +65,7 @@ use crate::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use crate::field::{Solution, phasor_vtu};
 use crate::problem::{Problem, Source};
 use crate::solver::Solver;
+use mrbrake_error::FieldError;
 
 /// The conductivity a region is solved with, and where it comes from.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -150,22 +151,39 @@ pub struct CoilBias {
     pub current_a: f64,
 }
 
-fn input(message: String) -> MagneticsError {
-    MagneticsError::Input(message)
+/// An input error about `field` (a problem-file key such as `region[2].source.drive`).
+fn input(field: impl Into<String>, message: String) -> MagneticsError {
+    FieldError::new(field, message).into()
+}
+
+/// An input error about `field` of the problem file `file`.
+fn input_in(file: &str, field: impl Into<String>, message: String) -> MagneticsError {
+    FieldError::new(field, message).in_file(file, None).into()
+}
+
+/// An input error at a line of a waveform CSV file (`at`: the field, the file and the line).
+fn input_at(at: &(&str, String, usize), message: String) -> MagneticsError {
+    let (field, file, line) = at;
+    FieldError::new(*field, message).in_file(file.as_str(), Some(*line)).into()
 }
 
 /// The voltage drive of a coil `source = { turns, drive = { voltage_V, series_resistance_ohm } }`.
 pub(super) fn voltage_drive(value: &toml::Value, field: &str) -> Result<Drive, MagneticsError> {
     let table = value.as_table().ok_or_else(|| {
-        input(format!(
-            "{field}: source.drive must be a table {{ voltage_V = ..., series_resistance_ohm = ... }}"
-        ))
+        input(
+            field,
+            "source.drive must be a table { voltage_V = ..., series_resistance_ohm = ... }"
+                .to_string(),
+        )
     })?;
     for key in table.keys() {
         if !["voltage_V", "series_resistance_ohm"].contains(&key.as_str()) {
-            return Err(input(format!(
-                "{field}: unknown source.drive field `{key}`; allowed: voltage_V, series_resistance_ohm"
-            )));
+            return Err(input(
+                field,
+                format!(
+                    "unknown source.drive field `{key}`; allowed: voltage_V, series_resistance_ohm"
+                ),
+            ));
         }
     }
     let number = |key: &str| -> Result<Option<f64>, MagneticsError> {
@@ -176,23 +194,24 @@ pub(super) fn voltage_drive(value: &toml::Value, field: &str) -> Result<Drive, M
                     .or_else(|| v.as_integer().map(|i| i as f64))
                     .filter(|x| x.is_finite())
                     .ok_or_else(|| {
-                        input(format!("{field}: source.drive.{key} must be a finite number"))
+                        input(field, format!("source.drive.{key} must be a finite number"))
                     })
             })
             .transpose()
     };
     let amplitude_v = number("voltage_V")?
-        .ok_or_else(|| input(format!("{field}: source.drive needs `voltage_V` (V)")))?;
+        .ok_or_else(|| input(field, "source.drive needs `voltage_V` (V)".to_string()))?;
     let resistance = number("series_resistance_ohm")?.ok_or_else(|| {
-        input(format!(
-            "{field}: a voltage drive needs `series_resistance_ohm` (Ω, > 0: the winding's \
+        input(
+            field,
+            "a voltage drive needs `series_resistance_ohm` (Ω, > 0: the winding's \
              resistance plus the source's)"
-        ))
+                .to_string(),
+        )
     })?;
     if resistance <= 0.0 {
-        return Err(input(format!(
-            "{field}: source.drive.series_resistance_ohm = {resistance} must be > 0"
-        )));
+        let e = FieldError::out_of_range("source.drive.series_resistance_ohm", resistance, "> 0 Ω");
+        return Err(e.under(field).into());
     }
     Ok(Drive::Voltage { amplitude_v, series_resistance_ohm: resistance })
 }
@@ -206,9 +225,12 @@ pub(super) fn spec_of(
 ) -> Result<Option<DynamicsSpec>, MagneticsError> {
     let (analysis, waveform) = match (&raw.transient, &raw.harmonic) {
         (Some(_), Some(_)) => {
-            return Err(input(format!(
-                "{file}: [transient] and [harmonic] cannot be solved together; give one of them"
-            )));
+            return Err(input_in(
+                file,
+                "transient",
+                "[transient] and [harmonic] cannot be solved together; give one of them"
+                    .to_string(),
+            ));
         }
         (Some(t), None) => (
             DynamicSolve::Transient(transient_of(t, file)?),
@@ -221,22 +243,27 @@ pub(super) fn spec_of(
         ),
         (None, None) => {
             if let Some(k) = raw.region.iter().position(has_drive) {
-                return Err(input(format!(
-                    "{file}: region[{k}] (physical = {}): a voltage drive (source.drive) needs a \
+                return Err(input_in(
+                    file,
+                    format!("region[{k}].source.drive"),
+                    format!(
+                        "region[{k}] (physical = {}): a voltage drive (source.drive) needs a \
                      [transient] table; a static solve takes current_A",
-                    raw.region[k].physical
-                )));
+                        raw.region[k].physical
+                    ),
+                ));
             }
             // A static solve does not use conductivities; a bad one is still refused.
             for (k, r) in raw.region.iter().enumerate() {
                 if let Some(s) = r.conductivity
                     && !super::raw::CONDUCTIVITY.contains(s)
                 {
-                    return Err(input(format!(
-                        "{file}: region[{k}] (physical = {}): conductivity_S_per_m = {s} must be \
-                         finite and >= 0",
-                        r.physical
-                    )));
+                    let e = FieldError::new(
+                        format!("region[{k}].conductivity_S_per_m"),
+                        format!("region physical = {}", r.physical),
+                    );
+                    let e = e.with_value(s).with_allowed("finite, >= 0 S/m");
+                    return Err(e.in_file(file, None).into());
                 }
             }
             return Ok(None);
@@ -259,19 +286,21 @@ fn conductors_of(
 ) -> Result<Vec<ConductorReport>, MagneticsError> {
     let mut out = Vec::with_capacity(raw.len());
     for (k, r) in raw.iter().enumerate() {
-        let field = format!("{file}: region[{k}] (physical = {})", r.physical);
+        let field = format!("region[{k}]");
+        let located = |e| super::located(e, file, r.physical);
         let coil = is_coil(problem, r.physical);
         let (sigma, source) = match r.conductivity {
             Some(s) if !super::raw::CONDUCTIVITY.contains(s) => {
-                return Err(input(format!(
-                    "{field}: conductivity_S_per_m = {s} must be finite and >= 0"
-                )));
+                let e = FieldError::out_of_range("conductivity_S_per_m", s, "finite, >= 0 S/m");
+                return Err(located(e.under(&field).into()));
             }
             Some(s) if s > 0.0 && coil => {
-                return Err(input(format!(
-                    "{field}: conductivity_S_per_m = {s}: a coil region is a stranded winding \
-                     (no eddy currents); it cannot conduct (remove the key or set 0)"
-                )));
+                let e = FieldError::new(
+                    "conductivity_S_per_m",
+                    "a coil region is a stranded winding (no eddy currents); it cannot conduct \
+                     (remove the key or set 0)",
+                );
+                return Err(located(e.with_value(s).with_allowed("0").under(&field).into()));
             }
             Some(s) => (s, "given in the problem file".to_string()),
             None => library_conductivity(r.material.as_ref(), coil)?,
@@ -320,18 +349,23 @@ fn coils_of(
         else {
             continue;
         };
-        let field = format!("{file}: region[{k}] (physical = {})", r.physical);
+        let field = format!("region[{k}]");
         let drive = match r.source.as_ref().and_then(|s| s.get("drive")) {
-            Some(value) => voltage_drive(value, &field)?,
+            Some(value) => {
+                voltage_drive(value, &field).map_err(|e| super::located(e, file, r.physical))?
+            }
             None => Drive::Current { amplitude_a: current_a },
         };
         coils.push(Coil { tag: r.physical, turns, drive, waveform: waveform.clone() });
     }
     if coils.is_empty() {
-        return Err(input(format!(
-            "{file}: a [transient] or [harmonic] solve needs a coil: a region with source = \
-             {{ turns, current_A }} or {{ turns, drive = {{ voltage_V, series_resistance_ohm }} }}"
-        )));
+        return Err(input_in(
+            file,
+            "region",
+            "a [transient] or [harmonic] solve needs a coil: a region with source = \
+             { turns, current_A } or { turns, drive = { voltage_V, series_resistance_ohm } }"
+                .to_string(),
+        ));
     }
     Ok(coils)
 }
@@ -346,8 +380,8 @@ fn transient_of(raw: &RawTransient, file: &str) -> Result<TransientOptions, Magn
         max_steps: raw.max_steps,
     };
     let time = TimeOptions::from_keys(&keys).map_err(|errors| {
-        let first = &errors.errors()[0];
-        input(format!("{file}: transient.{} {}", first.field, first.message))
+        let first = errors.errors()[0].clone().under("transient");
+        MagneticsError::from(first.in_file(file, None))
     })?;
     Ok(TransientOptions {
         time,
@@ -362,14 +396,14 @@ fn transient_of(raw: &RawTransient, file: &str) -> Result<TransientOptions, Magn
 fn vtu_times_of(times: Option<&[f64]>, t_end: f64, file: &str) -> Result<Vec<f64>, MagneticsError> {
     let Some(times) = times else { return Ok(vec![t_end]) };
     if times.is_empty() {
-        return Err(input(format!("{file}: transient.vtu_times is empty (omit it for t_end)")));
+        return Err(input_in(file, "transient.vtu_times", "empty (omit it for t_end)".into()));
     }
     for (k, &t) in times.iter().enumerate() {
         if !(0.0..=t_end).contains(&t) || (k > 0 && t <= times[k - 1]) {
-            return Err(input(format!(
-                "{file}: transient.vtu_times[{k}] = {t} s: times must increase strictly within \
-                 [0, t_end = {t_end} s]"
-            )));
+            let e = FieldError::new(format!("transient.vtu_times[{k}]"), "times increase strictly")
+                .with_value(format!("{t} s"))
+                .with_allowed(format!("[0, t_end = {t_end} s], after the time before it"));
+            return Err(e.in_file(file, None).into());
         }
     }
     Ok(times.to_vec())
@@ -382,17 +416,17 @@ fn waveform_of(
     file: &str,
 ) -> Result<Waveform, MagneticsError> {
     let Some(w) = raw else { return Ok(Waveform::Step { initial: 0.0 }) };
-    let field = format!("{file}: transient.waveform");
+    let field = "transient.waveform";
     let allowed: &[&str] = match w.kind.as_str() {
         "step" => &[],
         "ramp" => &["rise_s"],
         "sine" => &["frequency_Hz", "offset"],
         "csv" => &["file"],
         other => {
-            return Err(input(format!(
-                "{field}: kind = \"{other}\" is not known; allowed: \"step\", \"ramp\" (rise_s), \
-                 \"sine\" (frequency_Hz, offset), \"csv\" (file)"
-            )));
+            let allowed =
+                "\"step\", \"ramp\" (rise_s), \"sine\" (frequency_Hz, offset), \"csv\" (file)";
+            let e = FieldError::out_of_range("kind", format!("\"{other}\""), allowed);
+            return Err(e.under(field).in_file(file, None).into());
         }
     };
     let given = [
@@ -402,12 +436,16 @@ fn waveform_of(
         ("file", w.file.is_some()),
     ];
     if let Some((key, _)) = given.iter().find(|(key, set)| *set && !allowed.contains(key)) {
-        return Err(input(format!(
-            "{field}: `{key}` is not a parameter of kind = \"{}\" (its parameters: {allowed:?})",
-            w.kind
-        )));
+        return Err(input_in(
+            file,
+            field,
+            format!(
+                "`{key}` is not a parameter of kind = \"{}\" (its parameters: {allowed:?})",
+                w.kind
+            ),
+        ));
     }
-    let missing = |key: &str| input(format!("{field}: kind = \"{}\" needs `{key}`", w.kind));
+    let missing = |key: &str| input_in(file, field, format!("kind = \"{}\" needs `{key}`", w.kind));
     let waveform = match w.kind.as_str() {
         "step" => Waveform::Step { initial: 0.0 },
         "ramp" => Waveform::Ramp { rise_s: w.rise_s.ok_or_else(|| missing("rise_s"))? },
@@ -417,10 +455,21 @@ fn waveform_of(
         },
         _ => {
             let name = w.file.as_deref().ok_or_else(|| missing("file"))?;
-            Waveform::Table { points: read_waveform_csv(&dir.join(name), &field, name)? }
+            // The CSV's errors are located in the CSV; its problem file is said in the message.
+            let points = read_waveform_csv(&dir.join(name), field, name).map_err(|e| match e {
+                MagneticsError::Input(mut e) => {
+                    e.message = format!("{} (the waveform file of {file})", e.message);
+                    MagneticsError::Input(e)
+                }
+                other => other,
+            })?;
+            Waveform::Table { points }
         }
     };
-    waveform.validate().map_err(|e| input(format!("{field}: {e}")))?;
+    waveform.validate().map_err(|e| match e {
+        MagneticsError::Input(e) => MagneticsError::from(e.under(field).in_file(file, None)),
+        other => other,
+    })?;
     Ok(waveform)
 }
 
@@ -431,7 +480,7 @@ fn read_waveform_csv(
     name: &str,
 ) -> Result<Vec<(f64, f64)>, MagneticsError> {
     let text = std::fs::read_to_string(path).map_err(|e| {
-        input(format!("{field}: file = \"{name}\": cannot read {}: {e}", path.display()))
+        input(field, format!("file = \"{name}\": cannot read {}: {e}", path.display()))
     })?;
     let mut points: Vec<(f64, f64)> = Vec::new();
     for (line_no, line) in text.lines().enumerate() {
@@ -444,26 +493,32 @@ fn read_waveform_csv(
             [t, v] => t.parse::<f64>().ok().zip(v.parse::<f64>().ok()),
             _ => None,
         };
-        let at = format!("{field}: {} line {}", path.display(), line_no + 1);
+        let at = (field, path.display().to_string(), line_no + 1);
         match parsed {
             None if points.is_empty() && line_no == 0 => continue, // the header
             None => {
-                return Err(input(format!("{at}: expected `time_s,value` numbers, got `{line}`")));
+                return Err(input_at(
+                    &at,
+                    format!("expected `time_s,value` numbers, got `{line}`"),
+                ));
             }
             Some((t, v)) => {
                 if let Some(&(previous, _)) = points.last()
                     && t <= previous
                 {
-                    return Err(input(format!(
-                        "{at}: time_s must increase strictly (t = {t} s follows t = {previous} s)"
-                    )));
+                    return Err(input_at(
+                        &at,
+                        format!(
+                            "time_s must increase strictly (t = {t} s follows t = {previous} s)"
+                        ),
+                    ));
                 }
                 points.push((t, v));
             }
         }
     }
     if points.is_empty() {
-        return Err(input(format!("{field}: {} has no `time_s,value` rows", path.display())));
+        return Err(input(field, format!("{} has no `time_s,value` rows", path.display())));
     }
     Ok(points)
 }
@@ -484,26 +539,34 @@ fn harmonic_of(
     file: &str,
 ) -> Result<DynamicSolve, MagneticsError> {
     if raw.frequencies_hz.is_empty() {
-        return Err(input(format!("{file}: harmonic.frequencies_Hz is empty")));
+        return Err(input_in(file, "harmonic.frequencies_Hz", "is empty".into()));
     }
     if let Some(f) = raw.frequencies_hz.iter().find(|f| !super::raw::FREQUENCY.contains(**f)) {
-        return Err(input(format!(
-            "{file}: harmonic.frequencies_Hz: {f} Hz must be finite and >= 0"
-        )));
+        let e = FieldError::out_of_range(
+            "harmonic.frequencies_Hz",
+            format!("{f} Hz"),
+            "finite, >= 0 Hz",
+        );
+        return Err(e.in_file(file, None).into());
     }
     if raw.frequencies_hz.len() > MAX_FREQUENCIES {
-        return Err(input(format!(
-            "{file}: harmonic.frequencies_Hz has {} frequencies; at most {MAX_FREQUENCIES}",
-            raw.frequencies_hz.len()
-        )));
+        let count = format!("{} frequencies", raw.frequencies_hz.len());
+        let e = FieldError::out_of_range(
+            "harmonic.frequencies_Hz",
+            count,
+            format!("<= {MAX_FREQUENCIES}"),
+        );
+        return Err(e.in_file(file, None).into());
     }
     let bias_a = raw.bias.as_ref().map(|b| bias_of(b, coils, file)).transpose()?;
     let vtu_frequencies = match &raw.vtu_frequencies_hz {
         None => (0..raw.frequencies_hz.len()).collect(),
         Some(chosen) if chosen.is_empty() => {
-            return Err(input(format!(
-                "{file}: harmonic.vtu_frequencies_Hz is empty (omit it for every frequency)"
-            )));
+            return Err(input_in(
+                file,
+                "harmonic.vtu_frequencies_Hz",
+                "is empty (omit it for every frequency)".to_string(),
+            ));
         }
         Some(chosen) => {
             let index_of = |(k, f): (usize, &f64)| {
@@ -511,10 +574,11 @@ fn harmonic_of(
                     .iter()
                     .position(|g| (g - f).abs() <= 1e-12 * g.abs().max(1.0))
                     .ok_or_else(|| {
-                        input(format!(
-                            "{file}: harmonic.vtu_frequencies_Hz[{k}] = {f} Hz is not one of \
-                         frequencies_Hz"
-                        ))
+                        input_in(
+                            file,
+                            format!("harmonic.vtu_frequencies_Hz[{k}]"),
+                            format!("{f} Hz is not one of frequencies_Hz"),
+                        )
                     })
             };
             chosen.iter().enumerate().map(index_of).collect::<Result<Vec<_>, _>>()?
@@ -538,7 +602,9 @@ fn bias_of(raw: &RawBias, coils: &[u32], file: &str) -> Result<Vec<f64>, Magneti
         if b.is_finite() {
             Ok(b)
         } else {
-            Err(input(format!("{file}: {field} = {b} must be finite")))
+            Err(MagneticsError::from(
+                FieldError::out_of_range(field, b, "finite").in_file(file, None),
+            ))
         }
     };
     match (raw.current_a, &raw.coils) {
@@ -548,35 +614,45 @@ fn bias_of(raw: &RawBias, coils: &[u32], file: &str) -> Result<Vec<f64>, Magneti
             for (k, entry) in list.iter().enumerate() {
                 let field = format!("harmonic.bias.coils[{k}]");
                 let index = coils.iter().position(|&t| t == entry.physical).ok_or_else(|| {
-                    input(format!(
-                        "{file}: {field}.physical = {}: not a coil region (coils: {coils:?})",
-                        entry.physical
-                    ))
+                    input_in(
+                        file,
+                        format!("{field}.physical"),
+                        format!(
+                            "{field}.physical = {}: not a coil region (coils: {coils:?})",
+                            entry.physical
+                        ),
+                    )
                 })?;
                 if list[..k].iter().any(|e| e.physical == entry.physical) {
-                    return Err(input(format!(
-                        "{file}: {field}.physical = {}: listed twice",
-                        entry.physical
-                    )));
+                    return Err(input_in(
+                        file,
+                        format!("{field}.physical"),
+                        format!("{field}.physical = {}: listed twice", entry.physical),
+                    ));
                 }
                 bias[index] = finite(entry.current_a, format!("{field}.current_A"))?;
             }
             Ok(bias)
         }
-        _ => Err(input(format!(
-            "{file}: harmonic.bias takes either current_A (every coil) or coils = [{{ physical, \
-             current_A }}, ...], not both or neither"
-        ))),
+        _ => Err(input_in(
+            file,
+            "harmonic.bias",
+            "harmonic.bias takes either current_A (every coil) or coils = [{ physical, \
+             current_A }, ...], not both or neither"
+                .to_string(),
+        )),
     }
 }
 
 /// An input error of the library gets the problem file's name in front.
 fn named(error: MagneticsError, file: &str) -> MagneticsError {
-    use mrbrake_error::Kind;
+    use mrbrake_fem::workflow::time::TimeError;
     match error {
-        MagneticsError::Input(message) => MagneticsError::Input(format!("{file}: {message}")),
-        MagneticsError::Time(e) if e.kind() == mrbrake_error::ErrorKind::Input => {
-            MagneticsError::Input(format!("{file}: {e}"))
+        MagneticsError::Input(e) => MagneticsError::from(e.in_file(file, None)),
+        // The options' keys are the `[transient]` table's (the first invalid one is named).
+        MagneticsError::Time(TimeError::Options(errors)) if !errors.is_empty() => {
+            let first = errors.errors()[0].clone().under("transient");
+            MagneticsError::from(first.in_file(file, None))
         }
         other => other,
     }

@@ -37,6 +37,7 @@
 //! Magnetodynamics (eddy currents, voltage-driven coils, `[transient]` or `[harmonic]`) adds the
 //! keys described in [`dynamics`].
 
+use mrbrake_error::FieldError;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
@@ -99,10 +100,8 @@ pub struct ProblemFile {
 fn order_of(value: Option<&toml::Value>, file: &str) -> Result<ElementOrder, MagneticsError> {
     let Some(value) = value else { return Ok(ElementOrder::P1) };
     value.as_integer().and_then(ElementOrder::from_degree).ok_or_else(|| {
-        MagneticsError::Input(format!(
-            "{file}: order = {value} is not allowed; allowed: 1 (linear triangles) or 2 \
-             (quadratic, 6-node triangles)"
-        ))
+        let allowed = "1 (linear triangles) or 2 (quadratic, 6-node triangles)";
+        MagneticsError::from(FieldError::out_of_range("order", value, allowed).in_file(file, None))
     })
 }
 
@@ -110,9 +109,9 @@ fn order_of(value: Option<&toml::Value>, file: &str) -> Result<ElementOrder, Mag
 pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path)
-        .map_err(|e| MagneticsError::Input(format!("{file}: cannot read: {e}")))?;
+        .map_err(|e| MagneticsError::in_file(&file, "", format!("cannot read: {e}")))?;
     let raw: RawFile =
-        toml::from_str(&text).map_err(|e| MagneticsError::Input(format!("{file}: {e}")))?;
+        toml::from_str(&text).map_err(|e| MagneticsError::in_file(&file, "", e.to_string()))?;
     let dir = path.parent().unwrap_or(Path::new("."));
     let order = order_of(raw.order.as_ref(), &file)?;
     let mesh_path = dir.join(&raw.mesh);
@@ -132,18 +131,46 @@ pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     Ok(ProblemFile { problem, options, probes, lines, mesh_path, mesh_read_s, dynamics })
 }
 
+/// An input error of a solver query (a probe's `point`) under the problem-file table `table`
+/// (`probe[far]`), located in the problem file.
+fn located_at(error: MagneticsError, table: &str, file: &Path) -> MagneticsError {
+    match error {
+        MagneticsError::Input(e) => {
+            MagneticsError::from(e.under(table).in_file(file.display().to_string(), None))
+        }
+        other => other,
+    }
+}
+
+/// An input error about a key of the `[[region]]` or `[[boundary]]` table with physical tag
+/// `physical`, located in `file` (the tag is said in the message: the table index alone is hard
+/// to find in a long file).
+pub(super) fn located(error: MagneticsError, file: &str, physical: u32) -> MagneticsError {
+    match error {
+        MagneticsError::Input(mut e) => {
+            e.message = match e.message.as_str() {
+                "" => format!("physical = {physical}"),
+                message => format!("physical = {physical}: {message}"),
+            };
+            MagneticsError::from(e.in_file(file, None))
+        }
+        other => other,
+    }
+}
+
 /// The `[[region]]` tables: material and source of each physical surface.
 fn regions_of(raw: &[RawRegion], dir: &Path, file: &str) -> Result<Vec<Region>, MagneticsError> {
     let mut regions = Vec::new();
     for (k, r) in raw.iter().enumerate() {
-        let field = format!("{file}: region[{k}] (physical = {})", r.physical);
+        let field = format!("region[{k}]");
+        let located = |e| located(e, file, r.physical);
         let material = match &r.material {
-            None => return Err(MagneticsError::Input(format!("{field}: missing `material`"))),
-            Some(value) => material_of(value, dir, &field)?,
+            None => return Err(located(MagneticsError::field(&field, "missing `material`"))),
+            Some(value) => material_of(value, dir, &field).map_err(located)?,
         };
         let source = match &r.source {
             None => None,
-            Some(value) => Some(source_of(value, &field)?),
+            Some(value) => Some(source_of(value, &field).map_err(located)?),
         };
         regions.push(Region { tag: r.physical, material, source });
     }
@@ -160,7 +187,8 @@ fn boundaries_of(
 ) -> Result<Vec<Boundary>, MagneticsError> {
     let mut boundaries = Vec::new();
     for (k, b) in raw.iter().enumerate() {
-        let field = format!("{file}: boundary[{k}] (physical = {})", b.physical);
+        let field = format!("boundary[{k}]");
+        let located = |e| located(e, file, b.physical);
         let condition = match b.kind.as_str() {
             "dirichlet" => Some(BoundaryCondition::Dirichlet),
             "open" => {
@@ -168,17 +196,17 @@ fn boundaries_of(
             }
             "neumann" => None,
             other => {
-                return Err(MagneticsError::Input(format!(
-                    "{field}: kind = \"{other}\" is not known; allowed: \"dirichlet\", \"open\", \"neumann\""
-                )));
+                let e = FieldError::out_of_range(
+                    "kind",
+                    format!("\"{other}\""),
+                    "dirichlet, open, neumann",
+                );
+                return Err(located(e.under(&field).into()));
             }
         };
         if !mesh.edge_tags.contains(&b.physical) {
-            return Err(MagneticsError::Input(format!(
-                "{field}: the mesh {} has no curve with physical tag {}",
-                mesh_path.display(),
-                b.physical
-            )));
+            let message = format!("the mesh {} has no curve with this tag", mesh_path.display());
+            return Err(located(MagneticsError::field(format!("{field}.physical"), message)));
         }
         if let Some(condition) = condition {
             boundaries.push(Boundary { tag: b.physical, condition });
@@ -197,25 +225,22 @@ fn options_of(
     let Some(s) = raw else { return Ok(options) };
     if let Some(m) = s.max_iterations {
         if !raw::MAX_ITERATIONS.contains(m as f64) {
-            return Err(MagneticsError::Input(format!(
-                "{file}: solver.max_iterations must be >= 1"
-            )));
+            let e = FieldError::out_of_range("solver.max_iterations", m, ">= 1");
+            return Err(e.in_file(file, None).into());
         }
         options.max_iterations = m;
     }
     if let Some(t) = s.tolerance {
         if !raw::TOLERANCE.contains(t) {
-            return Err(MagneticsError::Input(format!(
-                "{file}: solver.tolerance = {t} must be in (0, 1)"
-            )));
+            let e = FieldError::out_of_range("solver.tolerance", t, "(0, 1)");
+            return Err(e.in_file(file, None).into());
         }
         options.residual_tolerance = t;
     }
     if let Some(q) = s.quadrature_degree {
         if !raw::QUADRATURE_DEGREE.contains(q as f64) {
-            return Err(MagneticsError::Input(format!(
-                "{file}: solver.quadrature_degree = {q} must be 1 to 5"
-            )));
+            let e = FieldError::out_of_range("solver.quadrature_degree", q, "1 to 5");
+            return Err(e.in_file(file, None).into());
         }
         options.quadrature_degree = q;
     }
@@ -236,11 +261,15 @@ fn secant_inductance(
     if coil.flux_linkage_wb.abs() <= f64::MIN_POSITIVE && incremental_h.is_finite() {
         return Ok(incremental_h);
     }
-    Err(MagneticsError::Input(format!(
-        "{file}: region physical = {}: source current_A = {} links {:.4e} Wb from other sources, so \
+    Err(MagneticsError::in_file(
+        file,
+        "region",
+        format!(
+            "region physical = {}: source current_A = {} links {:.4e} Wb from other sources, so \
          its secant inductance λ/I is undefined; give the coil a non-zero current",
-        coil.physical, coil.current_a, coil.flux_linkage_wb
-    )))
+            coil.physical, coil.current_a, coil.flux_linkage_wb
+        ),
+    ))
 }
 
 /// The most intervals of one `[[line]]` (each is a point location and a field evaluation; the
@@ -257,12 +286,10 @@ fn probes_of(
     if let Some((i, l)) =
         raw.line.iter().enumerate().find(|(_, l)| l.samples.is_some_and(|n| n > MAX_LINE_SAMPLES))
     {
-        return Err(MagneticsError::Input(format!(
-            "{file}: line {} ('{}'): samples = {} is too many; allowed 1 to {MAX_LINE_SAMPLES}",
-            i + 1,
-            l.name,
-            l.samples.unwrap_or_default()
-        )));
+        let e = FieldError::new(format!("line[{i}].samples"), format!("line '{}'", l.name))
+            .with_value(l.samples.unwrap_or_default())
+            .with_allowed(format!("1 to {MAX_LINE_SAMPLES}"));
+        return Err(e.in_file(file, None).into());
     }
     let probes = raw
         .probe
@@ -286,18 +313,24 @@ fn check_regions(problem: &Problem, file: &str, mesh_path: &Path) -> Result<(), 
     let tags = problem.mesh.region_tags();
     for region in &problem.regions {
         if tags.binary_search(&region.tag).is_err() {
-            return Err(MagneticsError::Input(format!(
-                "{file}: region physical = {} is not a physical surface of the mesh {} (its surfaces: {tags:?})",
-                region.tag,
-                mesh_path.display()
-            )));
+            return Err(MagneticsError::in_file(
+                file,
+                "region",
+                format!(
+                    "region physical = {} is not a physical surface of the mesh {} (its surfaces: {tags:?})",
+                    region.tag,
+                    mesh_path.display()
+                ),
+            ));
         }
     }
     for tag in tags {
         if problem.region(tag).is_none() {
-            return Err(MagneticsError::Input(format!(
-                "{file}: the mesh's physical surface {tag} has no [[region]] with a material"
-            )));
+            return Err(MagneticsError::in_file(
+                file,
+                "region",
+                format!("the mesh's physical surface {tag} has no [[region]] with a material"),
+            ));
         }
     }
     Ok(())
@@ -307,37 +340,38 @@ fn material_of(value: &toml::Value, dir: &Path, field: &str) -> Result<Magnetic,
     match value {
         toml::Value::String(name) => {
             // The library's error names the material; the region (file and physical tag) is ours.
-            let material = mrbrake_materials::library::get(name).map_err(|e| {
-                MagneticsError::Input(format!("{field}: material = \"{name}\": {e}"))
-            })?;
+            let material = mrbrake_materials::library::get(name)
+                .map_err(|e| MagneticsError::field(field, format!("material = \"{name}\": {e}")))?;
             Ok(material.magnetic.clone())
         }
         toml::Value::Table(table) => {
             if let Some(mu) = table.get("mu_r") {
                 let mu_r = mu.as_float().or_else(|| mu.as_integer().map(|i| i as f64)).ok_or_else(
-                    || MagneticsError::Input(format!("{field}: material.mu_r must be a number")),
+                    || MagneticsError::field(field, "material.mu_r must be a number"),
                 )?;
                 if !(mu_r.is_finite() && mu_r > 0.0) {
-                    return Err(MagneticsError::Input(format!(
-                        "{field}: material.mu_r = {mu_r} must be > 0"
-                    )));
+                    let e = FieldError::out_of_range("material.mu_r", mu_r, "finite, > 0");
+                    return Err(e.under(field).into());
                 }
                 Ok(Magnetic::Linear { mu_r })
             } else if let Some(csv) = table.get("bh_csv") {
                 let csv = csv.as_str().ok_or_else(|| {
-                    MagneticsError::Input(format!("{field}: material.bh_csv must be a path string"))
+                    MagneticsError::field(field, "material.bh_csv must be a path string")
                 })?;
                 let curve = mrbrake_materials::BhCurve::from_csv_file(&dir.join(csv))?;
                 Ok(Magnetic::NonLinear(Arc::new(curve)))
             } else {
-                Err(MagneticsError::Input(format!(
-                    "{field}: material table needs `mu_r` or `bh_csv` (or give a library name such as \"steel-1010\")"
-                )))
+                Err(MagneticsError::field(
+                    field,
+                    "material table needs `mu_r` or `bh_csv` (or give a library name such as \"steel-1010\")".to_string(),
+                ))
             }
         }
-        _ => Err(MagneticsError::Input(format!(
-            "{field}: material must be a library name, {{ mu_r = ... }} or {{ bh_csv = \"file.csv\" }}"
-        ))),
+        _ => Err(MagneticsError::field(
+            field,
+            "material must be a library name, { mu_r = ... } or { bh_csv = \"file.csv\" }"
+                .to_string(),
+        )),
     }
 }
 
@@ -350,22 +384,26 @@ fn number(table: &toml::Table, key: &str, field: &str) -> Result<Option<f64>, Ma
             .filter(|x| x.is_finite())
             .map(Some)
             .ok_or_else(|| {
-                MagneticsError::Input(format!("{field}: source.{key} must be a finite number"))
+                MagneticsError::field(field, format!("source.{key} must be a finite number"))
             }),
     }
 }
 
 fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError> {
     let table = value.as_table().ok_or_else(|| {
-        MagneticsError::Input(format!(
-            "{field}: source must be a table such as {{ turns = 100, current_A = 1.0 }}"
-        ))
+        MagneticsError::field(
+            field,
+            "source must be a table such as { turns = 100, current_A = 1.0 }".to_string(),
+        )
     })?;
     for key in table.keys() {
         if !["turns", "current_A", "current_density_A_per_m2", "drive"].contains(&key.as_str()) {
-            return Err(MagneticsError::Input(format!(
-                "{field}: unknown source field `{key}`; allowed: turns, current_A, current_density_A_per_m2, drive"
-            )));
+            return Err(MagneticsError::field(
+                field,
+                format!(
+                    "unknown source field `{key}`; allowed: turns, current_A, current_density_A_per_m2, drive"
+                ),
+            ));
         }
     }
     if let Some(drive) = table.get("drive") {
@@ -377,15 +415,16 @@ fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError>
     match (number(table, "turns", field)?, number(table, "current_A", field)?) {
         (Some(turns), Some(current_a)) => {
             if turns <= 0.0 {
-                return Err(MagneticsError::Input(format!(
-                    "{field}: source.turns = {turns} must be > 0"
-                )));
+                return Err(FieldError::out_of_range("source.turns", turns, "> 0")
+                    .under(field)
+                    .into());
             }
             Ok(Source::Coil { turns, current_a })
         }
-        _ => Err(MagneticsError::Input(format!(
-            "{field}: source needs both `turns` and `current_A`, or `current_density_A_per_m2`"
-        ))),
+        _ => Err(MagneticsError::field(
+            field,
+            "source needs both `turns` and `current_A`, or `current_density_A_per_m2`".to_string(),
+        )),
     }
 }
 
@@ -395,13 +434,14 @@ fn voltage_source(
     drive: &toml::Value,
     field: &str,
 ) -> Result<Source, MagneticsError> {
-    let turns = number(table, "turns", field)?.filter(|&n| n > 0.0).ok_or_else(|| {
-        MagneticsError::Input(format!("{field}: a voltage-driven source needs `turns` > 0"))
-    })?;
+    let turns = number(table, "turns", field)?
+        .filter(|&n| n > 0.0)
+        .ok_or_else(|| MagneticsError::field(field, "a voltage-driven source needs `turns` > 0"))?;
     if table.contains_key("current_A") || table.contains_key("current_density_A_per_m2") {
-        return Err(MagneticsError::Input(format!(
-            "{field}: source takes `current_A` or `drive`, not both"
-        )));
+        return Err(MagneticsError::field(
+            field,
+            "source takes `current_A` or `drive`, not both".to_string(),
+        ));
     }
     let current_a = match dynamics::voltage_drive(drive, field)? {
         crate::dynamics::Drive::Voltage { amplitude_v, series_resistance_ohm } => {
@@ -499,16 +539,16 @@ fn sample_probes(
 ) -> Result<(Vec<ProbeReport>, Vec<LineReport>), MagneticsError> {
     let mut probes = Vec::new();
     for p in &file.probes {
-        let f = solver.b_at(solution, p.point).map_err(|e| {
-            MagneticsError::Input(format!("{}: probe `{}`: {e}", path.display(), p.name))
-        })?;
+        let f = solver
+            .b_at(solution, p.point)
+            .map_err(|e| located_at(e, &format!("probe[{}]", p.name), path))?;
         probes.push(probe_report(&p.name, &f));
     }
     let mut lines = Vec::new();
     for l in &file.lines {
-        let samples = solver.b_along(solution, &[l.from, l.to], l.samples).map_err(|e| {
-            MagneticsError::Input(format!("{}: line `{}`: {e}", path.display(), l.name))
-        })?;
+        let samples = solver
+            .b_along(solution, &[l.from, l.to], l.samples)
+            .map_err(|e| located_at(e, &format!("line[{}]", l.name), path))?;
         lines.push(LineReport {
             name: l.name.clone(),
             points: samples.iter().map(|f| probe_report(&l.name, f)).collect(),

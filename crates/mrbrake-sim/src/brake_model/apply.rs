@@ -38,10 +38,13 @@ fn torque_lag(unit: &UnitModel) -> Result<Option<TorqueLag>, SimError> {
         ([k], [a, b, c]) if *c > 0.0 => {
             Ok(Some(TorqueLag { gain: k / c, a_s2: a / c, b_s: b / c }))
         }
-        _ => Err(SimError::Input(format!(
-            "brake model unit {}: the haptic simulation runs lags k/(a s² + b s + 1); the model's dynamics {:?}/{:?} is not of that form",
-            unit.unit, tf.numerator, tf.denominator
-        ))),
+        _ => Err(mrbrake_error::FieldError::new(
+            format!("units[{}].dynamics", unit.unit - 1),
+            "the haptic simulation runs lags k/(a s² + b s + 1) only",
+        )
+        .with_value(format!("{:?}/{:?}", tf.numerator, tf.denominator))
+        .with_allowed("k/(a s² + b s + 1)")
+        .into()),
     }
 }
 

@@ -67,6 +67,7 @@ pub mod prototype;
 use std::path::Path;
 
 use mrbrake_control::InverseModel;
+use mrbrake_error::FieldError;
 use mrbrake_sysid::polynomial;
 use mrbrake_sysid::transfer_function::TransferFunction;
 use serde::{Deserialize, Serialize};
@@ -333,9 +334,17 @@ impl BrakeModel {
         match (unit, self.units.as_slice()) {
             (1, [first, ..]) | (2, [first]) => Ok(first),
             (2, [_, second]) => Ok(second),
-            _ => Err(SimError::Input(format!("brake model '{}': no unit {unit}", self.name))),
+            _ => Err(no_unit(&self.name, unit, self.units.len())),
         }
     }
+}
+
+/// The error of a unit number the model `name` (with `count` units) does not have.
+fn no_unit(name: &str, unit: u32, count: usize) -> SimError {
+    FieldError::new("unit", format!("brake model '{name}' ({count} unit(s)) has no such unit"))
+        .with_value(unit)
+        .with_allowed("1 or 2")
+        .into()
 }
 
 impl BrakeModel {
@@ -348,12 +357,12 @@ impl BrakeModel {
         branches: &InverseModel,
         source: &str,
     ) -> Result<(), SimError> {
-        let name = self.name.clone();
+        let (name, count) = (self.name.clone(), self.units.len());
         let target = self
             .units
             .iter_mut()
             .find(|u| u.unit == unit)
-            .ok_or_else(|| SimError::Input(format!("brake model '{name}': no unit {unit}")))?;
+            .ok_or_else(|| no_unit(&name, unit, count))?;
         let trimmed = |branch| {
             let c = branches.branch(branch).coefficients();
             let used = c.iter().rposition(|v| v.abs() > 0.0).map_or(1, |p| p + 1);
@@ -442,18 +451,22 @@ impl Dynamics {
             .map_err(|source| SimError::Model { what: "brake model dynamics", source })?;
         let gain = tf.dc_gain();
         if !(gain.is_finite() && gain > 0.0) {
-            return Err(SimError::Input(format!(
-                "brake model dynamics: DC gain {gain} must be a finite number > 0"
-            )));
+            return Err(FieldError::new("numerator", "the DC gain")
+                .with_value(gain)
+                .with_allowed("finite, > 0")
+                .into());
         }
         let poles = tf
             .poles()
             .map_err(|source| SimError::Model { what: "brake model dynamics", source })?;
         if let Some(p) = poles.iter().find(|p| p.re >= 0.0 || p.re.is_nan()) {
-            return Err(SimError::Input(format!(
-                "brake model dynamics: pole {:.6e}{:+.6e}j rad/s is not in the left half-plane (an unstable brake); the denominator {:?} must have its poles at negative real parts",
-                p.re, p.im, self.denominator
-            )));
+            return Err(FieldError::new(
+                "denominator",
+                format!("an unstable brake (denominator {:?})", self.denominator),
+            )
+            .with_value(format!("a pole at {:.6e}{:+.6e}j rad/s", p.re, p.im))
+            .with_allowed("poles in the left half-plane (negative real parts)")
+            .into());
         }
         Ok(tf)
     }
@@ -536,10 +549,10 @@ impl StaticCurve {
             }
         }
         best.ok_or_else(|| {
-            SimError::Input(
-                "brake model: no non-decreasing polynomial of degree ≤ 7 fits the static curve"
-                    .into(),
-            )
+            SimError::from(FieldError::new(
+                "static_curve",
+                "brake model: no non-decreasing polynomial of degree ≤ 7 fits the static curve",
+            ))
         })
     }
 }

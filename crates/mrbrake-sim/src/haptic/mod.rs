@@ -26,6 +26,8 @@ pub use metrics::{PeakMean, WallMetrics};
 pub use scenario::Scenario;
 pub use simulate::{HapticConfig, HapticRun, Trace, simulate};
 
+use mrbrake_error::FieldError;
+
 use crate::SimError;
 
 /// `Ok` for a finite `value` in `[min, max]`, else an input error naming `context`, the field and the
@@ -40,6 +42,7 @@ pub(crate) fn check_range(
     if value.is_finite() && value >= min && value <= max {
         Ok(())
     } else {
-        Err(SimError::Input(format!("{context}: {field} = {value} is outside [{min}, {max}]")))
+        let e = FieldError::new(field, context).with_value(value);
+        Err(e.with_allowed(format!("[{min}, {max}]")).into())
     }
 }

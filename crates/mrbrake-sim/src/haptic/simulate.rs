@@ -297,8 +297,14 @@ impl<'a> HapticLoop<'a> {
             config.branch_deadband_nm,
         )
         .map_err(|source| SimError::Control { what: "haptic controller", source })?;
-        let estimator = VelocityEstimator::new(period, config.velocity_cutoff_hz)
-            .ok_or_else(|| SimError::Input("haptic: invalid velocity estimator settings".into()))?;
+        let estimator =
+            VelocityEstimator::new(period, config.velocity_cutoff_hz).ok_or_else(|| {
+                let e = mrbrake_error::FieldError::new(
+                    "velocity_cutoff_hz",
+                    "haptic: invalid velocity estimator settings",
+                );
+                SimError::from(e.with_value(config.velocity_cutoff_hz))
+            })?;
         Ok(Self {
             config,
             controller,

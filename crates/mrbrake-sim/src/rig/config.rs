@@ -255,7 +255,9 @@ impl RigConfig {
             .and_then(|()| super::check_run_size(self))
             .and_then(|()| self.hysteresis.check())
             .and_then(|()| self.minor_loops.check(self.brake.current_max_a))
-            .map_err(|(field, msg)| SimError::Input(format!("{source}: {field}: {msg}")))
+            .map_err(|(field, msg)| {
+                SimError::from(mrbrake_error::FieldError::new(field, msg).in_file(source, None))
+            })
     }
 
     /// Brake, motor, sensor and acquisition; `Err((field, message))` for the first bad field.

@@ -21,6 +21,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Plant, RigConfig, RigFile, push_row, rates};
 use crate::SimError;
+use mrbrake_error::FieldError;
 
 /// `[minor_loops]` of the rig configuration.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -141,12 +142,16 @@ pub fn minor_loop_samples(config: &RigConfig) -> Result<(Vec<[f64; 4]>, Vec<Time
     let total_s: f64 = ramps.iter().map(|r| r.duration_s).sum();
     let steps = total_s * config.daq.output_rate_hz;
     if steps.is_nan() || steps > super::MAX_RUN_STEPS {
-        return Err(SimError::Input(format!(
-            "rig configuration: minor_loops: the program would simulate {steps:.3e} output steps \
-             ({total_s:.3e} s), more than the limit of {:.0e}: raise ramp_rate_A_per_s or lower \
-             pause_s, reversal_points or triangle_half_cycles",
-            super::MAX_RUN_STEPS
-        )));
+        return Err(FieldError::new(
+            "minor_loops",
+            format!(
+                "rig configuration: the program is too long ({total_s:.3e} s): raise \
+                 ramp_rate_A_per_s or lower pause_s, reversal_points or triangle_half_cycles"
+            ),
+        )
+        .with_value(format!("{steps:.3e} output steps"))
+        .with_allowed(format!("<= {:.0e} output steps", super::MAX_RUN_STEPS))
+        .into());
     }
     let mut timed = Vec::with_capacity(ramps.len());
     let mut samples = Vec::new();
@@ -219,6 +224,8 @@ mod tests {
         let mut config = RigConfig::default();
         config.minor_loops.pause_s = 1e300;
         let error = minor_loop_samples(&config).unwrap_err();
-        assert!(matches!(error, SimError::Input(ref m) if m.contains("minor_loops")), "{error}");
+        let SimError::Input(field) = &error else { panic!("{error:?}") };
+        assert_eq!(field.field, "minor_loops", "{error}");
+        assert!(field.allowed.as_deref().is_some_and(|a| a.contains("output steps")), "{error}");
     }
 }

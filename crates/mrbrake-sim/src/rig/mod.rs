@@ -400,13 +400,13 @@ pub fn frequency_response_runs(
     let (lo, hi) = (range(Branch::Rising), range(Branch::Falling));
     let f = &config.frequency_response;
     if f.torque_min_nm < lo.0.max(hi.0) || f.torque_max_nm > lo.1.min(hi.1) {
-        return Err(SimError::Input(format!(
-            "frequency_response: the torque demand {}..{} N·m leaves the range both branches reach ({:.4}..{:.4} N·m)",
-            f.torque_min_nm,
-            f.torque_max_nm,
-            lo.0.max(hi.0),
-            lo.1.min(hi.1)
-        )));
+        return Err(mrbrake_error::FieldError::new(
+            "frequency_response.torque_min_Nm",
+            "the torque demand leaves the range both branches reach",
+        )
+        .with_value(format!("{}..{} N·m", f.torque_min_nm, f.torque_max_nm))
+        .with_allowed(format!("{:.4}..{:.4} N·m", lo.0.max(hi.0), lo.1.min(hi.1)))
+        .into());
     }
     test_frequencies(config)
         .into_iter()

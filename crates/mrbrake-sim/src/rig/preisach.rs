@@ -37,6 +37,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::SimError;
+use mrbrake_error::FieldError;
 use mrbrake_sysid::polynomial::Polynomial;
 
 /// Most turning points remembered; beyond this the smallest inner loop is forgotten (its weight is
@@ -144,7 +145,7 @@ impl PreisachHysteresis {
         falling: &[f64],
         current_max_a: f64,
     ) -> Result<Self, SimError> {
-        config.check().map_err(|(f, m)| SimError::Input(format!("{f}: {m}")))?;
+        config.check().map_err(|(f, m)| SimError::from(FieldError::new(f, m)))?;
         let n = config.levels;
         let (up, down) = (Polynomial::new(rising.to_vec()), Polynomial::new(falling.to_vec()));
         let width = loop_widths(&up, &down, n, current_max_a)?;
@@ -174,11 +175,15 @@ impl PreisachHysteresis {
         for k in 1..=samples {
             if reversible(k) < reversible(k - 1) - 1e-9 * scale {
                 let i = self.current_max_a * k as f64 / samples as f64;
-                return Err(SimError::Input(format!(
-                    "hysteresis: with width_mean/width_spread as configured the Preisach relays are too \
-                     narrow for the loop width: the reversible torque decreases near {i:.3} A, so the \
-                     torque would rise when the current turns down; increase hysteresis.width_mean"
-                )));
+                return Err(FieldError::new(
+                    "hysteresis.width_mean",
+                    format!(
+                        "the Preisach relays are too narrow for the loop width: the reversible \
+                         torque decreases near {i:.3} A, so the torque would rise when the current \
+                         turns down; increase it"
+                    ),
+                )
+                .into());
             }
         }
         Ok(())
@@ -282,11 +287,16 @@ fn loop_widths(
             let i = current_max_a * k as f64 / n as f64;
             let w = down.eval(i) - up.eval(i);
             if w < -1e-12 * scale {
-                return Err(SimError::Input(format!(
-                    "hysteresis.model = \"preisach\": the falling branch lies {:.3e} N·m below the rising \
-                     branch at {i:.4} A; a Preisach loop needs brake.falling ≥ brake.rising",
-                    -w
-                )));
+                return Err(FieldError::new(
+                    "brake.falling",
+                    format!(
+                        "hysteresis.model = \"preisach\": the falling branch lies {:.3e} N·m below \
+                         the rising branch at {i:.4} A",
+                        -w
+                    ),
+                )
+                .with_allowed(">= brake.rising at every current")
+                .into());
             }
             Ok(w.max(0.0))
         })
@@ -330,10 +340,14 @@ fn fit_weight(config: &HysteresisConfig, width: &[f64]) -> Result<Vec<f64>, SimE
         })
         .fold(0.0_f64, f64::max);
     if residual > WIDTH_TOLERANCE * peak {
-        return Err(SimError::Input(format!(
-            "hysteresis: no non-negative Preisach weight with this width prior reproduces the loop \
-             width (residual {residual:.3e} N·m); try another width_mean/width_spread"
-        )));
+        return Err(FieldError::new(
+            "hysteresis.width_spread",
+            format!(
+                "no non-negative Preisach weight with this width prior reproduces the loop width \
+                 (residual {residual:.3e} N·m); try another width_mean/width_spread"
+            ),
+        )
+        .into());
     }
     let mut mu = vec![0.0; n * n];
     for i in 0..n {
@@ -392,8 +406,9 @@ fn constrained_profile(
             }
         }
     }
-    let sigma = mrbrake_sysid::operator_fit::nnls_gram(&gram, &rhs, centres)
-        .map_err(|e| SimError::Input(format!("hysteresis: Preisach weight: {e}")))?;
+    let sigma = mrbrake_sysid::operator_fit::nnls_gram(&gram, &rhs, centres).map_err(|e| {
+        SimError::from(FieldError::new("hysteresis", format!("Preisach weight: {e}")))
+    })?;
     Ok(sigma.into_iter().map(|v| v * prior_scale).collect())
 }
 
@@ -459,7 +474,7 @@ mod tests {
     fn a_falling_branch_below_the_rising_one_is_refused() {
         let config = HysteresisConfig { model: HysteresisKind::Preisach, ..Default::default() };
         let e = PreisachHysteresis::new(&config, &FALLING, &RISING, 2.0).unwrap_err().to_string();
-        assert!(e.contains("brake.falling ≥ brake.rising"), "{e}");
+        assert!(e.starts_with("brake.falling: ") && e.contains("allowed: >= brake.rising"), "{e}");
     }
 
     #[test]

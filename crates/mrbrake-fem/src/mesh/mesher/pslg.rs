@@ -103,10 +103,10 @@ impl Pslg {
     /// merged by rounding to a grid of that pitch.
     pub fn add_vertex(&mut self, point: [f64; 2]) -> Result<usize, FemError> {
         if !(point[0].is_finite() && point[1].is_finite()) {
-            return Err(FemError::Input(format!(
-                "mesher: vertex ({}, {}) is not finite",
-                point[0], point[1]
-            )));
+            return Err(FemError::field(
+                "vertices",
+                format!("mesher: vertex ({}, {}) is not finite", point[0], point[1]),
+            ));
         }
         let key =
             ((point[0] / self.snap_m).round() as i64, (point[1] / self.snap_m).round() as i64);
@@ -128,10 +128,13 @@ impl Pslg {
         let ia = self.add_vertex(a)?;
         let ib = self.add_vertex(b)?;
         if ia == ib {
-            return Err(FemError::Input(format!(
-                "mesher: segment from ({}, {}) to ({}, {}) has zero length",
-                a[0], a[1], b[0], b[1]
-            )));
+            return Err(FemError::field(
+                "segments",
+                format!(
+                    "mesher: segment from ({}, {}) to ({}, {}) has zero length",
+                    a[0], a[1], b[0], b[1]
+                ),
+            ));
         }
         self.segments.push(Segment { a: ia, b: ib, tag });
         Ok(())
@@ -140,10 +143,10 @@ impl Pslg {
     /// Adds a closed polygon (its edges become untagged constraints).
     pub fn add_polygon(&mut self, points: &[[f64; 2]]) -> Result<(), FemError> {
         if points.len() < 3 {
-            return Err(FemError::Input(format!(
-                "mesher: a polygon needs at least 3 points, got {}",
-                points.len()
-            )));
+            return Err(FemError::field(
+                "polygon",
+                format!("mesher: a polygon needs at least 3 points, got {}", points.len()),
+            ));
         }
         for i in 0..points.len() {
             self.add_segment(points[i], points[(i + 1) % points.len()], None)?;
@@ -208,10 +211,13 @@ impl Pslg {
                         (Some(t0), Some(t1)) if t0 != t1 => {
                             let p = self.vertices[key.0];
                             let q = self.vertices[key.1];
-                            return Err(FemError::Input(format!(
-                                "mesher: the segment ({}, {})-({}, {}) is given two different tags, {t0} and {t1}",
-                                p[0], p[1], q[0], q[1]
-                            )));
+                            return Err(FemError::field(
+                                "segments",
+                                format!(
+                                    "mesher: the segment ({}, {})-({}, {}) is given two different tags, {t0} and {t1}",
+                                    p[0], p[1], q[0], q[1]
+                                ),
+                            ));
                         }
                         _ => {}
                     },
@@ -256,11 +262,14 @@ fn check_no_crossings(
             }
             if segments_intersect(vertices[si.a], vertices[si.b], vertices[sj.a], vertices[sj.b]) {
                 let (p, q, u, v) = (vertices[si.a], vertices[si.b], vertices[sj.a], vertices[sj.b]);
-                return Err(FemError::Input(format!(
-                    "mesher: segments ({}, {})-({}, {}) and ({}, {})-({}, {}) cross; split them at their \
+                return Err(FemError::field(
+                    "segments",
+                    format!(
+                        "mesher: segments ({}, {})-({}, {}) and ({}, {})-({}, {}) cross; split them at their \
                      intersection or move one of them",
-                    p[0], p[1], q[0], q[1], u[0], u[1], v[0], v[1]
-                )));
+                        p[0], p[1], q[0], q[1], u[0], u[1], v[0], v[1]
+                    ),
+                ));
             }
         }
     }

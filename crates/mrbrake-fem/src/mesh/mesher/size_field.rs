@@ -16,6 +16,7 @@
 use std::collections::BTreeMap;
 
 use crate::FemError;
+use mrbrake_error::FieldError;
 
 /// Size field parameters, in metres.
 #[derive(Debug, Clone, PartialEq)]
@@ -44,23 +45,19 @@ impl SizeField {
     pub fn validate(&self) -> Result<(), FemError> {
         let positive = |x: f64| x.is_finite() && x > 0.0;
         if !positive(self.max_edge_m) {
-            return Err(FemError::Input(format!(
-                "mesher: size field max_edge_m = {} must be a finite length > 0",
-                self.max_edge_m
-            )));
+            let e = FieldError::out_of_range("max_edge_m", self.max_edge_m, "finite, > 0 m");
+            return Err(e.into());
         }
         for (tag, h) in &self.region_edge_m {
             if !positive(*h) {
-                return Err(FemError::Input(format!(
-                    "mesher: size field target of region {tag} = {h} m must be a finite length > 0"
-                )));
+                let e =
+                    FieldError::out_of_range(format!("region_edge_m[{tag}]"), h, "finite, > 0 m");
+                return Err(e.into());
             }
         }
         if !(self.growth.is_finite() && self.growth > 0.0) {
-            return Err(FemError::Input(format!(
-                "mesher: size field growth = {} must be finite and > 0 (typ. 0.1 to 1)",
-                self.growth
-            )));
+            let e = FieldError::out_of_range("growth", self.growth, "finite, > 0 (typ. 0.1 to 1)");
+            return Err(e.into());
         }
         Ok(())
     }

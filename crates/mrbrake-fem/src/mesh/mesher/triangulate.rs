@@ -26,6 +26,7 @@ use super::pslg::{NormalizedPslg, Pslg, RegionSeed};
 use super::size_field::{FineRegion, ResolvedSizeField, SizeField};
 use crate::FemError;
 use crate::mesh::Mesh;
+use mrbrake_error::FieldError;
 
 type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
 
@@ -57,8 +58,9 @@ pub fn triangulate(pslg: &Pslg, size: &SizeField, options: &MeshOptions) -> Resu
     check_angle(options.min_angle_deg)?;
     let graph = pslg.normalized()?;
     if graph.seeds.is_empty() && options.default_tag.is_none() {
-        return Err(FemError::Input(
-            "mesher: no region seed given (every region needs one)".into(),
+        return Err(FemError::field(
+            "seeds",
+            "mesher: no region seed given (every region needs one)",
         ));
     }
 
@@ -81,9 +83,7 @@ fn check_angle(min_angle_deg: f64) -> Result<(), FemError> {
     if min_angle_deg.is_finite() && (0.0..=34.0).contains(&min_angle_deg) {
         Ok(())
     } else {
-        Err(FemError::Input(format!(
-            "mesher: min_angle_deg = {min_angle_deg} must be in [0, 34] degrees"
-        )))
+        Err(FieldError::out_of_range("min_angle_deg", min_angle_deg, "[0, 34] degrees").into())
     }
 }
 
@@ -188,17 +188,26 @@ fn load(vertices: &[[f64; 2]], edges: &[[usize; 2]]) -> Result<Cdt, FemError> {
     let mut conflicts = Vec::new();
     let cdt =
         Cdt::try_bulk_load_cdt(points, edges.to_vec(), |e| conflicts.push(e)).map_err(|e| {
-            FemError::Input(format!("mesher: the triangulation rejected the input: {e:?}"))
+            FemError::field(
+                "segments",
+                format!("mesher: the triangulation rejected the input: {e:?}"),
+            )
         })?;
     if cdt.num_vertices() != vertices.len() {
-        return Err(FemError::Input("mesher: duplicate vertices survived normalisation".into()));
+        return Err(FemError::field(
+            "vertices",
+            "mesher: duplicate vertices survived normalisation",
+        ));
     }
     if let Some([a, b]) = conflicts.first() {
         let (p, q) = (vertices[*a], vertices[*b]);
-        return Err(FemError::Input(format!(
-            "mesher: segment ({}, {})-({}, {}) intersects another segment",
-            p[0], p[1], q[0], q[1]
-        )));
+        return Err(FemError::field(
+            "segments",
+            format!(
+                "mesher: segment ({}, {})-({}, {}) intersects another segment",
+                p[0], p[1], q[0], q[1]
+            ),
+        ));
     }
     Ok(cdt)
 }
@@ -261,8 +270,9 @@ fn flood_outside(cdt: &Cdt, tags: &mut [FaceRegion]) -> Result<(), FemError> {
         .collect();
     for f in hull_starts {
         if tags[f.index()] == FaceRegion::Unset {
-            flood(cdt, tags, f, FaceRegion::Outside)
-                .map_err(|_| FemError::Input("mesher: the outer boundary is not closed".into()))?;
+            flood(cdt, tags, f, FaceRegion::Outside).map_err(|_| {
+                FemError::field("segments", "mesher: the outer boundary is not closed")
+            })?;
         }
     }
     Ok(())
@@ -292,30 +302,39 @@ fn seed_face(cdt: &Cdt, point: [f64; 2]) -> Option<FixedFaceHandle<InnerTag>> {
 /// already did).
 fn flood_seed(cdt: &Cdt, tags: &mut [FaceRegion], seed: &RegionSeed) -> Result<(), FemError> {
     let Some(face) = seed_face(cdt, seed.point) else {
-        return Err(FemError::Input(format!(
-            "mesher: seed of region {} at ({}, {}) is not strictly inside a region (outside the outer \
+        return Err(FemError::field(
+            "seeds",
+            format!(
+                "mesher: seed of region {} at ({}, {}) is not strictly inside a region (outside the outer \
              boundary or on a segment)",
-            seed.tag, seed.point[0], seed.point[1]
-        )));
+                seed.tag, seed.point[0], seed.point[1]
+            ),
+        ));
     };
     match tags[face.index()] {
         FaceRegion::Unset => {}
         FaceRegion::Tag(t) if t == seed.tag => return Ok(()),
         FaceRegion::Tag(t) => {
-            return Err(FemError::Input(format!(
-                "mesher: seeds of regions {t} and {} at ({}, {}) lie in the same enclosed area",
-                seed.tag, seed.point[0], seed.point[1]
-            )));
+            return Err(FemError::field(
+                "seeds",
+                format!(
+                    "mesher: seeds of regions {t} and {} at ({}, {}) lie in the same enclosed area",
+                    seed.tag, seed.point[0], seed.point[1]
+                ),
+            ));
         }
         FaceRegion::Outside => {
-            return Err(FemError::Input(format!(
-                "mesher: seed of region {} at ({}, {}) lies outside the closed outer boundary",
-                seed.tag, seed.point[0], seed.point[1]
-            )));
+            return Err(FemError::field(
+                "seeds",
+                format!(
+                    "mesher: seed of region {} at ({}, {}) lies outside the closed outer boundary",
+                    seed.tag, seed.point[0], seed.point[1]
+                ),
+            ));
         }
     }
     flood(cdt, tags, face, FaceRegion::Tag(seed.tag)).map_err(|c| {
-        FemError::Input(format!(
+        FemError::field("seeds", format!(
             "mesher: the region of seed {} at ({}, {}) is open: it reaches another region near ({:.6}, {:.6})",
             seed.tag, seed.point[0], seed.point[1], c[0], c[1]
         ))
@@ -336,17 +355,20 @@ fn flood_unseeded(
         }
         match default_tag {
             Some(t) => flood(cdt, tags, f, FaceRegion::Tag(t)).map_err(|c| {
-                FemError::Input(format!(
-                    "mesher: an unseeded area near ({:.6}, {:.6}) is open",
-                    c[0], c[1]
-                ))
+                FemError::field(
+                    "segments",
+                    format!("mesher: an unseeded area near ({:.6}, {:.6}) is open", c[0], c[1]),
+                )
             })?,
             None => {
                 let c = cdt.face(f).center();
-                return Err(FemError::Input(format!(
-                    "mesher: the enclosed area around ({:.6}, {:.6}) has no region seed",
-                    c.x, c.y
-                )));
+                return Err(FemError::field(
+                    "seeds",
+                    format!(
+                        "mesher: the enclosed area around ({:.6}, {:.6}) has no region seed",
+                        c.x, c.y
+                    ),
+                ));
             }
         }
     }
@@ -464,12 +486,15 @@ fn subdivide_segments(
 /// The vertex budget's error: an input error (the geometry and size field ask for a mesh larger
 /// than allowed), naming the budget and the stage that reached it.
 fn over_budget(max_vertices: usize, stage: &str) -> FemError {
-    FemError::Input(format!(
-        "mesher: the mesh would exceed its budget of {max_vertices} vertices (~{} triangles) while \
+    FemError::field(
+        "size_field",
+        format!(
+            "mesher: the mesh would exceed its budget of {max_vertices} vertices (~{} triangles) while \
          {stage}: a feature is too thin for the size field, or the size field too fine; coarsen \
          it, thicken the feature, or raise the budget",
-        2 * max_vertices
-    ))
+            2 * max_vertices
+        ),
+    )
 }
 
 fn extract(
