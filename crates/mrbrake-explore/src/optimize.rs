@@ -25,7 +25,6 @@ use mrbrake_store::{Record, Status, Store};
 use crate::design::DesignSpace;
 use crate::problem::{Algorithm, Goal, OptimizationProblem};
 use crate::runner::{Progress, RunSummary, Runner};
-use crate::variable::Quantity;
 use crate::{Design, ExploreError};
 
 /// One evaluated design of an optimisation.
@@ -190,19 +189,20 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             .map_err(|e| ExploreError::Internal(format!("cannot read the base spec: {e}")))?;
         let mut point = Vec::with_capacity(self.bounds.len());
         for (variable, bounds) in self.space.variables().iter().zip(&self.bounds) {
-            let value = variable
-                .field
-                .path
-                .split('.')
-                .try_fold(&table, |t, part| t.get(part))
-                .and_then(serde_json::Value::as_f64)
-                .ok_or_else(|| {
-                    ExploreError::Input(format!(
-                        "algorithm.start = \"base\": the base spec has no value for {} (e.g. turns \
-                         computed from the window); give it in the spec or start at the centre",
-                        variable.field.path
-                    ))
-                })?;
+            let found = variable.path().split('.').try_fold(&table, |t, part| t.get(part));
+            // A material's value is its level's index (a material not among them: none).
+            let value = match found {
+                Some(serde_json::Value::String(name)) => variable.parse_value(name).ok(),
+                other => other.and_then(serde_json::Value::as_f64),
+            };
+            let value = value.ok_or_else(|| {
+                ExploreError::Input(format!(
+                    "algorithm.start = \"base\": the base spec has no value for {} among the \
+                     variable's (e.g. turns computed from the window, or a material not listed); \
+                     give it in the spec or start at the centre",
+                    variable.path()
+                ))
+            })?;
             point.push(bounds.repair(value));
         }
         Ok(point)
@@ -338,7 +338,7 @@ fn space_and_bounds(
         ))
     })?;
     let names: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
-    let space = DesignSpace::new(
+    let mut space = DesignSpace::new(
         &spec_text,
         &problem.spec_path.display().to_string(),
         &problem.overrides,
@@ -354,15 +354,13 @@ fn space_and_bounds(
         }
         other => other,
     })?;
-    let bounds: Vec<Bounds> = space
-        .variables()
-        .iter()
-        .zip(&problem.variables)
-        .map(|(v, b)| match v.field.quantity {
-            Quantity::Integer => Bounds::integer(b.min, b.max),
-            _ => Bounds::continuous(b.min, b.max),
-        })
-        .collect();
+    for (index, b) in problem.variables.iter().enumerate() {
+        if !b.levels.is_empty() {
+            space.set_levels(index, &b.levels)?;
+        }
+    }
+    let bounds: Vec<Bounds> =
+        space.variables().iter().zip(&problem.variables).map(|(v, b)| v.bounds(b.min, b.max)).collect();
     Ok((space, bounds))
 }
 
