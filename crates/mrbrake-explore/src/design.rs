@@ -107,7 +107,10 @@ impl DesignSpace {
     /// [`Variable::with_levels`]); its values are then the levels' indices.
     pub fn set_levels(&mut self, index: usize, levels: &[String]) -> Result<(), ExploreError> {
         let variable = self.variables.get(index).ok_or_else(|| {
-            ExploreError::Internal(format!("no variable {index} in a space of {}", self.variables.len()))
+            ExploreError::Internal(format!(
+                "no variable {index} in a space of {}",
+                self.variables.len()
+            ))
         })?;
         self.variables[index] = variable.clone().with_levels(levels)?;
         Ok(())

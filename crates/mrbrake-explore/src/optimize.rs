@@ -359,8 +359,12 @@ fn space_and_bounds(
             space.set_levels(index, &b.levels)?;
         }
     }
-    let bounds: Vec<Bounds> =
-        space.variables().iter().zip(&problem.variables).map(|(v, b)| v.bounds(b.min, b.max)).collect();
+    let bounds: Vec<Bounds> = space
+        .variables()
+        .iter()
+        .zip(&problem.variables)
+        .map(|(v, b)| v.bounds(b.min, b.max))
+        .collect();
     Ok((space, bounds))
 }
 

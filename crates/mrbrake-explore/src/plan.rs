@@ -70,10 +70,16 @@ impl VarySpec {
             |why: &str| ExploreError::Input(format!("--vary {}={text}: {why}", variable.name));
         if variable.is_categorical() {
             if text.contains("..") {
-                return Err(bad("a material takes a list of names (e.g. aluminium,pom), not a range"));
+                return Err(bad(
+                    "a material takes a list of names (e.g. aluminium,pom), not a range",
+                ));
             }
-            let names: Vec<String> =
-                text.split(',').map(str::trim).filter(|s| !s.is_empty()).map(String::from).collect();
+            let names: Vec<String> = text
+                .split(',')
+                .map(str::trim)
+                .filter(|s| !s.is_empty())
+                .map(String::from)
+                .collect();
             let levels = variable.clone().with_levels(&names)?.levels().to_vec();
             return Ok(Self { name: variable.name.clone(), values: Values::Levels(levels) });
         }

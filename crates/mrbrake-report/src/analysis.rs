@@ -119,7 +119,8 @@ fn coil_and_mechanics_text(out: &mut String, a: &Analysis) {
         c.current_density_a_per_mm2,
         c.power_w
     );
-    let _ = writeln!(out, "      copper fill factor {:.3} (copper area / window area)", c.fill_factor);
+    let _ =
+        writeln!(out, "      copper fill factor {:.3} (copper area / window area)", c.fill_factor);
     let _ = writeln!(
         out,
         "      L = {:.2} mH (secant), {:.2} mH (incremental) at max current; L/R = {:.2} ms",

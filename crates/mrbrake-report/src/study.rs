@@ -158,7 +158,7 @@ impl SweepReport<'_> {
         for r in self.records {
             let mut line = String::new();
             for (v, (_, value)) in self.variables.iter().zip(&r.variables) {
-                let _ = write!(line, "{:>12} ", v.display_value(*value));
+                let _ = write!(line, "{:>12} ", v.display(value));
             }
             let _ = write!(line, "{:>11} ", r.status.as_str());
             if r.status == Status::Ok {

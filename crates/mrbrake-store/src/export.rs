@@ -85,9 +85,11 @@ pub fn to_csv(records: &[Record]) -> Result<Vec<u8>, StoreError> {
             record.status.as_str().to_owned(),
             record.reason.clone().unwrap_or_default(),
         ];
-        row.extend(variable_names.iter().map(|name| {
-            record.variable_value(name).map(ToString::to_string).unwrap_or_default()
-        }));
+        row.extend(
+            variable_names.iter().map(|name| {
+                record.variable_value(name).map(ToString::to_string).unwrap_or_default()
+            }),
+        );
         row.extend(metric_names.iter().map(|name| cell(&record.metrics, name)));
         row.extend(setting_names.iter().map(|name| setting_cell(record, name)));
         row.push(format!("{}", record.eval_seconds));

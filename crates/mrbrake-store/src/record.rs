@@ -175,7 +175,9 @@ impl Record {
         }
         let variables = self.variables.iter().map(|(name, _)| name);
         let metrics = self.metrics.iter().map(|(name, _)| name);
-        for (list, names) in [("variable", variables.collect::<Vec<_>>()), ("metric", metrics.collect())] {
+        for (list, names) in
+            [("variable", variables.collect::<Vec<_>>()), ("metric", metrics.collect())]
+        {
             let mut seen = HashSet::new();
             for name in names {
                 if name.is_empty() {

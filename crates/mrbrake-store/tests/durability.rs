@@ -37,7 +37,10 @@ fn expected_record(index: u32) -> Record {
         key: format!("{:064x}", u64::from(index).wrapping_mul(0x9e37_79b9_7f4a_7c15)),
         status,
         reason: (!ok).then(|| format!("design {index}: wall thinner than 0.5 mm")),
-        variables: vec![("gap_m".into(), (1e-4 * (1.0 + x)).into()), ("turns".into(), (50.0 + x).into())],
+        variables: vec![
+            ("gap_m".into(), (1e-4 * (1.0 + x)).into()),
+            ("turns".into(), (50.0 + x).into()),
+        ],
         metrics: if ok {
             vec![
                 ("torque_on_nm".into(), 1.0 / (3.0 + x)),

@@ -323,7 +323,8 @@ pub fn copper_fill_factor(
     window_width_m: f64,
     window_height_m: f64,
 ) -> f64 {
-    f64::from(turns) * PI * wire_diameter_m * wire_diameter_m / 4.0
+    f64::from(turns) * PI * wire_diameter_m * wire_diameter_m
+        / 4.0
         / (window_width_m * window_height_m)
 }
 

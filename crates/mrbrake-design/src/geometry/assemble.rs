@@ -173,7 +173,8 @@ fn add_air(spec: &BrakeSpec, b: &mut Builder, device: Rect) -> Rect {
 fn fill_gaps_with_filler(spec: &BrakeSpec, b: &mut Builder, device: Rect, units: usize) {
     let wall = spec.coil.bobbin_wall.m();
     for (unit, rects) in filler_rects(b, device, units).into_iter().enumerate() {
-        let windows: Vec<Rect> = b.coils.iter().filter(|c| c.unit == unit).map(|c| c.rect).collect();
+        let windows: Vec<Rect> =
+            b.coils.iter().filter(|c| c.unit == unit).map(|c| c.rect).collect();
         let (bobbin, filler): (Vec<Rect>, Vec<Rect>) =
             rects.into_iter().partition(|r| windows.iter().any(|w| in_bobbin(r, w, wall)));
         let parts = [

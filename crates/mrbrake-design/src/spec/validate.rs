@@ -7,8 +7,8 @@ use mrbrake_materials::MaterialKind;
 
 use super::{
     AWG_BOUNDS, BrakeSpec, CoilPlacement, Configuration, ConfigurationKind, Disc, Drum,
-    LENGTH_BOUNDS, Length, MATERIAL_FIELDS, MAX_CURRENT_BOUNDS, RATED_CURRENT_BOUNDS, TURNS_BOUNDS, Warning,
-    WorkingSurfaces, fmt_mm, turns_in_window,
+    LENGTH_BOUNDS, Length, MATERIAL_FIELDS, MAX_CURRENT_BOUNDS, RATED_CURRENT_BOUNDS, TURNS_BOUNDS,
+    Warning, WorkingSurfaces, fmt_mm, turns_in_window,
 };
 use crate::DesignError;
 use crate::geometry::{self, BrakeGeometry};
