@@ -189,11 +189,13 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             .map_err(|e| ExploreError::Internal(format!("cannot read the base spec: {e}")))?;
         let mut point = Vec::with_capacity(self.bounds.len());
         for (variable, bounds) in self.space.variables().iter().zip(&self.bounds) {
-            let found = variable.path().split('.').try_fold(&table, |t, part| t.get(part));
             // A material's value is its level's index (a material not among them: none).
-            let value = match found {
-                Some(serde_json::Value::String(name)) => variable.parse_value(name).ok(),
-                other => other.and_then(serde_json::Value::as_f64),
+            let value = if variable.is_categorical() {
+                let material = spec.materials.in_use(variable.path());
+                material.and_then(|name| variable.parse_value(name).ok())
+            } else {
+                let found = variable.path().split('.').try_fold(&table, |t, part| t.get(part));
+                found.and_then(serde_json::Value::as_f64)
             };
             let value = value.ok_or_else(|| {
                 ExploreError::Input(format!(

@@ -392,6 +392,7 @@ impl OptimizationProblem {
             format!("{origin}: variable '{name}' is fixed at {value}: set, not varied")
         }));
         let algorithm = algorithm_of(&raw.algorithm, objectives.len()).map_err(bad)?;
+        check_categorical_search(&variables, &algorithm).map_err(bad)?;
         let mut overrides = overrides_of(&raw.set);
         overrides.extend(fixed);
         Ok(Self {
@@ -561,6 +562,14 @@ fn variable_of(v: &RawVariable, variable: &Variable) -> Result<Read, String> {
         _ if variable.is_categorical() => {
             return Err(": a material takes values = [\"…\", …] (its materials) or value".into());
         }
+        _ if v.values.is_some() => {
+            return Err(format!(
+                ".values: a list of values is for the material of a part ({}); '{}' is a number: \
+                 give min and max, or value (a fixed variable)",
+                material_paths(),
+                variable.path()
+            ));
+        }
         _ => return Err(": give min and max, or value (a fixed variable)".into()),
     }
     if let Some(levels) = &v.values {
@@ -591,6 +600,11 @@ fn variable_of(v: &RawVariable, variable: &Variable) -> Result<Read, String> {
         return Ok(Read::Fixed(text_of(v.min.as_ref().expect("read above"))));
     }
     Ok(Read::Varied(VariableBounds { name: v.name.clone(), min, max, levels: Vec::new() }))
+}
+
+/// The material fields a categorical variable may name, for messages.
+fn material_paths() -> String {
+    mrbrake_design::spec::MATERIAL_FIELDS.iter().map(|f| f.path).collect::<Vec<_>>().join(", ")
 }
 
 /// Checks a fixed value: a material that suits the part, or a number the field reads.
@@ -742,6 +756,24 @@ fn algorithm_of(a: &RawAlgorithm, objectives: usize) -> Result<Algorithm, String
         other => {
             Err(format!("algorithm.kind: '{other}' is not allowed; use nsga2 or pattern-search"))
         }
+    }
+}
+
+/// Pattern search polls a variable in ordered steps, which a material's unordered levels do not
+/// have: a problem that varies a material needs NSGA-II (random resetting of the level).
+fn check_categorical_search(
+    variables: &[VariableBounds],
+    algorithm: &Algorithm,
+) -> Result<(), String> {
+    let material = variables.iter().find(|v| !v.levels.is_empty());
+    match (material, algorithm) {
+        (Some(v), Algorithm::PatternSearch { .. }) => Err(format!(
+            "algorithm.kind = pattern-search steps each variable along an order, and the \
+             materials of '{}' ({}) have none; use nsga2, or fix the material (value = \"…\")",
+            v.name,
+            v.levels.join(", ")
+        )),
+        _ => Ok(()),
     }
 }
 

@@ -133,7 +133,7 @@ fn add_second_unit(spec: &BrakeSpec, spacer: &Spacer, b: &mut Builder, unit_leng
     let m = &spec.materials;
     b.add(
         "spacer".into(),
-        m.spacer.as_deref().unwrap_or(&m.non_magnetic),
+        m.spacer(),
         PartKind::Spacer,
         vec![Rect::new(r_s, r_out, unit_length, unit_length + spacer)],
         None,

@@ -423,6 +423,22 @@ impl Materials {
         self.bobbin.as_deref().unwrap_or(&self.non_magnetic)
     }
 
+    /// The spacer's material: `spacer`, or the `non_magnetic` material when it is not given.
+    pub fn spacer(&self) -> &str {
+        self.spacer.as_deref().unwrap_or(&self.non_magnetic)
+    }
+
+    /// The material the part at a field of [`MATERIAL_FIELDS`] is made of: as [`Self::get`], with
+    /// the defaults of the optional fields (the bobbin and the spacer are the non-magnetic
+    /// material unless given).
+    pub fn in_use(&self, path: &str) -> Option<&str> {
+        match path {
+            "materials.bobbin" => Some(self.bobbin()),
+            "materials.spacer" => Some(self.spacer()),
+            other => self.get(other),
+        }
+    }
+
     /// The material named at a field of [`MATERIAL_FIELDS`] (`materials.bobbin`, …), if the spec
     /// gives one.
     pub fn get(&self, path: &str) -> Option<&str> {

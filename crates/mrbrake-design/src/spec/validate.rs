@@ -150,7 +150,7 @@ fn check_materials(spec: &BrakeSpec, p: &mut Problems) {
     for (field, name) in [
         ("materials.non_magnetic", m.non_magnetic.as_str()),
         ("materials.bobbin", m.bobbin()),
-        ("materials.spacer", m.spacer.as_deref().unwrap_or(&m.non_magnetic)),
+        ("materials.spacer", m.spacer()),
     ] {
         // A bobbin left to the default is the non-magnetic material, warned about there.
         if field == "materials.bobbin" && m.bobbin.is_none() {
