@@ -234,12 +234,12 @@ const CATALOGUE: &[Entry] = &[
         "POM, acetal homopolymer (e.g. Delrin): a bobbin polymer, electrical insulator (mu_r = 1)",
         Insulation {
             volume_resistivity_ohm_m: 1e11,
-            source: "volume resistivity >= 1e13 Ohm cm (IEC 60093) in a POM technical data sheet \
-             (POM-C, ASTM/ISO typical values); Margolis, Engineering Plastics Handbook (McGraw-Hill \
-             2006), Table 5.5, gives 1e15 Ohm cm for the homopolymer",
+            source: "volume resistivity >= 1e13 Ohm cm (IEC 60093) in a POM-C technical data \
+             sheet (typical values); Margolis, Engineering Plastics Handbook (McGraw-Hill 2006), \
+             Table 5.5, lists 1e15 Ohm cm and more for acetal homopolymer and copolymer",
         },
         1420.0,
-        "R. J. Crawford, Plastics Engineering, 3rd ed. (Butterworth-Heinemann 1998), Table 1.8, \
+        "R. J. Crawford, Plastics Engineering, 3rd ed. (Butterworth-Heinemann 1998), Table 1.8 p. 31, \
          acetal homopolymer (1420 kg/m3; Margolis Table 5.5: specific gravity 1.41)",
     ),
     Entry::linear(
