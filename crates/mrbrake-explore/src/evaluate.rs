@@ -11,7 +11,7 @@
 
 use mrbrake_design::analysis::{Analysis, AnalysisOptions, AnalysisRequest, ElementOrder};
 use mrbrake_design::mesh_build::MeshLevel;
-use mrbrake_design::spec::{BrakeSpec, WorkingSurfaces, fill_factor_warning};
+use mrbrake_design::spec::{BrakeSpec, WorkingSurfaces};
 use mrbrake_error::Kind as _;
 use mrbrake_store::Status;
 use serde_json::{Value, json};
@@ -159,7 +159,7 @@ pub const METRICS: &[MetricInfo] = &[
     metric(
         "fill_factor",
         "1",
-        "copper area / window area; above 0.75 (orthocyclic practice) the record warns",
+        "copper area / window area; above 0.75 (orthocyclic practice) the report warns",
     ),
     metric("current_density_A_per_mm2", "A/mm²", "thesis current density (4.1) at max current"),
     metric("wire_rated_current_A", "A", "the wire's current rating (given or thesis Table 4.6)"),
@@ -233,8 +233,7 @@ pub(crate) fn upgrade_metric_list(metrics: &mut [(String, f64)]) {
 pub struct Outcome {
     /// ok, infeasible (the design breaks a rule) or failed (numerical failure).
     pub status: Status,
-    /// Why it is infeasible or failed; for an ok design, the warning of a winding above the
-    /// manufacturable fill factor ([`mrbrake_design::spec::fill_factor_warning`]), if any.
+    /// Why it is infeasible or failed.
     pub reason: Option<String>,
     /// The metrics (empty unless ok), in [`METRICS`] order.
     pub metrics: Vec<(String, f64)>,
@@ -271,9 +270,7 @@ fn evaluate_unguarded(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcom
                 let reason = format!("the analysis gave {name} = {value}: not a result");
                 return Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] };
             }
-            // An ok design keeps the warning of a winding no one can wind in its reason.
-            let reason = fill_factor_warning(spec).map(|w| w.to_string());
-            Outcome { status: Status::Ok, reason, metrics }
+            Outcome { status: Status::Ok, reason: None, metrics }
         }
         // An input error raised during the analysis (a material that does not suit its part, a
         // mesh the geometry cannot have) is a property of the design: infeasible, not a crash.

@@ -44,7 +44,7 @@ use crate::DesignError;
 pub use schema::schema;
 pub use source::SpecSource;
 pub(crate) use validate::Problems;
-pub use validate::{Validated, fill_factor_warning};
+pub use validate::Validated;
 
 /// The embedded default specification: the thesis's bidirectional multi-drum brake.
 pub const DEFAULT_SPEC_TOML: &str =

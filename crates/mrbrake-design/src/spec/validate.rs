@@ -280,9 +280,8 @@ fn check_coil(spec: &BrakeSpec, p: &mut Problems) {
 }
 
 /// The warning of a winding whose copper fill factor ([`BrakeSpec::fill_factor`]) is above what a
-/// winding reaches in practice ([`crate::formula::FILL_FACTOR_LIMIT`]), if it is; a study keeps it
-/// in the design's record.
-pub fn fill_factor_warning(spec: &BrakeSpec) -> Option<Warning> {
+/// winding reaches in practice ([`crate::formula::FILL_FACTOR_LIMIT`]), if it is.
+fn fill_factor_warning(spec: &BrakeSpec) -> Option<Warning> {
     let (fill, limit) = (spec.fill_factor(), crate::formula::FILL_FACTOR_LIMIT);
     (fill > limit).then(|| Warning {
         field: "coil.turns".into(),
