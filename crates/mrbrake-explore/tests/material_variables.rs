@@ -119,7 +119,8 @@ fn nsga2_varies_a_material_beside_a_number_and_leaves_a_fixed_variable_alone() {
     assert!(problem.notes.iter().any(|n| n.contains("coil.max_current")), "{:?}", problem.notes);
     let mut store = Store::open_or_create(&dir.path().join("o.sqlite"), false).unwrap();
     let result = optimize::run(&problem, &mut store, 1, &mut Silent).unwrap();
-    assert_eq!(result.evaluated.len(), 8);
+    // Two generations of four, less the offspring that repeat a design.
+    assert!((4..=8).contains(&result.evaluated.len()), "{}", result.evaluated.len());
     let mut seen = std::collections::BTreeSet::new();
     for e in &result.evaluated {
         let r = &e.record;
