@@ -506,9 +506,7 @@ fn overrides_of(set: &toml::Table) -> Vec<(String, String)> {
 
 /// The variables with their bounds in SI, read with each variable's own unit, and the fixed ones
 /// as `(name, value)` overrides.
-fn variables_of(
-    raw: &[RawVariable],
-) -> Result<(Vec<VariableBounds>, Vec<(String, String)>), String> {
+fn variables_of(raw: &[RawVariable]) -> Result<(Vec<VariableBounds>, Overrides), String> {
     if raw.is_empty() {
         return Err("no [[variable]]: give at least one design variable".into());
     }
@@ -534,6 +532,9 @@ fn variables_of(
     }
     Ok((variables, fixed))
 }
+
+/// Fixed changes `(PATH, VALUE)` to the base spec, in order.
+type Overrides = Vec<(String, String)>;
 
 /// A `[[variable]]` as read: varied within bounds, or fixed at a value (the override's text).
 enum Read {
