@@ -240,6 +240,9 @@ pub struct CoilResult {
     pub incremental_inductance_h: f64,
     /// L/R time constant with the secant inductance (s).
     pub time_constant_s: f64,
+    /// Copper fill factor: copper area / window area ([`formula::copper_fill_factor`]); above
+    /// [`formula::FILL_FACTOR_LIMIT`] the spec's warnings say so.
+    pub fill_factor: f64,
 }
 
 /// Mechanical figures.
@@ -402,6 +405,7 @@ fn part_kind_name<S: serde::Serializer>(kind: &PartKind, serializer: S) -> Resul
         PartKind::Shaft => "shaft",
         PartKind::FluxPath => "flux_path",
         PartKind::NonMagnetic => "non_magnetic",
+        PartKind::Bobbin => "bobbin",
         PartKind::Coil => "coil",
         PartKind::Fluid => "fluid",
         PartKind::Spacer => "spacer",
@@ -1059,6 +1063,7 @@ fn coil_electrics(
         inductance_h: f64::NAN,
         incremental_inductance_h: f64::NAN,
         time_constant_s: f64::NAN,
+        fill_factor: spec.fill_factor(),
     })
 }
 

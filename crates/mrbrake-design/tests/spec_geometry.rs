@@ -235,3 +235,47 @@ fn mesh_levels_refine_the_default_brake() {
     }
     assert!(counts[0] < counts[1] && counts[1] < counts[2], "{counts:?}");
 }
+
+/// The bobbin is its own part in every configuration: one per unit with a coil, in the bobbin
+/// material, made of the filler cells within one bobbin wall of a winding window, so that it covers
+/// at least the wall beside the window over its height; naming a bobbin material changes its
+/// material only, not the partition (a default spec meshes exactly as before).
+#[test]
+fn every_coil_has_a_bobbin_of_its_own_material() {
+    let names = ["thesis-bidirectional.toml", "drum.toml", "single-disc.toml", "multi-disc.toml"];
+    for name in names {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/specs")
+            .join(name);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let base = BrakeSpec::from_toml_str(&text, name).unwrap();
+        let with_pom = with_edit(&text, "[materials]\n", "[materials]\nbobbin = \"pom\"\n");
+        let (g, g_pom) = (geometry::build(&base).unwrap(), geometry::build(&with_pom).unwrap());
+        let wall = base.coil.bobbin_wall.m();
+        for unit in 0..g.units {
+            let coils: Vec<_> = g.coils.iter().filter(|c| c.unit == unit).collect();
+            let of_kind = |g: &geometry::BrakeGeometry, kind| {
+                g.regions.iter().find(|r| r.unit == Some(unit) && r.kind == kind).cloned()
+            };
+            let bobbin =
+                of_kind(&g, PartKind::Bobbin).unwrap_or_else(|| panic!("{name}: no bobbin"));
+            assert_eq!(bobbin.material, base.materials.non_magnetic, "{name}: default material");
+            let least: f64 = coils.iter().map(|c| wall * (c.rect.z1 - c.rect.z0)).sum();
+            assert!(bobbin.area_m2() >= least * (1.0 - 1e-9), "{name}: {}", bobbin.area_m2());
+            for rect in &bobbin.rects {
+                let near = coils.iter().any(|c| {
+                    rect.r0 < c.rect.r1 + wall + 1e-12
+                        && rect.r1 > c.rect.r0 - wall - 1e-12
+                        && rect.z0 < c.rect.z1 + wall + 1e-12
+                        && rect.z1 > c.rect.z0 - wall - 1e-12
+                });
+                assert!(near, "{name}: bobbin cell {rect:?} is not beside a winding");
+            }
+            let pom = of_kind(&g_pom, PartKind::Bobbin).unwrap();
+            assert_eq!(pom.material, "pom");
+            assert_eq!(pom.rects, bobbin.rects, "{name}: the material does not move the bobbin");
+            let filler = of_kind(&g_pom, PartKind::NonMagnetic).unwrap();
+            assert_eq!(filler.material, base.materials.non_magnetic);
+        }
+    }
+}

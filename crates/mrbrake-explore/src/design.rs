@@ -1,14 +1,18 @@
 //! One design of a study: a base spec with variables set, and its canonical key.
 //!
 //! Brief overview: a [`DesignSpace`] holds the base spec (as a TOML table, after fixed overrides),
-//! the study's [`Variable`]s and the [`EvaluationSettings`]; [`DesignSpace::design`] sets the
-//! variables to a point and returns a [`Design`]: the spec text (ready to analyse), the parsed spec or
-//! the reason it is invalid, and the key under which the results store keeps it.
+//! the study's [`Variable`]s and the [`EvaluationSettings`]; a material variable gets its levels
+//! with [`DesignSpace::set_levels`]. [`DesignSpace::design`] sets the variables to a point (SI
+//! values, a material's level index) and returns a [`Design`]: the spec text (ready to analyse),
+//! the parsed spec or the reason it is invalid, the variables' values as a record keeps them (a
+//! material by name), and the key under which the results store keeps it.
 //!
 //! # The key
 //! The SHA-256 (FIPS 180-4) of a canonical JSON document holding everything the result depends on:
 //! * the parsed spec with every length and current in SI (so `"25mm"` and `0.025` are one design)
-//!   and without its `name` (a label, not a property);
+//!   and without its `name` (a label, not a property); an optional field left out (e.g.
+//!   `materials.bobbin`, the non-magnetic material by default) is not written, so a spec that
+//!   does not name it keeps the key it had before the field existed;
 //! * a signature of every material the spec names: its B-H curve (ν(B²) at 48 flux densities), its
 //!   density, and for the fluid τ_y(B) at the same flux densities and the viscosity. The signature
 //!   samples the curves rather than hashing the data files, so it also changes when the
@@ -23,12 +27,13 @@ use std::sync::Arc;
 
 use mrbrake_design::DesignError;
 use mrbrake_design::spec::BrakeSpec;
+use mrbrake_store::VariableValue;
 use serde_json::{Value, json};
 use sha2::{Digest, Sha256};
 
 use crate::ExploreError;
 use crate::evaluate::EvaluationSettings;
-use crate::variable::{Variable, apply_override, set_field};
+use crate::variable::{Variable, apply_override};
 
 /// Bumped whenever the analysis would give a different answer for the same inputs (a new torque
 /// model, a mesher change): stored results of older revisions then no longer match any key.
@@ -52,8 +57,8 @@ pub struct DesignSpace {
 /// One point of a [`DesignSpace`].
 #[derive(Debug, Clone)]
 pub struct Design {
-    /// The variables' values (name, SI value), in the space's order.
-    pub variables: Vec<(String, f64)>,
+    /// The variables' values (name, SI value or material), in the space's order.
+    pub variables: Vec<(String, VariableValue)>,
     /// The full spec as TOML (lengths in metres), ready for `mrbrake analyze`.
     pub spec_toml: String,
     /// The parsed and validated spec, or why this point is not a valid brake (the design
@@ -87,15 +92,28 @@ impl DesignSpace {
         let mut variables = Vec::with_capacity(variable_names.len());
         for name in variable_names {
             let variable = crate::variable::resolve(name, is_drum)?;
-            if variables.iter().any(|v: &Variable| v.field == variable.field) {
+            if variables.iter().any(|v: &Variable| v.path() == variable.path()) {
                 return Err(ExploreError::Input(format!(
                     "variable '{name}' ({}) is given twice",
-                    variable.field.path
+                    variable.path()
                 )));
             }
             variables.push(variable);
         }
         Ok(Self { base, base_name: spec.name, is_drum, variables, settings })
+    }
+
+    /// Gives the material variable at `index` its levels (library materials that suit the part:
+    /// [`Variable::with_levels`]); its values are then the levels' indices.
+    pub fn set_levels(&mut self, index: usize, levels: &[String]) -> Result<(), ExploreError> {
+        let variable = self.variables.get(index).ok_or_else(|| {
+            ExploreError::Internal(format!(
+                "no variable {index} in a space of {}",
+                self.variables.len()
+            ))
+        })?;
+        self.variables[index] = variable.clone().with_levels(levels)?;
+        Ok(())
     }
 
     /// The variables.
@@ -131,8 +149,8 @@ impl DesignSpace {
         let mut named = Vec::with_capacity(values.len());
         let mut label = Vec::with_capacity(values.len());
         for (variable, &value) in self.variables.iter().zip(values) {
-            set_field(&mut table, &variable.field, value)?;
-            named.push((variable.name.clone(), value));
+            variable.set(&mut table, value)?;
+            named.push((variable.name.clone(), variable.value(value)?));
             label.push(format!("{}={}", variable.name, variable.display_value(value)));
         }
         let name = if label.is_empty() {
@@ -145,7 +163,7 @@ impl DesignSpace {
 
     fn build(
         &self,
-        variables: &[(String, f64)],
+        variables: &[(String, VariableValue)],
         mut table: toml::Table,
         name: String,
     ) -> Result<Design, ExploreError> {
@@ -190,6 +208,9 @@ pub fn design_key(spec: &BrakeSpec, settings: &EvaluationSettings) -> Result<Str
         vec![&m.flux_path, &m.non_magnetic, &m.shaft, &m.fluid, &m.coil, &m.surroundings];
     if let Some(spacer) = &m.spacer {
         names.push(spacer);
+    }
+    if let Some(bobbin) = &m.bobbin {
+        names.push(bobbin);
     }
     names.sort_unstable();
     names.dedup();

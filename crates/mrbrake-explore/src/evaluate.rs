@@ -156,6 +156,11 @@ pub const METRICS: &[MetricInfo] = &[
     ),
     metric("max_current_A", "A", "maximum coil current"),
     metric("turns", "1", "turns per coil"),
+    metric(
+        "fill_factor",
+        "1",
+        "copper area / window area; above 0.75 (orthocyclic practice) the report warns",
+    ),
     metric("current_density_A_per_mm2", "A/mm²", "thesis current density (4.1) at max current"),
     metric("wire_rated_current_A", "A", "the wire's current rating (given or thesis Table 4.6)"),
     metric("current_to_rating", "1", "max_current_A / wire_rated_current_A"),
@@ -318,6 +323,7 @@ fn metrics_of(spec: &BrakeSpec, a: &Analysis, settings: &EvaluationSettings) -> 
     m.push(("max_current_A", a.max_current_a));
     let coil = &a.coil;
     m.push(("turns", f64::from(coil.turns)));
+    m.push(("fill_factor", coil.fill_factor));
     m.push(("current_density_A_per_mm2", coil.current_density_a_per_mm2));
     if let Some(rating) = spec.coil.wire.rated_current_a() {
         m.push(("wire_rated_current_A", rating));

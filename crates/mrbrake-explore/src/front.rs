@@ -137,16 +137,16 @@ impl SpecWriter {
     /// The unit the base file writes `field` in: its scale to SI and its name (`""` for a bare
     /// SI number), or the default for a field it does not give (mm, A).
     fn unit_of(&self, variable: &Variable) -> (f64, String) {
-        let dimension = match variable.field.quantity {
-            Quantity::Length => Dimension::Length,
-            Quantity::Current => Dimension::Current,
-            Quantity::Integer => return (1.0, String::new()),
+        let dimension = match variable.quantity() {
+            Some(Quantity::Length) => Dimension::Length,
+            Some(Quantity::Current) => Dimension::Current,
+            Some(Quantity::Integer) | None => return (1.0, String::new()),
         };
         let default = match dimension {
             Dimension::Length => (1e-3, "mm".to_string()),
             _ => (1.0, "A".to_string()),
         };
-        match get_value(&self.document, variable.field.path) {
+        match get_value(&self.document, variable.path()) {
             Some(Value::Float(_) | Value::Integer(_)) => (1.0, String::new()),
             Some(Value::String(text)) => {
                 let unit = unit_suffix(text.value());
@@ -160,16 +160,22 @@ impl SpecWriter {
     /// in the base file's unit, inside `bounds`; as evaluated when `resolution` is 0 or no
     /// rounded value is inside the bounds.
     fn round(&self, variable: &Variable, value: f64, bounds: &Bounds, resolution: f64) -> Written {
-        let exact = || match variable.field.quantity {
-            Quantity::Integer => Written { si: value, item: Value::from(value.round() as i64) },
+        let exact = || match variable.quantity() {
+            Some(Quantity::Integer) => {
+                Written { si: value, item: Value::from(value.round() as i64) }
+            }
+            // A material: its name (the value is the index of its level).
+            None => {
+                Written { si: value, item: Value::from(variable.level(value).unwrap_or_default()) }
+            }
             _ => Written { si: value, item: Value::from(value) },
         };
-        let step = match variable.field.quantity {
-            Quantity::Integer => return exact(),
-            Quantity::Length => resolution,
+        let step = match variable.quantity() {
+            Some(Quantity::Integer) | None => return exact(),
+            Some(Quantity::Length) => resolution,
             // A resolution of 0 writes every value as evaluated, currents too.
-            Quantity::Current if resolution > 0.0 => CURRENT_RESOLUTION,
-            Quantity::Current => 0.0,
+            Some(Quantity::Current) if resolution > 0.0 => CURRENT_RESOLUTION,
+            Some(Quantity::Current) => 0.0,
         };
         if step <= 0.0 || !value.is_finite() {
             return exact();
@@ -203,7 +209,7 @@ impl SpecWriter {
     ) -> Result<(String, Option<String>), ExploreError> {
         let mut document = self.document.clone();
         for (variable, w) in variables.iter().zip(written) {
-            set_value(&mut document, variable.field.path, Some(w.item.clone()))?;
+            set_value(&mut document, variable.path(), Some(w.item.clone()))?;
         }
         if let Ok(spec) = &design.spec {
             set_value(&mut document, "name", Some(Value::from(spec.name.as_str())))?;
@@ -239,13 +245,17 @@ fn override_value(
 ) -> Result<(String, Option<Value>), ExploreError> {
     let text = text.trim();
     if let Ok(variable) = resolve(path, is_drum) {
-        let field = variable.field.path.to_string();
+        let field = variable.path().to_string();
         if field == "coil.turns" && text.eq_ignore_ascii_case("fill") {
             return Ok((field, None));
         }
+        if variable.quantity().is_none() {
+            // A material, by its library name.
+            return Ok((field, Some(Value::from(text.trim_matches('"')))));
+        }
         let si = variable.parse_value(text)?;
-        let value = match variable.field.quantity {
-            Quantity::Integer => Value::from(si.round() as i64),
+        let value = match variable.quantity() {
+            Some(Quantity::Integer) => Value::from(si.round() as i64),
             _ if text.parse::<f64>().is_ok() => Value::from(si),
             _ => Value::from(text),
         };

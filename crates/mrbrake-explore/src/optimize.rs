@@ -229,19 +229,22 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             .map_err(|e| ExploreError::Internal(format!("cannot read the base spec: {e}")))?;
         let mut point = Vec::with_capacity(self.bounds.len());
         for (variable, bounds) in self.space.variables().iter().zip(&self.bounds) {
-            let value = variable
-                .field
-                .path
-                .split('.')
-                .try_fold(&table, |t, part| t.get(part))
-                .and_then(serde_json::Value::as_f64)
-                .ok_or_else(|| {
-                    ExploreError::Input(format!(
-                        "algorithm.start = \"base\": the base spec has no value for {} (e.g. turns \
-                         computed from the window); give it in the spec or start at the centre",
-                        variable.field.path
-                    ))
-                })?;
+            // A material's value is its level's index (a material not among them: none).
+            let value = if variable.is_categorical() {
+                let material = spec.materials.in_use(variable.path());
+                material.and_then(|name| variable.parse_value(name).ok())
+            } else {
+                let found = variable.path().split('.').try_fold(&table, |t, part| t.get(part));
+                found.and_then(serde_json::Value::as_f64)
+            };
+            let value = value.ok_or_else(|| {
+                ExploreError::Input(format!(
+                    "algorithm.start = \"base\": the base spec has no value for {} among the \
+                     variable's (e.g. turns computed from the window, or a material not listed); \
+                     give it in the spec or start at the centre",
+                    variable.path()
+                ))
+            })?;
             point.push(bounds.repair(value));
         }
         Ok(point)
@@ -461,7 +464,7 @@ fn space_and_bounds(
         ))
     })?;
     let names: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
-    let space = DesignSpace::new(
+    let mut space = DesignSpace::new(
         &spec_text,
         &problem.spec_path.display().to_string(),
         &problem.overrides,
@@ -477,6 +480,11 @@ fn space_and_bounds(
         }
         other => other,
     })?;
+    for (index, b) in problem.variables.iter().enumerate() {
+        if !b.levels.is_empty() {
+            space.set_levels(index, &b.levels)?;
+        }
+    }
     let bounds: Vec<Bounds> = space
         .variables()
         .iter()

@@ -2,9 +2,11 @@
 //! shards for independent processes.
 //!
 //! Brief overview: each `--vary` argument is a [`VarySpec`]: a list (`g=0.5mm,0.75mm,1mm`), a range
-//! with a count (`h=5mm..10mm:6`, both ends included) or bounds (`R0=20mm..30mm`) for sampling.
-//! [`Sampling`] picks the points: the full factorial of the lists and ranges, or `n` Latin
-//! hypercube / Sobol' samples over the bounds ([`mrbrake_optim::sampling`]). [`Shard`] `K/N` keeps
+//! with a count (`h=5mm..10mm:6`, both ends included), bounds (`R0=20mm..30mm`) for sampling, or
+//! for a material the materials by name (`materials.bobbin=aluminium,pom`, a categorical variable).
+//! [`Sampling`] picks the points: the full factorial of the lists, ranges and materials, or `n`
+//! Latin hypercube / Sobol' samples over the bounds and materials (a material's levels equally
+//! represented, [`mrbrake_optim::sampling`]). [`Shard`] `K/N` keeps
 //! the points whose index is `K` modulo `N`, so `N` processes with the same plan cover every point
 //! exactly once.
 
@@ -36,6 +38,8 @@ pub enum Values {
         /// Upper bound.
         upper: f64,
     },
+    /// The materials of a material variable, by name (its values are their indices).
+    Levels(Vec<String>),
 }
 
 /// One `--vary NAME=…` argument, parsed.
@@ -59,10 +63,26 @@ impl VarySpec {
         Ok((name.trim().to_string(), values.trim().to_string()))
     }
 
-    /// Parses the values text of `variable`.
+    /// Parses the values text of `variable`: a material variable takes its materials by name,
+    /// each checked against the library and the part ([`Variable::with_levels`]).
     pub fn parse(variable: &Variable, text: &str) -> Result<Self, ExploreError> {
         let bad =
             |why: &str| ExploreError::Input(format!("--vary {}={text}: {why}", variable.name));
+        if variable.is_categorical() {
+            if text.contains("..") {
+                return Err(bad(
+                    "a material takes a list of names (e.g. aluminium,pom), not a range",
+                ));
+            }
+            let names: Vec<String> = text
+                .split(',')
+                .map(str::trim)
+                .filter(|s| !s.is_empty())
+                .map(String::from)
+                .collect();
+            let levels = variable.clone().with_levels(&names)?.levels().to_vec();
+            return Ok(Self { name: variable.name.clone(), values: Values::Levels(levels) });
+        }
         let values = if let Some((lower, rest)) = text.split_once("..") {
             let (upper, count) = match rest.split_once(':') {
                 Some((upper, count)) => {
@@ -87,7 +107,7 @@ impl VarySpec {
                     )));
                 }
                 Some(count) => {
-                    if variable.field.quantity == Quantity::Integer
+                    if variable.quantity() == Some(Quantity::Integer)
                         && count > 1
                         && ((upper - lower) / (count - 1) as f64).fract().abs() > 1e-9
                     {
@@ -123,6 +143,7 @@ impl VarySpec {
                     .collect()
             }),
             Values::Bounds { .. } => None,
+            Values::Levels(levels) => Some((0..levels.len()).map(|k| k as f64).collect()),
         }
     }
 }
@@ -167,14 +188,6 @@ impl Sampling {
     }
 }
 
-/// Bounds of a variable for the samplers.
-fn bounds_of(variable: &Variable, lower: f64, upper: f64) -> Bounds {
-    match variable.field.quantity {
-        Quantity::Integer => Bounds::integer(lower, upper),
-        Quantity::Length | Quantity::Current => Bounds::continuous(lower, upper),
-    }
-}
-
 /// The most points one sweep plan may have (full factorial product or samples): the plan is
 /// held in memory and each point is a finite-element analysis, so this is far beyond a sweep that
 /// can finish; a larger plan is an input error before anything is allocated.
@@ -216,10 +229,11 @@ pub fn points(
             check_plan_size(Some(n), "--sample")?;
             let mut bounds = Vec::with_capacity(specs.len());
             for (variable, spec) in variables.iter().zip(specs) {
-                match spec.values {
-                    Values::Bounds { lower, upper } | Values::Range { lower, upper, .. } => {
-                        bounds.push(bounds_of(variable, lower, upper));
+                match &spec.values {
+                    &Values::Bounds { lower, upper } | &Values::Range { lower, upper, .. } => {
+                        bounds.push(variable.bounds(lower, upper));
                     }
+                    Values::Levels(levels) => bounds.push(Bounds::categorical(levels.len())),
                     Values::List(_) => {
                         return Err(ExploreError::Input(format!(
                             "--vary {}: sampling needs bounds lower..upper, not a list",
@@ -316,7 +330,7 @@ pub fn sweep_plan(request: &SweepRequest<'_>) -> Result<SweepPlan, ExploreError>
     let pairs: Vec<(String, String)> =
         request.vary.iter().map(|v| VarySpec::split(v)).collect::<Result<_, _>>()?;
     let names: Vec<String> = pairs.iter().map(|(n, _)| n.clone()).collect();
-    let space = DesignSpace::new(
+    let mut space = DesignSpace::new(
         request.spec_text,
         request.origin,
         request.overrides,
@@ -329,6 +343,11 @@ pub fn sweep_plan(request: &SweepRequest<'_>) -> Result<SweepPlan, ExploreError>
         .zip(&pairs)
         .map(|(v, (_, text))| VarySpec::parse(v, text))
         .collect::<Result<_, _>>()?;
+    for (index, spec) in specs.iter().enumerate() {
+        if let Values::Levels(levels) = &spec.values {
+            space.set_levels(index, levels)?;
+        }
+    }
     let points = points(space.variables(), &specs, request.sampling)?;
     let designs = points
         .iter()

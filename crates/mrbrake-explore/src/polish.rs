@@ -71,6 +71,15 @@ pub fn run(
     request: &PolishRequest,
     observer: &mut dyn Observer<OptimizeProgress>,
 ) -> Result<Polished, ExploreError> {
+    if let Some(material) = problem.variables.iter().find(|v| !v.levels.is_empty()) {
+        return Err(ExploreError::Input(format!(
+            "--polish steps each variable along an order, and the materials of '{}' ({}) have \
+             none; polish with the material fixed (optimize --set {}=…)",
+            material.name,
+            material.levels.join(", "),
+            material.name
+        )));
+    }
     let evaluations: Vec<_> = result.evaluated.iter().map(|e| e.evaluation.clone()).collect();
     let front = front_of(problem, &evaluations);
     let index =
@@ -104,7 +113,11 @@ pub fn run(
         .collect();
     let same_x = |e: &&Evaluated| {
         e.record.variables.len() == outcome.best_x.len()
-            && e.record.variables.iter().zip(&outcome.best_x).all(|(v, x)| v.1.total_cmp(x).is_eq())
+            && e.record
+                .variables
+                .iter()
+                .zip(&outcome.best_x)
+                .all(|(v, x)| v.1.as_number().is_some_and(|v| v.total_cmp(x).is_eq()))
     };
     let best = if outcome.best.feasible() {
         evaluated.iter().find(same_x).cloned().unwrap_or_else(|| start.clone())

@@ -11,6 +11,12 @@
 //! name = "drum.r0"                             # a spec field or a thesis symbol (R0)
 //! min = "18mm"
 //! max = "30mm"
+//! [[variable]]
+//! name = "materials.bobbin"                    # the material of a part: a categorical variable
+//! values = ["aluminium", "pom"]                # library materials that suit the part
+//! [[variable]]
+//! name = "g"
+//! value = "0.5mm"                              # fixed (as min = max): set, not varied
 //! [[constraint]]
 //! metric = "torque_max_Nm"                     # any metric of `mrbrake optimize --list-metrics`
 //! min = "3Nm"                                  # and/or max; a number (SI) or a quantity with unit
@@ -35,9 +41,12 @@
 //! [`crate::front`]).
 //!
 //! Every field is checked when the file is read; an error names the file, the table and the field
-//! and what is allowed. Counts are bounded before anything is sized by them: `population` ≤
-//! [`MAX_POPULATION`], `generations` and `max_evaluations` ≤ [`MAX_EVALUATIONS`] designs, the
-//! surrogate's `max_evaluations` ≤ [`MAX_SURROGATE_EVALUATIONS`] (its models grow with the data).
+//! and what is allowed. A fixed variable (`value = …`, `min = max`, or one material) joins the
+//! fixed changes (`[set]`) and is not varied; so does a variable that `mrbrake optimize --set`
+//! names ([`OptimizationProblem::apply_set`]). Counts are bounded before anything is sized by
+//! them: `population` ≤ [`MAX_POPULATION`], `generations` and `max_evaluations` ≤
+//! [`MAX_EVALUATIONS`] designs, the surrogate's `max_evaluations` ≤ [`MAX_SURROGATE_EVALUATIONS`]
+//! (its models grow with the data).
 
 use std::path::{Path, PathBuf};
 
@@ -49,6 +58,7 @@ use serde::Deserialize;
 
 use crate::ExploreError;
 use crate::evaluate::{EvaluationSettings, METRICS, current_metric_name, metric_info};
+use crate::variable::Variable;
 
 /// A number (SI) or a quantity with its unit.
 #[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
@@ -136,12 +146,20 @@ fn set_table(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawVariable {
-    /// A spec field (`drum.r0`) or a thesis symbol (`R0`).
+    /// A spec field (`drum.r0`), a thesis symbol (`R0`) or a material field (`materials.bobbin`).
     name: String,
     /// Lower bound (SI number or quantity with unit).
-    min: RawQuantity,
-    /// Upper bound.
-    max: RawQuantity,
+    #[serde(default)]
+    min: Option<RawQuantity>,
+    /// Upper bound (equal to `min`: the variable is fixed).
+    #[serde(default)]
+    max: Option<RawQuantity>,
+    /// A material field's materials (library names that suit the part): a categorical variable.
+    #[serde(default)]
+    values: Option<Vec<String>>,
+    /// A fixed value instead of a range: the field is set, not varied (a quantity, or a material).
+    #[serde(default)]
+    value: Option<RawQuantity>,
 }
 
 /// `[[constraint]]`: bounds on a metric.
@@ -311,15 +329,18 @@ pub fn schema() -> serde_json::Value {
     schema
 }
 
-/// A design variable with its bounds (SI).
+/// A design variable with its bounds (SI), or a material variable with its materials.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VariableBounds {
-    /// The name (spec field or thesis symbol).
+    /// The name (spec field, thesis symbol or material field).
     pub name: String,
-    /// Lower bound (SI).
+    /// Lower bound (SI; 0, the first material's index, for a material variable).
     pub min: f64,
-    /// Upper bound (SI).
+    /// Upper bound (SI; the last material's index for a material variable).
     pub max: f64,
+    /// A material variable's materials (library names, the levels of a categorical variable);
+    /// empty for a numeric variable.
+    pub levels: Vec<String>,
 }
 
 /// A bound on a metric (SI).
@@ -465,7 +486,7 @@ pub struct OptimizationProblem {
     /// evaluated ([`crate::front`]).
     pub manufacturing_resolution: f64,
     /// Notes for the user that do not stop the run: a metric named by its legacy name (see
-    /// [`crate::evaluate::LEGACY_METRIC_NAMES`]), with its current name.
+    /// [`crate::evaluate::LEGACY_METRIC_NAMES`]), with its current name; a fixed variable.
     pub notes: Vec<String>,
 }
 
@@ -485,19 +506,25 @@ impl OptimizationProblem {
         let raw: RawProblem = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
         let folder = path.parent().unwrap_or_else(|| Path::new("."));
         let settings = settings_of(&raw).map_err(bad)?;
-        let variables = variables_of(&raw.variables).map_err(bad)?;
+        let (variables, fixed) = variables_of(&raw.variables).map_err(bad)?;
         let constraints = constraints_of(&raw.constraints).map_err(bad)?;
         let objectives = objectives_of(&raw.objectives).map_err(bad)?;
-        let notes = legacy_name_notes(&raw, &origin);
+        let mut notes = legacy_name_notes(&raw, &origin);
+        notes.extend(fixed.iter().map(|(name, value)| {
+            format!("{origin}: variable '{name}' is fixed at {value}: set, not varied")
+        }));
         let algorithm = algorithm_of(&raw.algorithm, &objectives, &variables).map_err(bad)?;
+        check_categorical_search(&variables, &algorithm).map_err(bad)?;
         let hypervolume_reference =
             hypervolume_reference_of(&raw.algorithm, &objectives).map_err(bad)?;
         let manufacturing_resolution =
             resolution_of(raw.manufacturing_resolution.as_ref()).map_err(bad)?;
+        let mut overrides = overrides_of(&raw.set);
+        overrides.extend(fixed);
         Ok(Self {
             path: path.to_path_buf(),
             spec_path: folder.join(&raw.spec),
-            overrides: overrides_of(&raw.set),
+            overrides,
             reference: raw.reference.unwrap_or(true),
             settings,
             variables,
@@ -508,6 +535,47 @@ impl OptimizationProblem {
             manufacturing_resolution,
             notes,
         })
+    }
+}
+
+impl OptimizationProblem {
+    /// Applies fixed changes given with the run, not in the file (`mrbrake optimize --set
+    /// PATH=VALUE`, the Python package's `optimize(..., set=...)`; [`crate::variable::parse_sets`]
+    /// reads the arguments): each overrides the base spec after the file's `[set]`, as `mrbrake
+    /// sweep --set` does, and a variable of the problem naming the same field (by path or
+    /// symbol) is fixed at that value instead of varied, with a note. At least one variable must
+    /// remain.
+    pub fn apply_set(&mut self, sets: &[(String, String)]) -> Result<(), ExploreError> {
+        // The base spec's configuration decides what a symbol names; a spec that cannot be read
+        // is reported by the run itself, and names are then compared as written.
+        let is_drum = std::fs::read_to_string(&self.spec_path)
+            .ok()
+            .and_then(|text| mrbrake_design::spec::BrakeSpec::from_toml_str(&text, "spec").ok())
+            .map(|spec| spec.configuration.is_drum());
+        let path_of = |name: &str| {
+            is_drum.and_then(|drum| crate::variable::resolve(name, drum).ok()).map(|v| v.path())
+        };
+        for (path, value) in sets {
+            let target = path_of(path);
+            let same = |v: &VariableBounds| {
+                v.name.trim() == path.trim() || (target.is_some() && path_of(&v.name) == target)
+            };
+            if let Some(index) = self.variables.iter().position(same) {
+                let fixed = self.variables.remove(index);
+                self.notes.push(format!(
+                    "--set {path}={value}: variable '{}' is fixed at {value}: set, not varied",
+                    fixed.name
+                ));
+            }
+            self.overrides.push((path.clone(), value.clone()));
+        }
+        if self.variables.is_empty() {
+            return Err(ExploreError::Input(format!(
+                "{}: --set fixes every variable of the problem: nothing to optimise",
+                self.path.display()
+            )));
+        }
+        Ok(())
     }
 }
 
@@ -564,34 +632,117 @@ fn overrides_of(set: &toml::Table) -> Vec<(String, String)> {
         .collect()
 }
 
-/// The variables with their bounds in SI, read with each variable's own unit.
-fn variables_of(raw: &[RawVariable]) -> Result<Vec<VariableBounds>, String> {
+/// The variables with their bounds in SI, read with each variable's own unit, and the fixed ones
+/// as `(name, value)` overrides.
+fn variables_of(raw: &[RawVariable]) -> Result<(Vec<VariableBounds>, Overrides), String> {
     if raw.is_empty() {
         return Err("no [[variable]]: give at least one design variable".into());
     }
-    let mut variables = Vec::new();
+    let (mut variables, mut fixed) = (Vec::new(), Vec::new());
     for (i, v) in raw.iter().enumerate() {
         let where_ = format!("variable {} ('{}')", i + 1, v.name);
         // Bounds read with the variable's own unit; the symbol resolves against the spec
         // later, so read them with the field the name denotes for either configuration.
-        let field_quantity = crate::variable::resolve(&v.name, true)
+        let variable = crate::variable::resolve(&v.name, true)
             .or_else(|_| crate::variable::resolve(&v.name, false))
             .map_err(|e| format!("{where_}: {e}"))?;
-        let read = |q: &RawQuantity, which: &str| -> Result<f64, String> {
-            let text = match q {
-                RawQuantity::Number(x) => return Ok(*x),
-                RawQuantity::Integer(i) => return Ok(*i as f64),
-                RawQuantity::Text(t) => t,
-            };
-            field_quantity.parse_value(text).map_err(|e| format!("{where_}.{which}: {e}"))
-        };
-        let (min, max) = (read(&v.min, "min")?, read(&v.max, "max")?);
-        if !(min.is_finite() && max.is_finite() && min < max) {
-            return Err(format!("{where_}: needs min < max, got {min} and {max}"));
+        match variable_of(v, &variable).map_err(|e| format!("{where_}{e}"))? {
+            Read::Varied(bounds) => variables.push(bounds),
+            Read::Fixed(value) => fixed.push((v.name.clone(), value)),
         }
-        variables.push(VariableBounds { name: v.name.clone(), min, max });
     }
-    Ok(variables)
+    if variables.is_empty() {
+        return Err(format!(
+            "every [[variable]] is fixed ({}): nothing to optimise; vary at least one, or analyse \
+             the design with mrbrake analyze",
+            fixed.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+        ));
+    }
+    Ok((variables, fixed))
+}
+
+/// Fixed changes `(PATH, VALUE)` to the base spec, in order.
+type Overrides = Vec<(String, String)>;
+
+/// A `[[variable]]` as read: varied within bounds, or fixed at a value (the override's text).
+enum Read {
+    Varied(VariableBounds),
+    Fixed(String),
+}
+
+/// One `[[variable]]` of the resolved `variable`: `min`/`max` (equal: fixed) or `value` for a
+/// numeric field, `values` (one: fixed) or `value` for a material; the error starts with the key
+/// (`.min: …`, `: …`).
+fn variable_of(v: &RawVariable, variable: &Variable) -> Result<Read, String> {
+    let text_of = |q: &RawQuantity| match q {
+        RawQuantity::Number(x) => x.to_string(),
+        RawQuantity::Integer(i) => i.to_string(),
+        RawQuantity::Text(t) => t.clone(),
+    };
+    let given = (v.min.is_some() || v.max.is_some(), v.values.is_some(), v.value.is_some());
+    match given {
+        (false, false, true) => {
+            let value = text_of(v.value.as_ref().expect("matched Some"));
+            check_fixed(variable, &value).map_err(|e| format!(".value: {e}"))?;
+            return Ok(Read::Fixed(value));
+        }
+        (false, true, false) if variable.is_categorical() => {}
+        (true, false, false) if !variable.is_categorical() => {}
+        _ if variable.is_categorical() => {
+            return Err(": a material takes values = [\"…\", …] (its materials) or value".into());
+        }
+        _ if v.values.is_some() => {
+            return Err(format!(
+                ".values: a list of values is for the material of a part ({}); '{}' is a number: \
+                 give min and max, or value (a fixed variable)",
+                material_paths(),
+                variable.path()
+            ));
+        }
+        _ => return Err(": give min and max, or value (a fixed variable)".into()),
+    }
+    if let Some(levels) = &v.values {
+        let variable = variable.clone().with_levels(levels).map_err(|e| format!(".values: {e}"))?;
+        return Ok(match variable.levels() {
+            [only] => Read::Fixed(only.clone()),
+            levels => Read::Varied(VariableBounds {
+                name: v.name.clone(),
+                min: 0.0,
+                max: (levels.len() - 1) as f64,
+                levels: levels.to_vec(),
+            }),
+        });
+    }
+    let read = |q: &Option<RawQuantity>, which: &str| -> Result<f64, String> {
+        let q = q.as_ref().ok_or_else(|| format!(": give both min and max (no {which})"))?;
+        match q {
+            RawQuantity::Number(x) => Ok(*x),
+            RawQuantity::Integer(i) => Ok(*i as f64),
+            RawQuantity::Text(t) => variable.parse_value(t).map_err(|e| format!(".{which}: {e}")),
+        }
+    };
+    let (min, max) = (read(&v.min, "min")?, read(&v.max, "max")?);
+    if !(min.is_finite() && max.is_finite() && min <= max) {
+        return Err(format!(": needs min ≤ max, got {min} and {max}"));
+    }
+    if (max - min).abs() <= 0.0 {
+        return Ok(Read::Fixed(text_of(v.min.as_ref().expect("read above"))));
+    }
+    Ok(Read::Varied(VariableBounds { name: v.name.clone(), min, max, levels: Vec::new() }))
+}
+
+/// The material fields a categorical variable may name, for messages.
+fn material_paths() -> String {
+    mrbrake_design::spec::MATERIAL_FIELDS.iter().map(|f| f.path).collect::<Vec<_>>().join(", ")
+}
+
+/// Checks a fixed value: a material that suits the part, or a number the field reads.
+fn check_fixed(variable: &Variable, value: &str) -> Result<(), ExploreError> {
+    if variable.is_categorical() {
+        variable.clone().with_levels(&[value.to_string()]).map(|_| ())
+    } else {
+        variable.parse_value(value).map(|_| ())
+    }
 }
 
 /// The constraints, each with a min, a max or both, in the metric's unit.
@@ -783,6 +934,24 @@ fn algorithm_of(
     }
 }
 
+/// Pattern search polls a variable in ordered steps, which a material's unordered levels do not
+/// have: a problem that varies a material needs NSGA-II (random resetting of the level).
+fn check_categorical_search(
+    variables: &[VariableBounds],
+    algorithm: &Algorithm,
+) -> Result<(), String> {
+    let material = variables.iter().find(|v| !v.levels.is_empty());
+    match (material, algorithm) {
+        (Some(v), Algorithm::PatternSearch { .. }) => Err(format!(
+            "algorithm.kind = pattern-search steps each variable along an order, and the \
+             materials of '{}' ({}) have none; use nsga2, or fix the material (value = \"…\")",
+            v.name,
+            v.levels.join(", ")
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// Refuses a key of another kind of algorithm that would otherwise be silently ignored: a
 /// surrogate key (`batch`) with another kind, any other kind's key with the surrogate. (NSGA-II and
 /// pattern search keep ignoring each other's keys, as files written before the surrogate expect.)
@@ -962,7 +1131,7 @@ fn start_of(raw: Option<&RawStart>, variables: &[VariableBounds]) -> Result<Star
             }
             other => return Err(format!("{where_}: {other} is not a number or a quantity")),
         };
-        if field.field.quantity == crate::variable::Quantity::Integer
+        if field.quantity() == Some(crate::variable::Quantity::Integer)
             && (si - si.round()).abs() > 1e-9
         {
             return Err(format!(

@@ -46,7 +46,7 @@ mod tests {
             key: key.to_string().repeat(64),
             status: Status::Ok,
             reason: None,
-            variables: vec![("g".into(), 1.0)],
+            variables: vec![("g".into(), 1.0.into())],
             metrics: metrics.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
             spec_toml: String::new(),
             eval_seconds: 0.0,

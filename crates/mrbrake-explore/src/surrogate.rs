@@ -46,14 +46,11 @@ use mrbrake_optim::surrogate::{
 use crate::ExploreError;
 use crate::optimize::StudyProblem;
 use crate::problem::{OptimizationProblem, SurrogateSettings, VariableBounds};
-use crate::variable::{Quantity, Variable};
+use crate::variable::Variable;
 
 /// The optimiser's bounds of one study variable (module docs: the hook of categorical variables).
 pub fn optimiser_bounds(variable: &Variable, bounds: &VariableBounds) -> Bounds {
-    match variable.field.quantity {
-        Quantity::Integer => Bounds::integer(bounds.min, bounds.max),
-        Quantity::Length | Quantity::Current => Bounds::continuous(bounds.min, bounds.max),
-    }
+    variable.bounds(bounds.min, bounds.max)
 }
 
 /// One model's fit after an iteration.

@@ -1,15 +1,27 @@
-//! Design variables: the numeric fields of a brake spec that a study may vary, addressed by their
-//! TOML path (`drum.gap`, `coil.turns`) or by the thesis's symbol (`g`, `h`, `R0`, `N`).
+//! Design variables: the fields of a brake spec that a study may vary, addressed by their TOML
+//! path (`drum.gap`, `coil.turns`, `materials.bobbin`) or by the thesis's symbol (`g`, `h`, `R0`,
+//! `N`).
 //!
-//! Brief overview: the variable fields are the spec's own numeric fields
-//! ([`mrbrake_design::spec::numeric_fields`], listed beside each table's definition, each with its
-//! [`Quantity`]); [`resolve`] turns a user's name into a [`Variable`] for a given base spec (a symbol such as `g` means `drum.gap` for a
-//! drum brake and `disc.gap` for a disc brake); [`Variable::parse_value`] reads a value with its unit
-//! (`0.5mm`) into SI; [`set_field`] writes an SI value into the spec's TOML table. Values are written
-//! as bare SI numbers, which the spec reader accepts, so a design file is unambiguous.
+//! Brief overview: a variable is a numeric field ([`mrbrake_design::spec::numeric_fields`], listed
+//! beside each table's definition, each with its [`Quantity`]) or the material of a part role
+//! ([`MATERIAL_FIELDS`]: a categorical variable whose levels are library materials that suit the
+//! part). [`resolve`] turns a user's name into a [`Variable`] for a given base spec (a symbol such
+//! as `g` means `drum.gap` for a drum brake and `disc.gap` for a disc brake); a categorical one
+//! gets its levels with [`Variable::with_levels`], each checked against the library and the part
+//! role. A variable's value is a number: SI for a numeric field ([`Variable::parse_value`] reads a
+//! value with its unit, `0.5mm`), the level's index for a material, which is how the optimisers
+//! of [`mrbrake_optim`] see it (`Bounds::categorical`). [`Variable::set`] writes a value into the
+//! spec's TOML table, as a bare SI number (which the spec reader accepts, so a design file is
+//! unambiguous) or the level's name; [`Variable::value`] is what a stored record keeps: the number,
+//! or the level by name.
+//!
+//! Fixed changes to a base spec (`--set PATH=VALUE`, a problem file's `[set]`) are parsed by
+//! [`parse_set`] and applied by [`apply_override`], the one reader of both.
 
-use mrbrake_design::spec::numeric_fields;
+use mrbrake_design::spec::{MATERIAL_FIELDS, MaterialField, numeric_fields};
 pub use mrbrake_design::spec::{Quantity, SpecField};
+use mrbrake_optim::space::Bounds;
+use mrbrake_store::VariableValue;
 use mrbrake_units::{Dimension, parse};
 
 use crate::ExploreError;
@@ -30,24 +42,101 @@ pub const SYMBOLS: &[(&str, Option<&str>, Option<&str>)] = &[
     ("AWG", Some("coil.wire.awg"), Some("coil.wire.awg")),
 ];
 
+/// What a variable sets: a numeric field, or the material of a part role with its levels.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum VariableKind {
+    /// A numeric field of the spec.
+    Numeric(SpecField),
+    /// The material of a part role: a categorical variable whose value is the index of one of
+    /// `levels` (library names, in the user's order; empty until [`Variable::with_levels`]).
+    Material {
+        /// The material field.
+        field: &'static MaterialField,
+        /// The library materials the variable takes.
+        levels: Vec<String>,
+    },
+}
+
 /// A variable resolved against a base spec.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Variable {
-    /// The field it sets.
-    pub field: SpecField,
+    /// What it sets.
+    pub kind: VariableKind,
     /// The name the user gave (a path or a symbol), used in reports.
     pub name: String,
 }
 
 impl Variable {
+    /// The dotted spec path it sets (`drum.gap`, `materials.bobbin`).
+    pub fn path(&self) -> &'static str {
+        match &self.kind {
+            VariableKind::Numeric(field) => field.path,
+            VariableKind::Material { field, .. } => field.path,
+        }
+    }
+
+    /// What a numeric variable holds (`None` for a material).
+    pub fn quantity(&self) -> Option<Quantity> {
+        match &self.kind {
+            VariableKind::Numeric(field) => Some(field.quantity),
+            VariableKind::Material { .. } => None,
+        }
+    }
+
+    /// The levels of a categorical (material) variable; empty for a numeric one.
+    pub fn levels(&self) -> &[String] {
+        match &self.kind {
+            VariableKind::Numeric(_) => &[],
+            VariableKind::Material { levels, .. } => levels,
+        }
+    }
+
+    /// True for a categorical (material) variable.
+    pub fn is_categorical(&self) -> bool {
+        matches!(self.kind, VariableKind::Material { .. })
+    }
+
+    /// This material variable with `levels`: each a library material that suits the part role
+    /// ([`MaterialField::check_suits`]), none twice, at least one. An error names the variable, the
+    /// level and the allowed materials; a numeric variable takes no levels.
+    pub fn with_levels(mut self, levels: &[String]) -> Result<Self, ExploreError> {
+        let bad = |why: String| ExploreError::Input(format!("variable '{}': {why}", self.name));
+        let VariableKind::Material { field, levels: own } = &mut self.kind else {
+            return Err(bad("a numeric field takes min and max, not a list of levels".into()));
+        };
+        if levels.is_empty() {
+            return Err(bad(format!("give at least one material; allowed: {}", allowed(field))));
+        }
+        let mut names: Vec<String> = Vec::with_capacity(levels.len());
+        for level in levels {
+            field.check_suits(level).map_err(ExploreError::Input)?;
+            let name = level.trim().to_ascii_lowercase();
+            if names.contains(&name) {
+                return Err(bad(format!("the material '{name}' is listed twice")));
+            }
+            names.push(name);
+        }
+        *own = names;
+        Ok(self)
+    }
+
     /// Reads a value: a quantity with its unit (`0.5mm`, `2A`) or a bare SI number; an integer field
-    /// takes a whole number.
+    /// takes a whole number; a material variable a level's name (its index is returned).
     pub fn parse_value(&self, text: &str) -> Result<f64, ExploreError> {
         let text = text.trim();
         let bad = |why: String| {
-            ExploreError::Input(format!("variable '{}' ({}): {why}", self.name, self.field.path))
+            ExploreError::Input(format!("variable '{}' ({}): {why}", self.name, self.path()))
         };
-        match self.field.quantity {
+        let field = match &self.kind {
+            VariableKind::Numeric(field) => field,
+            VariableKind::Material { levels, .. } => {
+                let name = text.trim_matches('"').to_ascii_lowercase();
+                return levels.iter().position(|l| *l == name).map(|i| i as f64).ok_or_else(|| {
+                    bad(format!("'{text}' is not one of its materials: {}", levels.join(", ")))
+                });
+            }
+        };
+        match field.quantity {
             Quantity::Length => parse(text, Dimension::Length).map_err(|e| bad(e.to_string())),
             Quantity::Current => parse(text, Dimension::Current).map_err(|e| bad(e.to_string())),
             Quantity::Integer => {
@@ -62,14 +151,72 @@ impl Variable {
         }
     }
 
-    /// The value formatted for people: millimetres for lengths, amperes, whole numbers.
-    pub fn display_value(&self, si: f64) -> String {
-        match self.field.quantity {
-            Quantity::Length => format!("{}mm", round_sig(si * 1e3, 5)),
-            Quantity::Current => format!("{}A", round_sig(si, 5)),
-            Quantity::Integer => format!("{}", si.round() as i64),
+    /// The level of a material variable at index `x` (a whole number in range), as an error
+    /// naming the variable otherwise.
+    pub fn level(&self, x: f64) -> Result<&str, ExploreError> {
+        let levels = self.levels();
+        let index = x.round();
+        if (x - index).abs() > 1e-9 || index < 0.0 || index as usize >= levels.len() {
+            return Err(ExploreError::Input(format!(
+                "variable '{}': {x} is not the index of one of its {} materials",
+                self.name,
+                levels.len()
+            )));
+        }
+        Ok(&levels[index as usize])
+    }
+
+    /// The value a stored record keeps: the number, or the material by name.
+    pub fn value(&self, x: f64) -> Result<VariableValue, ExploreError> {
+        Ok(match self.kind {
+            VariableKind::Numeric(_) => VariableValue::Number(x),
+            VariableKind::Material { .. } => VariableValue::Level(self.level(x)?.to_string()),
+        })
+    }
+
+    /// Writes the value `x` (SI, or a level's index) into the spec table.
+    pub fn set(&self, spec: &mut toml::Table, x: f64) -> Result<(), ExploreError> {
+        match &self.kind {
+            VariableKind::Numeric(field) => set_field(spec, field, x),
+            VariableKind::Material { field, .. } => {
+                set_path(spec, field.path, Some(toml::Value::String(self.level(x)?.to_string())))
+            }
         }
     }
+
+    /// The optimiser's bounds of the variable between `lower` and `upper` (SI): continuous,
+    /// integer, or categorical over its levels (the bounds are then its levels' indices).
+    pub fn bounds(&self, lower: f64, upper: f64) -> Bounds {
+        match self.quantity() {
+            Some(Quantity::Integer) => Bounds::integer(lower, upper),
+            Some(Quantity::Length | Quantity::Current) => Bounds::continuous(lower, upper),
+            None => Bounds::categorical(self.levels().len()),
+        }
+    }
+
+    /// The value formatted for people: millimetres for lengths, amperes, whole numbers, the
+    /// material's name.
+    pub fn display_value(&self, x: f64) -> String {
+        match self.quantity() {
+            Some(Quantity::Length) => format!("{}mm", round_sig(x * 1e3, 5)),
+            Some(Quantity::Current) => format!("{}A", round_sig(x, 5)),
+            Some(Quantity::Integer) => format!("{}", x.round() as i64),
+            None => self.level(x).map_or_else(|_| format!("level {x}"), str::to_string),
+        }
+    }
+
+    /// A stored value formatted for people (see [`Self::display_value`]).
+    pub fn display(&self, value: &VariableValue) -> String {
+        match value {
+            VariableValue::Number(x) if !self.is_categorical() => self.display_value(*x),
+            other => other.to_string(),
+        }
+    }
+}
+
+/// The library materials that suit a material field, for messages.
+fn allowed(field: &MaterialField) -> String {
+    field.suitable().join(", ")
 }
 
 /// Rounds to `significant` digits, so that `0.5e-3 * 1e3` prints `0.5`, not `0.49999999999999994`,
@@ -83,13 +230,21 @@ fn round_sig(x: f64, significant: i32) -> f64 {
     (x * scale).round() / scale
 }
 
-/// Resolves `name` (a spec field's TOML path, see [`numeric_fields`], or a thesis symbol of
-/// [`SYMBOLS`]) for a base spec whose configuration uses drums (`is_drum`) or discs.
+/// Resolves `name` (a spec field's TOML path, see [`numeric_fields`] and [`MATERIAL_FIELDS`], or a
+/// thesis symbol of [`SYMBOLS`]) for a base spec whose configuration uses drums (`is_drum`) or
+/// discs. A material variable comes without levels ([`Variable::with_levels`] gives them).
 pub fn resolve(name: &str, is_drum: bool) -> Result<Variable, ExploreError> {
     let trimmed = name.trim();
-    let variable = |field: &SpecField| Variable { field: *field, name: trimmed.to_string() };
+    let variable = |field: &SpecField| Variable {
+        kind: VariableKind::Numeric(*field),
+        name: trimmed.to_string(),
+    };
     if let Some(field) = numeric_fields().find(|f| f.path == trimmed) {
         return Ok(variable(field));
+    }
+    if let Some(field) = MaterialField::at(trimmed) {
+        let kind = VariableKind::Material { field, levels: Vec::new() };
+        return Ok(Variable { kind, name: trimmed.to_string() });
     }
     if let Some(&(symbol, drum, disc)) = SYMBOLS.iter().find(|(s, _, _)| *s == trimmed) {
         let path = if is_drum { drum } else { disc };
@@ -103,8 +258,10 @@ pub fn resolve(name: &str, is_drum: bool) -> Result<Variable, ExploreError> {
         return Ok(variable(field));
     }
     Err(ExploreError::Input(format!(
-        "unknown design variable '{trimmed}': use a spec field ({}) or a thesis symbol ({})",
+        "unknown design variable '{trimmed}': use a spec field ({}), a material ({}) or a thesis \
+         symbol ({})",
         field_list(),
+        MATERIAL_FIELDS.iter().map(|f| f.path).collect::<Vec<_>>().join(", "),
         SYMBOLS.iter().map(|s| s.0).collect::<Vec<_>>().join(", ")
     )))
 }
@@ -166,9 +323,26 @@ pub fn set_path(
     Ok(())
 }
 
+/// Splits one fixed change `PATH=VALUE` (the `--set` of `mrbrake sweep` and `mrbrake optimize`,
+/// the `set` of the Python package) into its path and value, both trimmed.
+pub fn parse_set(text: &str) -> Result<(String, String), ExploreError> {
+    let (path, value) = text.split_once('=').ok_or_else(|| {
+        ExploreError::Input(format!(
+            "--set '{text}': expected PATH=VALUE, e.g. coil.turns=fill or materials.bobbin=pom"
+        ))
+    })?;
+    Ok((path.trim().to_string(), value.trim().to_string()))
+}
+
+/// [`parse_set`] of every argument, in order.
+pub fn parse_sets(texts: &[String]) -> Result<Vec<(String, String)>, ExploreError> {
+    texts.iter().map(|t| parse_set(t)).collect()
+}
+
 /// Applies a fixed override `PATH=VALUE` to a spec table: `VALUE` is a quantity with its unit for a
 /// variable field, `fill` for `coil.turns` (remove the count, so the turns fill the window, (4.2),
-/// (4.3)), or any TOML value for other fields (e.g. `materials.fluid="mrf-132dg"`).
+/// (4.3)), a library material that suits the part for a material field (`materials.bobbin=pom`),
+/// or any TOML value for other fields.
 pub fn apply_override(
     spec: &mut toml::Table,
     path: &str,
@@ -177,11 +351,15 @@ pub fn apply_override(
 ) -> Result<(), ExploreError> {
     let text = text.trim();
     if let Ok(variable) = resolve(path, is_drum) {
-        if variable.field.path == "coil.turns" && text.eq_ignore_ascii_case("fill") {
+        if variable.path() == "coil.turns" && text.eq_ignore_ascii_case("fill") {
             return set_path(spec, "coil.turns", None);
         }
+        if variable.is_categorical() {
+            let variable = variable.with_levels(&[toml_text(text)])?;
+            return variable.set(spec, 0.0);
+        }
         let si = variable.parse_value(text)?;
-        return set_field(spec, &variable.field, si);
+        return variable.set(spec, si);
     }
     let value: toml::Value = match toml::from_str::<toml::Table>(&format!("v = {text}")) {
         Ok(mut t) => t.remove("v").unwrap_or(toml::Value::String(text.to_string())),
@@ -190,17 +368,25 @@ pub fn apply_override(
     set_path(spec, path.trim(), Some(value))
 }
 
+/// The text of a value written bare (`pom`) or as a TOML string (`"pom"`).
+fn toml_text(text: &str) -> String {
+    match toml::from_str::<toml::Table>(&format!("v = {text}")) {
+        Ok(t) => t.get("v").and_then(toml::Value::as_str).unwrap_or(text).to_string(),
+        Err(_) => text.to_string(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn symbols_follow_the_configuration() {
-        assert_eq!(resolve("g", true).unwrap().field.path, "drum.gap");
-        assert_eq!(resolve("g", false).unwrap().field.path, "disc.gap");
+        assert_eq!(resolve("g", true).unwrap().path(), "drum.gap");
+        assert_eq!(resolve("g", false).unwrap().path(), "disc.gap");
         assert!(resolve("R0", false).is_err());
         let err = resolve("gapp", true).unwrap_err().to_string();
-        assert!(err.contains("drum.gap"), "{err}");
+        assert!(err.contains("drum.gap") && err.contains("materials.bobbin"), "{err}");
     }
 
     #[test]
@@ -217,14 +403,57 @@ mod tests {
     #[test]
     fn set_field_creates_tables_and_writes_si() {
         let mut t = toml::Table::new();
-        set_field(&mut t, &resolve("spacer.thickness", true).unwrap().field, 4e-3).unwrap();
+        let spacer = resolve("spacer.thickness", true).unwrap();
+        spacer.set(&mut t, 4e-3).unwrap();
         let v = t["spacer"]["thickness"].as_float().unwrap();
         assert!((v - 4e-3).abs() < 1e-18);
-        set_field(&mut t, &resolve("N", true).unwrap().field, 300.0).unwrap();
+        resolve("N", true).unwrap().set(&mut t, 300.0).unwrap();
         assert_eq!(t["coil"]["turns"].as_integer(), Some(300));
         apply_override(&mut t, "coil.turns", "fill", true).unwrap();
         assert!(t["coil"].get("turns").is_none());
         apply_override(&mut t, "materials.fluid", "\"mrf-132dg\"", true).unwrap();
         assert_eq!(t["materials"]["fluid"].as_str(), Some("mrf-132dg"));
+        apply_override(&mut t, "materials.bobbin", "POM", true).unwrap();
+        assert_eq!(t["materials"]["bobbin"].as_str(), Some("pom"));
+    }
+
+    /// A material variable takes library materials that suit its part, by name; its value is a
+    /// level's index, kept by name in the record.
+    #[test]
+    fn a_material_variable_takes_suitable_levels_by_name() {
+        let names = |list: &[&str]| list.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        let bobbin = resolve("materials.bobbin", true).unwrap();
+        assert!(bobbin.is_categorical() && bobbin.levels().is_empty());
+        let bobbin = bobbin.with_levels(&names(&["aluminium", "Stainless-304", "pom"])).unwrap();
+        assert_eq!(bobbin.levels(), ["aluminium", "stainless-304", "pom"]);
+        assert!((bobbin.parse_value("pom").unwrap() - 2.0).abs() < 1e-12);
+        assert_eq!(bobbin.value(1.0).unwrap(), VariableValue::Level("stainless-304".into()));
+        assert_eq!(bobbin.display_value(0.0), "aluminium");
+        assert!(bobbin.value(3.0).is_err() && bobbin.value(0.5).is_err());
+        assert_eq!(bobbin.bounds(0.0, 0.0), Bounds::categorical(3));
+        let mut t = toml::Table::new();
+        bobbin.set(&mut t, 2.0).unwrap();
+        assert_eq!(t["materials"]["bobbin"].as_str(), Some("pom"));
+        let refuse = |field: &str, list: &[&str]| {
+            resolve(field, true).unwrap().with_levels(&names(list)).unwrap_err().to_string()
+        };
+        let e = refuse("materials.bobbin", &["steel-1008"]);
+        assert!(e.contains("materials.bobbin") && e.contains("steel") && e.contains("pom"), "{e}");
+        let e = refuse("materials.bobbin", &["unobtainium"]);
+        assert!(e.contains("not in the material library") && e.contains("aluminium"), "{e}");
+        let e = refuse("materials.fluid", &["mrf-122eg", "aluminium"]);
+        assert!(e.contains("materials.fluid") && e.contains("mrf-132dg"), "{e}");
+        assert!(refuse("materials.bobbin", &["pom", "POM"]).contains("twice"));
+        assert!(refuse("materials.bobbin", &[]).contains("at least one"));
+        assert!(resolve("g", true).unwrap().with_levels(&names(&["pom"])).is_err());
+        let mut t = toml::Table::new();
+        assert!(apply_override(&mut t, "materials.flux_path", "aluminium", true).is_err());
+    }
+
+    #[test]
+    fn sets_split_at_the_first_equals_sign() {
+        assert_eq!(parse_set(" coil.turns = fill ").unwrap(), ("coil.turns".into(), "fill".into()));
+        assert_eq!(parse_set("a=b=c").unwrap().1, "b=c");
+        assert!(parse_set("coil.turns").unwrap_err().to_string().contains("PATH=VALUE"));
     }
 }

@@ -1,10 +1,10 @@
 //! Study variables are the spec's own fields: every numeric field of every configuration is
-//! reachable as a variable (resolved by its path, written by `set_field`, read back by the spec
+//! reachable as a variable (resolved by its path, written by `Variable::set`, read back by the spec
 //! reader), and every variable name and thesis symbol names a real field of the configurations it
 //! is meant for. The user-facing names stay as they were.
 
 use mrbrake_design::spec::{BrakeSpec, ConfigurationKind, Quantity, numeric_fields};
-use mrbrake_explore::variable::{SYMBOLS, resolve, set_field};
+use mrbrake_explore::variable::{SYMBOLS, resolve};
 use serde_json::Value;
 
 fn example_table(name: &str) -> toml::Table {
@@ -61,13 +61,13 @@ fn every_numeric_field_of_every_configuration_is_a_variable() {
         for path in paths {
             let variable = resolve(&path, kind.is_drum())
                 .unwrap_or_else(|e| panic!("{}: {path} is not a variable: {e}", kind.name()));
-            assert_eq!(variable.field.path, path);
-            let value = match variable.field.quantity {
+            assert_eq!(variable.path(), path);
+            let value = match variable.quantity().expect("a numeric field") {
                 Quantity::Integer => 3.0,
                 Quantity::Length | Quantity::Current => 0.0125,
             };
             let mut edited = table.clone();
-            set_field(&mut edited, &variable.field, value).expect("set");
+            variable.set(&mut edited, value).expect("set");
             let got = get(&json_of(&edited), &path).and_then(Value::as_f64);
             assert_eq!(got, Some(value), "{} {path}", kind.name());
         }
@@ -98,7 +98,7 @@ fn every_variable_and_symbol_names_a_field_of_its_configurations() {
         for (is_drum, path, paths) in [(true, drum, &drum_paths), (false, disc, &disc_paths)] {
             match path {
                 Some(path) => {
-                    assert_eq!(resolve(symbol, is_drum).unwrap().field.path, path, "{symbol}");
+                    assert_eq!(resolve(symbol, is_drum).unwrap().path(), path, "{symbol}");
                     assert!(paths.iter().any(|p| p == path), "{symbol}: {path} is not a field");
                 }
                 None => assert!(resolve(symbol, is_drum).is_err(), "{symbol}"),
@@ -112,7 +112,7 @@ fn the_thesis_symbols_keep_their_names() {
     let resolved = |drum: bool| -> Vec<String> {
         ["g", "h", "d", "R0", "R1", "R2", "n", "N", "I", "AWG"]
             .iter()
-            .map(|s| resolve(s, drum).map_or_else(|_| "-".to_string(), |v| v.field.path.into()))
+            .map(|s| resolve(s, drum).map_or_else(|_| "-".to_string(), |v| v.path().into()))
             .collect()
     };
     assert_eq!(

@@ -284,7 +284,7 @@ fn store_seed() -> Vec<u8> {
             key: format!("{k:064x}"),
             status,
             reason: (status != Status::Ok).then(|| "a reason".to_string()),
-            variables: vec![("drum.gap".into(), 5e-4 + k as f64 * 1e-4)],
+            variables: vec![("drum.gap".into(), (5e-4 + k as f64 * 1e-4).into())],
             metrics: if status == Status::Ok {
                 vec![("torque_max_Nm".into(), 3.5)]
             } else {

@@ -86,7 +86,22 @@ impl Entry {
         density_kg_m3: f64,
         density_source: &'static str,
     ) -> Self {
-        let recipe = LinearRecipe { femm_block, density_kg_m3, density_source };
+        let electrical = Electrical::Femm { block: femm_block };
+        let recipe = LinearRecipe { electrical, density_kg_m3, density_source };
+        Entry { name, description, recipe: Recipe::Linear(recipe) }
+    }
+
+    /// An electrical insulator (a polymer): `mu_r = 1`, its conductivity the reciprocal of the
+    /// smallest volume resistivity its source quotes (an upper bound), its density from a handbook.
+    const fn insulator(
+        name: &'static str,
+        description: &'static str,
+        resistivity: Insulation,
+        density_kg_m3: f64,
+        density_source: &'static str,
+    ) -> Self {
+        let electrical = Electrical::Insulator(resistivity);
+        let recipe = LinearRecipe { electrical, density_kg_m3, density_source };
         Entry { name, description, recipe: Recipe::Linear(recipe) }
     }
 
@@ -213,6 +228,19 @@ const CATALOGUE: &[Entry] = &[
         "316 Stainless Steel",
         8000.0,
         "ASM Handbook Vol. 1 / AISI data (8.00 g/cm3 for 316)",
+    ),
+    Entry::insulator(
+        "pom",
+        "POM, acetal homopolymer (e.g. Delrin): a bobbin polymer, electrical insulator (mu_r = 1)",
+        Insulation {
+            volume_resistivity_ohm_m: 1e11,
+            source: "volume resistivity >= 1e13 Ohm cm (IEC 60093) in a POM-C technical data \
+             sheet (typical values); Margolis, Engineering Plastics Handbook (McGraw-Hill 2006), \
+             Table 5.5, lists 1e15 Ohm cm and more for acetal homopolymer and copolymer",
+        },
+        1420.0,
+        "R. J. Crawford, Plastics Engineering, 3rd ed. (Butterworth-Heinemann 1998), Table 1.8 p. 31, \
+         acetal homopolymer (1420 kg/m3; Margolis Table 5.5: specific gravity 1.41)",
     ),
     Entry::linear(
         "copper",
@@ -475,15 +503,36 @@ fn femm_steel(block: &str, note: &str) -> Provenance {
 // ---------------------------------------------------------------------------------------------------
 // Linear materials
 
-/// A linear material of the catalogue: its FEMM block and its handbook density with the source.
+/// A linear material of the catalogue: where its permeability and conductivity come from, and its
+/// handbook density with the source.
 struct LinearRecipe {
-    femm_block: &'static str,
+    electrical: Electrical,
     density_kg_m3: f64,
     density_source: &'static str,
 }
 
+/// The permeability and conductivity of a linear material.
+enum Electrical {
+    /// A block of FEMM's material library (`mu_r` and the conductivity).
+    Femm { block: &'static str },
+    /// An electrical insulator: `mu_r = 1` and the conductivity bound of its [`Insulation`].
+    Insulator(Insulation),
+}
+
+/// The volume resistivity of an insulator and its source.
+struct Insulation {
+    /// The smallest volume resistivity the source quotes (Ω·m): its reciprocal bounds the
+    /// conductivity from above.
+    volume_resistivity_ohm_m: f64,
+    source: &'static str,
+}
+
 fn build_linear(entry: &Entry, recipe: &LinearRecipe) -> Result<Material, MaterialError> {
-    let &LinearRecipe { femm_block, density_kg_m3: density, density_source } = recipe;
+    let femm_block = match &recipe.electrical {
+        Electrical::Femm { block } => *block,
+        Electrical::Insulator(insulation) => return Ok(build_insulator(entry, recipe, insulation)),
+    };
+    let &LinearRecipe { density_kg_m3: density, density_source, .. } = recipe;
     let name = entry.name;
     let file = data_file!("linear_materials_femm.csv");
     let header = ["material", "mu_r", "sigma_S_per_m"];
@@ -529,6 +578,34 @@ fn build_linear(entry: &Entry, recipe: &LinearRecipe) -> Result<Material, Materi
         mu_r_linear: Some(mu_r),
         fluid: None,
     })
+}
+
+/// A polymer insulator: `B = mu0 H` (a polymer's susceptibility, of order 1e-5, is negligible),
+/// its conductivity bounded by its volume resistivity.
+fn build_insulator(entry: &Entry, recipe: &LinearRecipe, insulation: &Insulation) -> Material {
+    let provenance = Provenance::new(
+        insulation.source,
+        "mu_r = 1 (a polymer's susceptibility is of order 1e-5); conductivity = 1 / (smallest volume \
+         resistivity quoted), an upper bound",
+        Trust::Medium,
+    );
+    Material {
+        name: entry.name.to_string(),
+        kind: MaterialKind::Linear,
+        description: entry.description.to_string(),
+        magnetic: Magnetic::Linear { mu_r: 1.0 },
+        provenance: provenance.clone(),
+        density_kg_m3: Some(Sourced::new(
+            recipe.density_kg_m3,
+            Provenance::new(recipe.density_source, "copied (handbook value)", Trust::Medium),
+        )),
+        conductivity_s_per_m: Some(Sourced::new(
+            1.0 / insulation.volume_resistivity_ohm_m,
+            provenance,
+        )),
+        mu_r_linear: Some(1.0),
+        fluid: None,
+    }
 }
 
 // ---------------------------------------------------------------------------------------------------

@@ -119,6 +119,8 @@ fn coil_and_mechanics_text(out: &mut String, a: &Analysis) {
         c.current_density_a_per_mm2,
         c.power_w
     );
+    let _ =
+        writeln!(out, "      copper fill factor {:.3} (copper area / window area)", c.fill_factor);
     let _ = writeln!(
         out,
         "      L = {:.2} mH (secant), {:.2} mH (incremental) at max current; L/R = {:.2} ms",
@@ -291,11 +293,13 @@ mod tests {
         let lines: Vec<&str> = text.lines().collect();
         assert!(lines[0].ends_with("(bidirectional, embedded default)"), "{}", lines[0]);
         // Title, mesh, blank, curve title and header; 3 points; blank, "at", 5 torque lines (both
-        // directions); blank, 2 gap titles, 8 gaps; blank, 2 coil, 2 mechanics; blank, time.
-        assert_eq!(lines.len(), 5 + 3 + 7 + 11 + 5 + 2, "{text}");
+        // directions); blank, 2 gap titles, 8 gaps; blank, 3 coil (the last its fill factor), 2
+        // mechanics; blank, time.
+        assert_eq!(lines.len(), 5 + 3 + 7 + 11 + 6 + 2, "{text}");
         assert!(lines[10].starts_with("  torque (local Bingham + viscous) "), "{}", lines[10]);
         assert_eq!(lines[16], "gaps at the maximum current:");
-        assert!(lines[29].starts_with("mechanics: mass ") && lines[29].contains("(direction 2: "));
+        assert!(lines[28].starts_with("      copper fill factor 0."), "{}", lines[28]);
+        assert!(lines[30].starts_with("mechanics: mass ") && lines[30].contains("(direction 2: "));
         assert!(lines[lines.len() - 1].starts_with("time: ") && text.ends_with(")\n"));
         // At the default 20 °C the resistance is said once; a hot coil adds its hot value.
         let coil = lines.iter().find(|l| l.starts_with("coil: ")).expect("a coil line");

@@ -6,6 +6,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use mrbrake_design::formula::FILL_FACTOR_LIMIT;
 use mrbrake_design::study::StudyTable;
 use mrbrake_explore::evaluate::{METRICS, metric_info};
 use mrbrake_explore::front::FrontDesign;
@@ -25,6 +26,27 @@ use crate::pareto::{
 };
 use crate::wording::count;
 use crate::{ReportError, write_atomic};
+
+/// The warning about the designs whose copper fill factor (metric `fill_factor`) is above what a
+/// winding reaches in practice ([`FILL_FACTOR_LIMIT`]), if any: the turn formula (4.2), (4.3) packs
+/// bare wire hexagonally and fills a window well beyond it.
+fn fill_factor_note<'r>(records: impl Iterator<Item = &'r Record>) -> Option<String> {
+    let (mut over, mut highest) = (0, 0.0_f64);
+    for fill in records.filter_map(|r| r.metric("fill_factor")) {
+        if fill > FILL_FACTOR_LIMIT {
+            over += 1;
+            highest = highest.max(fill);
+        }
+    }
+    (over > 0).then(|| {
+        format!(
+            "warning: {} fill the coil window above a copper fill factor of {FILL_FACTOR_LIMIT} (up \
+             to {highest:.3}), more than an orthocyclic winding reaches; constrain fill_factor \
+             (max = {FILL_FACTOR_LIMIT}) or give fewer turns",
+            count(over, "design", "designs")
+        )
+    })
+}
 
 /// Evaluations per minute of a run (0 before any time has passed).
 fn evaluations_per_min(progress: &Progress) -> f64 {
@@ -138,6 +160,9 @@ impl SweepReport<'_> {
             self.store.display()
         );
         self.table(&mut out);
+        if let Some(note) = fill_factor_note(self.records.iter()) {
+            let _ = writeln!(out, "{note}");
+        }
         let p = &self.summary.progress;
         if p.computed == 0 {
             let all = if p.reused == 1 { "" } else { "all " };
@@ -179,7 +204,7 @@ impl SweepReport<'_> {
         for r in self.records {
             let mut line = String::new();
             for (v, (_, value)) in self.variables.iter().zip(&r.variables) {
-                let _ = write!(line, "{:>12} ", v.display_value(*value));
+                let _ = write!(line, "{:>12} ", v.display(value));
             }
             let _ = write!(line, "{:>11} ", r.status.as_str());
             if r.status == Status::Ok {
@@ -324,6 +349,10 @@ impl OptimizationReport<'_> {
             self.designs_table(&mut out, std::iter::once(reference), "reference (base spec)");
         }
         out.push_str(&self.extras_text());
+        let front_records = result.front.iter().map(|&i| &result.evaluated[i].record);
+        if let Some(note) = fill_factor_note(front_records) {
+            let _ = writeln!(out, "{note}");
+        }
         if let Some(dir) = out_dir {
             let _ = writeln!(out, "outputs in {}", dir.display());
         }
@@ -886,6 +915,20 @@ mod tests {
             elapsed_s: 2.0,
         };
         RunSummary { progress, evaluation_s: 3.0, store_s: 0.01 }
+    }
+
+    #[test]
+    fn windows_filled_beyond_winding_practice_are_warned_about() {
+        let records = [
+            record('a', Status::Ok, None, &[("fill_factor", 0.74)]),
+            record('b', Status::Ok, None, &[("fill_factor", 0.81)]),
+            record('c', Status::Ok, None, &[("fill_factor", 0.86)]),
+            record('d', Status::Infeasible, Some("too wide"), &[]),
+        ];
+        let note = fill_factor_note(records.iter()).expect("two are above the limit");
+        assert!(note.starts_with("warning: 2 designs fill the coil window"), "{note}");
+        assert!(note.contains("0.75") && note.contains("up to 0.860"), "{note}");
+        assert_eq!(fill_factor_note(records[..1].iter()), None);
     }
 
     #[test]

@@ -24,7 +24,9 @@ fn realistic_record(index: u64) -> Record {
         status: Status::Ok,
         reason: None,
         variables: (0..6)
-            .map(|variable| (format!("variable_{variable}_m"), 1e-3 * (x + f64::from(variable))))
+            .map(|variable| {
+                (format!("variable_{variable}_m"), (1e-3 * (x + f64::from(variable))).into())
+            })
             .collect(),
         metrics: (0..15)
             .map(|metric| (format!("metric_{metric}"), x / (1.0 + f64::from(metric))))

@@ -2,7 +2,7 @@
 //! (atomically, with `mrbrake_report::write_atomic`).
 //!
 //! CSV columns: `key,status,reason`, then every variable name in first-seen order over all
-//! records, then every metric name in first-seen order, then every evaluation setting (mesh level,
+//! records (a categorical variable's cell holds its level's name), then every metric name in first-seen order, then every evaluation setting (mesh level,
 //! element order, speed, … as the caller recorded them; empty for records written before schema
 //! version 3), then `eval_seconds,solver_version`. A
 //! record without a given variable or metric leaves the cell empty. Numbers use Rust's `{}`
@@ -12,20 +12,20 @@
 
 use std::collections::HashSet;
 
-use crate::named_values::value_to_json;
+use crate::named_values::{value_to_json, variable_to_json};
 use crate::{Record, StoreError};
 
 /// Names in first-seen order over all records.
-fn union_of_names<'a>(
-    records: &'a [Record],
-    list: impl Fn(&'a Record) -> &'a [(String, f64)],
-) -> Vec<&'a str> {
+fn union_of_names<'a, I>(records: &'a [Record], list: impl Fn(&'a Record) -> I) -> Vec<&'a str>
+where
+    I: Iterator<Item = &'a str>,
+{
     let mut seen = HashSet::new();
     let mut names = Vec::new();
     for record in records {
-        for (name, _) in list(record) {
-            if seen.insert(name.as_str()) {
-                names.push(name.as_str());
+        for name in list(record) {
+            if seen.insert(name) {
+                names.push(name);
             }
         }
     }
@@ -64,8 +64,10 @@ fn cell(values: &[(String, f64)], name: &str) -> String {
 /// The records as CSV bytes (UTF-8, header row first, `\n` line ends); see the module docs for
 /// the columns.
 pub fn to_csv(records: &[Record]) -> Result<Vec<u8>, StoreError> {
-    let variable_names = union_of_names(records, |record| &record.variables);
-    let metric_names = union_of_names(records, |record| &record.metrics);
+    let variable_names =
+        union_of_names(records, |record| record.variables.iter().map(|(n, _)| n.as_str()));
+    let metric_names =
+        union_of_names(records, |record| record.metrics.iter().map(|(n, _)| n.as_str()));
     let setting_names = setting_names(records);
     let mut writer =
         csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
@@ -83,7 +85,11 @@ pub fn to_csv(records: &[Record]) -> Result<Vec<u8>, StoreError> {
             record.status.as_str().to_owned(),
             record.reason.clone().unwrap_or_default(),
         ];
-        row.extend(variable_names.iter().map(|name| cell(&record.variables, name)));
+        row.extend(
+            variable_names.iter().map(|name| {
+                record.variable_value(name).map(ToString::to_string).unwrap_or_default()
+            }),
+        );
         row.extend(metric_names.iter().map(|name| cell(&record.metrics, name)));
         row.extend(setting_names.iter().map(|name| setting_cell(record, name)));
         row.push(format!("{}", record.eval_seconds));
@@ -113,7 +119,13 @@ pub fn to_json(records: &[Record]) -> serde_json::Value {
                     "key": record.key,
                     "status": record.status.as_str(),
                     "reason": record.reason,
-                    "variables": named_object(&record.variables),
+                    "variables": serde_json::Value::Object(
+                        record
+                            .variables
+                            .iter()
+                            .map(|(name, value)| (name.clone(), variable_to_json(value)))
+                            .collect(),
+                    ),
                     "metrics": named_object(&record.metrics),
                     "settings": record.settings,
                     "eval_seconds": value_to_json(record.eval_seconds),
@@ -133,11 +145,13 @@ mod tests {
         let named = |values: &[(&str, f64)]| {
             values.iter().map(|&(name, value)| (name.to_owned(), value)).collect()
         };
+        let variables =
+            variables.iter().map(|&(name, value)| (name.to_owned(), value.into())).collect();
         Record {
             key: key_digit.to_string().repeat(64),
             status: if metrics.is_empty() { Status::Infeasible } else { Status::Ok },
             reason: metrics.is_empty().then(|| "gap, below 0.1 mm, is too small".to_owned()),
-            variables: named(variables),
+            variables,
             metrics: named(metrics),
             spec_toml: "[brake]\n".into(),
             eval_seconds: 0.25,
@@ -166,6 +180,17 @@ mod tests {
         );
         assert_eq!(lines[3], format!("{},ok,,0.0001,,,-inf,NaN,0.25,0.1.0", "c".repeat(64)));
         assert_eq!(lines.len(), 4);
+    }
+
+    #[test]
+    fn a_categorical_variable_exports_by_name() {
+        let mut r = record('e', &[("g", 0.001)], &[("torque", 3.5)]);
+        r.variables.push(("materials.bobbin".into(), crate::VariableValue::Level("pom".into())));
+        let text = String::from_utf8(to_csv(std::slice::from_ref(&r)).expect("csv")).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[0].starts_with("key,status,reason,g,materials.bobbin,torque"), "{text}");
+        assert!(lines[1].contains(",0.001,pom,3.5,"), "{text}");
+        assert_eq!(to_json(&[r])[0]["variables"]["materials.bobbin"], "pom");
     }
 
     #[test]

@@ -23,7 +23,7 @@
 //!     key: "3f".repeat(32),
 //!     status: Status::Ok,
 //!     reason: None,
-//!     variables: vec![("gap_m".into(), 0.75e-3)],
+//!     variables: vec![("gap_m".into(), 0.75e-3.into())],
 //!     metrics: vec![("torque_on_nm".into(), 3.2), ("torque_off_nm".into(), 0.04)],
 //!     spec_toml: "[geometry]\ngap = \"0.75 mm\"\n".into(),
 //!     eval_seconds: 0.31,
@@ -50,7 +50,7 @@
 //!     key            TEXT NOT NULL UNIQUE,  -- SHA-256 of the canonical design, 64 lowercase hex digits
 //!     status         TEXT NOT NULL CHECK (status IN ('ok', 'infeasible', 'failed')),
 //!     reason         TEXT,                  -- why infeasible / failed, NULL when ok
-//!     variables      TEXT NOT NULL,         -- JSON array of [name, SI value] pairs, caller's order
+//!     variables      TEXT NOT NULL,         -- JSON array of [name, SI value or level] pairs, caller's order
 //!     metrics        TEXT NOT NULL,         -- JSON array of [name, value] pairs, caller's order
 //!     spec_toml      TEXT NOT NULL,         -- the full design, ready for `mrbrake analyze`
 //!     eval_seconds   REAL,                  -- wall-clock time of the evaluation
@@ -67,7 +67,8 @@
 //! ```
 //!
 //! Values are JSON numbers, except non-finite ones, stored as the strings `"NaN"`, `"inf"`,
-//! `"-inf"` (JSON has no such numbers). Pairs rather than a JSON object keep the caller's order.
+//! `"-inf"` (JSON has no such numbers), and the levels of categorical variables (a material by
+//! name), stored as any other string. Pairs rather than a JSON object keep the caller's order.
 //! The file is marked with `PRAGMA application_id = 0x4D524252` ("MRBR") and
 //! `PRAGMA user_version = 3`. Sample queries:
 //!
@@ -130,5 +131,5 @@ pub use export::{to_csv, to_json};
 pub use merge::{
     MERGE_RELATIVE_TOLERANCE, MergeSummary, MetricUpgrade, metrics_agree, values_agree,
 };
-pub use record::{KEY_HEX_DIGITS, Record, Status, UnknownStatus, is_design_key};
+pub use record::{KEY_HEX_DIGITS, Record, Status, UnknownStatus, VariableValue, is_design_key};
 pub use store::Store;

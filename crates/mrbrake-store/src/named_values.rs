@@ -1,4 +1,5 @@
 //! Text encoding of the `variables` and `metrics` columns: a JSON array of `[name, value]` pairs.
+//! A categorical variable's value is its level as a JSON string (any text but the three below).
 //!
 //! An array of pairs (rather than a JSON object) keeps the caller's order, which a JSON object
 //! read back through `serde_json` (without its `preserve_order` feature) would lose. JSON has no
@@ -8,6 +9,8 @@
 //! comes back bit for bit.
 
 use serde_json::value::RawValue;
+
+use crate::VariableValue;
 
 /// The JSON text of a non-finite value, or `None` when the value is finite.
 pub(crate) fn non_finite_text(value: f64) -> Option<&'static str> {
@@ -36,15 +39,57 @@ pub(crate) fn encode(values: &[(String, f64)]) -> String {
     serde_json::to_string(&pairs).expect("a list of (string, number) pairs always serialises")
 }
 
+/// A variable's value as a JSON value: a number as [`value_to_json`], a level as its name.
+pub(crate) fn variable_to_json(value: &VariableValue) -> serde_json::Value {
+    match value {
+        VariableValue::Number(x) => value_to_json(*x),
+        VariableValue::Level(name) => serde_json::Value::String(name.clone()),
+    }
+}
+
+/// Encodes design variables as `[["name", value], ...]`: numbers as [`encode`], levels as strings.
+pub(crate) fn encode_variables(values: &[(String, VariableValue)]) -> String {
+    let pairs: Vec<(&str, serde_json::Value)> =
+        values.iter().map(|(name, value)| (name.as_str(), variable_to_json(value))).collect();
+    serde_json::to_string(&pairs).expect("a list of (string, number or string) pairs serialises")
+}
+
+/// The `[name, value]` pairs of a column's text, values still raw.
+fn pairs(text: &str) -> Result<Vec<(String, Box<RawValue>)>, String> {
+    serde_json::from_str(text)
+        .map_err(|error| format!("expected a JSON array of [name, value] pairs: {error}"))
+}
+
 /// Decodes the text written by [`encode`]; the error says what is wrong.
 pub(crate) fn decode(text: &str) -> Result<Vec<(String, f64)>, String> {
-    let pairs: Vec<(String, Box<RawValue>)> = serde_json::from_str(text)
-        .map_err(|error| format!("expected a JSON array of [name, value] pairs: {error}"))?;
-    pairs
+    pairs(text)?
         .into_iter()
         .map(|(name, raw)| {
             let value = decode_value(raw.get())
                 .ok_or_else(|| format!("value of {name:?} is not a number: {}", raw.get()))?;
+            Ok((name, value))
+        })
+        .collect()
+}
+
+/// Decodes the text written by [`encode_variables`]: a number (or a non-finite one's text) is a
+/// number, any other string a level; the error says what is wrong.
+pub(crate) fn decode_variables(text: &str) -> Result<Vec<(String, VariableValue)>, String> {
+    pairs(text)?
+        .into_iter()
+        .map(|(name, raw)| {
+            let value = match decode_value(raw.get()) {
+                Some(x) => VariableValue::Number(x),
+                None => match serde_json::from_str::<String>(raw.get()) {
+                    Ok(level) => VariableValue::Level(level),
+                    Err(_) => {
+                        return Err(format!(
+                            "value of {name:?} is neither a number nor a level: {}",
+                            raw.get()
+                        ));
+                    }
+                },
+            };
             Ok((name, value))
         })
         .collect()
@@ -91,6 +136,23 @@ mod tests {
         let back = decode(&text).expect("decodes");
         assert!(back[0].1.is_nan());
         assert!(same_bits(&back[1..], &values[1..]));
+    }
+
+    #[test]
+    fn variables_hold_numbers_and_levels() {
+        let values = vec![
+            ("g".to_owned(), VariableValue::Number(5e-4)),
+            ("materials.bobbin".to_owned(), VariableValue::Level("pom".into())),
+            ("n".to_owned(), VariableValue::Number(f64::INFINITY)),
+        ];
+        let text = encode_variables(&values);
+        assert_eq!(text, r#"[["g",0.0005],["materials.bobbin","pom"],["n","inf"]]"#);
+        assert_eq!(decode_variables(&text).expect("decodes"), values);
+        // A numeric column still refuses a level, and a variable refuses what is neither.
+        assert!(decode(&text).is_err());
+        for bad in ["[[\"a\", null]]", "[[\"a\", true]]", "[[\"a\", [1]]]"] {
+            assert!(decode_variables(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]

@@ -3,7 +3,8 @@
 //! A record is keyed by the SHA-256 of the canonical design, computed by the caller; the store
 //! only checks that the key has the right shape (64 lowercase hexadecimal digits) and that the
 //! variable and metric names are non-empty and unique, so the JSON objects of the exports are
-//! well defined.
+//! well defined. A design variable is a number (SI) or, for a categorical variable (a material out
+//! of a list), the chosen level by name ([`VariableValue`]).
 
 use std::collections::HashSet;
 use std::fmt;
@@ -61,6 +62,61 @@ impl FromStr for Status {
     }
 }
 
+/// The value of a design variable: a number in SI units, or a level of a categorical variable by
+/// name (e.g. the material `pom`). Stored as a JSON number or string, so an export shows the level
+/// by name.
+#[derive(Debug, Clone, PartialEq)]
+pub enum VariableValue {
+    /// A numeric variable's value (SI).
+    Number(f64),
+    /// A categorical variable's level, by name.
+    Level(String),
+}
+
+impl VariableValue {
+    /// The number, for a numeric variable.
+    pub fn as_number(&self) -> Option<f64> {
+        match self {
+            Self::Number(x) => Some(*x),
+            Self::Level(_) => None,
+        }
+    }
+
+    /// The level's name, for a categorical variable.
+    pub fn as_level(&self) -> Option<&str> {
+        match self {
+            Self::Number(_) => None,
+            Self::Level(name) => Some(name),
+        }
+    }
+
+    /// The value as the exports write it: a JSON number (non-finite ones as `"NaN"`, `"inf"`,
+    /// `"-inf"`) or the level's name as a string.
+    pub fn to_json(&self) -> serde_json::Value {
+        crate::named_values::variable_to_json(self)
+    }
+}
+
+impl From<f64> for VariableValue {
+    fn from(value: f64) -> Self {
+        Self::Number(value)
+    }
+}
+
+impl fmt::Display for VariableValue {
+    /// A number in Rust's shortest round-trip form (as the CSV export writes it), a level as its
+    /// name.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Number(x) => write!(f, "{x}"),
+            Self::Level(name) => f.write_str(name),
+        }
+    }
+}
+
+/// The texts a level may not take: the store writes non-finite numbers as these strings.
+pub(crate) const RESERVED_LEVELS: [&str; 3] = ["NaN", "inf", "-inf"];
+
 /// One evaluation of one design, as stored.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Record {
@@ -71,8 +127,9 @@ pub struct Record {
     pub status: Status,
     /// Why the design is infeasible or the evaluation failed; `None` for a successful evaluation.
     pub reason: Option<String>,
-    /// The varied design variables as `(name, SI value)`, in the caller's order (kept on read).
-    pub variables: Vec<(String, f64)>,
+    /// The varied design variables as `(name, value)`, a number (SI) or a categorical variable's
+    /// level, in the caller's order (kept on read).
+    pub variables: Vec<(String, VariableValue)>,
     /// The results as `(name, value)`, in the caller's order (kept on read); normally empty unless
     /// the status is [`Status::Ok`]. Non-finite values (NaN, ±inf) are stored faithfully.
     pub metrics: Vec<(String, f64)>,
@@ -96,9 +153,15 @@ impl Record {
         find_named(&self.metrics, name)
     }
 
-    /// Looks up a design variable by name.
+    /// Looks up a numeric design variable by name (`None` for a categorical one: see
+    /// [`Self::variable_value`]).
     pub fn variable(&self, name: &str) -> Option<f64> {
-        find_named(&self.variables, name)
+        self.variable_value(name).and_then(VariableValue::as_number)
+    }
+
+    /// Looks up a design variable's value, numeric or categorical, by name.
+    pub fn variable_value(&self, name: &str) -> Option<&VariableValue> {
+        self.variables.iter().find(|(candidate, _)| candidate == name).map(|(_, value)| value)
     }
 
     /// Checks the record contract: the key is 64 lowercase hexadecimal digits, and the variable
@@ -110,15 +173,29 @@ impl Record {
                 "the key must be {KEY_HEX_DIGITS} lowercase hexadecimal digits (a SHA-256)"
             )));
         }
-        for (list, values) in [("variable", &self.variables), ("metric", &self.metrics)] {
+        let variables = self.variables.iter().map(|(name, _)| name);
+        let metrics = self.metrics.iter().map(|(name, _)| name);
+        for (list, names) in
+            [("variable", variables.collect::<Vec<_>>()), ("metric", metrics.collect())]
+        {
             let mut seen = HashSet::new();
-            for (name, _) in values {
+            for name in names {
                 if name.is_empty() {
                     return Err(invalid(format!("a {list} has an empty name")));
                 }
                 if !seen.insert(name.as_str()) {
                     return Err(invalid(format!("{list} {name:?} appears twice")));
                 }
+            }
+        }
+        for (name, value) in &self.variables {
+            if let VariableValue::Level(level) = value
+                && (level.trim().is_empty() || RESERVED_LEVELS.contains(&level.as_str()))
+            {
+                return Err(invalid(format!(
+                    "variable {name:?}: the level {level:?} is not a name (empty, or the text of a \
+                     non-finite number)"
+                )));
             }
         }
         Ok(())
@@ -143,7 +220,7 @@ mod tests {
             key: key.to_owned(),
             status: Status::Ok,
             reason: None,
-            variables: vec![("gap".into(), 1e-3)],
+            variables: vec![("gap".into(), 1e-3.into()), ("bobbin".into(), level("pom"))],
             metrics: vec![("torque".into(), 3.1)],
             spec_toml: String::new(),
             eval_seconds: 0.3,
@@ -180,8 +257,17 @@ mod tests {
         repeated.metrics.push(("torque".into(), 2.0));
         assert!(repeated.validate().is_err());
         let mut empty = record(&"0".repeat(64));
-        empty.variables.push((String::new(), 2.0));
+        empty.variables.push((String::new(), 2.0.into()));
         assert!(empty.validate().is_err());
+        for bad in ["", "NaN", "inf", "-inf"] {
+            let mut record = record(&"0".repeat(64));
+            record.variables[1].1 = level(bad);
+            assert!(record.validate().is_err(), "{bad:?}");
+        }
+    }
+
+    fn level(name: &str) -> VariableValue {
+        VariableValue::Level(name.into())
     }
 
     #[test]
@@ -190,5 +276,8 @@ mod tests {
         assert_eq!(record.metric("torque"), Some(3.1));
         assert_eq!(record.variable("gap"), Some(1e-3));
         assert_eq!(record.metric("gap"), None);
+        assert_eq!(record.variable("bobbin"), None, "a level is not a number");
+        assert_eq!(record.variable_value("bobbin").and_then(VariableValue::as_level), Some("pom"));
+        assert_eq!(record.variable_value("bobbin").unwrap().to_string(), "pom");
     }
 }

@@ -120,7 +120,7 @@ impl RawRow {
         let [key, status, reason, variables, metrics, spec_toml, eval_seconds, solver, created] =
             self.columns;
         let status: Status = text(status, "status")?.parse().map_err(|e| format!("{e}"))?;
-        let variables = named_values::decode(&text(variables, "variables")?)
+        let variables = named_values::decode_variables(&text(variables, "variables")?)
             .map_err(|detail| format!("variables: {detail}"))?;
         let metrics = named_values::decode(&text(metrics, "metrics")?)
             .map_err(|detail| format!("metrics: {detail}"))?;
@@ -225,7 +225,7 @@ pub(crate) fn insert_new(
     if present {
         return Ok(false);
     }
-    let variables = named_values::encode(&record.variables);
+    let variables = named_values::encode_variables(&record.variables);
     let metrics = named_values::encode(&record.metrics);
     let columns = [
         Column::Text(record.key.as_bytes()),

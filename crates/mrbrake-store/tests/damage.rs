@@ -13,7 +13,10 @@ fn record(index: u32) -> Record {
         key: format!("{:064x}", u64::from(index) * 0x9e37_79b9 + 1),
         status: if index % 3 == 2 { Status::Failed } else { Status::Ok },
         reason: (index % 3 == 2).then(|| format!("design {index}: gap below 0.1 mm")),
-        variables: vec![("gap_m".into(), 1e-4 * f64::from(index + 1)), ("turns".into(), 120.0)],
+        variables: vec![
+            ("gap_m".into(), (1e-4 * f64::from(index + 1)).into()),
+            ("turns".into(), 120.0.into()),
+        ],
         metrics: vec![
             ("torque_on_nm".into(), 3.0 + f64::from(index) / 7.0),
             ("ratio".into(), f64::INFINITY),
@@ -51,7 +54,7 @@ fn fingerprint(records: &[Record]) -> Vec<String> {
                 r.key,
                 r.status,
                 r.reason,
-                bits(&r.variables),
+                r.variables.iter().map(|(n, v)| format!("{n}={v:?}")).collect::<Vec<_>>(),
                 bits(&r.metrics),
                 r.spec_toml,
                 r.eval_seconds.to_bits(),

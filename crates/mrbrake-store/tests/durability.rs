@@ -37,7 +37,10 @@ fn expected_record(index: u32) -> Record {
         key: format!("{:064x}", u64::from(index).wrapping_mul(0x9e37_79b9_7f4a_7c15)),
         status,
         reason: (!ok).then(|| format!("design {index}: wall thinner than 0.5 mm")),
-        variables: vec![("gap_m".into(), 1e-4 * (1.0 + x)), ("turns".into(), 50.0 + x)],
+        variables: vec![
+            ("gap_m".into(), (1e-4 * (1.0 + x)).into()),
+            ("turns".into(), (50.0 + x).into()),
+        ],
         metrics: if ok {
             vec![
                 ("torque_on_nm".into(), 1.0 / (3.0 + x)),
@@ -138,7 +141,7 @@ fn check_store(path: &Path) -> Vec<u32> {
         assert!(
             record.status == expected.status
                 && record.reason == expected.reason
-                && same_bits(&record.variables, &expected.variables)
+                && record.variables == expected.variables
                 && same_bits(&record.metrics, &expected.metrics)
                 && record.spec_toml == expected.spec_toml
                 && record.eval_seconds.to_bits() == expected.eval_seconds.to_bits()

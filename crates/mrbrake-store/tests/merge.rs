@@ -11,7 +11,7 @@ fn record(index: u32, torque_nm: f64) -> Record {
         key: format!("{index:064x}"),
         status: Status::Ok,
         reason: None,
-        variables: vec![("gap_m".into(), 1e-4 * f64::from(index + 1))],
+        variables: vec![("gap_m".into(), (1e-4 * f64::from(index + 1)).into())],
         metrics: vec![
             ("torque_on_nm".into(), torque_nm),
             ("ratio".into(), f64::INFINITY),

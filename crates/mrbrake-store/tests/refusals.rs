@@ -12,7 +12,7 @@ fn record(index: u32) -> Record {
         key: format!("{index:064x}"),
         status: Status::Ok,
         reason: None,
-        variables: vec![("gap_m".into(), 1e-3)],
+        variables: vec![("gap_m".into(), 1e-3.into())],
         metrics: vec![("torque_on_nm".into(), f64::from(index))],
         spec_toml: "[geometry]\nouter_radius = \"40 mm\"\n".repeat(20),
         eval_seconds: 0.3,

@@ -83,7 +83,7 @@ fn document(
             let metrics: serde_json::Map<String, Value> =
                 r.metrics.iter().map(|(n, v)| (n.clone(), json!(v))).collect();
             let variables: serde_json::Map<String, Value> =
-                r.variables.iter().map(|(n, v)| (n.clone(), json!(v))).collect();
+                r.variables.iter().map(|(n, v)| (n.clone(), v.to_json())).collect();
             json!({
                 "index": k,
                 "key": r.key,

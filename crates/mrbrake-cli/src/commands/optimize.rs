@@ -10,6 +10,7 @@ use clap::Args;
 use mrbrake::explore::optimize::{self, OptimizeProgress};
 use mrbrake::explore::polish::{DEFAULT_POLISH_EVALUATIONS, PolishRequest};
 use mrbrake::explore::problem::{BudgetOverride, OptimizationProblem};
+use mrbrake::explore::variable::parse_sets;
 use mrbrake::observe::Flow;
 use mrbrake::report::study::{self as study_report, OptimizationReport};
 
@@ -65,6 +66,11 @@ pub struct OptimizeArgs {
     /// The most designs the polish evaluates.
     #[arg(long, value_name = "N", requires = "polish", default_value_t = DEFAULT_POLISH_EVALUATIONS)]
     polish_evaluations: usize,
+    /// A fixed change to the base spec after the problem's `[set]`, as `mrbrake sweep --set`
+    /// (e.g. `materials.bobbin=pom`, `coil.turns=fill`); a variable of the problem on the same
+    /// field is then fixed at that value, not varied. Repeatable.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    set: Vec<String>,
     /// List the metrics a problem may constrain or optimise, and exit.
     #[arg(long)]
     list_metrics: bool,
@@ -80,6 +86,7 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     }
     let path = a.problem.as_ref().ok_or_else(|| InputError("give a PROBLEM.toml".into()))?;
     let mut problem = OptimizationProblem::from_path(path)?;
+    problem.apply_set(&parse_sets(&a.set)?)?;
     for note in &problem.notes {
         eprintln!("note: {note}");
     }

@@ -9,6 +9,7 @@ use mrbrake::design::analysis::ElementOrder;
 use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::design::spec::DEFAULT_SPEC_TOML;
 use mrbrake::explore::plan::{self, Sampling, Shard, SweepPlan, SweepRequest};
+use mrbrake::explore::variable::parse_sets;
 use mrbrake::explore::{EvaluationSettings, Progress, Runner, runner, stored};
 use mrbrake::observe::Flow;
 use mrbrake::report::study::{self as study_report, SweepReport};
@@ -16,7 +17,6 @@ use mrbrake::store::Store;
 use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
-use crate::error::InputError;
 use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
 
@@ -26,12 +26,14 @@ pub struct SweepArgs {
     /// Base brake specification (TOML). Omitted: the embedded thesis bidirectional brake.
     spec: Option<PathBuf>,
     /// A variable and its values: a list `g=0.5mm,0.75mm,1mm`, a range with a count
-    /// `h=5mm..10mm:6`, or bounds `R0=20mm..30mm` for --sample. Names: a spec field (drum.gap,
-    /// coil.turns, …) or a thesis symbol (g, h, d, R0, R1, R2, n, N, I, AWG). Repeat for several.
+    /// `h=5mm..10mm:6`, or bounds `R0=20mm..30mm` for --sample; for a part's material the
+    /// materials by name, `materials.bobbin=aluminium,stainless-304,pom`. Names: a spec field
+    /// (drum.gap, coil.turns, materials.bobbin, …) or a thesis symbol (g, h, d, R0, R1, R2, n, N,
+    /// I, AWG). Repeat for several.
     #[arg(long = "vary", value_name = "NAME=VALUES", required = true)]
     vary: Vec<String>,
-    /// A fixed change to the base spec, e.g. `coil.turns=fill` (turns fill the window) or
-    /// `housing.case_thickness=4mm`. Repeatable.
+    /// A fixed change to the base spec, e.g. `coil.turns=fill` (turns fill the window),
+    /// `housing.case_thickness=4mm` or `materials.bobbin=pom`. Repeatable.
     #[arg(long = "set", value_name = "PATH=VALUE")]
     set: Vec<String>,
     /// Sample instead of a full-factorial grid: `lhs:N` (Latin hypercube) or `sobol:N`.
@@ -93,13 +95,6 @@ pub struct ExportArgs {
     json: bool,
 }
 
-fn split_pair(text: &str, flag: &str) -> CommandResult<(String, String)> {
-    let (a, b) = text
-        .split_once('=')
-        .ok_or_else(|| InputError(format!("{flag} '{text}': expected NAME=VALUE")))?;
-    Ok((a.trim().to_string(), b.trim().to_string()))
-}
-
 /// The evaluation settings from the common flags.
 pub fn settings_from(mesh: &str, speed: &str, order: u8) -> CommandResult<EvaluationSettings> {
     Ok(EvaluationSettings {
@@ -125,8 +120,7 @@ fn base_spec(spec: Option<&PathBuf>) -> CommandResult<(String, String)> {
 /// The sweep's plan and shard, from the arguments.
 fn plan_from(a: &SweepArgs) -> CommandResult<(SweepPlan, Shard)> {
     let (spec_text, origin) = base_spec(a.spec.as_ref())?;
-    let overrides: Vec<(String, String)> =
-        a.set.iter().map(|s| split_pair(s, "--set")).collect::<Result<_, _>>()?;
+    let overrides = parse_sets(&a.set)?;
     let sampling = match &a.sample {
         Some(text) => Sampling::parse(text, a.seed)?,
         None => Sampling::FullFactorial,

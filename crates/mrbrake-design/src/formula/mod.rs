@@ -311,6 +311,31 @@ pub fn turns_in_window(
     Ok(WindowTurns { layers_i: i as u32, turns_exact, turns: (turns_exact + 1e-9).floor() as u32 })
 }
 
+/// The copper fill factor of a winding, `λ = N · π d²/4 / (C_w C_h)`: the bare copper area of
+/// `turns` round wires of diameter `wire_diameter_m` over the window's area (the definition of the
+/// winding trade, e.g. KUK Group, *Orthocyclic vs wild (random) winding*, mycoil.info: `F_u =
+/// A_copper / A_window` with the bare conductor diameter). The thesis's turn formula (4.2), (4.3)
+/// packs bare wires hexagonally and approaches π/√12 ≈ 0.907 in a large window; see
+/// [`FILL_FACTOR_LIMIT`] for what a real winding reaches.
+pub fn copper_fill_factor(
+    turns: u32,
+    wire_diameter_m: f64,
+    window_width_m: f64,
+    window_height_m: f64,
+) -> f64 {
+    f64::from(turns) * PI * wire_diameter_m * wire_diameter_m
+        / 4.0
+        / (window_width_m * window_height_m)
+}
+
+/// The largest copper fill factor a winding of round enamelled wire reaches in practice: 0.75,
+/// the top of the 70–75 % an orthocyclic (layer-by-layer, in the grooves) winding achieves (KUK
+/// Group coil-winding glossary, mycoil.info/glossary, "orthocyclic winding"); a wild (random)
+/// winding reaches about 0.45–0.50 (same source). The geometric limit of hexagonally packed bare
+/// wire, π/√12 ≈ 0.907, is not manufacturable: the enamel, the winding's crossovers and the
+/// tolerances of wire and bobbin take the rest. A design above this limit gets a warning.
+pub const FILL_FACTOR_LIMIT: f64 = 0.75;
+
 /// Electrical figures of a coil of `turns` turns of round copper wire wound between two radii.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CoilElectrics {

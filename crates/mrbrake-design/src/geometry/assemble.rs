@@ -1,5 +1,6 @@
 //! Assembly of the parts: unit 1 of the configuration ([`super::drum`] or [`super::disc`]), for the
-//! bidirectional brake unit 2 mirrored about the spacer, the non-magnetic filler and the air box.
+//! bidirectional brake unit 2 mirrored about the spacer, the bobbins and the non-magnetic filler
+//! (cut from the same rectangles), and the air box.
 //! Tags are given in the order parts are added, so this order is part of the mesh's contract.
 
 use super::{
@@ -132,7 +133,7 @@ fn add_second_unit(spec: &BrakeSpec, spacer: &Spacer, b: &mut Builder, unit_leng
     let m = &spec.materials;
     b.add(
         "spacer".into(),
-        m.spacer.as_deref().unwrap_or(&m.non_magnetic),
+        m.spacer(),
         PartKind::Spacer,
         vec![Rect::new(r_s, r_out, unit_length, unit_length + spacer)],
         None,
@@ -167,7 +168,30 @@ fn add_air(spec: &BrakeSpec, b: &mut Builder, device: Rect) -> Rect {
 
 /// Covers the device's bounding box: every grid cell (from all rectangle edges) not inside a part
 /// becomes non-magnetic filler; cells are merged along r into rectangles, one filler region per unit.
+/// The rectangles of a unit's filler that lie in a bobbin wall of one of its coils
+/// ([`in_bobbin`]) are the unit's bobbin instead, added just before its filler.
 fn fill_gaps_with_filler(spec: &BrakeSpec, b: &mut Builder, device: Rect, units: usize) {
+    let wall = spec.coil.bobbin_wall.m();
+    for (unit, rects) in filler_rects(b, device, units).into_iter().enumerate() {
+        let windows: Vec<Rect> =
+            b.coils.iter().filter(|c| c.unit == unit).map(|c| c.rect).collect();
+        let (bobbin, filler): (Vec<Rect>, Vec<Rect>) =
+            rects.into_iter().partition(|r| windows.iter().any(|w| in_bobbin(r, w, wall)));
+        let parts = [
+            ("bobbin", spec.materials.bobbin(), PartKind::Bobbin, bobbin),
+            ("filler", spec.materials.non_magnetic.as_str(), PartKind::NonMagnetic, filler),
+        ];
+        for (name, material, kind, rects) in parts {
+            if !rects.is_empty() {
+                b.add(format!("unit{}.{name}", unit + 1), material, kind, rects, Some(unit), None);
+            }
+        }
+    }
+}
+
+/// The uncovered cells of the device's bounding box merged along r into rectangles, per unit, in
+/// order of z then r.
+fn filler_rects(b: &Builder, device: Rect, units: usize) -> Vec<Vec<Rect>> {
     let mut rs: Vec<f64> = vec![device.r0, device.r1];
     let mut zs: Vec<f64> = vec![device.z0, device.z1];
     for r in &b.regions {
@@ -203,16 +227,21 @@ fn fill_gaps_with_filler(spec: &BrakeSpec, b: &mut Builder, device: Rect, units:
             filler[unit_of(cur.centre()[1])].push(cur);
         }
     }
-    for (unit, rects) in filler.into_iter().enumerate() {
-        if !rects.is_empty() {
-            b.add(
-                format!("unit{}.filler", unit + 1),
-                &spec.materials.non_magnetic,
-                PartKind::NonMagnetic,
-                rects,
-                Some(unit),
-                None,
-            );
-        }
-    }
+    filler
+}
+
+/// True when the filler rectangle `rect` lies in a bobbin wall (`wall` thick) of the winding
+/// `window`: beside it (radially within one wall of its inner or outer side, over its height and
+/// flanges) or across one of its ends (axially within one wall, overlapping it radially: the
+/// flanges reach across the coil pocket). Distances are compared to 1 pm, the geometry's grid.
+fn in_bobbin(rect: &Rect, window: &Rect, wall: f64) -> bool {
+    const TOL: f64 = 1e-12;
+    let within = |a0: f64, a1: f64, b0: f64, b1: f64| a0 >= b0 - TOL && a1 <= b1 + TOL;
+    let overlaps = |a0: f64, a1: f64, b0: f64, b1: f64| a0 < b1 - TOL && b0 < a1 - TOL;
+    let (w, r) = (window, rect);
+    let flange = (within(r.z0, r.z1, w.z0 - wall, w.z0) || within(r.z0, r.z1, w.z1, w.z1 + wall))
+        && overlaps(r.r0, r.r1, w.r0, w.r1);
+    let side = (within(r.r0, r.r1, w.r0 - wall, w.r0) || within(r.r0, r.r1, w.r1, w.r1 + wall))
+        && overlaps(r.z0, r.z1, w.z0 - wall, w.z1 + wall);
+    flange || side
 }

@@ -29,9 +29,14 @@
 //!   plates face the non-magnetic spacer (thesis 4.3: two identical drums mounted opposite to each
 //!   other, divided by a separator), shaft shared.
 //!
-//! Any area of a unit's bounding box not covered by a named part is non-magnetic filler (bobbin,
-//! seals, hub: modelled with `materials.non_magnetic`). Mechanical details that do not carry flux
-//! (bearings, seals, bolts) are not modelled.
+//! Any area of a unit's bounding box not covered by a named part is non-magnetic filler (seals,
+//! hub, bore: modelled with `materials.non_magnetic`), except the coil's bobbin: the filler within
+//! one bobbin wall (`coil.bobbin_wall`) of a winding window, beside it (the wall between the
+//! winding and the core or case it is wound against) or across its ends (the flanges, which reach
+//! across the coil pocket), is the unit's `bobbin` part ([`PartKind::Bobbin`], `materials.bobbin`).
+//! The bobbin is cut from the filler's own rectangles, so it adds no line to the mesh: a spec
+//! whose bobbin is the non-magnetic material meshes and solves exactly as before the bobbin was a
+//! part. Mechanical details that do not carry flux (bearings, seals, bolts) are not modelled.
 //!
 //! Code: `drum` and `disc` build unit 1 of their family, `assemble` adds the bidirectional brake's
 //! mirrored unit 2, the filler and the air box (tags in that order), `check` holds the geometric
@@ -107,8 +112,11 @@ pub enum PartKind {
     Shaft,
     /// A low-carbon steel part of the flux path.
     FluxPath,
-    /// A non-magnetic structural part (rotor disc, cover, bobbin, filler).
+    /// A non-magnetic structural part (rotor disc, cover, filler).
     NonMagnetic,
+    /// A coil's bobbin (`materials.bobbin`): static, non-magnetic, and a shorted turn around the
+    /// flux path when it conducts.
+    Bobbin,
     /// A coil (copper winding window).
     Coil,
     /// An MR-fluid gap.

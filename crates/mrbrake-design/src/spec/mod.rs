@@ -36,6 +36,7 @@ mod validate;
 use schemars::JsonSchema;
 use serde::{Deserialize, Deserializer, Serialize};
 
+use mrbrake_materials::MaterialKind;
 use mrbrake_units::{Dimension, parse};
 
 use crate::DesignError;
@@ -393,8 +394,14 @@ pub enum CoilPlacement {
 pub struct Materials {
     /// Low-carbon steel of the flux path (core, case wall, end plates, cylinders or discs).
     pub flux_path: String,
-    /// Non-magnetic structural parts (rotor hub, bobbin, covers, fillers).
+    /// Non-magnetic structural parts (rotor hub, covers, fillers; the bobbin too unless
+    /// `bobbin` is given).
     pub non_magnetic: String,
+    /// The coil's bobbin (the walls between the winding and the core or case, and its flanges);
+    /// default: the `non_magnetic` material. A conducting bobbin (aluminium) is a shorted turn
+    /// around the flux path; a polymer one (`pom`) is not.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bobbin: Option<String>,
     /// The shaft.
     pub shaft: String,
     /// The MR fluid in the gaps.
@@ -408,6 +415,155 @@ pub struct Materials {
     /// What surrounds the device in the model (the air box).
     #[serde(default = "default_air")]
     pub surroundings: String,
+}
+
+impl Materials {
+    /// The bobbin's material: `bobbin`, or the `non_magnetic` material when it is not given.
+    pub fn bobbin(&self) -> &str {
+        self.bobbin.as_deref().unwrap_or(&self.non_magnetic)
+    }
+
+    /// The spacer's material: `spacer`, or the `non_magnetic` material when it is not given.
+    pub fn spacer(&self) -> &str {
+        self.spacer.as_deref().unwrap_or(&self.non_magnetic)
+    }
+
+    /// The material the part at a field of [`MATERIAL_FIELDS`] is made of: as [`Self::get`], with
+    /// the defaults of the optional fields (the bobbin and the spacer are the non-magnetic
+    /// material unless given).
+    pub fn in_use(&self, path: &str) -> Option<&str> {
+        match path {
+            "materials.bobbin" => Some(self.bobbin()),
+            "materials.spacer" => Some(self.spacer()),
+            other => self.get(other),
+        }
+    }
+
+    /// The material named at a field of [`MATERIAL_FIELDS`] (`materials.bobbin`, …), if the spec
+    /// gives one.
+    pub fn get(&self, path: &str) -> Option<&str> {
+        Some(match path {
+            "materials.flux_path" => &self.flux_path,
+            "materials.non_magnetic" => &self.non_magnetic,
+            "materials.bobbin" => self.bobbin.as_deref()?,
+            "materials.shaft" => &self.shaft,
+            "materials.fluid" => &self.fluid,
+            "materials.coil" => &self.coil,
+            "materials.spacer" => self.spacer.as_deref()?,
+            "materials.surroundings" => &self.surroundings,
+            _ => return None,
+        })
+    }
+}
+
+/// A material field of the spec (the material of a part role) and the library kinds it takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MaterialField {
+    /// The dotted TOML path, e.g. `materials.bobbin`.
+    pub path: &'static str,
+    /// The part in words, for messages ("the bobbin").
+    pub part: &'static str,
+    /// The kind the part must have (`None`: any kind is read; [`Self::suits`] says which fit).
+    pub required: Option<MaterialKind>,
+    /// The kinds that suit the part: a spec with another kind gets a warning, a study variable's
+    /// level of another kind is refused.
+    pub suits: &'static [MaterialKind],
+}
+
+/// Every material field of a spec, in file order: the part roles whose material a study may vary
+/// (a categorical variable) and the kinds that suit each.
+pub const MATERIAL_FIELDS: &[MaterialField] = &[
+    MaterialField {
+        path: "materials.flux_path",
+        part: "the flux path",
+        required: None,
+        suits: &[MaterialKind::Steel],
+    },
+    MaterialField {
+        path: "materials.non_magnetic",
+        part: "the non-magnetic parts",
+        required: None,
+        suits: &[MaterialKind::Linear],
+    },
+    MaterialField {
+        path: "materials.bobbin",
+        part: "the bobbin",
+        required: None,
+        suits: &[MaterialKind::Linear],
+    },
+    MaterialField {
+        path: "materials.shaft",
+        part: "the shaft",
+        required: None,
+        suits: &[MaterialKind::Steel, MaterialKind::Linear],
+    },
+    MaterialField {
+        path: "materials.fluid",
+        part: "the fluid gaps",
+        required: Some(MaterialKind::MrFluid),
+        suits: &[MaterialKind::MrFluid],
+    },
+    MaterialField {
+        path: "materials.coil",
+        part: "the coil conductor",
+        required: Some(MaterialKind::Linear),
+        suits: &[MaterialKind::Linear],
+    },
+    MaterialField {
+        path: "materials.spacer",
+        part: "the spacer",
+        required: None,
+        suits: &[MaterialKind::Linear],
+    },
+    MaterialField {
+        path: "materials.surroundings",
+        part: "the surroundings",
+        required: Some(MaterialKind::Linear),
+        suits: &[MaterialKind::Linear],
+    },
+];
+
+impl MaterialField {
+    /// The field at `path` (`materials.bobbin`), if it is one.
+    pub fn at(path: &str) -> Option<&'static MaterialField> {
+        MATERIAL_FIELDS.iter().find(|f| f.path == path)
+    }
+
+    /// The library names whose kind suits the part, in library order.
+    pub fn suitable(&self) -> Vec<&'static str> {
+        mrbrake_materials::library::names()
+            .into_iter()
+            .filter(|(_, kind)| self.suits.contains(kind))
+            .map(|(name, _)| name)
+            .collect()
+    }
+
+    /// Checks that `name` is a library material that suits the part; the error names the field,
+    /// the material and the allowed materials.
+    pub fn check_suits(&self, name: &str) -> Result<(), String> {
+        let wanted = name.trim().to_ascii_lowercase();
+        let kind = mrbrake_materials::library::names()
+            .into_iter()
+            .find(|(n, _)| *n == wanted)
+            .map(|(_, kind)| kind);
+        let allowed = || self.suitable().join(", ");
+        match kind {
+            None => Err(format!(
+                "{}: '{name}' is not in the material library; allowed for {}: {}",
+                self.path,
+                self.part,
+                allowed()
+            )),
+            Some(kind) if !self.suits.contains(&kind) => Err(format!(
+                "{}: '{name}' is a {} material, which does not suit {}; allowed: {}",
+                self.path,
+                kind.as_str(),
+                self.part,
+                allowed()
+            )),
+            Some(_) => Ok(()),
+        }
+    }
 }
 
 fn default_copper() -> String {
@@ -766,6 +922,17 @@ impl BrakeSpec {
     /// The wire diameter (m); validation guarantees it exists.
     pub fn wire_diameter_m(&self) -> f64 {
         self.coil.wire.diameter_m().unwrap_or(f64::NAN)
+    }
+
+    /// The copper fill factor of the winding, copper area / window area
+    /// ([`crate::formula::copper_fill_factor`]).
+    pub fn fill_factor(&self) -> f64 {
+        crate::formula::copper_fill_factor(
+            self.turns(),
+            self.wire_diameter_m(),
+            self.coil.window_width.m(),
+            self.coil.window_height.m(),
+        )
     }
 
     /// The number of turns: given, or computed in the window by (4.2), (4.3).

@@ -17,8 +17,8 @@ use mrbrake_units::Dimension;
 
 use super::raw::RawSpec;
 use super::{
-    Coil, ConfigurationKind, Current, Disc, Drum, Envelope, Housing, Length, Materials, Model,
-    OPTIONAL_TABLES, Shaft, Spacer, Wire, numeric_fields,
+    Coil, ConfigurationKind, Current, Disc, Drum, Envelope, Housing, Length, MATERIAL_FIELDS,
+    Materials, Model, OPTIONAL_TABLES, Shaft, Spacer, Wire, numeric_fields,
 };
 
 /// The JSON Schema of a spec file.
@@ -46,26 +46,14 @@ pub fn schema() -> Value {
             annotate(node, field.quantity.unit(), field.bounds);
         }
     }
-    for (path, kind) in MATERIAL_KINDS {
-        if let Some(node) = node_mut(&mut schema, path) {
-            node["enum"] = json!(library_names(*kind));
+    for field in MATERIAL_FIELDS {
+        if let Some(node) = node_mut(&mut schema, field.path) {
+            node["enum"] = json!(library_names(field.required));
         }
     }
     schema["allOf"] = configuration_rules();
     schema
 }
-
-/// The material fields and the library kind each needs (`None`: any material; the validation
-/// warns about a surprising kind but accepts it).
-const MATERIAL_KINDS: &[(&str, Option<MaterialKind>)] = &[
-    ("materials.flux_path", None),
-    ("materials.non_magnetic", None),
-    ("materials.shaft", None),
-    ("materials.fluid", Some(MaterialKind::MrFluid)),
-    ("materials.coil", Some(MaterialKind::Linear)),
-    ("materials.spacer", None),
-    ("materials.surroundings", Some(MaterialKind::Linear)),
-];
 
 /// The library's names of `kind` (all names for `None`).
 fn library_names(kind: Option<MaterialKind>) -> Vec<&'static str> {

@@ -7,8 +7,8 @@ use mrbrake_materials::MaterialKind;
 
 use super::{
     AWG_BOUNDS, BrakeSpec, CoilPlacement, Configuration, ConfigurationKind, Disc, Drum,
-    LENGTH_BOUNDS, Length, MAX_CURRENT_BOUNDS, RATED_CURRENT_BOUNDS, TURNS_BOUNDS, Warning,
-    WorkingSurfaces, fmt_mm, turns_in_window,
+    LENGTH_BOUNDS, Length, MATERIAL_FIELDS, MAX_CURRENT_BOUNDS, RATED_CURRENT_BOUNDS, TURNS_BOUNDS,
+    Warning, WorkingSurfaces, fmt_mm, turns_in_window,
 };
 use crate::DesignError;
 use crate::geometry::{self, BrakeGeometry};
@@ -116,29 +116,21 @@ fn check_fields(spec: &BrakeSpec, p: &mut Problems) {
     check_coil(spec, p);
 }
 
-/// Each material is in the library and of the kind its part needs; a flux path that is not steel
-/// and a flux blocker that is steel are warnings.
+/// Each material is in the library and of the kind its part needs ([`MATERIAL_FIELDS`]); a flux
+/// path that is not steel and a flux blocker (non-magnetic parts, bobbin, spacer) that is steel are
+/// warnings.
 fn check_materials(spec: &BrakeSpec, p: &mut Problems) {
     let m = &spec.materials;
-    let mut entries = vec![
-        ("materials.flux_path", &m.flux_path, None),
-        ("materials.non_magnetic", &m.non_magnetic, None),
-        ("materials.shaft", &m.shaft, None),
-        ("materials.fluid", &m.fluid, Some(MaterialKind::MrFluid)),
-        ("materials.coil", &m.coil, Some(MaterialKind::Linear)),
-        ("materials.surroundings", &m.surroundings, Some(MaterialKind::Linear)),
-    ];
-    if let Some(spacer) = &m.spacer {
-        entries.push(("materials.spacer", spacer, None));
-    }
-    for (field, name, wanted) in entries {
+    for field in MATERIAL_FIELDS {
+        let Some(name) = m.get(field.path) else { continue };
+        let wanted = field.required;
         match (kind_of(name), wanted) {
             (None, _) => p.error(
-                field,
+                field.path,
                 format!("'{name}' is not in the material library; known: {}", names_of(wanted)),
             ),
             (Some(kind), Some(want)) if kind != want => p.error(
-                field,
+                field.path,
                 format!(
                     "'{name}' is a {} material; this part needs a {} material: {}",
                     kind.as_str(),
@@ -156,9 +148,14 @@ fn check_materials(spec: &BrakeSpec, p: &mut Problems) {
         );
     }
     for (field, name) in [
-        ("materials.non_magnetic", &m.non_magnetic),
-        ("materials.spacer", m.spacer.as_ref().unwrap_or(&m.non_magnetic)),
+        ("materials.non_magnetic", m.non_magnetic.as_str()),
+        ("materials.bobbin", m.bobbin()),
+        ("materials.spacer", m.spacer()),
     ] {
+        // A bobbin left to the default is the non-magnetic material, warned about there.
+        if field == "materials.bobbin" && m.bobbin.is_none() {
+            continue;
+        }
         if kind_of(name) == Some(MaterialKind::Steel) {
             p.warn(
                 field,
@@ -282,6 +279,21 @@ fn check_coil(spec: &BrakeSpec, p: &mut Problems) {
     }
 }
 
+/// The warning of a winding whose copper fill factor ([`BrakeSpec::fill_factor`]) is above what a
+/// winding reaches in practice ([`crate::formula::FILL_FACTOR_LIMIT`]), if it is.
+fn fill_factor_warning(spec: &BrakeSpec) -> Option<Warning> {
+    let (fill, limit) = (spec.fill_factor(), crate::formula::FILL_FACTOR_LIMIT);
+    (fill > limit).then(|| Warning {
+        field: "coil.turns".into(),
+        message: format!(
+            "{} turns fill the window to a copper fill factor of {fill:.3}, above the {limit} an \
+             orthocyclic winding of enamelled wire reaches in practice (a random winding \
+             reaches 0.45–0.5); fewer turns, a thinner wire or a larger window",
+            spec.turns()
+        ),
+    })
+}
+
 /// A wire of diameter `d` (m) in the window: it fits, the turns fit (4.2), (4.3), the current
 /// density (4.1) and the wire's rating at the maximum current.
 fn check_winding(spec: &BrakeSpec, d: f64, current: f64, p: &mut Problems) {
@@ -301,7 +313,11 @@ fn check_winding(spec: &BrakeSpec, d: f64, current: f64, p: &mut Problems) {
                     fmt_mm(d)
                 ),
             ),
-            _ => {}
+            _ => {
+                if let Some(warning) = fill_factor_warning(spec) {
+                    p.warnings.push(warning);
+                }
+            }
         }
         // (4.1): J = I / (sqrt(3) d^2), the thesis's current density for hexagonal packing.
         let j_a_per_mm2 = current / (3f64.sqrt() * (d * 1e3).powi(2));

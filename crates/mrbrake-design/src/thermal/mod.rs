@@ -200,6 +200,13 @@ pub struct ThermalParts {
     pub fill_factor: f64,
 }
 
+/// The copper fill factor of a coil's winding ([`crate::formula::copper_fill_factor`]), capped at
+/// 0.9 (just below hexagonal packing, π/√12) for the homogenised winding.
+fn winding_fill(spec: &BrakeSpec, coil: &crate::geometry::CoilInfo) -> f64 {
+    let (w, h) = (coil.rect.r1 - coil.rect.r0, coil.rect.z1 - coil.rect.z0);
+    crate::formula::copper_fill_factor(coil.turns, spec.wire_diameter_m(), w, h).min(0.9)
+}
+
 fn region_of(
     spec: &BrakeSpec,
     geometry: &BrakeGeometry,
@@ -213,10 +220,7 @@ fn region_of(
             .iter()
             .find(|c| c.tag == tag)
             .ok_or_else(|| ThermalError::Input(format!("coil region {tag} has no coil")))?;
-        let d = spec.wire_diameter_m();
-        let fill =
-            (f64::from(coil.turns) * std::f64::consts::PI * d * d / 4.0 / coil.rect.area_m2())
-                .min(0.9);
+        let fill = winding_fill(spec, coil);
         let w = Winding::impregnated(fill)
             .and_then(|w| w.properties())
             .map_err(|e| ThermalError::Input(format!("coil winding: {e}")))?;
@@ -252,9 +256,7 @@ pub fn thermal_problem(
     for part in geometry.regions.iter().filter(|r| r.kind != PartKind::Air) {
         let mut region = region_of(spec, &geometry, part.tag, part.kind, &part.material)?;
         if let Some(coil) = geometry.coils.iter().find(|c| c.tag == part.tag) {
-            parts.fill_factor =
-                (f64::from(coil.turns) * std::f64::consts::PI * d * d / 4.0 / coil.rect.area_m2())
-                    .min(0.9);
+            parts.fill_factor = winding_fill(spec, coil);
             if coil.unit == 0 {
                 let r20 = COPPER_RESISTIVITY_20C_OHM_M
                     * f64::from(coil.turns)

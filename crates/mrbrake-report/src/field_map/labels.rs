@@ -39,7 +39,7 @@ impl RegionKind {
             PartKind::Coil => return Some(Self::Coil),
             PartKind::Fluid => return Some(Self::Fluid),
             PartKind::FluxPath => return Some(Self::Steel),
-            PartKind::Shaft | PartKind::NonMagnetic | PartKind::Spacer => {}
+            PartKind::Shaft | PartKind::NonMagnetic | PartKind::Bobbin | PartKind::Spacer => {}
         }
         let material = material.trim().to_ascii_lowercase();
         let kind = mrbrake_materials::library::names()

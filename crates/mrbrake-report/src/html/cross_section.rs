@@ -23,6 +23,7 @@ fn fill(kind: PartKind) -> &'static str {
     match kind {
         PartKind::FluxPath => "#8f9aa6",
         PartKind::NonMagnetic => "#dfe3e8",
+        PartKind::Bobbin => "#b9a7d6",
         PartKind::Shaft => "#59636e",
         PartKind::Coil => "#d4893a",
         PartKind::Fluid => "#1f78c8",
@@ -36,6 +37,7 @@ pub fn kind_name(kind: PartKind) -> &'static str {
     match kind {
         PartKind::FluxPath => "flux path (steel)",
         PartKind::NonMagnetic => "non-magnetic structure",
+        PartKind::Bobbin => "coil bobbin",
         PartKind::Shaft => "shaft",
         PartKind::Coil => "coil",
         PartKind::Fluid => "MR-fluid gap",

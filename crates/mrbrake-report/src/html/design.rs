@@ -363,6 +363,7 @@ fn coil_table(c: &CoilResult) -> Table {
             "mH",
         ),
         ("time constant L/R", c.time_constant_s, 2, "/coil/time_constant_s", 1e3, "ms"),
+        ("copper fill factor", c.fill_factor, 3, "/coil/fill_factor", 1.0, "–"),
     ] {
         coil.row(vec![Cell::text(what), Cell::json(v, d, p, scale), Cell::text(unit)]);
     }

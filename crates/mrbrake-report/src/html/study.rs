@@ -18,7 +18,7 @@ use mrbrake_explore::hypervolume::{self, Hypervolume, ReferenceSource};
 use mrbrake_explore::problem::{Constraint, Goal, Objective};
 use mrbrake_explore::variable::resolve;
 use mrbrake_optim::pareto::{Evaluation, pareto_front};
-use mrbrake_store::{Record, Status, Store};
+use mrbrake_store::{Record, Status, Store, VariableValue};
 use serde_json::Value;
 
 use super::writer::{Cell, Table};
@@ -414,21 +414,24 @@ fn front_id(k: usize) -> String {
 /// Display scale, unit and decimals of a variable: millimetres for lengths, amperes, counts.
 fn variable_display(name: &str) -> (f64, &'static str, usize) {
     let field = resolve(name, true).or_else(|_| resolve(name, false));
-    match field.map(|v| v.field.quantity) {
-        Ok(Quantity::Length) => (1e3, "mm", 4),
-        Ok(Quantity::Current) => (1.0, "A", 4),
-        Ok(Quantity::Integer) => (1.0, "count", 0),
+    match field.map(|v| v.quantity()) {
+        Ok(Some(Quantity::Length)) => (1e3, "mm", 4),
+        Ok(Some(Quantity::Current)) => (1.0, "A", 4),
+        Ok(Some(Quantity::Integer)) => (1.0, "count", 0),
+        Ok(None) => (1.0, "material", 0),
         Err(_) => (1.0, "SI", 6),
     }
 }
 
-/// A record's variable, pointing at its JSON value (`base` when the design keeps the base spec's).
+/// A record's variable, pointing at its JSON value (`base` when the design keeps the base spec's);
+/// a material by name.
 fn variable_cell(r: &Record, index: usize, name: &str) -> Cell {
     let (scale, _, decimals) = variable_display(name);
-    match r.variable(name) {
-        Some(v) => {
-            Cell::json(v, decimals, format!("/{index}/variables/{}", pointer_escape(name)), scale)
+    match r.variable_value(name) {
+        Some(VariableValue::Number(v)) => {
+            Cell::json(*v, decimals, format!("/{index}/variables/{}", pointer_escape(name)), scale)
         }
+        Some(VariableValue::Level(level)) => Cell::text(level.as_str()),
         None => Cell::text("base"),
     }
 }
