@@ -28,6 +28,7 @@
 //!   power, and the torque from a voltage drive sized for the current at the ambient.
 
 pub mod behaviour;
+pub mod session;
 
 use std::collections::HashMap;
 use std::sync::Arc;
