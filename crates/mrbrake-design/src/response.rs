@@ -70,6 +70,29 @@ pub enum ResponseDrive {
     Voltage,
 }
 
+impl ResponseDrive {
+    /// `current` or `voltage` (the `--drive` of `mrbrake response` and a study's
+    /// `response.drive`); the error says what is allowed.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        match text.trim() {
+            "current" => Ok(Self::Current),
+            "voltage" => Ok(Self::Voltage),
+            other => Err(format!("'{other}' (use current or voltage)")),
+        }
+    }
+}
+
+/// A current step `FROM..TO` with units (`"0A..2A"`; `TO` may be 0 for a release) as
+/// `(from, to)` amperes; the error says what is wrong.
+pub fn parse_step(text: &str) -> Result<(f64, f64), String> {
+    use mrbrake_units::{Dimension, parse};
+    let (from, to) = text
+        .split_once("..")
+        .ok_or_else(|| format!("'{text}' (write FROM..TO, e.g. 0A..2A)"))?;
+    let current = |t: &str| parse(t, Dimension::Current).map_err(|e| e.to_string());
+    Ok((current(from)?, current(to)?))
+}
+
 /// Settings of a response prediction.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ResponseOptions {
@@ -276,7 +299,8 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
     })
 }
 
-fn check_options(options: &ResponseOptions) -> Result<(), DesignError> {
+/// Checks the ranges of `options` (durations, currents, lag, conductivity, frequencies).
+pub fn check_options(options: &ResponseOptions) -> Result<(), DesignError> {
     let positive = |name: &str, v: f64| {
         if v > 0.0 && v.is_finite() {
             Ok(())

@@ -87,6 +87,17 @@ struct RawProblem {
     /// The objectives: one (pattern search) or more (NSGA-II).
     #[serde(default, rename = "objective")]
     objectives: Vec<RawObjective>,
+    /// Metrics to compute and store for every design besides those of the constraints and
+    /// objectives (e.g. `["t63_fall_s", "coil_max_T_C"]`): a dynamics or heat metric is computed
+    /// only when named here, in a constraint or in an objective.
+    #[serde(default)]
+    record: Vec<String>,
+    /// Settings of the dynamics metrics (`mrbrake response`'s options and defaults).
+    #[serde(default)]
+    response: Option<crate::metrics::settings::RawResponse>,
+    /// Settings of the heat metrics (`mrbrake thermal`'s options and defaults).
+    #[serde(default)]
+    thermal: Option<crate::metrics::settings::RawThermal>,
     /// The optimiser and its budget.
     algorithm: RawAlgorithm,
 }
@@ -259,7 +270,8 @@ impl Constraint {
     /// violated limit relative to its magnitude (so constraints of different units add up, as in
     /// Deb 2000, *An efficient constraint handling method for genetic algorithms*, eq. 2).
     pub fn violation(&self, value: f64) -> f64 {
-        if !value.is_finite() {
+        // An infinite value (a time never reached) satisfies the bound on its other side.
+        if value.is_nan() {
             return f64::INFINITY;
         }
         let scale = |limit: f64| limit.abs().max(1e-12);
@@ -363,10 +375,18 @@ impl OptimizationProblem {
         let bad = |what: String| ExploreError::Input(format!("{origin}: {what}"));
         let raw: RawProblem = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
         let folder = path.parent().unwrap_or_else(|| Path::new("."));
-        let settings = settings_of(&raw).map_err(bad)?;
+        let mut settings = settings_of(&raw).map_err(bad)?;
         let variables = variables_of(&raw.variables).map_err(bad)?;
         let constraints = constraints_of(&raw.constraints).map_err(bad)?;
         let objectives = objectives_of(&raw.objectives).map_err(bad)?;
+        settings.study = crate::metrics::settings::study_of(
+            &raw.record,
+            &raw.response,
+            &raw.thermal,
+            &constraints,
+            &objectives,
+        )
+        .map_err(bad)?;
         let notes = legacy_name_notes(&raw, &origin);
         let algorithm = algorithm_of(&raw.algorithm, objectives.len()).map_err(bad)?;
         Ok(Self {
@@ -640,7 +660,7 @@ fn pattern_search_of(a: &RawAlgorithm, objectives: usize, seed: u64) -> Result<A
     Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base })
 }
 
-fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
+pub(crate) fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
     metric_info(current_metric_name(name.trim()).0).ok_or_else(|| {
         ExploreError::Input(format!(
             "unknown metric '{name}'; allowed: {}",
@@ -662,6 +682,8 @@ fn metric_value(q: &RawQuantity, unit: &str) -> Result<f64, ExploreError> {
                 "A" => Dimension::Current,
                 "N·m" => Dimension::Torque,
                 "s" => Dimension::Time,
+                "rad/s" => Dimension::AngularVelocity,
+                "°C" => Dimension::TemperatureCelsius,
                 _ => {
                     return text.trim().parse::<f64>().map_err(|_| {
                         ExploreError::Input(format!(

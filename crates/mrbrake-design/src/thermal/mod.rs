@@ -132,6 +132,38 @@ pub enum Cooling {
     Natural,
 }
 
+impl Cooling {
+    /// A heat-transfer coefficient with its unit (a bare number is W/(m²·K)) or `natural` (the
+    /// `--h` of `mrbrake thermal` and a study's `thermal.h`); the error says what is allowed.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        if text.trim().eq_ignore_ascii_case("natural") {
+            return Ok(Self::Natural);
+        }
+        mrbrake_units::parse(text, mrbrake_units::Dimension::HeatTransferCoefficient)
+            .map(|h_w_per_m2k| Self::Fixed { h_w_per_m2k })
+            .map_err(|e| format!("{e} (in (0, 1e5] W/(m²·K)), or `natural`"))
+    }
+}
+
+/// The insulation limit (°C) of an IEC 60085 thermal class letter (A 105, E 120, B 130, F 155,
+/// H 180 °C) or of a temperature with its unit (the `--insulation-class` of `mrbrake thermal`
+/// and a study's `thermal.insulation_class`).
+pub fn insulation_limit_c(text: &str) -> Result<f64, String> {
+    let class = match text.trim().to_ascii_uppercase().as_str() {
+        "A" => Some(105.0),
+        "E" => Some(120.0),
+        "B" => Some(130.0),
+        "F" => Some(155.0),
+        "H" => Some(180.0),
+        _ => None,
+    };
+    match class {
+        Some(t) => Ok(t),
+        None => mrbrake_units::parse(text, mrbrake_units::Dimension::TemperatureCelsius)
+            .map_err(|e| format!("{e} (or a class letter A, E, B, F, H)")),
+    }
+}
+
 impl Default for ThermalOptions {
     fn default() -> Self {
         Self {
