@@ -86,9 +86,8 @@ impl ResponseDrive {
 /// `(from, to)` amperes; the error says what is wrong.
 pub fn parse_step(text: &str) -> Result<(f64, f64), String> {
     use mrbrake_units::{Dimension, parse};
-    let (from, to) = text
-        .split_once("..")
-        .ok_or_else(|| format!("'{text}' (write FROM..TO, e.g. 0A..2A)"))?;
+    let (from, to) =
+        text.split_once("..").ok_or_else(|| format!("'{text}' (write FROM..TO, e.g. 0A..2A)"))?;
     let current = |t: &str| parse(t, Dimension::Current).map_err(|e| e.to_string());
     Ok((current(from)?, current(to)?))
 }

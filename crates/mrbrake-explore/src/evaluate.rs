@@ -88,8 +88,8 @@ impl EvaluationSettings {
             ("convection_W_per_m2_K", json!(self.convection_w_m2k)),
         ]
         .into_iter()
-        .chain(self.study.canonical().map(|study| ("study", study)))
         .map(|(name, value)| (name.to_string(), value))
+        .chain(self.study.recorded())
         .collect()
     }
 

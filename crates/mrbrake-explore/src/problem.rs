@@ -660,7 +660,9 @@ fn pattern_search_of(a: &RawAlgorithm, objectives: usize, seed: u64) -> Result<A
     Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start_at_base })
 }
 
-pub(crate) fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
+pub(crate) fn known_metric(
+    name: &str,
+) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
     metric_info(current_metric_name(name.trim()).0).ok_or_else(|| {
         ExploreError::Input(format!(
             "unknown metric '{name}'; allowed: {}",

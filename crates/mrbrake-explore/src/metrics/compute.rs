@@ -49,7 +49,8 @@ struct Models<'s> {
 impl<'s> Models<'s> {
     fn response(&mut self) -> Result<&ResponseModel<'s>, (String, bool)> {
         if self.response.is_none() {
-            self.response = Some(ResponseModel::new(self.spec, self.response_options).map_err(failure)?);
+            self.response =
+                Some(ResponseModel::new(self.spec, self.response_options).map_err(failure)?);
         }
         Ok(self.response.as_ref().expect("built above"))
     }
@@ -118,7 +119,10 @@ impl<'s> Models<'s> {
         let session = self.thermal()?;
         let current = session.continuous_current_a().map_err(failure)?;
         if current <= 0.0 {
-            return Err(("the coil reaches its limit without current: no continuous torque".into(), true));
+            return Err((
+                "the coil reaches its limit without current: no continuous torque".into(),
+                true,
+            ));
         }
         let behaviour = session.hot_behaviour_at(current).map_err(failure)?.ok_or_else(|| {
             (format!("no steady state at the continuous current {current} A"), false)
@@ -150,7 +154,8 @@ pub(crate) fn cascade(
         thermal: None,
     };
     for level in 1..=3 {
-        let at_level: Vec<Analysis> = analyses.iter().copied().filter(|a| a.level() == level).collect();
+        let at_level: Vec<Analysis> =
+            analyses.iter().copied().filter(|a| a.level() == level).collect();
         if at_level.is_empty() {
             continue;
         }

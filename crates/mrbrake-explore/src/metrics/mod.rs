@@ -227,6 +227,22 @@ impl StudyMetrics {
         Some(value)
     }
 
+    /// What every record of the study keeps beside the static settings (nothing for a
+    /// static-only study): the metrics asked for and the settings of the analyses that run, as
+    /// flat `response_…` / `thermal_…` entries (one CSV column each in `mrbrake export`).
+    pub fn recorded(&self) -> Vec<(String, Value)> {
+        let Some(canonical) = self.canonical() else {
+            return Vec::new();
+        };
+        let mut out = vec![("metrics_asked".to_string(), json!(self.requested.join(" ")))];
+        for table in ["response", "thermal"] {
+            if let Some(Value::Object(settings)) = canonical.get(table) {
+                out.extend(settings.iter().map(|(k, v)| (format!("{table}_{k}"), v.clone())));
+            }
+        }
+        out
+    }
+
     /// The first gate the known `metrics` violate, as a reason (`None`: none violated). Gates on
     /// metrics not known yet wait for their level.
     fn violated_gate(&self, metrics: &[(String, f64)]) -> Option<String> {
@@ -234,8 +250,10 @@ impl StudyMetrics {
             let (_, value) = metrics.iter().find(|(name, _)| *name == gate.metric)?;
             (gate.violation(*value) > 0.0).then(|| {
                 let bound = |b: Option<f64>, word: &str| b.map(|v| format!(" {word} {v}"));
-                let bounds: String =
-                    [bound(gate.min, "min"), bound(gate.max, "max")].into_iter().flatten().collect();
+                let bounds: String = [bound(gate.min, "min"), bound(gate.max, "max")]
+                    .into_iter()
+                    .flatten()
+                    .collect();
                 format!("{} = {value} violates the constraint{bounds}", gate.metric)
             })
         })
@@ -288,7 +306,6 @@ pub fn stopped_evaluation(
             Some(c.violation(*value))
         })
         .sum();
-    (violation > 0.0 && violation.is_finite()).then(|| {
-        mrbrake_optim::pareto::Evaluation::new(vec![f64::INFINITY; objectives], violation)
-    })
+    (violation > 0.0 && violation.is_finite())
+        .then(|| mrbrake_optim::pareto::Evaluation::new(vec![f64::INFINITY; objectives], violation))
 }

@@ -339,7 +339,8 @@ pub(crate) fn study_of(
     }
     asked.extend(constraints.iter().map(|c| c.metric.as_str()));
     asked.extend(objectives.iter().map(|o| o.metric.as_str()));
-    let response = response.as_ref().map_or(Ok(ResponseSettings::default()), RawResponse::settings)?;
+    let response =
+        response.as_ref().map_or(Ok(ResponseSettings::default()), RawResponse::settings)?;
     let thermal = thermal.as_ref().map_or(Ok(ThermalSettings::default()), RawThermal::settings)?;
     Ok(super::StudyMetrics::new(asked, constraints, response, thermal))
 }
