@@ -17,6 +17,11 @@
 //! [[objective]]
 //! metric = "rotor_inertia_kg_m2"
 //! goal = "minimize"                            # or "maximize"
+//! record = ["t63_fall_s"]                      # more metrics to store (top-level key)
+//! [response]                                   # settings of the dynamics metrics, as
+//! duration = "100ms"                           # `mrbrake response` (crate::metrics::settings)
+//! [thermal]                                    # settings of the heat metrics, as
+//! ambient = "25C"                              # `mrbrake thermal`
 //! [algorithm]
 //! kind = "nsga2"                               # or "pattern-search" (one objective)
 //! population = 24
