@@ -12,6 +12,11 @@ use mrbrake_explore::problem::OptimizationProblem;
 use mrbrake_store::Status;
 
 fn problem(torque_min: &str) -> OptimizationProblem {
+    problem_with(torque_min, "")
+}
+
+/// The problem with `extra` constraints.
+fn problem_with(torque_min: &str, extra: &str) -> OptimizationProblem {
     let text = format!(
         r#"
 spec = "thesis.toml"
@@ -26,6 +31,7 @@ max = "0.6mm"
 [[constraint]]
 metric = "torque_max_Nm"
 min = "{torque_min}"
+{extra}
 [[objective]]
 metric = "bandwidth_rad_s"
 goal = "maximize"
@@ -67,4 +73,15 @@ fn the_cascade_skips_what_a_static_constraint_rules_out() {
     let names: Vec<&str> = out.metrics.iter().map(|(n, _)| n.as_str()).collect();
     assert!(names.contains(&"bandwidth_rad_s") && names.contains(&"t63_s"), "{names:?}");
     assert!(!names.contains(&"t63_fall_s") && !names.contains(&"coil_max_T_C"), "{names:?}");
+    // A level-1 metric violating its constraint (a bandwidth below 1 mrad/s) stops the cascade
+    // before level 2: the small-signal response runs again (another key), the step does not.
+    let gated = problem_with("0.1Nm", "[[constraint]]\nmetric = \"bandwidth_rad_s\"\nmax = 1e-3\n");
+    let out = evaluate(&spec, &gated.settings);
+    assert_eq!(out.status, Status::Infeasible);
+    let reason = out.reason.unwrap();
+    assert!(
+        reason.contains("bandwidth_rad_s") && reason.contains("skipped: step response"),
+        "{reason}"
+    );
+    assert_eq!((count(Analysis::Frequency), count(Analysis::StepUp1)), (2, 1));
 }

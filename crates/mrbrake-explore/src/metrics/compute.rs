@@ -70,8 +70,30 @@ impl<'s> Models<'s> {
     }
 
     fn run(&mut self, analysis: Analysis) -> Figures {
-        count_run(analysis);
-        let (from, to) = self.step_currents();
+        match analysis {
+            Analysis::StepUp1 | Analysis::StepUp2 | Analysis::Release1 | Analysis::Release2 => {
+                let (from, to) = self.step_currents();
+                self.steps(analysis, from, to)
+            }
+            _ => {
+                count_run(analysis);
+                self.run_counted(analysis)
+            }
+        }
+    }
+
+    /// The step responses: up from `from` to `to` amperes, or the release back.
+    fn steps(&mut self, analysis: Analysis, from: f64, to: f64) -> Figures {
+        match analysis {
+            Analysis::StepUp1 => self.step(analysis, (0, from, to), ["t63_s", "t90_s"]),
+            Analysis::StepUp2 => self.step(analysis, (1, from, to), ["t63_dir2_s", "t90_dir2_s"]),
+            Analysis::Release1 => self.step(analysis, (0, to, from), ["t63_fall_s", "t90_fall_s"]),
+            _ => self.step(analysis, (1, to, from), ["t63_fall_dir2_s", "t90_fall_dir2_s"]),
+        }
+    }
+
+    /// The analyses other than the step responses.
+    fn run_counted(&mut self, analysis: Analysis) -> Figures {
         match analysis {
             Analysis::Frequency => {
                 let max = self.spec.coil.max_current.a();
@@ -80,10 +102,6 @@ impl<'s> Models<'s> {
                     self.response()?.frequency_response(bias).map_err(failure)?;
                 Ok(vec![("bandwidth_rad_s", or_inf(bandwidth))])
             }
-            Analysis::StepUp1 => self.step(0, from, to, ["t63_s", "t90_s"]),
-            Analysis::StepUp2 => self.step(1, from, to, ["t63_dir2_s", "t90_dir2_s"]),
-            Analysis::Release1 => self.step(0, to, from, ["t63_fall_s", "t90_fall_s"]),
-            Analysis::Release2 => self.step(1, to, from, ["t63_fall_dir2_s", "t90_fall_dir2_s"]),
             Analysis::ThermalSteady => {
                 let steady = self.thermal()?.steady().map(|s| s.coil_max_t_c);
                 Ok(vec![("coil_max_T_C", or_inf(steady))])
@@ -98,17 +116,23 @@ impl<'s> Models<'s> {
                 let time = self.thermal()?.time_to_limit_s().map_err(failure)?;
                 Ok(vec![("time_to_limit_s", or_inf(time))])
             }
-            Analysis::HotTorque => self.hot_torque(),
+            _ => self.hot_torque(),
         }
     }
 
-    /// The step response of direction `unit + 1` from `from` to `to` amperes: its t63 and t90
-    /// under `names`; nothing for a direction the brake does not have (as `torque_dir2_Nm`).
-    fn step(&mut self, unit: usize, from: f64, to: f64, names: [&'static str; 2]) -> Figures {
+    /// The step response (`analysis`) of direction `unit + 1` from `from` to `to` amperes: its
+    /// t63 and t90 under `names`; nothing for a direction the brake does not have (as `torque_dir2_Nm`).
+    fn step(
+        &mut self,
+        analysis: Analysis,
+        (unit, from, to): (usize, f64, f64),
+        names: [&'static str; 2],
+    ) -> Figures {
         let model = self.response()?;
         if unit >= model.units() {
             return Ok(Vec::new());
         }
+        count_run(analysis);
         let step = model.step(unit, from, to).map_err(failure)?;
         Ok(vec![(names[0], or_inf(step.t63_s)), (names[1], or_inf(step.t90_s))])
     }
@@ -177,6 +201,10 @@ pub(crate) fn cascade(
                 }
             }
         }
+    }
+    if let Some((name, value)) = metrics.iter().find(|(_, v)| v.is_nan()) {
+        let reason = format!("the analysis gave {name} = {value}: not a result");
+        return Outcome { status: Status::Failed, reason: Some(reason), metrics };
     }
     Outcome { status: Status::Ok, reason: None, metrics }
 }
