@@ -363,6 +363,18 @@ impl<'a> ResponseModel<'a> {
         Ok(Self { model: Model::new(spec, geometry, mesh, options)? })
     }
 
+    /// The model on a mesh of `spec` built before (`mesh_build::mesh_spec` of `geometry` at the
+    /// options' level, shared with the design's other analyses).
+    pub fn on_mesh(
+        spec: &'a BrakeSpec,
+        options: &'a ResponseOptions,
+        geometry: BrakeGeometry,
+        mesh: Arc<mrbrake_fem::mesh::Mesh>,
+    ) -> Result<Self, DesignError> {
+        check_options(options)?;
+        Ok(Self { model: Model::new(spec, geometry, mesh, options)? })
+    }
+
     /// Units (directions) of the brake: 1, or 2 for the bidirectional brake.
     pub fn units(&self) -> usize {
         self.model.geometry.units

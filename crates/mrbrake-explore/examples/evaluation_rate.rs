@@ -55,8 +55,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let path = dir.join(format!("round-{round}.sqlite"));
         let mut store = Store::create(&path)?;
         let t0 = Instant::now();
-        let (_, summary) =
-            Runner::new(&mut store, settings.clone(), jobs).run(&batch, &mut mrbrake_observe::Silent)?;
+        let (_, summary) = Runner::new(&mut store, settings.clone(), jobs)
+            .run(&batch, &mut mrbrake_observe::Silent)?;
         let stored = t0.elapsed().as_secs_f64();
         assert_eq!(summary.progress.computed, designs);
         println!(

@@ -235,6 +235,8 @@ pub fn schema() -> serde_json::Value {
     order::<RawConstraint>(&mut schema, "constraint");
     order::<RawObjective>(&mut schema, "objective");
     order::<RawAlgorithm>(&mut schema, "algorithm");
+    order::<crate::metrics::settings::RawResponse>(&mut schema, "response");
+    order::<crate::metrics::settings::RawThermal>(&mut schema, "thermal");
     let counts = [
         ("algorithm.population", Bounds::closed(4.0, MAX_POPULATION as f64)),
         ("algorithm.generations", Bounds::closed(0.0, MAX_EVALUATIONS as f64)),

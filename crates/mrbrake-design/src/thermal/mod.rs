@@ -272,10 +272,20 @@ pub fn thermal_problem(
     spec: &BrakeSpec,
     options: &ThermalOptions,
 ) -> Result<(HeatProblem, ThermalParts), ThermalError> {
-    let validated = spec.validate()?;
-    let geometry = validated.geometry;
+    let geometry = spec.validate()?.geometry;
     let full = mesh_spec(spec, &geometry, options.mesh)?;
-    let device = device_mesh(&geometry, &full);
+    thermal_problem_on_mesh(spec, options, &geometry, &full)
+}
+
+/// [`thermal_problem`] on the magnetic mesh `full` of `geometry` built before (shared with the
+/// design's other analyses).
+pub fn thermal_problem_on_mesh(
+    spec: &BrakeSpec,
+    options: &ThermalOptions,
+    geometry: &BrakeGeometry,
+    full: &Mesh,
+) -> Result<(HeatProblem, ThermalParts), ThermalError> {
+    let device = device_mesh(geometry, full);
     let d = spec.wire_diameter_m();
     let mut regions = Vec::new();
     let mut parts = ThermalParts { coils: Vec::new(), gaps: Vec::new(), fill_factor: 0.0 };
@@ -283,7 +293,7 @@ pub fn thermal_problem(
         .map(|f| f.viscosity_pa_s())
         .map_err(|e| ThermalError::Input(e.to_string()))?;
     for part in geometry.regions.iter().filter(|r| r.kind != PartKind::Air) {
-        let mut region = region_of(spec, &geometry, part.tag, part.kind, &part.material)?;
+        let mut region = region_of(spec, geometry, part.tag, part.kind, &part.material)?;
         if let Some(coil) = geometry.coils.iter().find(|c| c.tag == part.tag) {
             parts.fill_factor =
                 (f64::from(coil.turns) * std::f64::consts::PI * d * d / 4.0 / coil.rect.area_m2())

@@ -17,11 +17,13 @@ use mrbrake_heat::{HeatSolver, SolverOptions};
 use super::behaviour::{HotBehaviour, hot_behaviour};
 use super::{
     HOUSING_TAG, Housing, NEWTON_TOLERANCE, SteadyTemperatures, ThermalError, ThermalOptions,
-    ThermalParts, continuous_current, crossing, set_current, steady_of, thermal_problem,
+    ThermalParts, continuous_current, crossing, set_current, steady_of, thermal_problem_on_mesh,
     validate_options, warmup,
 };
-use crate::geometry::PartKind;
+use crate::geometry::{BrakeGeometry, PartKind};
+use crate::mesh_build::mesh_spec;
 use crate::spec::BrakeSpec;
+use mrbrake_fem::mesh::Mesh;
 
 /// One design's heat model, solved step by step (module docs).
 pub struct ThermalSession<'a> {
@@ -40,7 +42,21 @@ impl<'a> ThermalSession<'a> {
     /// options' current and duty.
     pub fn new(spec: &'a BrakeSpec, options: &ThermalOptions) -> Result<Self, ThermalError> {
         validate_options(options)?;
-        let (problem, parts) = thermal_problem(spec, options)?;
+        let geometry = spec.validate()?.geometry;
+        let full = mesh_spec(spec, &geometry, options.mesh)?;
+        Self::on_mesh(spec, options, &geometry, &full)
+    }
+
+    /// The session on the magnetic mesh `full` of `geometry` built before (at the options'
+    /// level, shared with the design's other analyses).
+    pub fn on_mesh(
+        spec: &'a BrakeSpec,
+        options: &ThermalOptions,
+        geometry: &BrakeGeometry,
+        full: &Mesh,
+    ) -> Result<Self, ThermalError> {
+        validate_options(options)?;
+        let (problem, parts) = thermal_problem_on_mesh(spec, options, geometry, full)?;
         let mut housing = Housing::new(&problem.mesh, options);
         let solver_options =
             SolverOptions { tolerance: NEWTON_TOLERANCE, ..SolverOptions::default() };

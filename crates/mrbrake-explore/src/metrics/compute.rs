@@ -13,10 +13,15 @@
 //! within the run, a bandwidth above the highest frequency, a coil without a steady state
 //! (thermal runaway) — is stored as `inf`, so a lower bound on it holds and an upper bound fails.
 
+use std::sync::Arc;
+
+use mrbrake_design::geometry::BrakeGeometry;
+use mrbrake_design::mesh_build;
 use mrbrake_design::response::{ResponseDrive, ResponseModel, ResponseOptions, check_options};
 use mrbrake_design::spec::BrakeSpec;
 use mrbrake_design::thermal::ThermalOptions;
 use mrbrake_design::thermal::session::{ThermalSession, check_thermal_data};
+use mrbrake_fem::mesh::Mesh;
 use mrbrake_store::Status;
 
 use super::{Analysis, StudyMetrics, count_run};
@@ -42,23 +47,39 @@ struct Models<'s> {
     response_options: &'s ResponseOptions,
     thermal_options: ThermalOptions,
     drive: ResponseDrive,
+    /// The geometry and its mesh at the study's level, one for every analysis of the design.
+    mesh: Option<(BrakeGeometry, Arc<Mesh>)>,
     response: Option<ResponseModel<'s>>,
     thermal: Option<ThermalSession<'s>>,
 }
 
 impl<'s> Models<'s> {
+    fn mesh(&mut self) -> Result<(BrakeGeometry, Arc<Mesh>), (String, bool)> {
+        if self.mesh.is_none() {
+            let geometry = self.spec.validate().map_err(failure)?.geometry;
+            let level = self.response_options.mesh;
+            let mesh = mesh_build::mesh_spec(self.spec, &geometry, level).map_err(failure)?;
+            self.mesh = Some((geometry, Arc::new(mesh)));
+        }
+        let (geometry, mesh) = self.mesh.as_ref().expect("built above");
+        Ok((geometry.clone(), Arc::clone(mesh)))
+    }
+
     fn response(&mut self) -> Result<&ResponseModel<'s>, (String, bool)> {
         if self.response.is_none() {
-            self.response =
-                Some(ResponseModel::new(self.spec, self.response_options).map_err(failure)?);
+            let (geometry, mesh) = self.mesh()?;
+            let model = ResponseModel::on_mesh(self.spec, self.response_options, geometry, mesh);
+            self.response = Some(model.map_err(failure)?);
         }
         Ok(self.response.as_ref().expect("built above"))
     }
 
     fn thermal(&mut self) -> Result<&mut ThermalSession<'s>, (String, bool)> {
         if self.thermal.is_none() {
-            self.thermal =
-                Some(ThermalSession::new(self.spec, &self.thermal_options).map_err(failure)?);
+            let (geometry, mesh) = self.mesh()?;
+            let session =
+                ThermalSession::on_mesh(self.spec, &self.thermal_options, &geometry, &mesh);
+            self.thermal = Some(session.map_err(failure)?);
         }
         Ok(self.thermal.as_mut().expect("built above"))
     }
@@ -174,6 +195,7 @@ pub(crate) fn cascade(
         response_options: &response_options,
         thermal_options: study.thermal.options(spec, settings),
         drive: study.response.drive,
+        mesh: None,
         response: None,
         thermal: None,
     };

@@ -15,8 +15,10 @@
 //! continuous-current search, the step responses), level 3 (the warm-up transient, the hot
 //! torque). Before each level the constraints on the metrics known so far are checked: a design
 //! that already violates one is stored `infeasible` with its metrics so far and a reason naming
-//! the constraint and the analyses skipped. One design builds one response model (one mesh for
-//! all its step and frequency responses) and one heat solver for all its thermal figures. A
+//! the constraint and the analyses skipped. One design meshes once for its expensive analyses:
+//! one response model on that mesh for all its step and frequency responses, one heat solver on
+//! its device part for all its thermal figures. (The static analysis meshes on its own: the
+//! mesh is 0.18 s of its 2.3 s on the default mesh.) A
 //! numerical failure of an expensive analysis is stored as `failed` with its reason (the study
 //! goes on).
 
