@@ -10,8 +10,8 @@
 //! stale metric. A static-only study has an empty [`StudyMetrics`] and keys, records and cost
 //! exactly as before.
 //!
-//! The cascade (`cascade`, run by [`crate::evaluate::evaluate`]): the static analysis first (always); then level 1 (steady
-//! temperatures, the small-signal response: one linear solve per frequency), level 2 (the
+//! The cascade (`cascade`, run by [`crate::evaluate::evaluate`]): the static analysis first
+//! (always); then level 1 (steady temperatures, the small-signal response: one linear solve per frequency), level 2 (the
 //! continuous-current search, the step responses), level 3 (the warm-up transient, the hot
 //! torque). Before each level the constraints on the metrics known so far are checked: a design
 //! that already violates one is stored `infeasible` with its metrics so far and a reason naming
