@@ -8,7 +8,9 @@ use common::expect_input_error;
 #[test]
 fn bad_response_input_is_exit_code_2() {
     expect_input_error(&["response", "--step", "2A"], &["--step", "FROM..TO"]);
-    expect_input_error(&["response", "--step", "1A..0A"], &["non-zero"]);
+    // A step down to 0 is a release (the fall times); a step that changes nothing is refused.
+    expect_input_error(&["response", "--step", "1A..0A", "--duration", "-1s"], &["duration"]);
+    expect_input_error(&["response", "--step", "0A..0A"], &["must change the current"]);
     expect_input_error(&["response", "--drive", "pwm"], &["--drive", "current or voltage"]);
     expect_input_error(&["response", "--duration", "0s"], &["duration", "> 0"]);
     expect_input_error(

@@ -16,7 +16,9 @@
 //!   every accepted time step gives the local Bingham yield torque from `B(t)` in the direction's
 //!   gaps (the integral of [`crate::analysis`]), then the fluid's lag, a first-order filter of time
 //!   constant `τ_f` integrated exactly for a piecewise-linear input. Rise times `t63`, `t90`: the
-//!   first times the torque has covered 63 % and 90 % of its change.
+//!   first times the torque has covered 63 % and 90 % of its change. A step down to zero current
+//!   (a release, `--step 2A..0A`) gives the fall times the same way: how long the brake keeps
+//!   holding after its controller lets go.
 //! - Frequency response: the field linearised about the DC bias (half the maximum current by
 //!   default, the middle of the thesis's test range); per frequency the incremental potential
 //!   `δÂ` per ampere, and the torque phasor `δT̂ = dT/dA · δÂ` by a central difference of the torque
@@ -66,6 +68,28 @@ pub enum ResponseDrive {
     /// A voltage source through the coil's own resistance (at the analysis temperature): the
     /// coil's `L/R` adds to the eddy currents.
     Voltage,
+}
+
+impl ResponseDrive {
+    /// `current` or `voltage` (the `--drive` of `mrbrake response` and a study's
+    /// `response.drive`); the error says what is allowed.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        match text.trim() {
+            "current" => Ok(Self::Current),
+            "voltage" => Ok(Self::Voltage),
+            other => Err(format!("'{other}' (use current or voltage)")),
+        }
+    }
+}
+
+/// A current step `FROM..TO` with units (`"0A..2A"`; `TO` may be 0 for a release) as
+/// `(from, to)` amperes; the error says what is wrong.
+pub fn parse_step(text: &str) -> Result<(f64, f64), String> {
+    use mrbrake_units::{Dimension, parse};
+    let (from, to) =
+        text.split_once("..").ok_or_else(|| format!("'{text}' (write FROM..TO, e.g. 0A..2A)"))?;
+    let current = |t: &str| parse(t, Dimension::Current).map_err(|e| e.to_string());
+    Ok((current(from)?, current(to)?))
 }
 
 /// Settings of a response prediction.
@@ -226,17 +250,10 @@ pub struct ResponseTimings {
 /// Predicts the step and frequency responses of `spec` (module docs).
 pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response, DesignError> {
     let start = Instant::now();
-    check_options(options)?;
-    let geometry = spec.validate()?.geometry;
-    let mesh = Arc::new(mesh_build::mesh_spec(spec, &geometry, options.mesh)?);
-    let model = Model::new(spec, geometry, mesh, options)?;
     let max_current = spec.coil.max_current.a();
     let to = options.step_to_a.unwrap_or(max_current);
-    if to.abs() < f64::MIN_POSITIVE {
-        return Err(DesignError::Input(
-            "response: the step must end at a non-zero current (--step FROM..TO, TO != 0)".into(),
-        ));
-    }
+    step_drive(options.step_from_a, to)?;
+    let model = ResponseModel::new(spec, options)?.model;
     let t0 = Instant::now();
     // The directions' transients are independent: one thread each (on two cores the step
     // responses of the bidirectional brake take the time of one).
@@ -281,7 +298,8 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
     })
 }
 
-fn check_options(options: &ResponseOptions) -> Result<(), DesignError> {
+/// Checks the ranges of `options` (durations, currents, lag, conductivity, frequencies).
+pub fn check_options(options: &ResponseOptions) -> Result<(), DesignError> {
     let positive = |name: &str, v: f64| {
         if v > 0.0 && v.is_finite() {
             Ok(())
@@ -327,6 +345,80 @@ fn check_options(options: &ResponseOptions) -> Result<(), DesignError> {
         return Err(DesignError::Input("response: frequencies must be finite and > 0".into()));
     }
     Ok(())
+}
+
+/// A brake's field model with conductivities, meshed once, for any of its responses: the parts of
+/// [`response`] one at a time (a design study asks only for what its metrics need: one step
+/// direction, a release, the frequency response), each computed exactly as [`response`] does.
+pub struct ResponseModel<'a> {
+    model: Model<'a>,
+}
+
+impl<'a> ResponseModel<'a> {
+    /// Checks `options`, meshes `spec` and assigns its conductivities.
+    pub fn new(spec: &'a BrakeSpec, options: &'a ResponseOptions) -> Result<Self, DesignError> {
+        check_options(options)?;
+        let geometry = spec.validate()?.geometry;
+        let mesh = Arc::new(mesh_build::mesh_spec(spec, &geometry, options.mesh)?);
+        Ok(Self { model: Model::new(spec, geometry, mesh, options)? })
+    }
+
+    /// The model on a mesh of `spec` built before (`mesh_build::mesh_spec` of `geometry` at the
+    /// options' level, shared with the design's other analyses).
+    pub fn on_mesh(
+        spec: &'a BrakeSpec,
+        options: &'a ResponseOptions,
+        geometry: BrakeGeometry,
+        mesh: Arc<mrbrake_fem::mesh::Mesh>,
+    ) -> Result<Self, DesignError> {
+        check_options(options)?;
+        Ok(Self { model: Model::new(spec, geometry, mesh, options)? })
+    }
+
+    /// Units (directions) of the brake: 1, or 2 for the bidirectional brake.
+    pub fn units(&self) -> usize {
+        self.model.geometry.units
+    }
+
+    /// Mesh nodes.
+    pub fn nodes(&self) -> usize {
+        self.model.mesh.nodes.len()
+    }
+
+    /// The torque step response of direction `unit + 1` from `from` to `to` amperes (`to` = 0: a
+    /// release from `from`), as in [`Response::step`].
+    pub fn step(&self, unit: usize, from: f64, to: f64) -> Result<StepResponse, DesignError> {
+        if unit >= self.units() {
+            return Err(DesignError::Input(format!(
+                "response: direction {} of a brake with {}",
+                unit + 1,
+                self.units()
+            )));
+        }
+        self.model.step_response(unit, from, to, None).map(|(step, _)| step)
+    }
+
+    /// The small-signal response of direction 1 about `bias` amperes: the DC gain (N·m/A), the
+    /// normalised frequency response and its −3 dB bandwidth (rad/s), as in [`Response`].
+    pub fn frequency_response(&self, bias: f64) -> Result<(f64, Frd, Option<f64>), DesignError> {
+        let (gain, frd) = self.model.frequency_response(bias)?;
+        let bandwidth = frd.bandwidth_rad_s(MINUS_3_DB);
+        Ok((gain, frd, bandwidth))
+    }
+}
+
+/// The drive amplitude and waveform of a step from `from` to `to` amperes: `to · Step(from/to)`,
+/// or `from · Release` for a step down to rest; an error when the current does not change.
+fn step_drive(from: f64, to: f64) -> Result<(f64, Waveform), DesignError> {
+    if to.abs() >= f64::MIN_POSITIVE {
+        return Ok((to, Waveform::Step { initial: from / to }));
+    }
+    if from.abs() >= f64::MIN_POSITIVE {
+        return Ok((from, Waveform::Release));
+    }
+    Err(DesignError::Input(
+        "response: the step must change the current (--step FROM..TO, FROM != TO)".into(),
+    ))
 }
 
 /// The brake's field model with conductivities.
@@ -430,11 +522,11 @@ impl Model<'_> {
         to: f64,
         keep_at: Option<f64>,
     ) -> Result<(StepResponse, Option<EddyField>), DesignError> {
-        let waveform = Waveform::Step { initial: from / to };
+        let (amplitude, waveform) = step_drive(from, to)?;
         let drive = |sign: f64, resistance: f64| match self.options.drive {
-            ResponseDrive::Current => Drive::Current { amplitude_a: sign * to },
+            ResponseDrive::Current => Drive::Current { amplitude_a: sign * amplitude },
             ResponseDrive::Voltage => Drive::Voltage {
-                amplitude_v: sign * to * resistance,
+                amplitude_v: sign * amplitude * resistance,
                 series_resistance_ohm: resistance,
             },
         };

@@ -30,7 +30,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let jobs: usize = args.get(2).map(|s| s.parse()).transpose()?.unwrap_or(2);
     let rounds: usize = args.get(3).map(|s| s.parse()).transpose()?.unwrap_or(3);
     let settings = EvaluationSettings::default();
-    let space = DesignSpace::new(DEFAULT_SPEC_TOML, "default", &[], &["g".into()], settings)?;
+    let space =
+        DesignSpace::new(DEFAULT_SPEC_TOML, "default", &[], &["g".into()], settings.clone())?;
     let points: Vec<f64> =
         (0..designs).map(|k| 0.45e-3 + 0.1e-3 * k as f64 / designs.max(2) as f64).collect();
     let batch = points.iter().map(|&g| space.design(&[g])).collect::<Result<Vec<_>, _>>()?;
@@ -54,8 +55,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let path = dir.join(format!("round-{round}.sqlite"));
         let mut store = Store::create(&path)?;
         let t0 = Instant::now();
-        let (_, summary) =
-            Runner::new(&mut store, settings, jobs).run(&batch, &mut mrbrake_observe::Silent)?;
+        let (_, summary) = Runner::new(&mut store, settings.clone(), jobs)
+            .run(&batch, &mut mrbrake_observe::Silent)?;
         let stored = t0.elapsed().as_secs_f64();
         assert_eq!(summary.progress.computed, designs);
         println!(

@@ -19,7 +19,7 @@ use serde_json::{Value, json};
 use crate::ExploreError;
 
 /// What all evaluations of a study share.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct EvaluationSettings {
     /// Mesh density of every analysis.
     pub mesh: MeshLevel,
@@ -35,6 +35,9 @@ pub struct EvaluationSettings {
     pub convection_w_m2k: f64,
     /// Finite-element order of every field solution (P1 or P2).
     pub order: ElementOrder,
+    /// The dynamics and heat metrics the study asks for, with their settings (default: none, a
+    /// static-only study); see [`crate::metrics`].
+    pub study: crate::metrics::StudyMetrics,
 }
 
 impl Default for EvaluationSettings {
@@ -47,6 +50,7 @@ impl Default for EvaluationSettings {
             temperature_c: analysis.temperature_c,
             convection_w_m2k: 10.0,
             order: analysis.order,
+            study: crate::metrics::StudyMetrics::default(),
         }
     }
 }
@@ -54,7 +58,7 @@ impl Default for EvaluationSettings {
 impl EvaluationSettings {
     /// The settings as a canonical JSON value (part of every design key).
     pub fn canonical(&self) -> Value {
-        json!({
+        let mut value = json!({
             "mesh": format!("{:?}", self.mesh).to_ascii_lowercase(),
             "speed_rad_s": self.speed_rad_s,
             "seal_friction_nm": self.seal_friction_nm,
@@ -62,7 +66,13 @@ impl EvaluationSettings {
             "convection_w_m2k": self.convection_w_m2k,
             "order": self.order.degree(),
             "points": 2,
-        })
+        });
+        // Only a study asking for more than the static metrics adds its own part, so the keys
+        // of static-only studies stay those of before.
+        if let Some(study) = self.study.canonical() {
+            value["study"] = study;
+        }
+        value
     }
 
     /// The settings as every stored record keeps them (`mrbrake export` shows them per row, so
@@ -79,6 +89,7 @@ impl EvaluationSettings {
         ]
         .into_iter()
         .map(|(name, value)| (name.to_string(), value))
+        .chain(self.study.recorded())
         .collect()
     }
 
@@ -176,6 +187,46 @@ pub const METRICS: &[MetricInfo] = &[
     metric("time_constant_s", "s", "L/R with the secant inductance"),
     metric("nodes", "1", "mesh nodes"),
     metric("newton_iterations", "1", "Newton iterations of the max-current solve"),
+    // Dynamics and heat (computed only when asked for: `crate::metrics`; settings in the
+    // problem file's [response] and [thermal]).
+    metric(
+        "bandwidth_rad_s",
+        "rad/s",
+        "−3 dB bandwidth of the small-signal torque per current at the bias (response, dir. 1)",
+    ),
+    metric("t63_s", "s", "time to 63 % of the torque change after the current step up"),
+    metric("t90_s", "s", "time to 90 % of the torque change after the current step up"),
+    metric("t63_dir2_s", "s", "bidirectional: t63_s of direction 2"),
+    metric("t90_dir2_s", "s", "bidirectional: t90_s of direction 2"),
+    metric(
+        "t63_fall_s",
+        "s",
+        "time to 63 % of the torque change after the step back down (the release)",
+    ),
+    metric("t90_fall_s", "s", "time to 90 % of the torque change after the release"),
+    metric("t63_fall_dir2_s", "s", "bidirectional: t63_fall_s of direction 2"),
+    metric("t90_fall_dir2_s", "s", "bidirectional: t90_fall_s of direction 2"),
+    metric(
+        "coil_max_T_C",
+        "°C",
+        "steady coil hot spot at the thermal current and duty (inf: thermal runaway)",
+    ),
+    metric(
+        "continuous_current_A",
+        "A",
+        "current whose steady coil hot spot is the insulation limit",
+    ),
+    metric(
+        "continuous_torque_Nm",
+        "N·m",
+        "torque at the continuous current, hot coil and fluid (voltage drive: hot resistance)",
+    ),
+    metric(
+        "time_to_limit_s",
+        "s",
+        "warm-up time of the coil hot spot to the insulation limit (inf: not within the run)",
+    ),
+    metric("max_duty_at_max_current", "1", "largest duty cycle at the maximum current"),
 ];
 
 /// Metric names before the unit convention of docs/CONVENTIONS.md (SI symbol with its case after
@@ -270,7 +321,10 @@ fn evaluate_unguarded(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcom
                 let reason = format!("the analysis gave {name} = {value}: not a result");
                 return Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] };
             }
-            Outcome { status: Status::Ok, reason: None, metrics }
+            if settings.study.is_static() {
+                return Outcome { status: Status::Ok, reason: None, metrics };
+            }
+            crate::metrics::cascade(spec, settings, metrics)
         }
         // An input error raised during the analysis (a material that does not suit its part, a
         // mesh the geometry cannot have) is a property of the design: infeasible, not a crash.
@@ -283,7 +337,7 @@ fn evaluate_unguarded(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcom
 
 /// The error and its causes, `outer: inner: …` (as the CLI prints an error), so that a stored
 /// reason keeps what the wrapped error says (e.g. Newton's residual history).
-fn with_causes(error: &dyn std::error::Error) -> String {
+pub(crate) fn with_causes(error: &dyn std::error::Error) -> String {
     let mut text = error.to_string();
     let mut cause = error.source();
     while let Some(e) = cause {

@@ -9,6 +9,8 @@
 //!   [`design::Design`] with a canonical SHA-256 key over everything its result depends on;
 //! * [`evaluate`]: one analysis reduced to named metrics ([`evaluate::METRICS`]), or the reason the
 //!   design is infeasible or failed;
+//! * [`metrics`]: the dynamics and heat metrics, computed only when a study asks for them, in a
+//!   cascade of fidelity levels after the static analysis;
 //! * [`runner`]: evaluates a batch of designs in parallel, storing each result in the
 //!   [`mrbrake_store::Store`] the moment it completes and never recomputing a stored design;
 //! * [`stored`]: reading and merging stores under the current metric names;
@@ -27,6 +29,7 @@ pub mod design;
 pub mod evaluate;
 pub mod front;
 pub mod hypervolume;
+pub mod metrics;
 pub mod optimize;
 pub mod plan;
 pub mod polish;

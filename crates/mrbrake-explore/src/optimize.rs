@@ -177,7 +177,7 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             problem,
             space,
             bounds,
-            runner: Runner::new(store, problem.settings, jobs),
+            runner: Runner::new(store, problem.settings.clone(), jobs),
             evaluated: Vec::new(),
             seen: Default::default(),
             batches: 0,
@@ -448,8 +448,9 @@ impl Problem for StudyProblem<'_, '_> {
 /// spec reads, every variable names a field of it once, and the bounds are valid. Call it before
 /// creating a results store, so that a bad problem file leaves nothing behind.
 pub fn check(problem: &OptimizationProblem) -> Result<(), ExploreError> {
-    let (_, bounds) = space_and_bounds(problem)?;
-    mrbrake_optim::space::validate_bounds(&bounds).map_err(ExploreError::Optim)
+    let (space, bounds) = space_and_bounds(problem)?;
+    mrbrake_optim::space::validate_bounds(&bounds).map_err(ExploreError::Optim)?;
+    crate::metrics::check_space(&space, &problem.path)
 }
 
 /// The design space of `problem` (base spec and resolved variables) and the optimiser's bounds.
@@ -469,7 +470,7 @@ fn space_and_bounds(
         &problem.spec_path.display().to_string(),
         &problem.overrides,
         &names,
-        problem.settings,
+        problem.settings.clone(),
     )
     .map_err(|e| match e {
         // A variable the spec cannot take (unknown, given twice) is the problem file's fault.
@@ -745,7 +746,10 @@ fn run_algorithm(
 pub fn evaluation_for(problem: &OptimizationProblem, record: &Record) -> Evaluation {
     let n = problem.objectives.len();
     if record.status != Status::Ok {
-        return Evaluation::failed(n);
+        // A design the cascade stopped at a violated constraint keeps its violation, so the
+        // optimiser still sees how far from feasible it is (Deb's rules).
+        return crate::metrics::stopped_evaluation(record, &problem.constraints, n)
+            .unwrap_or_else(|| Evaluation::failed(n));
     }
     let metric =
         |name: &str| record.metrics.iter().find(|(k, _)| k == name).map_or(f64::NAN, |(_, v)| *v);

@@ -335,7 +335,7 @@ pub fn sweep_plan(request: &SweepRequest<'_>) -> Result<SweepPlan, ExploreError>
         request.origin,
         request.overrides,
         &names,
-        request.settings,
+        request.settings.clone(),
     )?;
     let specs: Vec<VarySpec> = space
         .variables()

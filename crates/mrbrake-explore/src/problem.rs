@@ -23,6 +23,11 @@
 //! [[objective]]
 //! metric = "rotor_inertia_kg_m2"
 //! goal = "minimize"                            # or "maximize"
+//! record = ["t63_fall_s"]                      # more metrics to store (top-level key)
+//! [response]                                   # settings of the dynamics metrics, as
+//! duration = "100ms"                           # `mrbrake response` (crate::metrics::settings)
+//! [thermal]                                    # settings of the heat metrics, as
+//! ambient = "25C"                              # `mrbrake thermal`
 //! [algorithm]
 //! kind = "nsga2"                               # or "surrogate", "pattern-search" (one objective)
 //! population = 24
@@ -106,6 +111,17 @@ struct RawProblem {
     /// The objectives: one (pattern search) or more (NSGA-II).
     #[serde(default, rename = "objective")]
     objectives: Vec<RawObjective>,
+    /// Metrics to compute and store for every design besides those of the constraints and
+    /// objectives (e.g. `["t63_fall_s", "coil_max_T_C"]`): a dynamics or heat metric is computed
+    /// only when named here, in a constraint or in an objective.
+    #[serde(default)]
+    record: Vec<String>,
+    /// Settings of the dynamics metrics (`mrbrake response`'s options and defaults).
+    #[serde(default)]
+    response: Option<crate::metrics::settings::RawResponse>,
+    /// Settings of the heat metrics (`mrbrake thermal`'s options and defaults).
+    #[serde(default)]
+    thermal: Option<crate::metrics::settings::RawThermal>,
     /// The optimiser and its budget.
     algorithm: RawAlgorithm,
     /// The resolution the lengths of the front designs are rounded to when they are written
@@ -313,6 +329,8 @@ pub fn schema() -> serde_json::Value {
     order::<RawConstraint>(&mut schema, "constraint");
     order::<RawObjective>(&mut schema, "objective");
     order::<RawAlgorithm>(&mut schema, "algorithm");
+    order::<crate::metrics::settings::RawResponse>(&mut schema, "response");
+    order::<crate::metrics::settings::RawThermal>(&mut schema, "thermal");
     let counts = [
         ("algorithm.population", Bounds::closed(4.0, MAX_POPULATION as f64)),
         ("algorithm.generations", Bounds::closed(0.0, MAX_EVALUATIONS as f64)),
@@ -359,7 +377,8 @@ impl Constraint {
     /// violated limit relative to its magnitude (so constraints of different units add up, as in
     /// Deb 2000, *An efficient constraint handling method for genetic algorithms*, eq. 2).
     pub fn violation(&self, value: f64) -> f64 {
-        if !value.is_finite() {
+        // An infinite value (a time never reached) satisfies the bound on its other side.
+        if value.is_nan() {
             return f64::INFINITY;
         }
         let scale = |limit: f64| limit.abs().max(1e-12);
@@ -505,10 +524,18 @@ impl OptimizationProblem {
         let bad = |what: String| ExploreError::Input(format!("{origin}: {what}"));
         let raw: RawProblem = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
         let folder = path.parent().unwrap_or_else(|| Path::new("."));
-        let settings = settings_of(&raw).map_err(bad)?;
+        let mut settings = settings_of(&raw).map_err(bad)?;
         let (variables, fixed) = variables_of(&raw.variables).map_err(bad)?;
         let constraints = constraints_of(&raw.constraints).map_err(bad)?;
         let objectives = objectives_of(&raw.objectives).map_err(bad)?;
+        settings.study = crate::metrics::settings::study_of(
+            &raw.record,
+            &raw.response,
+            &raw.thermal,
+            &constraints,
+            &objectives,
+        )
+        .map_err(bad)?;
         let mut notes = legacy_name_notes(&raw, &origin);
         notes.extend(fixed.iter().map(|(name, value)| {
             format!("{origin}: variable '{name}' is fixed at {value}: set, not varied")
@@ -1208,7 +1235,9 @@ fn resolution_of(raw: Option<&RawQuantity>) -> Result<f64, String> {
 /// The default manufacturing resolution of the written front designs: 0.01 mm.
 pub const DEFAULT_MANUFACTURING_RESOLUTION: f64 = 1e-5;
 
-fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
+pub(crate) fn known_metric(
+    name: &str,
+) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
     metric_info(current_metric_name(name.trim()).0).ok_or_else(|| {
         ExploreError::Input(format!(
             "unknown metric '{name}'; allowed: {}",
@@ -1230,6 +1259,8 @@ fn metric_value(q: &RawQuantity, unit: &str) -> Result<f64, ExploreError> {
                 "A" => Dimension::Current,
                 "N·m" => Dimension::Torque,
                 "s" => Dimension::Time,
+                "rad/s" => Dimension::AngularVelocity,
+                "°C" => Dimension::TemperatureCelsius,
                 _ => {
                     return text.trim().parse::<f64>().map_err(|_| {
                         ExploreError::Input(format!(

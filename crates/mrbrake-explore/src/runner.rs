@@ -181,7 +181,8 @@ impl<'a> Runner<'a> {
             .build()
             .map_err(|e| ExploreError::Internal(format!("cannot start worker threads: {e}")))?;
         let stop = AtomicBool::new(false);
-        let settings = self.settings;
+        // One copy for the workers and the writer (a study's settings hold its metric list).
+        let settings = &self.settings.clone();
         let (sender, receiver) = mpsc::channel::<(usize, Outcome, f64)>();
         let mut first_error: Option<ExploreError> = None;
         std::thread::scope(|scope| {
@@ -194,7 +195,7 @@ impl<'a> Runner<'a> {
                         }
                         let t0 = Instant::now();
                         let outcome = match &design.spec {
-                            Ok(spec) => evaluate(spec, &settings),
+                            Ok(spec) => evaluate(spec, settings),
                             Err(reason) => Outcome::infeasible(reason.to_string()),
                         };
                         // The receiver only hangs up after an error; then the result is moot.
@@ -207,7 +208,7 @@ impl<'a> Runner<'a> {
                 if first_error.is_some() {
                     continue;
                 }
-                let record = record_of(todo[i], outcome, seconds, &settings);
+                let record = record_of(todo[i], outcome, seconds, settings);
                 if let Err(e) = self.store_record(&record, seconds, timing, progress) {
                     stop.store(true, Ordering::Relaxed);
                     first_error = Some(e);

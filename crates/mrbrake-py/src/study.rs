@@ -62,12 +62,12 @@ impl SweepJob {
             vary: &self.vary,
             sampling: self.sampling,
             shard: self.shard,
-            settings: self.settings,
+            settings: self.settings.clone(),
         };
         let sweep = plan::sweep_plan(&request)?;
         let created_by = format!("mrbrake {}", env!("CARGO_PKG_VERSION"));
         let mut store = runner::open_sweep_store(&self.store, self.resume, &created_by)?;
-        let mut runner = Runner::new(&mut store, *sweep.space.settings(), self.jobs);
+        let mut runner = Runner::new(&mut store, sweep.space.settings().clone(), self.jobs);
         let (records, summary) = runner.run(&sweep.designs, &mut Silent)?;
         let report = SweepReport {
             name: "",

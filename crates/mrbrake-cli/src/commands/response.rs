@@ -5,7 +5,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 use mrbrake::design::mesh_build::MeshLevel;
-use mrbrake::design::response::{ElementOrder, ResponseDrive, ResponseOptions, response};
+use mrbrake::design::response::{
+    ElementOrder, ResponseDrive, ResponseOptions, parse_step, response,
+};
 use mrbrake::design::spec::{BrakeSpec, default_spec};
 use mrbrake::report::response as report;
 use mrbrake::units::{Dimension, parse};
@@ -25,7 +27,8 @@ pub struct ResponseArgs {
     /// coil's resistance: its L/R adds to the eddy currents).
     #[arg(long, value_name = "current|voltage", default_value = "current")]
     drive: String,
-    /// Current step FROM..TO (e.g. 0A..2A); default 0 A to the spec's maximum current.
+    /// Current step FROM..TO (e.g. 0A..2A); default 0 A to the spec's maximum current. A step
+    /// down to 0 (e.g. 2A..0A) is the release: its t63/t90 are the fall times.
     #[arg(long, value_name = "FROM..TO", allow_hyphen_values = true)]
     step: Option<String>,
     /// DC bias of the frequency response (e.g. 1A); default half the maximum current.
@@ -73,13 +76,7 @@ fn options(a: &ResponseArgs) -> Result<ResponseOptions, InputError> {
     let mut o = ResponseOptions {
         mesh: MeshLevel::parse(&a.mesh).map_err(|e| InputError(e.to_string()))?,
         order: ElementOrder::P1,
-        drive: match a.drive.as_str() {
-            "current" => ResponseDrive::Current,
-            "voltage" => ResponseDrive::Voltage,
-            other => {
-                return Err(InputError(format!("--drive: '{other}' (use current or voltage)")));
-            }
-        },
+        drive: ResponseDrive::parse(&a.drive).map_err(|e| InputError(format!("--drive: {e}")))?,
         duration_s: quantity("duration", &a.duration, Dimension::Time)?,
         flux_path_conductivity_s_per_m: a
             .conductivity
@@ -89,11 +86,9 @@ fn options(a: &ResponseArgs) -> Result<ResponseOptions, InputError> {
         ..ResponseOptions::default()
     };
     if let Some(step) = &a.step {
-        let (from, to) = step
-            .split_once("..")
-            .ok_or_else(|| InputError(format!("--step: '{step}' (write FROM..TO, e.g. 0A..2A)")))?;
-        o.step_from_a = quantity("step", from, Dimension::Current)?;
-        o.step_to_a = Some(quantity("step", to, Dimension::Current)?);
+        let (from, to) = parse_step(step).map_err(|e| InputError(format!("--step: {e}")))?;
+        o.step_from_a = from;
+        o.step_to_a = Some(to);
     }
     if let Some(bias) = &a.bias {
         o.bias_a = Some(quantity("bias", bias, Dimension::Current)?);

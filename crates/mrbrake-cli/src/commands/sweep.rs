@@ -8,15 +8,17 @@ use clap::Args;
 use mrbrake::design::analysis::ElementOrder;
 use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::design::spec::DEFAULT_SPEC_TOML;
+use mrbrake::explore::metrics::StudyMetrics;
 use mrbrake::explore::plan::{self, Sampling, Shard, SweepPlan, SweepRequest};
 use mrbrake::explore::variable::parse_sets;
-use mrbrake::explore::{EvaluationSettings, Progress, Runner, runner, stored};
+use mrbrake::explore::{EvaluationSettings, Progress, Runner, evaluate, runner, stored};
 use mrbrake::observe::Flow;
 use mrbrake::report::study::{self as study_report, SweepReport};
 use mrbrake::store::Store;
 use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
+use crate::error::InputError;
 use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
 
@@ -64,6 +66,11 @@ pub struct SweepArgs {
     /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
     #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
     speed: String,
+    /// Also compute and store a dynamics or heat metric (e.g. t63_s, continuous_current_A; the
+    /// list: `mrbrake optimize --list-metrics`), with `mrbrake response`'s and `mrbrake
+    /// thermal`'s default settings (a problem file's [response]/[thermal] set them). Repeatable.
+    #[arg(long = "record", value_name = "METRIC")]
+    record: Vec<String>,
     /// Also write this sweep's designs as CSV.
     #[arg(long, value_name = "FILE")]
     csv: Option<PathBuf>,
@@ -136,9 +143,29 @@ fn plan_from(a: &SweepArgs) -> CommandResult<(SweepPlan, Shard)> {
         vary: &a.vary,
         sampling,
         shard,
-        settings: settings_from(&a.mesh, &a.speed, a.order)?,
+        settings: EvaluationSettings {
+            study: recorded_metrics(&a.record)?,
+            ..settings_from(&a.mesh, &a.speed, a.order)?
+        },
     };
-    Ok((plan::sweep_plan(&request)?, shard))
+    let plan = plan::sweep_plan(&request)?;
+    mrbrake::explore::metrics::check_space(&plan.space, std::path::Path::new(&origin))?;
+    Ok((plan, shard))
+}
+
+/// The metrics of `--record`, each a known metric (a static one is computed anyway).
+fn recorded_metrics(names: &[String]) -> CommandResult<StudyMetrics> {
+    let mut asked = Vec::with_capacity(names.len());
+    for name in names {
+        let current = evaluate::current_metric_name(name.trim()).0;
+        let info = evaluate::metric_info(current).ok_or_else(|| {
+            InputError(format!(
+                "--record '{name}': unknown metric (the list: mrbrake optimize --list-metrics)"
+            ))
+        })?;
+        asked.push(info.name);
+    }
+    Ok(StudyMetrics::new(asked, &[], Default::default(), Default::default()))
 }
 
 /// Runs `mrbrake sweep`.
@@ -147,7 +174,7 @@ pub fn run_sweep(a: SweepArgs) -> CommandResult {
     let created_by = format!("mrbrake {}", env!("CARGO_PKG_VERSION"));
     let mut store = runner::open_sweep_store(&a.store, a.resume, &created_by)?;
     let mut display = ProgressDisplay::new("sweep", a.json);
-    let mut runner = Runner::new(&mut store, *space.settings(), a.jobs);
+    let mut runner = Runner::new(&mut store, space.settings().clone(), a.jobs);
     let (records, summary) = runner.run(&designs, &mut |p: &Progress| {
         display.update(p);
         Flow::Continue

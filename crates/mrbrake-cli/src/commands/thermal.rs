@@ -87,28 +87,12 @@ fn quantity(flag: &str, text: &str, dimension: Dimension) -> Result<f64, InputEr
 
 /// The limit of an IEC 60085 class letter, or a temperature.
 fn insulation_limit(text: &str) -> Result<f64, InputError> {
-    let class = match text.trim().to_ascii_uppercase().as_str() {
-        "A" => Some(105.0),
-        "E" => Some(120.0),
-        "B" => Some(130.0),
-        "F" => Some(155.0),
-        "H" => Some(180.0),
-        _ => None,
-    };
-    match class {
-        Some(t) => Ok(t),
-        None => quantity("insulation-class", text, Dimension::TemperatureCelsius)
-            .map_err(|e| InputError(format!("{} (or a class letter A, E, B, F, H)", e.0))),
-    }
+    mrbrake::design::thermal::insulation_limit_c(text)
+        .map_err(|e| InputError(format!("--insulation-class: {e}")))
 }
 
 fn cooling(text: &str) -> Result<Cooling, InputError> {
-    if text.trim().eq_ignore_ascii_case("natural") {
-        return Ok(Cooling::Natural);
-    }
-    parse(text, Dimension::HeatTransferCoefficient)
-        .map(|h_w_per_m2k| Cooling::Fixed { h_w_per_m2k })
-        .map_err(|e| InputError(format!("--h: {e} (in (0, 1e5] W/(m²·K)), or `natural`")))
+    Cooling::parse(text).map_err(|e| InputError(format!("--h: {e}")))
 }
 
 fn options(a: &ThermalArgs, spec: &BrakeSpec) -> Result<ThermalOptions, InputError> {

@@ -28,6 +28,7 @@
 //!   power, and the torque from a voltage drive sized for the current at the ambient.
 
 pub mod behaviour;
+pub mod session;
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -129,6 +130,38 @@ pub enum Cooling {
     },
     /// Natural convection to still air, axis horizontal (module docs).
     Natural,
+}
+
+impl Cooling {
+    /// A heat-transfer coefficient with its unit (a bare number is W/(m²·K)) or `natural` (the
+    /// `--h` of `mrbrake thermal` and a study's `thermal.h`); the error says what is allowed.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        if text.trim().eq_ignore_ascii_case("natural") {
+            return Ok(Self::Natural);
+        }
+        mrbrake_units::parse(text, mrbrake_units::Dimension::HeatTransferCoefficient)
+            .map(|h_w_per_m2k| Self::Fixed { h_w_per_m2k })
+            .map_err(|e| format!("{e} (in (0, 1e5] W/(m²·K)), or `natural`"))
+    }
+}
+
+/// The insulation limit (°C) of an IEC 60085 thermal class letter (A 105, E 120, B 130, F 155,
+/// H 180 °C) or of a temperature with its unit (the `--insulation-class` of `mrbrake thermal`
+/// and a study's `thermal.insulation_class`).
+pub fn insulation_limit_c(text: &str) -> Result<f64, String> {
+    let class = match text.trim().to_ascii_uppercase().as_str() {
+        "A" => Some(105.0),
+        "E" => Some(120.0),
+        "B" => Some(130.0),
+        "F" => Some(155.0),
+        "H" => Some(180.0),
+        _ => None,
+    };
+    match class {
+        Some(t) => Ok(t),
+        None => mrbrake_units::parse(text, mrbrake_units::Dimension::TemperatureCelsius)
+            .map_err(|e| format!("{e} (or a class letter A, E, B, F, H)")),
+    }
 }
 
 impl Default for ThermalOptions {
@@ -243,10 +276,20 @@ pub fn thermal_problem(
     spec: &BrakeSpec,
     options: &ThermalOptions,
 ) -> Result<(HeatProblem, ThermalParts), ThermalError> {
-    let validated = spec.validate()?;
-    let geometry = validated.geometry;
+    let geometry = spec.validate()?.geometry;
     let full = mesh_spec(spec, &geometry, options.mesh)?;
-    let device = device_mesh(&geometry, &full);
+    thermal_problem_on_mesh(spec, options, &geometry, &full)
+}
+
+/// [`thermal_problem`] on the magnetic mesh `full` of `geometry` built before (shared with the
+/// design's other analyses).
+pub fn thermal_problem_on_mesh(
+    spec: &BrakeSpec,
+    options: &ThermalOptions,
+    geometry: &BrakeGeometry,
+    full: &Mesh,
+) -> Result<(HeatProblem, ThermalParts), ThermalError> {
+    let device = device_mesh(geometry, full);
     let d = spec.wire_diameter_m();
     let mut regions = Vec::new();
     let mut parts = ThermalParts { coils: Vec::new(), gaps: Vec::new(), fill_factor: 0.0 };
@@ -254,7 +297,7 @@ pub fn thermal_problem(
         .map(|f| f.viscosity_pa_s())
         .map_err(|e| ThermalError::Input(e.to_string()))?;
     for part in geometry.regions.iter().filter(|r| r.kind != PartKind::Air) {
-        let mut region = region_of(spec, &geometry, part.tag, part.kind, &part.material)?;
+        let mut region = region_of(spec, geometry, part.tag, part.kind, &part.material)?;
         if let Some(coil) = geometry.coils.iter().find(|c| c.tag == part.tag) {
             parts.fill_factor = winding_fill(spec, coil);
             if coil.unit == 0 {

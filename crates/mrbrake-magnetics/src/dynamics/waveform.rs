@@ -2,7 +2,7 @@
 //!
 //! The time origin is the start of the transient: the solve begins from the static (DC) state at
 //! `w(0)` and integrates over `(0, t_end]`. A step is `w = initial` at `t <= 0` and `1` for
-//! `t > 0` (a Heaviside step from `initial`); a ramp rises linearly from 0 to 1 over `rise_s`;
+//! `t > 0` (a Heaviside step from `initial`), a release 1 at `t <= 0` and 0 after; a ramp rises linearly from 0 to 1 over `rise_s`;
 //! a sine is `offset + sin(2π f t)`; a table is interpolated linearly (held constant outside).
 
 use crate::MagneticsError;
@@ -16,6 +16,9 @@ pub enum Waveform {
         /// Value before the step (0 for a step from rest).
         initial: f64,
     },
+    /// 1 for `t <= 0`, 0 afterwards: a step down to rest (a release), which a [`Self::Step`]
+    /// scaled by its final value cannot express.
+    Release,
     /// 0 at `t <= 0`, `t / rise_s` while rising, 1 afterwards.
     Ramp {
         /// Rise time (s), > 0.
@@ -65,6 +68,13 @@ impl Waveform {
                     *initial
                 } else {
                     1.0
+                }
+            }
+            Self::Release => {
+                if t <= 0.0 {
+                    1.0
+                } else {
+                    0.0
                 }
             }
             Self::Ramp { rise_s } => (t / rise_s).clamp(0.0, 1.0),
@@ -142,6 +152,8 @@ mod tests {
     fn values_and_breakpoints() {
         let step = Waveform::Step { initial: 0.25 };
         assert!((step.value(0.0) - 0.25).abs() < 1e-15 && (step.value(1e-9) - 1.0).abs() < 1e-15);
+        let release = Waveform::Release;
+        assert!((release.value(0.0) - 1.0).abs() < 1e-15 && release.value(1e-9).abs() < 1e-15);
         let ramp = Waveform::Ramp { rise_s: 2.0 };
         assert!((ramp.value(1.0) - 0.5).abs() < 1e-15 && (ramp.value(5.0) - 1.0).abs() < 1e-15);
         assert_eq!(ramp.breakpoints(3.0), vec![2.0]);

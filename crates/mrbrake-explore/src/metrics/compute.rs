@@ -1,0 +1,277 @@
+//! The cascade of one design (see the module docs of [`super`]): each level's analyses on one
+//! response model and one heat solver, the gates between levels, and the check of a study's
+//! metrics before its first design.
+//!
+//! Every metric is the value of the command's JSON for the same design and settings:
+//! `bandwidth_rad_s` of `mrbrake response --bias B`, `t63_s`/`t90_s` of `step[d]` of `mrbrake
+//! response --step FROM..TO`, the fall times of `--step TO..FROM`; `coil_max_T_C` is
+//! `steady.coil_max_T_C`, `continuous_current_A`, `max_duty_at_max_current` and
+//! `time_to_limit_s` those of `mrbrake thermal`, and `continuous_torque_Nm` is
+//! `behaviour.torque_hot_current_drive_Nm` (current drive) or
+//! `behaviour.voltage_drive.torque_hot_Nm` (voltage drive) of `mrbrake thermal --current
+//! <continuous_current_A> --duty 1`. A figure the command gives as `null` — a time not reached
+//! within the run, a bandwidth above the highest frequency, a coil without a steady state
+//! (thermal runaway) — is stored as `inf`, so a lower bound on it holds and an upper bound fails.
+
+use std::sync::Arc;
+
+use mrbrake_design::geometry::BrakeGeometry;
+use mrbrake_design::mesh_build;
+use mrbrake_design::response::{ResponseDrive, ResponseModel, ResponseOptions, check_options};
+use mrbrake_design::spec::BrakeSpec;
+use mrbrake_design::thermal::ThermalOptions;
+use mrbrake_design::thermal::session::{ThermalSession, check_thermal_data};
+use mrbrake_fem::mesh::Mesh;
+use mrbrake_store::Status;
+
+use super::{Analysis, StudyMetrics, count_run};
+use crate::ExploreError;
+use crate::evaluate::{EvaluationSettings, Outcome, with_causes};
+
+/// A figure that may be absent (`None`: not reached, not within the range) as a metric.
+fn or_inf(value: Option<f64>) -> f64 {
+    value.unwrap_or(f64::INFINITY)
+}
+
+/// What one analysis gives, or why it could not: the error text and whether it was the design's
+/// (input: infeasible) or numerical (failed).
+type Figures = Result<Vec<(&'static str, f64)>, (String, bool)>;
+
+fn failure<E: std::error::Error + mrbrake_error::Kind>(e: E) -> (String, bool) {
+    (with_causes(&e), e.is_input_error())
+}
+
+/// One design's models, built when an analysis first needs them.
+struct Models<'s> {
+    spec: &'s BrakeSpec,
+    response_options: &'s ResponseOptions,
+    thermal_options: ThermalOptions,
+    drive: ResponseDrive,
+    /// The geometry and its mesh at the study's level, one for every analysis of the design.
+    mesh: Option<(BrakeGeometry, Arc<Mesh>)>,
+    response: Option<ResponseModel<'s>>,
+    thermal: Option<ThermalSession<'s>>,
+}
+
+impl<'s> Models<'s> {
+    fn mesh(&mut self) -> Result<(BrakeGeometry, Arc<Mesh>), (String, bool)> {
+        if self.mesh.is_none() {
+            let geometry = self.spec.validate().map_err(failure)?.geometry;
+            let level = self.response_options.mesh;
+            let mesh = mesh_build::mesh_spec(self.spec, &geometry, level).map_err(failure)?;
+            self.mesh = Some((geometry, Arc::new(mesh)));
+        }
+        let (geometry, mesh) = self.mesh.as_ref().expect("built above");
+        Ok((geometry.clone(), Arc::clone(mesh)))
+    }
+
+    fn response(&mut self) -> Result<&ResponseModel<'s>, (String, bool)> {
+        if self.response.is_none() {
+            let (geometry, mesh) = self.mesh()?;
+            let model = ResponseModel::on_mesh(self.spec, self.response_options, geometry, mesh);
+            self.response = Some(model.map_err(failure)?);
+        }
+        Ok(self.response.as_ref().expect("built above"))
+    }
+
+    fn thermal(&mut self) -> Result<&mut ThermalSession<'s>, (String, bool)> {
+        if self.thermal.is_none() {
+            let (geometry, mesh) = self.mesh()?;
+            let session =
+                ThermalSession::on_mesh(self.spec, &self.thermal_options, &geometry, &mesh);
+            self.thermal = Some(session.map_err(failure)?);
+        }
+        Ok(self.thermal.as_mut().expect("built above"))
+    }
+
+    /// The step currents (from, to) of the step up.
+    fn step_currents(&self) -> (f64, f64) {
+        let o = self.response_options;
+        (o.step_from_a, o.step_to_a.unwrap_or_else(|| self.spec.coil.max_current.a()))
+    }
+
+    fn run(&mut self, analysis: Analysis) -> Figures {
+        match analysis {
+            Analysis::StepUp1 | Analysis::StepUp2 | Analysis::Release1 | Analysis::Release2 => {
+                let (from, to) = self.step_currents();
+                self.steps(analysis, from, to)
+            }
+            _ => {
+                count_run(analysis);
+                self.run_counted(analysis)
+            }
+        }
+    }
+
+    /// The step responses: up from `from` to `to` amperes, or the release back.
+    fn steps(&mut self, analysis: Analysis, from: f64, to: f64) -> Figures {
+        match analysis {
+            Analysis::StepUp1 => self.step(analysis, (0, from, to), ["t63_s", "t90_s"]),
+            Analysis::StepUp2 => self.step(analysis, (1, from, to), ["t63_dir2_s", "t90_dir2_s"]),
+            Analysis::Release1 => self.step(analysis, (0, to, from), ["t63_fall_s", "t90_fall_s"]),
+            _ => self.step(analysis, (1, to, from), ["t63_fall_dir2_s", "t90_fall_dir2_s"]),
+        }
+    }
+
+    /// The analyses other than the step responses.
+    fn run_counted(&mut self, analysis: Analysis) -> Figures {
+        match analysis {
+            Analysis::Frequency => {
+                let max = self.spec.coil.max_current.a();
+                let bias = self.response_options.bias_a.unwrap_or(0.5 * max);
+                let (_, _, bandwidth) =
+                    self.response()?.frequency_response(bias).map_err(failure)?;
+                Ok(vec![("bandwidth_rad_s", or_inf(bandwidth))])
+            }
+            Analysis::ThermalSteady => {
+                let steady = self.thermal()?.steady().map(|s| s.coil_max_t_c);
+                Ok(vec![("coil_max_T_C", or_inf(steady))])
+            }
+            Analysis::ThermalRating => {
+                let session = self.thermal()?;
+                let current = session.continuous_current_a().map_err(failure)?;
+                let duty = session.max_duty_at_max_current().map_err(failure)?;
+                Ok(vec![("continuous_current_A", current), ("max_duty_at_max_current", duty)])
+            }
+            Analysis::Warmup => {
+                let time = self.thermal()?.time_to_limit_s().map_err(failure)?;
+                Ok(vec![("time_to_limit_s", or_inf(time))])
+            }
+            _ => self.hot_torque(),
+        }
+    }
+
+    /// The step response (`analysis`) of direction `unit + 1` from `from` to `to` amperes: its
+    /// t63 and t90 under `names`; nothing for a direction the brake does not have (as `torque_dir2_Nm`).
+    fn step(
+        &mut self,
+        analysis: Analysis,
+        (unit, from, to): (usize, f64, f64),
+        names: [&'static str; 2],
+    ) -> Figures {
+        let model = self.response()?;
+        if unit >= model.units() {
+            return Ok(Vec::new());
+        }
+        count_run(analysis);
+        let step = model.step(unit, from, to).map_err(failure)?;
+        Ok(vec![(names[0], or_inf(step.t63_s)), (names[1], or_inf(step.t90_s))])
+    }
+
+    /// The torque held for ever: at the continuous current, hot coil and fluid (module docs).
+    fn hot_torque(&mut self) -> Figures {
+        let drive = self.drive;
+        let session = self.thermal()?;
+        let current = session.continuous_current_a().map_err(failure)?;
+        if current <= 0.0 {
+            return Err((
+                "the coil reaches its limit without current: no continuous torque".into(),
+                true,
+            ));
+        }
+        let behaviour = session.hot_behaviour_at(current).map_err(failure)?.ok_or_else(|| {
+            (format!("no steady state at the continuous current {current} A"), false)
+        })?;
+        let torque = match drive {
+            ResponseDrive::Current => behaviour.torque_hot_current_drive_nm,
+            ResponseDrive::Voltage => behaviour.voltage_drive.torque_hot_nm,
+        };
+        Ok(vec![("continuous_torque_Nm", torque)])
+    }
+}
+
+/// The expensive levels of one design whose static `metrics` are known (module docs of
+/// [`super`]): the outcome with every metric computed, or why the cascade stopped.
+pub(crate) fn cascade(
+    spec: &BrakeSpec,
+    settings: &EvaluationSettings,
+    mut metrics: Vec<(String, f64)>,
+) -> Outcome {
+    let study = &settings.study;
+    let analyses = study.analyses();
+    let response_options = study.response.options(settings);
+    let mut models = Models {
+        spec,
+        response_options: &response_options,
+        thermal_options: study.thermal.options(spec, settings),
+        drive: study.response.drive,
+        mesh: None,
+        response: None,
+        thermal: None,
+    };
+    for level in 1..=3 {
+        let at_level: Vec<Analysis> =
+            analyses.iter().copied().filter(|a| a.level() == level).collect();
+        if at_level.is_empty() {
+            continue;
+        }
+        if let Some(reason) = study.violated_gate(&metrics) {
+            let skipped: Vec<&str> =
+                analyses.iter().filter(|a| a.level() >= level).map(|a| a.name()).collect();
+            let reason = format!("{reason}; skipped: {}", skipped.join(", "));
+            return Outcome { status: Status::Infeasible, reason: Some(reason), metrics };
+        }
+        for analysis in at_level {
+            match models.run(analysis) {
+                Ok(figures) => {
+                    metrics.extend(figures.into_iter().map(|(n, v)| (n.to_string(), v)));
+                }
+                Err((error, input)) => {
+                    let status = if input { Status::Infeasible } else { Status::Failed };
+                    let reason = format!("{}: {error}", analysis.name());
+                    return Outcome { status, reason: Some(reason), metrics };
+                }
+            }
+        }
+    }
+    if let Some((name, value)) = metrics.iter().find(|(_, v)| v.is_nan()) {
+        let reason = format!("the analysis gave {name} = {value}: not a result");
+        return Outcome { status: Status::Failed, reason: Some(reason), metrics };
+    }
+    Outcome { status: Status::Ok, reason: None, metrics }
+}
+
+/// See [`StudyMetrics::check`].
+pub(super) fn check(
+    study: &StudyMetrics,
+    spec: &BrakeSpec,
+    evaluation: &EvaluationSettings,
+) -> Result<(), ExploreError> {
+    let analyses = study.analyses();
+    let first = |thermal: bool| {
+        study
+            .requested()
+            .iter()
+            .find(|m| super::analysis_of(m).is_some_and(|a| a.is_thermal() == thermal))
+            .copied()
+            .unwrap_or("")
+    };
+    if analyses.iter().any(|a| !a.is_thermal()) {
+        let metric = first(false);
+        check_options(&study.response.options(evaluation))
+            .map_err(|e| ExploreError::Input(format!("metric '{metric}': [response]: {e}")))?;
+        if study.response.conductivity_s_per_m.is_none() {
+            let name = &spec.materials.flux_path;
+            let material = mrbrake_materials::library::get(name)?;
+            if material.conductivity_s_per_m.is_none() {
+                return Err(ExploreError::Input(format!(
+                    "metric '{metric}' needs the electrical conductivity of the flux-path steel \
+                     '{name}', which the material library does not give: set [response] \
+                     conductivity (e.g. \"5.8MS/m\")"
+                )));
+            }
+        }
+    }
+    if analyses.iter().any(|a| a.is_thermal()) {
+        let metric = first(true);
+        let options = study.thermal.options(spec, evaluation);
+        mrbrake_design::thermal::validate_options(&options)
+            .map_err(|e| ExploreError::Input(format!("metric '{metric}': [thermal] {e}")))?;
+        if spec.validate().is_ok() {
+            check_thermal_data(spec).map_err(|e| {
+                ExploreError::Input(format!("metric '{metric}' needs thermal data: {e}"))
+            })?;
+        }
+    }
+    Ok(())
+}
