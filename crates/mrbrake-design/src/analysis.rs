@@ -1019,7 +1019,7 @@ fn curve_point(
     })
 }
 
-/// The figures of a design that need no field solve, exactly as [`analyze`] reports them: the
+/// The figures of a design that need no field solve, exactly as [`AnalysisRequest::run`] reports them: the
 /// mechanics (torque densities NaN: no torque yet) and unit 1's coil at the maximum current
 /// (turns, wire, resistance, current density, power; the inductances and time constant NaN), at
 /// the copper temperature `temperature_c`. For a front end that shows them while the field is
