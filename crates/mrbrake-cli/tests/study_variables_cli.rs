@@ -13,13 +13,15 @@ use common::{expect_input_error, json, mrbrake, path_str};
 
 const SPEC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/specs/single-disc.toml");
 
-/// A problem file in `dir` with the single-disc spec, the coarse mesh, no reference design, one
-/// mass objective and `variables` (TOML of `[[variable]]` tables) and `algorithm` (TOML lines of
-/// `[algorithm]`).
+/// A problem file in `dir` with the single-disc spec, the coarse mesh, no reference design, the
+/// front designs written as evaluated (no rounding, so the store holds the optimiser's designs
+/// only), one mass objective and `variables` (TOML of `[[variable]]` tables) and `algorithm`
+/// (TOML lines of `[algorithm]`).
 fn problem(dir: &Path, variables: &str, algorithm: &str) -> PathBuf {
     let path = dir.join("problem.toml");
     let text = format!(
-        "spec = \"{SPEC}\"\nmesh = \"coarse\"\nreference = false\n{variables}\n\
+        "spec = \"{SPEC}\"\nmesh = \"coarse\"\nreference = false\n\
+         manufacturing_resolution = 0\n{variables}\n\
          [[objective]]\nmetric = \"mass_kg\"\n[algorithm]\n{algorithm}\n"
     );
     std::fs::write(&path, text).unwrap();
