@@ -86,22 +86,33 @@ pub struct CoilSection {
 
 /// `A_phi` of the coil at `(r, z)` outside its section, by `panels² × 8²` Gauss points.
 pub fn thick_coil_a_phi(coil: &CoilSection, r: f64, z: f64, panels: usize) -> f64 {
+    let (points, dr, dz) = section_quadrature(coil, panels);
+    let mut sum = 0.0;
+    for (a, zc, weight) in points {
+        sum += weight * loop_a_phi(a, 1.0, r, z - zc);
+    }
+    sum * coil.j * dr * dz
+}
+
+/// The quadrature of a coil section: `panels × panels` cells of 8 × 8 Gauss–Legendre points, as
+/// `(r, z, w_r w_z)` in the unit cell's weights, and the cell sizes `(dr, dz)` (m) that scale them.
+fn section_quadrature(coil: &CoilSection, panels: usize) -> (Vec<(f64, f64, f64)>, f64, f64) {
     let (x, w) = gauss_legendre_unit(8);
     let panels = panels.max(1);
     let (dr, dz) = ((coil.r2 - coil.r1) / panels as f64, (coil.z2 - coil.z1) / panels as f64);
-    let mut sum = 0.0;
+    let mut out = Vec::with_capacity(panels * panels * x.len() * x.len());
     for pr in 0..panels {
         for pz in 0..panels {
             for (xr, wr) in x.iter().zip(&w) {
                 for (xz, wz) in x.iter().zip(&w) {
-                    let a = coil.r1 + dr * (pr as f64 + xr);
-                    let zc = coil.z1 + dz * (pz as f64 + xz);
-                    sum += wr * wz * loop_a_phi(a, 1.0, r, z - zc);
+                    let r = coil.r1 + dr * (pr as f64 + xr);
+                    let z = coil.z1 + dz * (pz as f64 + xz);
+                    out.push((r, z, wr * wz));
                 }
             }
         }
     }
-    sum * coil.j * dr * dz
+    (out, dr, dz)
 }
 
 /// `B_r` (T) at `(r, z)` of a loop of radius `a` at `z = 0` carrying `current` (A) (module docs;
@@ -134,23 +145,10 @@ pub fn coaxial_loops_mutual_inductance(a: f64, b: f64, d: f64) -> f64 {
 /// Axial force (N) on coil `on` in the field of coil `by` (disjoint sections), by `panels² × 8²`
 /// Gauss points in each section: `∫∫ j_by j_on F_loops dS dS`.
 pub fn thick_coils_force_z(by: &CoilSection, on: &CoilSection, panels: usize) -> f64 {
+    // Each point as a loop carrying its share of the section's current.
     let points = |coil: &CoilSection| -> Vec<(f64, f64, f64)> {
-        let (x, w) = gauss_legendre_unit(8);
-        let panels = panels.max(1);
-        let (dr, dz) = ((coil.r2 - coil.r1) / panels as f64, (coil.z2 - coil.z1) / panels as f64);
-        let mut out = Vec::with_capacity(panels * panels * 64);
-        for pr in 0..panels {
-            for pz in 0..panels {
-                for (xr, wr) in x.iter().zip(&w) {
-                    for (xz, wz) in x.iter().zip(&w) {
-                        let r = coil.r1 + dr * (pr as f64 + xr);
-                        let z = coil.z1 + dz * (pz as f64 + xz);
-                        out.push((r, z, wr * wz * dr * dz * coil.j));
-                    }
-                }
-            }
-        }
-        out
+        let (points, dr, dz) = section_quadrature(coil, panels);
+        points.into_iter().map(|(r, z, w)| (r, z, w * dr * dz * coil.j)).collect()
     };
     let (sources, targets) = (points(by), points(on));
     let mut force = 0.0;

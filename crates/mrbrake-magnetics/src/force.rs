@@ -47,6 +47,22 @@ use crate::solver::Solver;
 
 const TWO_PI: f64 = 2.0 * std::f64::consts::PI;
 
+/// The elements of the layer around a body (the support of `∇g`), see [`Solver::force_layer`].
+#[derive(Debug, Clone)]
+pub(crate) struct ForceLayer {
+    elements: Vec<LayerElement>,
+}
+
+/// One layer element: its triangle, the constant `∇g` on it, which of its vertices are the
+/// body's, and its source current density `J_φ` (A/m², 0 without a source).
+#[derive(Debug, Clone, Copy)]
+struct LayerElement {
+    triangle: usize,
+    grad_g: [f64; 2],
+    inside: [bool; 3],
+    source: f64,
+}
+
 impl Solver {
     /// Axial force (N) on the body made of the regions `tags` (e.g. a rotor's parts), by virtual
     /// work on the layer of elements around it (module docs); positive along +z.
@@ -72,9 +88,16 @@ impl Solver {
         parts: &[(&Solution, f64)],
         tags: &[u32],
     ) -> Result<f64, MagneticsError> {
+        let layer = self.force_layer(tags)?;
+        Ok(self.layer_axial_force(&layer, parts))
+    }
+
+    /// The layer of elements around the body made of the regions `tags`: what depends on the
+    /// mesh only, so a transient builds it once per body and evaluates it at every level.
+    pub(crate) fn force_layer(&self, tags: &[u32]) -> Result<ForceLayer, MagneticsError> {
         let body = self.body_nodes(tags)?;
         let mesh = &self.problem.mesh;
-        let mut force = 0.0;
+        let mut elements = Vec::new();
         for (t, tri) in mesh.triangles.iter().enumerate() {
             let inside = tri.map(|v| body[v]);
             if tags.contains(&mesh.triangle_tags[t]) || !inside.iter().any(|&b| b) {
@@ -87,11 +110,21 @@ impl Solver {
                 grad_g[1] += geometry.grad[k][1];
             }
             let source = self.source_current_density(mesh.triangle_tags[t]);
+            elements.push(LayerElement { triangle: t, grad_g, inside, source });
+        }
+        Ok(ForceLayer { elements })
+    }
+
+    /// `Σ weight × F_z(solution)` over `parts` on a layer built by [`Solver::force_layer`].
+    pub(crate) fn layer_axial_force(&self, layer: &ForceLayer, parts: &[(&Solution, f64)]) -> f64 {
+        let mut force = 0.0;
+        for e in &layer.elements {
             for &(solution, weight) in parts {
-                force += weight * self.layer_force(solution, t, grad_g, (inside, source));
+                force +=
+                    weight * self.layer_force(solution, e.triangle, e.grad_g, (e.inside, e.source));
             }
         }
-        Ok(force)
+        force
     }
 
     /// `−∫ (T_zr ∂g/∂r + T_zz ∂g/∂z) dV` over triangle `t` with the constant `∇g`, plus

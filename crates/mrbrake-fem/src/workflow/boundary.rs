@@ -44,59 +44,34 @@ pub fn edge_matrices(
     tag: u32,
     kernel: impl Fn([[f64; 2]; 2], &EdgePoint, usize, usize) -> f64,
 ) -> Result<Vec<LocalMatrix>, FemError> {
-    let mesh = basis.mesh();
-    let quadratic = basis.order() == ElementOrder::P2;
-    let (x, w) = gauss_legendre_unit(if quadratic { 3 } else { 2 });
-    let mut matrices = Vec::new();
-    for (edge, _) in mesh.edges.iter().zip(&mesh.edge_tags).filter(|(_, t)| **t == tag) {
-        let ends = [mesh.nodes[edge[0]], mesh.nodes[edge[1]]];
-        let [pa, pb] = ends;
-        let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-        let mut dofs = vec![edge[0], edge[1]];
-        if quadratic {
-            dofs.push(basis.dofs().edge_dof(edge[0], edge[1]).ok_or_else(|| {
-                FemError::field(
-                    "edges",
-                    format!(
-                        "boundary {tag}: edge ({}, {}) is not the side of a triangle",
-                        edge[0], edge[1]
-                    ),
-                )
-            })?);
-        }
-        let k = dofs.len();
-        let mut values = vec![vec![0.0; k]; k];
-        for (&t, &wq) in x.iter().zip(&w) {
-            let phi = if quadratic {
-                [(1.0 - t) * (1.0 - 2.0 * t), t * (2.0 * t - 1.0), 4.0 * t * (1.0 - t)]
-            } else {
-                [1.0 - t, t, 0.0]
-            };
-            let point = [pa[0] * (1.0 - t) + pb[0] * t, pa[1] * (1.0 - t) + pb[1] * t];
-            let weight = match basis.weighting() {
-                Weighting::Planar => wq * length,
-                Weighting::Axisymmetric => wq * length * point[0],
-            };
-            let q = EdgePoint { point, weight, phi };
-            for (a, row) in values.iter_mut().enumerate() {
-                for (b, value) in row.iter_mut().enumerate() {
-                    *value += kernel(ends, &q, a, b);
+    let edges = tagged_edges(basis, tag)?;
+    Ok(edges
+        .into_iter()
+        .map(|edge| {
+            let k = edge.dofs.len();
+            let mut values = vec![vec![0.0; k]; k];
+            for q in &edge.points {
+                for (a, row) in values.iter_mut().enumerate() {
+                    for (b, value) in row.iter_mut().enumerate() {
+                        *value += kernel(edge.ends, q, a, b);
+                    }
                 }
             }
-        }
-        matrices.push(LocalMatrix { dofs, values });
-    }
-    Ok(matrices)
+            LocalMatrix { dofs: edge.dofs, values }
+        })
+        .collect())
 }
 
-/// The DOFs and quadrature points of the edges tagged `tag` (see [`edge_matrices`]).
+/// The end points, DOFs and quadrature points of the edges tagged `tag`, in the order of the
+/// mesh's edge list (the one place both [`edge_matrices`] and [`EdgeFlux`] read them from).
 fn tagged_edges(basis: &Basis, tag: u32) -> Result<Vec<FluxEdge>, FemError> {
     let mesh = basis.mesh();
     let quadratic = basis.order() == ElementOrder::P2;
     let (x, w) = gauss_legendre_unit(if quadratic { 3 } else { 2 });
     let mut edges = Vec::new();
     for (edge, _) in mesh.edges.iter().zip(&mesh.edge_tags).filter(|(_, t)| **t == tag) {
-        let [pa, pb] = [mesh.nodes[edge[0]], mesh.nodes[edge[1]]];
+        let ends = [mesh.nodes[edge[0]], mesh.nodes[edge[1]]];
+        let [pa, pb] = ends;
         let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
         let mut dofs = vec![edge[0], edge[1]];
         if quadratic {
@@ -127,16 +102,18 @@ fn tagged_edges(basis: &Basis, tag: u32) -> Result<Vec<FluxEdge>, FemError> {
                 EdgePoint { point, weight, phi }
             })
             .collect();
-        edges.push(FluxEdge { tag, dofs, points, positions: Vec::new() });
+        edges.push(FluxEdge { tag, ends, dofs, points, positions: Vec::new() });
     }
     Ok(edges)
 }
 
-/// One edge of an [`EdgeFlux`]: its DOFs, quadrature points and, for each pair `(a, b)`, `a <= b`,
-/// of free DOFs, the position of the Jacobian entry on the assembly's pattern.
+/// One tagged edge: its end points, DOFs, quadrature points and, in an [`EdgeFlux`], for each
+/// pair `(a, b)`, `a <= b`, of free DOFs, the position of the Jacobian entry on the assembly's
+/// pattern.
 #[derive(Debug, Clone)]
 struct FluxEdge {
     tag: u32,
+    ends: [[f64; 2]; 2],
     dofs: Vec<usize>,
     points: Vec<EdgePoint>,
     positions: Vec<(usize, usize, usize)>,

@@ -32,6 +32,7 @@ use serde::Serialize;
 use super::step::{StepDrive, step_drive};
 use super::{Drive, Dynamics};
 use crate::MagneticsError;
+use crate::force::ForceLayer;
 
 /// Settings of a transient solve.
 #[derive(Debug, Clone, PartialEq)]
@@ -224,6 +225,8 @@ struct Recorder<'o> {
     rate: Vec<f64>,
     /// A failure of the recording (a probe outside the mesh), returned after the run.
     failure: Option<MagneticsError>,
+    /// The element layer of each of [`TransientOptions::force_regions`], built at the first level.
+    force_layers: Vec<ForceLayer>,
 }
 
 impl<'o> Recorder<'o> {
@@ -269,6 +272,7 @@ impl<'o> Recorder<'o> {
             currents: Vec::new(),
             rate: Vec::new(),
             failure: None,
+            force_layers: Vec::new(),
         }
     }
 
@@ -351,8 +355,14 @@ impl<'o> Recorder<'o> {
         let options = self.options;
         if !options.probes.is_empty() || options.energy || !options.force_regions.is_empty() {
             let solution = dynamics.solution(level.u.to_vec());
-            for trace in &mut self.result.forces {
-                trace.force_z_n.push(dynamics.solver.axial_force(&solution, &[trace.physical])?);
+            if self.force_layers.len() < options.force_regions.len() {
+                self.force_layers = (options.force_regions.iter())
+                    .map(|&tag| dynamics.solver.force_layer(&[tag]))
+                    .collect::<Result<_, _>>()?;
+            }
+            for (trace, layer) in self.result.forces.iter_mut().zip(&self.force_layers) {
+                let force = dynamics.solver.layer_axial_force(layer, &[(&solution, 1.0)]);
+                trace.force_z_n.push(force);
             }
             for (trace, probe) in self.result.probes.iter_mut().zip(&options.probes) {
                 let b = dynamics.solver.b_at(&solution, probe.point)?;
