@@ -51,6 +51,7 @@ use mrbrake_observe::{Count, Observer, Silent};
 use serde::Serialize;
 
 use crate::DesignError;
+use crate::drag::{DragInputs, OffStateTorque};
 use crate::formula;
 use crate::geometry::{BrakeGeometry, Direction, GapInfo, GapOrientation, PartKind};
 use crate::mesh_build::{self, MeshLevel};
@@ -212,6 +213,37 @@ pub struct TorqueSummary {
     pub cross_coupling: Option<f64>,
 }
 
+/// The axial magnetic pull on the rotating parts at the maximum current: the part of the
+/// bearings' load that the field makes ([`crate::drag`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RotorForces {
+    /// Coil current of unit 1 (unit 2 idle) (A).
+    #[serde(rename = "current_A")]
+    pub current_a: f64,
+    /// The rotating steel of each unit.
+    pub units: Vec<RotorForce>,
+    /// Their sum: the axial load the field puts on the shaft's bearings (N, + along +z).
+    #[serde(rename = "total_axial_force_N")]
+    pub total_axial_force_n: f64,
+    /// The bearings' friction under the external load plus this pull, `½ μ P d` (N·m; 0 without
+    /// bearings in `[drag]`).
+    #[serde(rename = "bearing_friction_Nm")]
+    pub bearing_friction_nm: f64,
+}
+
+/// The axial magnetic force on one unit's rotating steel.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RotorForce {
+    /// Unit, 0-based here; serialised 1-based.
+    #[serde(serialize_with = "one_based")]
+    pub unit: usize,
+    /// The parts of the body.
+    pub parts: Vec<String>,
+    /// Axial force (N, + along +z).
+    #[serde(rename = "axial_force_N")]
+    pub axial_force_n: f64,
+}
+
 /// Coil figures.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CoilResult {
@@ -327,6 +359,10 @@ pub struct Analysis {
     pub torque_current_curve: Vec<CurvePoint>,
     /// Torque summary.
     pub torque: TorqueSummary,
+    /// The off-state torque of direction 1 and its terms, each with its source.
+    pub torque_off: OffStateTorque,
+    /// The axial magnetic pull on the rotating parts at the maximum current.
+    pub rotor_forces: RotorForces,
     /// Per-gap results at the maximum current (all gaps; for the bidirectional brake unit 2's gaps are
     /// taken from the unit-2 solve).
     pub gaps: Vec<GapResult>,
@@ -582,6 +618,13 @@ fn run_analysis<F>(
     let mechanics = mechanics(&model.geometry, spec, last.torque_nm)?;
     let flux_path = flux_path_field(&model.solver, &solved.solution_at_max, &model.geometry)?;
     let torque = torque_summary(&solved);
+    let rotor_forces = rotor_forces(
+        &model.solver,
+        &solved.solution_at_max,
+        &model.geometry,
+        spec,
+        model.max_current,
+    )?;
     let t_post = t0.elapsed().as_secs_f64();
     let analysis = Analysis {
         name: spec.name.clone(),
@@ -589,6 +632,8 @@ fn run_analysis<F>(
         max_current_a: model.max_current,
         torque_current_curve: solved.curve,
         torque,
+        torque_off: model.off_state.clone(),
+        rotor_forces,
         gaps: solved.gaps,
         coil,
         mechanics,
@@ -623,6 +668,9 @@ struct Model {
     max_current: f64,
     turns: u32,
     order: ElementOrder,
+    /// The off-state torque's breakdown; its terms besides the viscous one are the constant
+    /// friction added to every torque.
+    off_state: OffStateTorque,
 }
 
 /// The direction-1 sweep: the curve, unit 1's gaps and the solution at the maximum current.
@@ -658,7 +706,9 @@ impl Model {
             geometry.coils.iter().filter(|c| c.unit == unit).map(|c| c.tag).collect()
         };
         let unit_coils = [unit_coils(0), unit_coils(1)];
+        let off_state = off_state_torque(spec, &geometry, &fluid, options);
         Ok(Self {
+            off_state,
             fluid,
             solver,
             unit_coils,
@@ -722,8 +772,16 @@ impl Model {
         let dir1_gaps = self.unit_gaps(0);
         let speed = options.speed_rad_s;
         let gaps = gap_results(&self.solver, &solution, &dir1_gaps, &self.fluid, speed)?;
-        let point =
-            curve_point(&self.solver, &solution, &gaps, &dir1_gaps, &self.fluid, current, options)?;
+        let friction = self.off_state.constant_friction_nm();
+        let point = curve_point(
+            &self.solver,
+            &solution,
+            &gaps,
+            &dir1_gaps,
+            &self.fluid,
+            current,
+            friction,
+        )?;
         Ok((point, gaps, solution))
     }
 
@@ -766,7 +824,7 @@ impl Model {
         let g2 = gap_results(&self.solver, &s2, &dir2_gaps, &self.fluid, options.speed_rad_s)?;
         solved.direction2_nm = Some(
             g2.iter().map(|g| g.torque_nm + g.viscous_torque_nm).sum::<f64>()
-                + options.seal_friction_nm,
+                + self.off_state.constant_friction_nm(),
         );
         gaps.extend(g2);
         solved.gaps = gaps;
@@ -793,6 +851,63 @@ fn torque_summary(solved: &Solved) -> TorqueSummary {
         direction2_at_max_current_nm: solved.direction2_nm,
         cross_coupling: solved.cross_coupling,
     }
+}
+
+/// The off-state torque of direction 1 and its terms ([`crate::drag`]): the viscous drag of the
+/// turning rotor's gaps and of the idle one's (the bidirectional brake's freewheel), with the
+/// spec's `[drag]` and the analysis's constant friction.
+fn off_state_torque(
+    spec: &BrakeSpec,
+    geometry: &BrakeGeometry,
+    fluid: &MrFluid,
+    options: &AnalysisOptions,
+) -> OffStateTorque {
+    let eta = fluid.viscosity_pa_s();
+    let unit_viscous = |unit: usize| -> f64 {
+        let gaps = geometry.gaps.iter().filter(|g| g.unit == unit);
+        gaps.map(|g| viscous_torque(g, eta, options.speed_rad_s)).sum()
+    };
+    let idle = geometry.gaps.iter().any(|g| g.unit == 1).then(|| unit_viscous(1));
+    spec.drag.off_state(&DragInputs {
+        viscous_nm: unit_viscous(0),
+        idle_viscous_nm: idle,
+        shaft_diameter_m: 2.0 * spec.shaft.radius.m(),
+        extra_friction_nm: options.seal_friction_nm,
+    })
+}
+
+/// The axial magnetic force on each unit's rotating steel at the maximum current (unit 1
+/// energised), by virtual work on the layer of elements around it
+/// ([`mrbrake_magnetics::Solver::axial_force`]), and the bearing friction that load adds.
+/// Only the rotating flux-path parts form the body: they are surrounded by fluid and
+/// non-magnetic parts, as the layer method needs (a non-magnetic rotor disc pressed against a
+/// steel shaft is not, and carries no magnetic force of its own).
+fn rotor_forces(
+    solver: &Solver,
+    solution: &Solution,
+    geometry: &BrakeGeometry,
+    spec: &BrakeSpec,
+    current_a: f64,
+) -> Result<RotorForces, DesignError> {
+    let mut units = Vec::new();
+    for unit in 0..geometry.units {
+        let parts: Vec<_> = geometry
+            .regions
+            .iter()
+            .filter(|r| r.rotates.is_some() && r.unit == Some(unit) && r.kind == PartKind::FluxPath)
+            .collect();
+        if parts.is_empty() {
+            continue;
+        }
+        let tags: Vec<u32> = parts.iter().map(|r| r.tag).collect();
+        let force = solver.axial_force(solution, &tags).map_err(numerical)?;
+        let parts = parts.iter().map(|r| r.name.clone()).collect();
+        units.push(RotorForce { unit, parts, axial_force_n: force });
+    }
+    let total: f64 = units.iter().map(|u| u.axial_force_n).sum();
+    let load = spec.drag.external_bearing_load_n() + total.abs();
+    let bearing = spec.drag.bearing_torque_nm(load, 2.0 * spec.shaft.radius.m());
+    Ok(RotorForces { current_a, units, total_axial_force_n: total, bearing_friction_nm: bearing })
 }
 
 /// |B| statistics over the flux-path parts ([`PartKind::FluxPath`]).
@@ -996,7 +1111,7 @@ fn curve_point(
     infos: &[&GapInfo],
     fluid: &MrFluid,
     current: f64,
-    options: &AnalysisOptions,
+    friction_nm: f64,
 ) -> Result<CurvePoint, DesignError> {
     let yield_nm: f64 = gaps.iter().map(|g| g.torque_nm).sum();
     let viscous: f64 = gaps.iter().map(|g| g.viscous_torque_nm).sum();
@@ -1010,7 +1125,7 @@ fn curve_point(
         .unwrap_or(0.0);
     Ok(CurvePoint {
         current_a: current,
-        torque_nm: yield_nm + viscous + options.seal_friction_nm,
+        torque_nm: yield_nm + viscous + friction_nm,
         yield_torque_nm: yield_nm,
         thesis_formula_nm: thesis,
         mean_b_t: mean_b,

@@ -11,6 +11,7 @@
 //! invalid fields as a list, the solver's and mesher's errors wrapped typed).
 
 pub mod analysis;
+pub mod drag;
 mod error;
 pub mod formula;
 pub mod geo_export;

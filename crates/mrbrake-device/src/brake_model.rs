@@ -59,11 +59,12 @@ pub fn from_analysis(
     let key = design_key(spec, &settings)?;
     let curve = &analysis.torque_current_curve;
     let unit1_yield: Vec<f64> = curve.iter().map(|p| p.yield_torque_nm).collect();
-    let mut units = vec![unit_model(analysis, options, 1, unit1_yield.clone(), "FEA")];
+    let mut units = vec![unit_model(analysis, 1, unit1_yield.clone(), "FEA")];
     let mut assumed = vec![
         format!(
-            "seal/bearing friction {} N·m (analyze --seal-friction; the FEA does not model seals or bearings)",
-            options.seal_friction_nm
+            "constant friction {} N·m (seals, bearings, freewheel from the spec's [drag] and \
+             --seal-friction; the FEA models none of them)",
+            analysis.torque_off.constant_friction_nm()
         ),
         "no hysteresis: anhysteretic B–H curves".to_string(),
         "no dynamics (mrbrake response --save-model adds them)".to_string(),
@@ -72,11 +73,11 @@ pub fn from_analysis(
     if let Some(total2) = analysis.torque.direction2_at_max_current_nm {
         let yield2 = total2
             - viscous_coefficient(analysis, 1) * analysis.speed_rad_s
-            - options.seal_friction_nm;
+            - analysis.torque_off.constant_friction_nm();
         let yield1 = unit1_yield.last().copied().unwrap_or(0.0);
         let ratio = if yield1 > 0.0 { yield2 / yield1 } else { 1.0 };
         let scaled = unit1_yield.iter().map(|t| t * ratio).collect();
-        units.push(unit_model(analysis, options, 2, scaled, "unit 1's FEA curve scaled"));
+        units.push(unit_model(analysis, 2, scaled, "unit 1's FEA curve scaled"));
         assumed.push(format!(
             "unit 2's curve: unit 1's shape scaled by {ratio:.6} (unit 2 is solved at the maximum current only)"
         ));
@@ -113,14 +114,26 @@ pub fn from_analysis(
     Ok(model)
 }
 
+/// Where the model's constant friction comes from: the seal, bearing, freewheel and remanent
+/// terms of the analysis's off-state breakdown, each with its source.
+fn friction_source(off: &mrbrake_design::drag::OffStateTorque) -> String {
+    let s = &off.sources;
+    format!(
+        "the off-state breakdown of mrbrake analyze: seal {} N·m ({}); bearing {} N·m ({}); \
+         freewheel {} N·m ({}); remanent {} N·m ({})",
+        off.seal_nm,
+        s.seal,
+        off.bearing_nm,
+        s.bearing,
+        off.freewheel_nm,
+        s.freewheel,
+        off.remanent_nm,
+        s.remanent
+    )
+}
+
 /// One unit: its yield curve, off-state, no hysteresis, no dynamics.
-fn unit_model(
-    analysis: &Analysis,
-    options: &AnalysisOptions,
-    unit: u32,
-    yield_nm: Vec<f64>,
-    how: &str,
-) -> UnitModel {
+fn unit_model(analysis: &Analysis, unit: u32, yield_nm: Vec<f64>, how: &str) -> UnitModel {
     let current_a = analysis.torque_current_curve.iter().map(|p| p.current_a).collect();
     UnitModel {
         unit,
@@ -133,9 +146,8 @@ fn unit_model(
         off_state: OffState {
             viscous_nm_s_per_rad: viscous_coefficient(analysis, unit as usize - 1),
             reference_speed_rad_s: analysis.speed_rad_s,
-            seal_friction_nm: options.seal_friction_nm,
-            seal_friction_source:
-                "assumed: the analysis option --seal-friction (default 0 N·m); not predicted".into(),
+            seal_friction_nm: analysis.torque_off.constant_friction_nm(),
+            seal_friction_source: friction_source(&analysis.torque_off),
         },
         hysteresis: Hysteresis::None { note: NO_HYSTERESIS_NOTE.into() },
         dynamics: None,

@@ -65,6 +65,7 @@ fn torque_text(out: &mut String, a: &Analysis) {
         t.thesis_formula_nm, t.mean_b_t
     );
     let _ = writeln!(out, "  off-state torque                 {:.4} N·m", t.off_state_nm);
+    off_state_text(out, a);
     if let Some(t2) = t.direction2_at_max_current_nm {
         let _ = writeln!(out, "  direction 2 (own coil)           {t2:.4} N·m");
     }
@@ -74,6 +75,36 @@ fn torque_text(out: &mut String, a: &Analysis) {
             "  cross-coupling into idle unit    {:.2} % of the active unit's yield torque",
             100.0 * c
         );
+    }
+}
+
+/// The off-state torque's terms, each with its source, and the rotors' magnetic pull.
+fn off_state_text(out: &mut String, a: &Analysis) {
+    let b = &a.torque_off;
+    let s = &b.sources;
+    let terms = [
+        ("viscous", b.viscous_nm, &s.viscous),
+        ("seals", b.seal_nm, &s.seal),
+        ("bearings", b.bearing_nm, &s.bearing),
+        ("freewheel", b.freewheel_nm, &s.freewheel),
+        ("remanent", b.remanent_nm, &s.remanent),
+    ];
+    for (name, value, source) in terms {
+        let _ = writeln!(out, "    {name:<10} {value:>9.5} N·m  {source}");
+    }
+    let f = &a.rotor_forces;
+    for u in &f.units {
+        let _ = writeln!(
+            out,
+            "  axial pull on unit {}'s rotor     {:.3} N at {:.3} A",
+            u.unit + 1,
+            u.axial_force_n,
+            f.current_a
+        );
+    }
+    if f.bearing_friction_nm > 0.0 {
+        let _ =
+            writeln!(out, "  bearing friction with that pull  {:.5} N·m", f.bearing_friction_nm);
     }
 }
 
@@ -293,13 +324,15 @@ mod tests {
         let lines: Vec<&str> = text.lines().collect();
         assert!(lines[0].ends_with("(bidirectional, embedded default)"), "{}", lines[0]);
         // Title, mesh, blank, curve title and header; 3 points; blank, "at", 5 torque lines (both
-        // directions); blank, 2 gap titles, 8 gaps; blank, 3 coil (the last its fill factor), 2
-        // mechanics; blank, time.
-        assert_eq!(lines.len(), 5 + 3 + 7 + 11 + 6 + 2, "{text}");
+        // directions), 5 off-state terms, 2 rotor pulls; blank, 2 gap titles, 8 gaps; blank, 3
+        // coil (the last its fill factor), 2 mechanics; blank, time.
+        assert_eq!(lines.len(), 5 + 3 + 14 + 11 + 6 + 2, "{text}");
         assert!(lines[10].starts_with("  torque (local Bingham + viscous) "), "{}", lines[10]);
-        assert_eq!(lines[16], "gaps at the maximum current:");
-        assert!(lines[28].starts_with("      copper fill factor 0."), "{}", lines[28]);
-        assert!(lines[30].starts_with("mechanics: mass ") && lines[30].contains("(direction 2: "));
+        assert!(lines[13].starts_with("    viscous ") && lines[17].starts_with("    remanent "));
+        assert!(lines[18].starts_with("  axial pull on unit 1's rotor "), "{}", lines[18]);
+        assert_eq!(lines[23], "gaps at the maximum current:");
+        assert!(lines[35].starts_with("      copper fill factor 0."), "{}", lines[35]);
+        assert!(lines[37].starts_with("mechanics: mass ") && lines[37].contains("(direction 2: "));
         assert!(lines[lines.len() - 1].starts_with("time: ") && text.ends_with(")\n"));
         // At the default 20 °C the resistance is said once; a hot coil adds its hot value.
         let coil = lines.iter().find(|l| l.starts_with("coil: ")).expect("a coil line");

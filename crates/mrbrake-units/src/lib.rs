@@ -52,13 +52,15 @@ pub enum Dimension {
     Conductivity,
     /// Heat-transfer coefficient of a surface, SI unit W/(m²·K).
     HeatTransferCoefficient,
+    /// Force (a bearing load), SI unit N.
+    Force,
     /// A plain number without unit.
     Dimensionless,
 }
 
 impl Dimension {
     /// Every dimension, in declaration order.
-    pub const ALL: [Dimension; 15] = [
+    pub const ALL: [Dimension; 16] = [
         Dimension::Length,
         Dimension::FluxDensity,
         Dimension::FieldStrength,
@@ -73,6 +75,7 @@ impl Dimension {
         Dimension::RotationalDamping,
         Dimension::Conductivity,
         Dimension::HeatTransferCoefficient,
+        Dimension::Force,
         Dimension::Dimensionless,
     ];
 
@@ -135,6 +138,7 @@ impl Dimension {
                 ("W/m2K", 1.0),
                 ("W/m²K", 1.0),
             ],
+            Dimension::Force => &[("N", 1.0), ("kN", 1e3), ("mN", 1e-3)],
             Dimension::Dimensionless => &[],
         }
     }
@@ -156,6 +160,7 @@ impl Dimension {
             Dimension::RotationalDamping => "N·m·s/rad",
             Dimension::Conductivity => "S/m",
             Dimension::HeatTransferCoefficient => "W/(m²·K)",
+            Dimension::Force => "N",
             Dimension::Dimensionless => "",
         }
     }
@@ -177,6 +182,7 @@ impl Dimension {
             Dimension::RotationalDamping => "a rotational damping",
             Dimension::Conductivity => "an electrical conductivity",
             Dimension::HeatTransferCoefficient => "a heat-transfer coefficient",
+            Dimension::Force => "a force",
             Dimension::Dimensionless => "a plain number",
         }
     }

@@ -36,7 +36,8 @@ pub struct AnalyzeArgs {
     /// Relative speed for the viscous torque (e.g. 1rad/s, 60rpm).
     #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
     speed: String,
-    /// Seal and bearing friction added to every torque (e.g. 0.05Nm).
+    /// A measured constant friction added to every torque (e.g. 0.05Nm), on top of the spec's
+    /// `[drag]` terms (seals, bearings, freewheel); reported within the seal term.
     #[arg(long, default_value = "0Nm", allow_hyphen_values = true)]
     seal_friction: String,
     /// Copper temperature for the coil resistance (e.g. 20C, 75C).

@@ -80,7 +80,7 @@ impl Current {
     }
 }
 
-fn quantity<'de, D: Deserializer<'de>>(d: D, dim: Dimension) -> Result<f64, D::Error> {
+pub(crate) fn quantity<'de, D: Deserializer<'de>>(d: D, dim: Dimension) -> Result<f64, D::Error> {
     #[derive(Deserialize)]
     #[serde(untagged)]
     enum Raw {
@@ -825,6 +825,9 @@ pub struct BrakeSpec {
     pub envelope: Envelope,
     /// Model settings.
     pub model: Model,
+    /// The mechanical drag besides the fluid (`[drag]`: seals, bearings, freewheels), for the
+    /// off-state torque's breakdown ([`crate::drag`]).
+    pub drag: crate::drag::Drag,
     /// Where it was read from, so that validation errors name the file and line.
     pub(crate) source: SpecSource,
 }
@@ -841,6 +844,7 @@ impl PartialEq for BrakeSpec {
             coil,
             envelope,
             model,
+            drag,
             source: _,
         } = self;
         *name == other.name
@@ -851,6 +855,7 @@ impl PartialEq for BrakeSpec {
             && *coil == other.coil
             && *envelope == other.envelope
             && *model == other.model
+            && *drag == other.drag
     }
 }
 

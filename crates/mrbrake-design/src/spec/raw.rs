@@ -14,6 +14,7 @@ use super::{
     Model, Shaft, Spacer, SpecSource,
 };
 use crate::DesignError;
+use crate::drag::Drag;
 
 /// A spec as the file writes it. The field order is the file's and the JSON's.
 #[derive(Debug, Clone, Deserialize, Serialize, JsonSchema)]
@@ -47,6 +48,10 @@ pub(super) struct RawSpec {
     /// Model (not device) settings.
     #[serde(default)]
     model: Model,
+    /// The mechanical drag besides the fluid: seals, bearings, one-way bearings (optional; an
+    /// absent table is left out of the JSON, so design keys of specs without it do not move).
+    #[serde(default, skip_serializing_if = "Drag::is_default")]
+    drag: Drag,
 }
 
 impl RawSpec {
@@ -64,6 +69,7 @@ impl RawSpec {
             spacer,
             envelope,
             model,
+            drag,
         } = self;
         let mut errors = FieldErrors::new();
         let tables = Tables { drum, disc, spacer };
@@ -77,6 +83,7 @@ impl RawSpec {
                 coil,
                 envelope,
                 model,
+                drag,
                 source,
             }),
             _ => Err(DesignError::Spec { name, errors: source.locate(errors) }),
@@ -157,6 +164,7 @@ impl From<&BrakeSpec> for RawSpec {
             spacer: c.spacer().cloned(),
             envelope: spec.envelope.clone(),
             model: spec.model.clone(),
+            drag: spec.drag.clone(),
         }
     }
 }

@@ -93,6 +93,7 @@ fn check_fields(spec: &BrakeSpec, p: &mut Problems) {
     p.positive("envelope.diameter", spec.envelope.diameter);
     p.positive("envelope.length", spec.envelope.length);
     p.positive("model.air_margin", spec.model.air_margin);
+    spec.drag.check(&mut p.errors);
     let kind = spec.configuration.kind();
     match spec.configuration.surfaces() {
         WorkingSurfaces::Drums(drum) => check_drum(drum, kind, p),

@@ -173,6 +173,18 @@ impl DesignReport<'_> {
             "N·m",
         );
         row("off-state torque", t.off_state_nm, 4, "/torque/off_state_Nm", 1.0, "N·m");
+        let b = &a.torque_off;
+        let terms = [
+            ("viscous", b.viscous_nm, "viscous_Nm", &b.sources.viscous),
+            ("seals", b.seal_nm, "seal_Nm", &b.sources.seal),
+            ("bearings", b.bearing_nm, "bearing_Nm", &b.sources.bearing),
+            ("freewheel", b.freewheel_nm, "freewheel_Nm", &b.sources.freewheel),
+            ("remanent", b.remanent_nm, "remanent_Nm", &b.sources.remanent),
+        ];
+        for (name, value, key, source) in terms {
+            let what = format!("  off-state: {name} ({source})");
+            row(&what, value, 5, &format!("/torque_off/{key}"), 1.0, "N·m");
+        }
         row("dynamic range (on/off)", t.dynamic_range, 1, "/torque/dynamic_range", 1.0, "–");
         row("mean |B| in the fluid gaps", t.mean_b_t, 4, "/torque/mean_B_T", 1.0, "T");
         if let Some(t2) = t.direction2_at_max_current_nm {
