@@ -89,7 +89,7 @@ fn analysed_model(seal_friction_nm: f64) -> BrakeModel {
         seal_friction_nm,
         ..AnalysisOptions::default()
     };
-    let analysis = AnalysisRequest::of(&spec).options(options.clone()).run().unwrap();
+    let analysis = AnalysisRequest::of(&spec).options(options).run().unwrap();
     let identity = analysis_identity(&spec, &options).unwrap();
     from_analysis(&analysis, &options, Some(identity), "test").unwrap()
 }

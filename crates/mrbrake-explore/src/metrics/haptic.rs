@@ -144,7 +144,7 @@ pub(super) fn haptic_metrics(
         temperature_c: evaluation.temperature_c,
         order: evaluation.order,
     };
-    let analysis = AnalysisRequest::of(spec).options(options.clone()).run().map_err(fail)?;
+    let analysis = AnalysisRequest::of(spec).options(options).run().map_err(fail)?;
     let source = "mrbrake study ([haptic] metrics)";
     let mut model = mrbrake_device::brake_model::from_analysis(&analysis, &options, None, source)
         .map_err(fail)?;
