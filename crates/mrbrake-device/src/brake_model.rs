@@ -11,21 +11,22 @@
 //!   the FEA has no seals;
 //! - unit 2 of a bidirectional brake is solved only at the maximum current, so its curve is unit 1's
 //!   scaled by the ratio of the two yield torques there (assumed shape, predicted end point);
+//! - the rotor inertia of each unit is the analysis's `mechanics` (the parts that turn with the
+//!   shaft in that unit's direction, from the modelled parts' densities: predicted, without
+//!   bearings, seals and bolts, which the spec does not model);
 //! - no hysteresis (anhysteretic B–H curves), no dynamics, no thermal data: stated as such;
 //!   `response --save-model` ([`add_dynamics`]) and `thermal --save-model` ([`add_thermal`]) add
 //!   the last two.
 
 use mrbrake_design::analysis::{Analysis, AnalysisOptions};
-use mrbrake_design::response::Response;
-use mrbrake_design::spec::BrakeSpec;
+use mrbrake_design::response::{Response, ResponseDrive};
 use mrbrake_design::thermal::ThermalResult;
-use mrbrake_explore::design::{MODEL_REVISION, design_key};
-use mrbrake_explore::evaluate::EvaluationSettings;
 use mrbrake_sim::brake_model::fit::{DYNAMICS_POLES, fit_dynamics};
 use mrbrake_sim::brake_model::{
     BrakeModel, Dynamics, Hysteresis, OffState, Provenance, SCHEMA, SCHEMA_VERSION, StaticCurve,
     Thermal, UnitModel,
 };
+use mrbrake_sysid::frd::Frd;
 
 use crate::DeviceError;
 use mrbrake_error::FieldError;
@@ -40,26 +41,29 @@ fn viscous_coefficient(analysis: &Analysis, unit: usize) -> f64 {
     if analysis.speed_rad_s > 0.0 { sum / analysis.speed_rad_s } else { 0.0 }
 }
 
-/// The brake model of `analysis` (of `spec` under `options`); `source` says how it was produced
-/// (e.g. the command line and the spec file).
+/// Which design a predicted model is of: the design key of `mrbrake-explore` (spec, materials,
+/// settings, solver) and its model revision (`mrbrake_explore::design::analysis_identity` gives
+/// both for an analysis).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DesignIdentity {
+    /// SHA-256 of the design.
+    pub spec_sha256: String,
+    /// `mrbrake_explore::design::MODEL_REVISION` of the analysis.
+    pub model_revision: u32,
+}
+
+/// The brake model of `analysis` (run with `options`) of the design `identity`; `source` says how
+/// it was produced (e.g. the command line and the spec file).
 pub fn from_analysis(
     analysis: &Analysis,
-    spec: &BrakeSpec,
     options: &AnalysisOptions,
+    identity: Option<DesignIdentity>,
     source: &str,
 ) -> Result<BrakeModel, DeviceError> {
-    let settings = EvaluationSettings {
-        mesh: options.mesh,
-        speed_rad_s: options.speed_rad_s,
-        seal_friction_nm: options.seal_friction_nm,
-        temperature_c: options.temperature_c,
-        order: options.order,
-        ..EvaluationSettings::default()
-    };
-    let key = design_key(spec, &settings)?;
     let curve = &analysis.torque_current_curve;
     let unit1_yield: Vec<f64> = curve.iter().map(|p| p.yield_torque_nm).collect();
     let mut units = vec![unit_model(analysis, 1, unit1_yield.clone(), "FEA")];
+    units[0].rotor_inertia_kg_m2 = Some(analysis.mechanics.rotor_inertia_kg_m2);
     let mut assumed = vec![
         format!(
             "constant friction {} N·m (seals, bearings, freewheel from the spec's [drag] and \
@@ -77,7 +81,9 @@ pub fn from_analysis(
         let yield1 = unit1_yield.last().copied().unwrap_or(0.0);
         let ratio = if yield1 > 0.0 { yield2 / yield1 } else { 1.0 };
         let scaled = unit1_yield.iter().map(|t| t * ratio).collect();
-        units.push(unit_model(analysis, 2, scaled, "unit 1's FEA curve scaled"));
+        let mut unit2 = unit_model(analysis, 2, scaled, "unit 1's FEA curve scaled");
+        unit2.rotor_inertia_kg_m2 = analysis.mechanics.rotor_inertia_direction2_kg_m2;
+        units.push(unit2);
         assumed.push(format!(
             "unit 2's curve: unit 1's shape scaled by {ratio:.6} (unit 2 is solved at the maximum current only)"
         ));
@@ -89,8 +95,8 @@ pub fn from_analysis(
         provenance: Provenance {
             mrbrake_version: env!("CARGO_PKG_VERSION").to_string(),
             source: source.to_string(),
-            spec_sha256: Some(key),
-            model_revision: Some(MODEL_REVISION),
+            spec_sha256: identity.as_ref().map(|i| i.spec_sha256.clone()),
+            model_revision: identity.as_ref().map(|i| i.model_revision),
             predicted: vec![
                 format!(
                     "static torque–current curve of unit 1: local Bingham yield torque over the gaps, {} currents 0–{} A (FEA, {} mesh, P{})",
@@ -103,6 +109,7 @@ pub fn from_analysis(
                     "viscous off-state coefficient: gaps' viscous torque at {} rad/s ÷ speed",
                     analysis.speed_rad_s
                 ),
+                "rotor inertia per unit: the modelled parts turning with the shaft in its direction (no bearings, seals or bolts)".to_string(),
             ],
             assumed,
             amended: Vec::new(),
@@ -138,6 +145,7 @@ fn unit_model(analysis: &Analysis, unit: u32, yield_nm: Vec<f64>, how: &str) -> 
     UnitModel {
         unit,
         current_max_a: analysis.max_current_a,
+        rotor_inertia_kg_m2: None,
         static_curve: StaticCurve {
             current_a,
             torque_nm: yield_nm,
@@ -172,7 +180,23 @@ pub fn add_dynamics(
             .with_allowed(format!("'{}', the design of the response", response.name))
             .into());
     }
-    let frd = &response.frequency_response;
+    add_frequency_response(
+        model,
+        &response.frequency_response,
+        (response.bias_a, response.drive),
+        source,
+    )
+}
+
+/// [`add_dynamics`] from the design's normalised small-signal frequency response `frd` at
+/// `(bias_a, drive)` (what `ResponseModel::frequency_response` gives a study), without the name
+/// check: the caller knows the model and the response are of the same design.
+pub fn add_frequency_response(
+    model: &mut BrakeModel,
+    frd: &Frd,
+    (bias_a, drive): (f64, ResponseDrive),
+    source: &str,
+) -> Result<f64, DeviceError> {
     let fitted = fit_dynamics(frd)?;
     let omegas: Vec<f64> = frd.omegas().collect();
     let dynamics = Dynamics {
@@ -182,8 +206,8 @@ pub fn add_dynamics(
             "predicted: {DYNAMICS_POLES}-pole tfest fit ({:.2} % fit{}) to the small-signal frequency response of direction 1 at {} A bias, {} drive, {} points {:.3}–{:.1} rad/s ({source})",
             fitted.fit_percent,
             fitted.reflection_note(),
-            response.bias_a,
-            format!("{:?}", response.drive).to_lowercase(),
+            bias_a,
+            format!("{drive:?}").to_lowercase(),
             omegas.len(),
             omegas.first().copied().unwrap_or(0.0),
             omegas.last().copied().unwrap_or(0.0),
@@ -261,7 +285,6 @@ mod tests {
     use mrbrake_design::response::{ResponseDrive, ResponseTimings};
     use mrbrake_error::Kind as _;
     use mrbrake_sim::brake_model::prototype::haptic_prototype;
-    use mrbrake_sysid::frd::Frd;
     use mrbrake_sysid::tfest::logspace;
     use mrbrake_sysid::transfer_function::TransferFunction;
 

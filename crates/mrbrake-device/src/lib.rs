@@ -3,10 +3,11 @@
 //! brake model file the virtual rig and the haptic simulation run
 //! ([`mrbrake_sim::brake_model::BrakeModel`]), each number with its provenance.
 //!
-//! Why a crate of its own: building the model needs the design's results (`mrbrake-design`), the
-//! design key and model revision that identify the design (`mrbrake-explore`, above the design
-//! crate) and the file type (`mrbrake-sim`, which holds no finite-element code and should not
-//! pull it in). No crate below all three could hold it, and the report crate only presents. What
+//! Why a crate of its own: building the model needs the design's results (`mrbrake-design`) and
+//! the file type (`mrbrake-sim`, which holds no finite-element code and should not pull it in),
+//! and the studies of `mrbrake-explore` build it for their haptic metrics, so it sits below explore
+//! (which gives the design key and model revision that identify the design,
+//! [`brake_model::DesignIdentity`]). The report crate only presents. What
 //! does not depend on a design — the dynamics fitted to any frequency-response data, predicted or
 //! measured — lives next to the file type ([`mrbrake_sim::brake_model::fit`]).
 
@@ -21,9 +22,6 @@ pub enum DeviceError {
     /// The field is the model file's design `name` or the thermal analysis's `current`.
     #[error(transparent)]
     Input(Box<mrbrake_error::FieldError>),
-    /// The design key of the spec (its settings, materials).
-    #[error(transparent)]
-    Explore(#[from] mrbrake_explore::ExploreError),
     /// The brake model: a fit, an invalid predicted value (names the field), a refused model.
     #[error(transparent)]
     Sim(#[from] mrbrake_sim::SimError),
@@ -40,7 +38,6 @@ impl mrbrake_error::Kind for DeviceError {
     fn kind(&self) -> mrbrake_error::ErrorKind {
         match self {
             Self::Input(_) => mrbrake_error::ErrorKind::Input,
-            Self::Explore(e) => e.kind(),
             Self::Sim(e) => e.kind(),
         }
     }

@@ -197,6 +197,27 @@ fn internal(e: impl std::fmt::Display) -> ExploreError {
     ExploreError::Internal(e.to_string())
 }
 
+/// The identity of the design `spec` analysed with `options` (`mrbrake analyze`): its design key
+/// under the equivalent static study settings and [`MODEL_REVISION`], as a predicted brake model
+/// records it ([`mrbrake_device::brake_model::from_analysis`]).
+pub fn analysis_identity(
+    spec: &BrakeSpec,
+    options: &mrbrake_design::analysis::AnalysisOptions,
+) -> Result<mrbrake_device::brake_model::DesignIdentity, ExploreError> {
+    let settings = EvaluationSettings {
+        mesh: options.mesh,
+        speed_rad_s: options.speed_rad_s,
+        seal_friction_nm: options.seal_friction_nm,
+        temperature_c: options.temperature_c,
+        order: options.order,
+        ..EvaluationSettings::default()
+    };
+    Ok(mrbrake_device::brake_model::DesignIdentity {
+        spec_sha256: design_key(spec, &settings)?,
+        model_revision: MODEL_REVISION,
+    })
+}
+
 /// The key of a valid spec under the given settings (see the module docs).
 pub fn design_key(spec: &BrakeSpec, settings: &EvaluationSettings) -> Result<String, ExploreError> {
     let mut spec_value = serde_json::to_value(spec).map_err(internal)?;

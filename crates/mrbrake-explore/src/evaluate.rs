@@ -227,6 +227,27 @@ pub const METRICS: &[MetricInfo] = &[
         "warm-up time of the coil hot spot to the insulation limit (inf: not within the run)",
     ),
     metric("max_duty_at_max_current", "1", "largest duty cycle at the maximum current"),
+    // Haptics (the design's brake model in `haptic wall`; settings in [haptic]).
+    metric(
+        "withdraw_excess_torque_Nm",
+        "N·m",
+        "haptic wall: peak torque holding the hand in the wall beyond the free drag (sticky wall)",
+    ),
+    metric(
+        "release_time_s",
+        "s",
+        "haptic wall: from the start of the withdrawal to leaving the wall (inf: never left)",
+    ),
+    metric(
+        "displayed_stiffness_Nm_per_rad",
+        "N·m/rad",
+        "haptic wall: stiffness felt while pressing in (least-squares slope)",
+    ),
+    metric(
+        "free_motion_torque_Nm",
+        "N·m",
+        "haptic wall: peak torque felt in free motion (off-state drag + rotor inertia × acceleration)",
+    ),
 ];
 
 /// Metric names before the unit convention of docs/CONVENTIONS.md (SI symbol with its case after

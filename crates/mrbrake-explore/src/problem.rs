@@ -28,6 +28,8 @@
 //! duration = "100ms"                           # `mrbrake response` (crate::metrics::settings)
 //! [thermal]                                    # settings of the heat metrics, as
 //! ambient = "25C"                              # `mrbrake thermal`
+//! [haptic]                                     # settings of the haptic metrics, as
+//! scenario = "press-withdraw"                  # `mrbrake haptic wall` (crate::metrics::haptic)
 //! [algorithm]
 //! kind = "nsga2"                               # or "surrogate", "pattern-search" (one objective)
 //! population = 24
@@ -122,6 +124,9 @@ struct RawProblem {
     /// Settings of the heat metrics (`mrbrake thermal`'s options and defaults).
     #[serde(default)]
     thermal: Option<crate::metrics::settings::RawThermal>,
+    /// Settings of the haptic metrics (`mrbrake haptic wall`'s options and defaults).
+    #[serde(default)]
+    haptic: Option<crate::metrics::haptic::RawHaptic>,
     /// The optimiser and its budget.
     algorithm: RawAlgorithm,
     /// The resolution the lengths of the front designs are rounded to when they are written
@@ -331,6 +336,7 @@ pub fn schema() -> serde_json::Value {
     order::<RawAlgorithm>(&mut schema, "algorithm");
     order::<crate::metrics::settings::RawResponse>(&mut schema, "response");
     order::<crate::metrics::settings::RawThermal>(&mut schema, "thermal");
+    order::<crate::metrics::haptic::RawHaptic>(&mut schema, "haptic");
     let counts = [
         ("algorithm.population", Bounds::closed(4.0, MAX_POPULATION as f64)),
         ("algorithm.generations", Bounds::closed(0.0, MAX_EVALUATIONS as f64)),
@@ -532,6 +538,7 @@ impl OptimizationProblem {
             &raw.record,
             &raw.response,
             &raw.thermal,
+            &raw.haptic,
             &constraints,
             &objectives,
         )

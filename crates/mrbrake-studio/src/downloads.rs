@@ -70,9 +70,15 @@ fn solved_file(
                 s.options.mesh.name(),
                 s.options.points
             );
-            let model =
-                mrbrake_device::brake_model::from_analysis(&s.analysis, &s.spec, &s.options, &how)
-                    .map_err(|e| failed(&e))?;
+            let identity = mrbrake_explore::design::analysis_identity(&s.spec, &s.options)
+                .map_err(|e| failed(&e))?;
+            let model = mrbrake_device::brake_model::from_analysis(
+                &s.analysis,
+                &s.options,
+                Some(identity),
+                &how,
+            )
+            .map_err(|e| failed(&e))?;
             Ok(("application/json", model.to_json().into_bytes()))
         }
         _ => Err((404, format!("no download '{name}'"))),

@@ -112,7 +112,9 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
             a.order,
             a.points
         );
-        let model = mrbrake::device::brake_model::from_analysis(&analysis, &spec, &options, &how)?;
+        let identity = mrbrake::explore::design::analysis_identity(&spec, &options)?;
+        let model =
+            mrbrake::device::brake_model::from_analysis(&analysis, &options, Some(identity), &how)?;
         mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if a.json {

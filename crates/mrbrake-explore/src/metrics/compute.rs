@@ -24,7 +24,9 @@ use mrbrake_design::thermal::session::{ThermalSession, check_thermal_data};
 use mrbrake_fem::mesh::Mesh;
 use mrbrake_store::Status;
 
-use super::{Analysis, StudyMetrics, count_run};
+use mrbrake_sysid::frd::Frd;
+
+use super::{Analysis, HapticDynamics, StudyMetrics, count_run};
 use crate::ExploreError;
 use crate::evaluate::{EvaluationSettings, Outcome, with_causes};
 
@@ -51,6 +53,11 @@ struct Models<'s> {
     mesh: Option<(BrakeGeometry, Arc<Mesh>)>,
     response: Option<ResponseModel<'s>>,
     thermal: Option<ThermalSession<'s>>,
+    /// The small-signal frequency response and its bias (A), once computed (the haptic wall's
+    /// predicted dynamics are fitted to it).
+    frequency_response: Option<(Frd, f64)>,
+    /// The study's settings (the haptic wall analyses the design's brake model with them).
+    evaluation: &'s EvaluationSettings,
 }
 
 impl<'s> Models<'s> {
@@ -119,8 +126,9 @@ impl<'s> Models<'s> {
             Analysis::Frequency => {
                 let max = self.spec.coil.max_current.a();
                 let bias = self.response_options.bias_a.unwrap_or(0.5 * max);
-                let (_, _, bandwidth) =
+                let (_, frd, bandwidth) =
                     self.response()?.frequency_response(bias).map_err(failure)?;
+                self.frequency_response = Some((frd, bias));
                 Ok(vec![("bandwidth_rad_s", or_inf(bandwidth))])
             }
             Analysis::ThermalSteady => {
@@ -137,7 +145,20 @@ impl<'s> Models<'s> {
                 let time = self.thermal()?.time_to_limit_s().map_err(failure)?;
                 Ok(vec![("time_to_limit_s", or_inf(time))])
             }
-            _ => self.hot_torque(),
+            Analysis::HotTorque => self.hot_torque(),
+            _ => {
+                let study = &self.evaluation.study;
+                let frd = match study.haptic.dynamics {
+                    HapticDynamics::Predicted => {
+                        let (frd, bias) = self.frequency_response.as_ref().ok_or_else(|| {
+                            ("the haptic wall ran before the small-signal response".into(), false)
+                        })?;
+                        Some((frd, *bias, self.drive))
+                    }
+                    HapticDynamics::Thesis => None,
+                };
+                super::haptic::haptic_metrics(self.spec, self.evaluation, &study.haptic, frd)
+            }
         }
     }
 
@@ -198,6 +219,8 @@ pub(crate) fn cascade(
         mesh: None,
         response: None,
         thermal: None,
+        frequency_response: None,
+        evaluation: settings,
     };
     for level in 1..=3 {
         let at_level: Vec<Analysis> =
@@ -246,7 +269,7 @@ pub(super) fn check(
             .copied()
             .unwrap_or("")
     };
-    if analyses.iter().any(|a| !a.is_thermal()) {
+    if analyses.iter().any(|a| !a.is_thermal() && *a != Analysis::Haptic) {
         let metric = first(false);
         check_options(&study.response.options(evaluation))
             .map_err(|e| ExploreError::Input(format!("metric '{metric}': [response]: {e}")))?;
@@ -261,6 +284,18 @@ pub(super) fn check(
                 )));
             }
         }
+    }
+    if analyses.contains(&Analysis::Haptic) {
+        let metric = study
+            .requested()
+            .iter()
+            .find(|m| super::analysis_of(m) == Some(Analysis::Haptic))
+            .copied()
+            .unwrap_or("");
+        study
+            .haptic
+            .config()
+            .map_err(|e| ExploreError::Input(format!("metric '{metric}': {e}")))?;
     }
     if analyses.iter().any(|a| a.is_thermal()) {
         let metric = first(true);

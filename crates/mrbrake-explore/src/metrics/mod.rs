@@ -1,5 +1,5 @@
-//! The metrics beyond the static analysis: dynamics (`mrbrake response`) and heat (`mrbrake
-//! thermal`), computed for a design only when a study's constraint, objective or `record` asks for
+//! The metrics beyond the static analysis: dynamics (`mrbrake response`), heat (`mrbrake
+//! thermal`) and what the hand feels (`mrbrake haptic wall --brake-model`, [`haptic`]), computed for a design only when a study's constraint, objective or `record` asks for
 //! them, in a cascade of fidelity levels.
 //!
 //! Brief overview: [`EXPENSIVE_METRICS`] maps every such metric to the [`Analysis`] that gives it
@@ -13,7 +13,8 @@
 //! The cascade (`cascade`, run by [`crate::evaluate::evaluate`]): the static analysis first
 //! (always); then level 1 (steady temperatures, the small-signal response: one linear solve per frequency), level 2 (the
 //! continuous-current search, the step responses), level 3 (the warm-up transient, the hot
-//! torque). Before each level the constraints on the metrics known so far are checked: a design
+//! torque, the haptic wall: the brake model's torque–current sweep and the simulation; with
+//! predicted dynamics it fits the level-1 small-signal response, which it then needs). Before each level the constraints on the metrics known so far are checked: a design
 //! that already violates one is stored `infeasible` with its metrics so far and a reason naming
 //! the constraint and the analyses skipped. One design meshes once for its expensive analyses:
 //! one response model on that mesh for all its step and frequency responses, one heat solver on
@@ -23,6 +24,7 @@
 //! goes on).
 
 mod compute;
+pub mod haptic;
 pub mod settings;
 
 use std::collections::BTreeSet;
@@ -32,6 +34,7 @@ use mrbrake_design::spec::BrakeSpec;
 use serde_json::{Value, json};
 
 pub(crate) use compute::cascade;
+pub use haptic::{HapticDynamics, HapticSettings};
 pub use settings::{ResponseSettings, ThermalSettings};
 
 use crate::ExploreError;
@@ -59,10 +62,13 @@ pub enum Analysis {
     Warmup,
     /// Hot torque at the continuous current (level 3: a magnetic analysis at the hot currents).
     HotTorque,
+    /// The haptic wall of the design's brake model (level 3: the torque–current sweep of the
+    /// model, then the simulation).
+    Haptic,
 }
 
 /// Every analysis, in cascade order.
-pub const ANALYSES: [Analysis; 9] = [
+pub const ANALYSES: [Analysis; 10] = [
     Analysis::ThermalSteady,
     Analysis::Frequency,
     Analysis::ThermalRating,
@@ -72,6 +78,7 @@ pub const ANALYSES: [Analysis; 9] = [
     Analysis::Release2,
     Analysis::Warmup,
     Analysis::HotTorque,
+    Analysis::Haptic,
 ];
 
 impl Analysis {
@@ -87,6 +94,7 @@ impl Analysis {
             Self::Release2 => "release (direction 2)",
             Self::Warmup => "warm-up",
             Self::HotTorque => "hot torque",
+            Self::Haptic => "haptic wall",
         }
     }
 
@@ -94,7 +102,7 @@ impl Analysis {
     pub fn level(self) -> u8 {
         match self {
             Self::ThermalSteady | Self::Frequency => 1,
-            Self::Warmup | Self::HotTorque => 3,
+            Self::Warmup | Self::HotTorque | Self::Haptic => 3,
             _ => 2,
         }
     }
@@ -125,6 +133,10 @@ pub const EXPENSIVE_METRICS: &[(&str, Analysis)] = &[
     ("max_duty_at_max_current", Analysis::ThermalRating),
     ("time_to_limit_s", Analysis::Warmup),
     ("continuous_torque_Nm", Analysis::HotTorque),
+    ("withdraw_excess_torque_Nm", Analysis::Haptic),
+    ("release_time_s", Analysis::Haptic),
+    ("displayed_stiffness_Nm_per_rad", Analysis::Haptic),
+    ("free_motion_torque_Nm", Analysis::Haptic),
 ];
 
 /// The analysis a metric needs beyond the static one, `None` for a static metric.
@@ -134,7 +146,7 @@ pub fn analysis_of(metric: &str) -> Option<Analysis> {
 
 /// How many times each analysis has run in this process (the cascade's accounting: a test
 /// counts them to show what the cascade skips).
-static RUNS: [AtomicUsize; 9] = [const { AtomicUsize::new(0) }; 9];
+static RUNS: [AtomicUsize; 10] = [const { AtomicUsize::new(0) }; 10];
 
 /// How many times each analysis has run in this process, in [`ANALYSES`] order.
 pub fn analysis_counts() -> Vec<(Analysis, usize)> {
@@ -157,6 +169,8 @@ pub struct StudyMetrics {
     pub response: ResponseSettings,
     /// Settings of the heat metrics.
     pub thermal: ThermalSettings,
+    /// Settings of the haptic metrics.
+    pub haptic: HapticSettings,
 }
 
 impl StudyMetrics {
@@ -175,7 +189,7 @@ impl StudyMetrics {
             .map(|(name, _)| *name)
             .collect();
         let gates = if requested.is_empty() { Vec::new() } else { constraints.to_vec() };
-        Self { requested, gates, response, thermal }
+        Self { requested, gates, response, thermal, haptic: HapticSettings::default() }
     }
 
     /// True when nothing beyond the static analysis is asked for.
@@ -188,13 +202,16 @@ impl StudyMetrics {
         &self.requested
     }
 
-    /// The analyses the asked-for metrics need (the hot torque needs the rating first), in
-    /// cascade order.
+    /// The analyses the asked-for metrics need (the hot torque needs the rating first, the
+    /// haptic wall with predicted dynamics the small-signal response), in cascade order.
     pub fn analyses(&self) -> BTreeSet<Analysis> {
         let mut set: BTreeSet<Analysis> =
             self.requested.iter().filter_map(|m| analysis_of(m)).collect();
         if set.contains(&Analysis::HotTorque) {
             set.insert(Analysis::ThermalRating);
+        }
+        if set.contains(&Analysis::Haptic) && self.haptic.dynamics == HapticDynamics::Predicted {
+            set.insert(Analysis::Frequency);
         }
         set
     }
@@ -226,6 +243,9 @@ impl StudyMetrics {
         if self.needs_heat() {
             value["thermal"] = self.thermal.canonical();
         }
+        if self.analyses().contains(&Analysis::Haptic) {
+            value["haptic"] = self.haptic.canonical();
+        }
         Some(value)
     }
 
@@ -237,7 +257,7 @@ impl StudyMetrics {
             return Vec::new();
         };
         let mut out = vec![("metrics_asked".to_string(), json!(self.requested.join(" ")))];
-        for table in ["response", "thermal"] {
+        for table in ["response", "thermal", "haptic"] {
             if let Some(Value::Object(settings)) = canonical.get(table) {
                 out.extend(settings.iter().map(|(k, v)| (format!("{table}_{k}"), v.clone())));
             }

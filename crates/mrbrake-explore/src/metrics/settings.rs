@@ -322,12 +322,14 @@ impl RawThermal {
 }
 
 /// The [`super::StudyMetrics`] of a problem file: the metrics of `record`, the constraints and
-/// the objectives, the constraints as gates, and the `[response]` and `[thermal]` settings; an
+/// the objectives, the constraints as gates, and the `[response]`, `[thermal]` and `[haptic]`
+/// settings; an
 /// error names the key.
 pub(crate) fn study_of(
     record: &[String],
     response: &Option<RawResponse>,
     thermal: &Option<RawThermal>,
+    haptic: &Option<super::haptic::RawHaptic>,
     constraints: &[crate::problem::Constraint],
     objectives: &[crate::problem::Objective],
 ) -> Result<super::StudyMetrics, String> {
@@ -342,5 +344,8 @@ pub(crate) fn study_of(
     let response =
         response.as_ref().map_or(Ok(ResponseSettings::default()), RawResponse::settings)?;
     let thermal = thermal.as_ref().map_or(Ok(ThermalSettings::default()), RawThermal::settings)?;
-    Ok(super::StudyMetrics::new(asked, constraints, response, thermal))
+    let haptic = haptic.as_ref().map_or(Ok(super::HapticSettings::default()), |h| h.settings())?;
+    let mut study = super::StudyMetrics::new(asked, constraints, response, thermal);
+    study.haptic = haptic;
+    Ok(study)
 }

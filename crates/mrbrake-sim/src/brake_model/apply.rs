@@ -51,7 +51,14 @@ fn torque_lag(unit: &UnitModel) -> Result<Option<TorqueLag>, SimError> {
 /// Runs the haptic device on `model`: brake 1 on unit 1, brake 2 on unit 2 (a single-unit model
 /// drives both), in the plant and in the controller; the units' lags where the model has dynamics
 /// (else the thesis's (5.5)/(5.6) stay), the viscous coefficient of unit 1 added to the device's
-/// viscous friction for an anhysteretic model.
+/// viscous friction for an anhysteretic model, and the device's inertia `J` the model's rotor
+/// inertia ([`rotor_inertia`]).
+///
+/// The device's `J` is the rotating inertia engaged per direction (thesis §4.3), 54.8 kg·mm² by
+/// default: the thesis prototype's rotor. A model that states its rotor inertia replaces it, so a
+/// lighter rotor is felt; the simulator has one `J` for both directions, so a bidirectional model
+/// whose two rotors differ gives the larger (the heavier direction, conservative for free motion;
+/// a note says so). A model without it (a version-1 file) keeps the default, with a note.
 pub fn apply_to_haptic(
     model: &BrakeModel,
     config: &mut HapticConfig,
@@ -78,8 +85,35 @@ pub fn apply_to_haptic(
     if unit1.adds_off_state() {
         config.device_parameters.viscous_nms_per_rad += unit1.off_state.viscous_nm_s_per_rad;
     }
+    match rotor_inertia(model) {
+        Some((inertia, note)) => {
+            config.device_parameters.inertia_kg_m2 = inertia;
+            notes.extend(note);
+        }
+        None => notes.push(format!(
+            "the model gives no rotor inertia (a version-1 file): the device keeps its {:.1} kg·mm²",
+            config.device_parameters.inertia_kg_m2 * 1e6
+        )),
+    }
     config.validate()?;
     Ok(notes)
+}
+
+/// The rotor inertia the haptic device runs with (see [`apply_to_haptic`]): the largest of the
+/// units' when every unit states one, with a note when they differ; `None` when a unit has none.
+pub fn rotor_inertia(model: &BrakeModel) -> Option<(f64, Option<String>)> {
+    let inertias: Vec<f64> =
+        model.units.iter().map(|u| u.rotor_inertia_kg_m2).collect::<Option<_>>()?;
+    let largest = inertias.iter().copied().fold(f64::MIN_POSITIVE, f64::max);
+    let smallest = inertias.iter().copied().fold(f64::INFINITY, f64::min);
+    let note = (largest > smallest).then(|| {
+        format!(
+            "the two rotors differ ({:.2} and {:.2} kg·mm²): the device has one inertia, the larger",
+            inertias[0] * 1e6,
+            inertias[inertias.len() - 1] * 1e6
+        )
+    });
+    Some((largest, note))
 }
 
 /// Puts unit `unit` of `model` on the virtual rig: its branches, maximum current, dynamics (else the
@@ -138,4 +172,48 @@ fn fit_demand(model: &InverseModel, config: &mut RigConfig) -> Option<String> {
         "frequency response: the demand {:.4}..{:.4} N·m leaves the model's range {lo:.4}..{hi:.4} N·m; it is {:.4}..{:.4} N·m (10 %–90 % of the range)",
         old.0, old.1, f.torque_min_nm, f.torque_max_nm
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::brake_model::prototype::haptic_prototype;
+    use crate::haptic::{DeviceKind, Scenario, simulate};
+
+    /// The free-motion torque of the prototype model with rotor inertia `inertia` (both units).
+    fn free_motion(inertia: Option<f64>) -> (f64, HapticConfig, Vec<String>) {
+        let mut model = haptic_prototype();
+        for unit in &mut model.units {
+            unit.rotor_inertia_kg_m2 = inertia;
+        }
+        let mut config = HapticConfig::new(DeviceKind::Bidirectional, Scenario::PressWithdraw);
+        let notes = apply_to_haptic(&model, &mut config).unwrap();
+        let metrics = simulate(&config, false).unwrap().metrics;
+        (metrics.free_motion_torque_nm, config, notes)
+    }
+
+    #[test]
+    fn the_rotor_inertia_of_the_model_is_felt_in_free_motion() {
+        let (light, config, notes) = free_motion(Some(20e-6));
+        assert!((config.device_parameters.inertia_kg_m2 - 20e-6).abs() < 1e-18);
+        assert!(notes.is_empty(), "{notes:?}");
+        let (heavy, config, _) = free_motion(Some(2000e-6));
+        assert!((config.device_parameters.inertia_kg_m2 - 2000e-6).abs() < 1e-18);
+        // The press-withdraw approach peaks near 8 rad/s² (minimum jerk, 0.4 rad in 0.8 s, and
+        // faster after the release): 1980 kg·mm² more rotor is several mN·m more at the grip.
+        assert!(heavy > light + 5e-3, "heavy {heavy} vs light {light}");
+        // At least the free-motion drag (bearing + the brake's off-state torque) is always felt.
+        assert!(light >= config.device_parameters.coulomb_nm, "{light}");
+        let (_, config, notes) = free_motion(None);
+        let default = HapticConfig::new(DeviceKind::Bidirectional, Scenario::PressWithdraw);
+        let kept = config.device_parameters.inertia_kg_m2 - default.device_parameters.inertia_kg_m2;
+        assert!(kept.abs() < 1e-18, "{kept}");
+        assert!(notes.iter().any(|n| n.contains("no rotor inertia")), "{notes:?}");
+        let mut model = haptic_prototype();
+        model.units[1].rotor_inertia_kg_m2 = Some(80e-6);
+        let mut config = default;
+        let notes = apply_to_haptic(&model, &mut config).unwrap();
+        assert!((config.device_parameters.inertia_kg_m2 - 80e-6).abs() < 1e-18);
+        assert!(notes.iter().any(|n| n.contains("rotors differ")), "{notes:?}");
+    }
 }

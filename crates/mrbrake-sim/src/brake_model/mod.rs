@@ -12,15 +12,15 @@
 //! haptic plant's [`crate::haptic::BrakePlant`]).
 //! The built-in prototype-like brakes are shipped as model files in `examples/brake-models/`.
 //!
-//! # Schema (version 1)
+//! # Schema (version 2)
 //!
 //! ```json
 //! {
-//!   "schema": "mrbrake-brake-model", "schema_version": 1, "name": "…",
+//!   "schema": "mrbrake-brake-model", "schema_version": 2, "name": "…",
 //!   "provenance": { "mrbrake_version": "0.1.0", "source": "…", "spec_sha256": "…" | null,
 //!                   "model_revision": 3 | null, "predicted": ["…"], "assumed": ["…"] },
 //!   "units": [ {
-//!     "unit": 1, "current_max_A": 2.0,
+//!     "unit": 1, "current_max_A": 2.0, "rotor_inertia_kg_m2": 3.2e-5 | null,
 //!     "static_curve": { "current_A": [0, …, 2], "torque_Nm": [0, …], "source": "…" },
 //!     "off_state": { "viscous_Nm_s_per_rad": 0.003, "reference_speed_rad_s": 1.0,
 //!                    "seal_friction_Nm": 0.0, "seal_friction_source": "…" },
@@ -44,7 +44,14 @@
 //! the current in A giving N·m (1 to 8 coefficients, as the inverse-model file of
 //! `characterize --save-model`), each non-decreasing on `[0, current_max_A]`. Dynamics is a
 //! continuous transfer function from the static torque to the brake torque (descending powers of
-//! s, as sysid's [`TransferFunction`]).
+//! s, as sysid's [`TransferFunction`]). `rotor_inertia_kg_m2` is the moment of inertia of the parts
+//! that turn with the shaft when the unit resists (its direction's rotor, `mechanics` of `mrbrake
+//! analyze`), `null` when unknown.
+//!
+//! Version 2 added `rotor_inertia_kg_m2`; version-1 files are still read, their units without a
+//! rotor inertia (`None`), and the haptic device then keeps its own inertia (54.8 kg·mm², the
+//! thesis prototype's, see [`crate::haptic::device`]) and says so. A version-1 file that carries
+//! the version-2 field is refused (it is neither).
 //!
 //! # How a model drives the simulators
 //!
@@ -76,8 +83,12 @@ use crate::SimError;
 
 /// The schema name every brake model file carries.
 pub const SCHEMA: &str = "mrbrake-brake-model";
-/// The schema version this build reads and writes.
-pub const SCHEMA_VERSION: u32 = 1;
+/// The schema version this build writes.
+pub const SCHEMA_VERSION: u32 = 2;
+/// The older schema versions this build still reads (module docs: what they lack).
+pub const READABLE_VERSIONS: [u32; 2] = [1, 2];
+/// Largest rotor inertia a model may declare, kg·m² (a brake rotor of 1 kg·m² is a flywheel).
+pub const ROTOR_INERTIA_LIMIT_KG_M2: f64 = 1.0;
 /// Largest error of the polynomial through an anhysteretic static curve, as a fraction of the
 /// curve's torque span (1 %: below the thesis's 3.07–3.54 % tracking errors, §5.3.2).
 pub const STATIC_FIT_TOLERANCE: f64 = 0.01;
@@ -131,6 +142,10 @@ pub struct UnitModel {
     /// Highest allowed coil current, A.
     #[serde(rename = "current_max_A")]
     pub current_max_a: f64,
+    /// Moment of inertia of the parts that turn with the shaft when this unit resists, kg·m²
+    /// (`None`: unknown, e.g. a version-1 file or a measured brake whose rotor was not weighed).
+    #[serde(default)]
+    pub rotor_inertia_kg_m2: Option<f64>,
     /// The field-dependent torque at rest against the current.
     pub static_curve: StaticCurve,
     /// The torque at zero current.
@@ -273,16 +288,20 @@ impl BrakeModel {
             }
             None => return Err(bad("schema", format!("missing; a brake model has '{SCHEMA}'"))),
         }
-        match value.get("schema_version").and_then(serde_json::Value::as_u64) {
-            Some(v) if v == u64::from(SCHEMA_VERSION) => {}
+        let version = value.get("schema_version").and_then(serde_json::Value::as_u64);
+        match version {
+            Some(v) if READABLE_VERSIONS.iter().any(|r| u64::from(*r) == v) => {}
             other => {
                 return Err(bad(
                     "schema_version",
                     format!(
-                        "{other:?} is not supported: this mrbrake reads version {SCHEMA_VERSION}"
+                        "{other:?} is not supported: this mrbrake reads versions {READABLE_VERSIONS:?}"
                     ),
                 ));
             }
+        }
+        if version == Some(1) {
+            refuse_version2_fields(&value).map_err(|(field, msg)| bad(&field, msg))?;
         }
         let model: Self = serde_path_to_error::deserialize(value).map_err(|e| {
             let field = e.path().to_string();
@@ -339,6 +358,20 @@ impl BrakeModel {
     }
 }
 
+/// A version-1 document must not carry the fields version 2 added (`units[k].rotor_inertia_kg_m2`).
+fn refuse_version2_fields(value: &serde_json::Value) -> Result<(), (String, String)> {
+    let units = value.get("units").and_then(serde_json::Value::as_array);
+    for (k, unit) in units.into_iter().flatten().enumerate() {
+        if unit.get("rotor_inertia_kg_m2").is_some() {
+            return Err((
+                format!("units[{k}].rotor_inertia_kg_m2"),
+                "is a version-2 field in a version-1 file: set schema_version to 2".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The error of a unit number the model `name` (with `count` units) does not have.
 fn no_unit(name: &str, unit: u32, count: usize) -> SimError {
     FieldError::new("unit", format!("brake model '{name}' ({count} unit(s)) has no such unit"))
@@ -391,6 +424,9 @@ impl UnitModel {
     /// Checks the unit's values; `Err((field, message))` for the first bad one.
     fn validate(&self) -> Result<(), (String, String)> {
         in_range("current_max_A", self.current_max_a, f64::MIN_POSITIVE, CURRENT_LIMIT_A)?;
+        if let Some(j) = self.rotor_inertia_kg_m2 {
+            in_range("rotor_inertia_kg_m2", j, f64::MIN_POSITIVE, ROTOR_INERTIA_LIMIT_KG_M2)?;
+        }
         self.static_curve
             .validate(self.current_max_a)
             .map_err(|(f, m)| (format!("static_curve.{f}"), m))?;
@@ -599,8 +635,8 @@ mod tests {
         let err = |text: &str| BrakeModel::from_json("m.json", text).unwrap_err().to_string();
         let foreign = good.replace("\"mrbrake-brake-model\"", "\"other\"");
         assert!(err(&foreign).contains("foreign schema 'other'"), "{}", err(&foreign));
-        let old = good.replace("\"schema_version\": 1", "\"schema_version\": 2");
-        assert!(err(&old).contains("schema_version"));
+        let newer = good.replace("\"schema_version\": 2", "\"schema_version\": 3");
+        assert!(err(&newer).contains("schema_version"));
         let units = good.replacen("\"torque_Nm\"", "\"torque_kNm\"", 1);
         assert!(err(&units).contains("torque_kNm"), "{}", err(&units));
         let mut m = haptic_prototype();
@@ -648,6 +684,26 @@ mod tests {
         let e = m.set_identified_branches(2, &falling, "bad.csv").unwrap_err().to_string();
         assert!(e.contains("units[1].hysteresis"), "{e}");
         assert!(m.set_identified_branches(3, &identified, "x").is_err());
+    }
+
+    #[test]
+    fn version_1_files_are_read_without_a_rotor_inertia_and_refuse_its_field() {
+        let mut v2: serde_json::Value =
+            serde_json::from_str(&haptic_prototype().to_json()).unwrap();
+        v2["schema_version"] = serde_json::json!(1);
+        let with_field = v2.to_string();
+        let e = BrakeModel::from_json("old.json", &with_field).unwrap_err().to_string();
+        assert!(e.contains("units[0].rotor_inertia_kg_m2") && e.contains("version-2"), "{e}");
+        for unit in v2["units"].as_array_mut().unwrap() {
+            unit.as_object_mut().unwrap().remove("rotor_inertia_kg_m2");
+        }
+        let old = BrakeModel::from_json("old.json", &v2.to_string()).unwrap();
+        assert_eq!(old.schema_version, 1);
+        assert!(old.units.iter().all(|u| u.rotor_inertia_kg_m2.is_none()));
+        let mut bad = haptic_prototype();
+        bad.units[1].rotor_inertia_kg_m2 = Some(-1e-6);
+        let e = BrakeModel::from_json("m.json", &bad.to_json()).unwrap_err().to_string();
+        assert!(e.contains("units[1].rotor_inertia_kg_m2"), "{e}");
     }
 
     #[test]

@@ -9,6 +9,7 @@ use super::{
     UnitModel,
 };
 use crate::haptic::TorqueLag;
+use crate::haptic::device::DeviceParameters;
 use crate::haptic::prototype::{CURRENT_MAX_A, prototype_coefficients};
 use crate::rig::config::BrakeConfig;
 
@@ -54,6 +55,8 @@ fn unit_of_branches(
     UnitModel {
         unit,
         current_max_a,
+        // The thesis's rotor inertia per direction (§4.3, Table 4.7), the haptic device's default.
+        rotor_inertia_kg_m2: Some(DeviceParameters::default().inertia_kg_m2),
         static_curve: StaticCurve {
             current_a,
             torque_nm,

@@ -13,7 +13,12 @@
 //! - **device energy** `∫ τ_d ω dt` over the run and its running maximum: a passive device never
 //!   supplies net energy, `max_t ∫₀ᵗ τ_d ω ≤ 0` (Colgate & Schenkel 1997);
 //! - **displayed stiffness**: least-squares slope of the felt wall torque `−s·τ_d` against `p`
-//!   while the hand presses in (`s·τ_h > 0`, `p > 0`).
+//!   while the hand presses in (`s·τ_h > 0`, `p > 0`);
+//! - **free-motion torque**: the peak over the free-motion instants (`p ≤ 0`) of the torque the
+//!   hand exerts on the handle, `|J θ̈ − τ_d|` (Newton's second law of the device's rotating parts,
+//!   inertia `J`, under the grip torque and `τ_d`): the off-state drag (brake viscous + seal
+//!   friction + bearing) plus the rotor's inertia times the motion's acceleration — what makes a
+//!   heavy or draggy device feel heavy where there is no wall.
 
 use serde::Serialize;
 
@@ -47,6 +52,9 @@ pub struct WallMetrics {
     /// The device's free-motion drag against outward motion (off-state brake + bearing), Nm.
     #[serde(rename = "outward_drag_Nm")]
     pub outward_drag_nm: f64,
+    /// Peak torque the hand exerts on the handle in free motion, `|J θ̈ − τ_d|` (module docs), Nm.
+    #[serde(rename = "free_motion_torque_Nm")]
+    pub free_motion_torque_nm: f64,
     /// Work the user spends against the device while withdrawing, J.
     #[serde(rename = "withdraw_energy_J")]
     pub withdraw_energy_j: f64,
@@ -83,6 +91,7 @@ pub struct MetricsAccumulator {
     excess_peak_nm: f64,
     excess_integral_nms: f64,
     outward_drag_nm: f64,
+    free_motion_peak_nm: f64,
     withdraw_time_s: f64,
     withdraw_energy_j: f64,
     device_energy_j: f64,
@@ -110,6 +119,8 @@ pub struct Sample {
     pub device_torque_nm: f64,
     /// Hand torque during the step, Nm.
     pub hand_torque_nm: f64,
+    /// The device's inertial torque `J θ̈` over the step (`J` the device's, without the hand), Nm.
+    pub inertial_torque_nm: f64,
 }
 
 impl MetricsAccumulator {
@@ -162,11 +173,15 @@ impl MetricsAccumulator {
                 self.fit[3] += p * felt;
                 self.fit[4] += p * p;
             }
-        } else if let Some(start) = withdraw_start_s
-            && s.time_s >= start
-            && self.release_at_s.is_none()
-        {
-            self.release_at_s = Some(s.time_s - start);
+        } else {
+            let grip = (s.inertial_torque_nm - s.device_torque_nm).abs();
+            self.free_motion_peak_nm = self.free_motion_peak_nm.max(grip);
+            if let Some(start) = withdraw_start_s
+                && s.time_s >= start
+                && self.release_at_s.is_none()
+            {
+                self.release_at_s = Some(s.time_s - start);
+            }
         }
     }
 
@@ -201,6 +216,7 @@ impl MetricsAccumulator {
                 mean: mean_of(self.excess_integral_nms),
             },
             outward_drag_nm: self.outward_drag_nm,
+            free_motion_torque_nm: self.free_motion_peak_nm,
             withdraw_energy_j: self.withdraw_energy_j,
             withdraw_duration_s: self.withdraw_time_s,
             release_time_s: self.release_at_s,

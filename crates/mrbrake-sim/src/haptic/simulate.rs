@@ -425,6 +425,8 @@ impl<'a> HapticLoop<'a> {
                 self.implicit_inertia,
                 dt,
             );
+            let inertial_torque =
+                d.inertia_kg_m2 * (step.velocity_rad_s - plant.velocity_rad_s) / dt;
             plant.velocity_rad_s = step.velocity_rad_s;
             plant.angle_rad += dt * plant.velocity_rad_s;
             let (angle, velocity) = (plant.angle_rad, plant.velocity_rad_s);
@@ -448,6 +450,7 @@ impl<'a> HapticLoop<'a> {
                 velocity_rad_s: velocity,
                 device_torque_nm: device_torque,
                 hand_torque_nm: hand_torque,
+                inertial_torque_nm: inertial_torque,
             };
             metrics.add(&sample, dt, self.withdraw_start_s);
             sums.actuator_nm += actuator_torque;
