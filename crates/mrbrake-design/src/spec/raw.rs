@@ -10,8 +10,8 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use mrbrake_error::{FieldError, FieldErrors};
 
 use super::{
-    BrakeSpec, Coil, Configuration, ConfigurationKind, Disc, Drum, Envelope, Housing, Materials,
-    Model, Shaft, Spacer, SpecSource,
+    BrakeSpec, Coil, Configuration, ConfigurationKind, Disc, Drum, Envelope, FluidFactors, Housing,
+    Materials, Model, Shaft, Spacer, SpecSource, SteelFactors,
 };
 use crate::DesignError;
 
@@ -47,6 +47,14 @@ pub(super) struct RawSpec {
     /// Model (not device) settings.
     #[serde(default)]
     model: Model,
+    /// Factors on the library fluid of the gaps (uncertainty and calibration); written only when
+    /// one differs from its default, so a spec without them keeps its design key.
+    #[serde(default, skip_serializing_if = "FluidFactors::is_default")]
+    fluid: FluidFactors,
+    /// Factors on the library steel of the flux path; written only when one differs from its
+    /// default.
+    #[serde(default, skip_serializing_if = "SteelFactors::is_default")]
+    steel: SteelFactors,
 }
 
 impl RawSpec {
@@ -64,6 +72,8 @@ impl RawSpec {
             spacer,
             envelope,
             model,
+            fluid,
+            steel,
         } = self;
         let mut errors = FieldErrors::new();
         let tables = Tables { drum, disc, spacer };
@@ -77,6 +87,8 @@ impl RawSpec {
                 coil,
                 envelope,
                 model,
+                fluid,
+                steel,
                 source,
             }),
             _ => Err(DesignError::Spec { name, errors: source.locate(errors) }),
@@ -157,6 +169,8 @@ impl From<&BrakeSpec> for RawSpec {
             spacer: c.spacer().cloned(),
             envelope: spec.envelope.clone(),
             model: spec.model.clone(),
+            fluid: spec.fluid.clone(),
+            steel: spec.steel.clone(),
         }
     }
 }
