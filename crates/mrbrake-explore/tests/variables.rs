@@ -64,7 +64,8 @@ fn every_numeric_field_of_every_configuration_is_a_variable() {
             assert_eq!(variable.path(), path);
             let value = match variable.quantity().expect("a numeric field") {
                 Quantity::Integer => 3.0,
-                Quantity::Length | Quantity::Current => 0.0125,
+                Quantity::Length | Quantity::Current | Quantity::Factor => 0.0125,
+                Quantity::Conductivity => 2.5e6,
             };
             let mut edited = table.clone();
             variable.set(&mut edited, value).expect("set");
