@@ -237,7 +237,8 @@ mod tests {
         )
         .unwrap();
         assert_eq!(d.inputs.len(), 2);
-        assert_eq!(d.inputs[0].distribution.support(), (0.45e-3, 0.55e-3));
+        let (low, high) = d.inputs[0].distribution.support();
+        assert!((low - 0.45e-3).abs() < 1e-15 && (high - 0.55e-3).abs() < 1e-15);
         assert_eq!(d.inputs[1].distribution.support(), (0.7, 1.0));
     }
 
