@@ -75,7 +75,7 @@ fn out_of_range_factors_are_input_errors_naming_the_field() {
         assert!(err.is_input_error());
         let message = err.to_string();
         assert!(
-            message.contains(&format!("factors.toml:")) && message.contains(field),
+            message.contains("factors.toml:") && message.contains(field),
             "{message}"
         );
     }

@@ -123,7 +123,7 @@ impl Declarations {
 
     /// The inputs' laws, in order.
     pub fn distributions(&self) -> Vec<Distribution> {
-        self.inputs.iter().map(|i| i.distribution.clone()).collect()
+        self.inputs.iter().map(|i| i.distribution).collect()
     }
 }
 

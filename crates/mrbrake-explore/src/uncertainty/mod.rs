@@ -252,7 +252,7 @@ fn report_input(input: &UncertainInput) -> InputReport {
     InputReport {
         name: input.path.clone(),
         distribution: d.law().name(),
-        law: d.clone(),
+        law: *d,
         unit: input.variable.quantity().map_or("", Quantity::unit),
         mean: d.mean(),
         std: d.std_dev(),
