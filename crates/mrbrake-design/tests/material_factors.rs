@@ -74,10 +74,7 @@ fn out_of_range_factors_are_input_errors_naming_the_field() {
         let err = spec_with(text).validate().unwrap_err();
         assert!(err.is_input_error());
         let message = err.to_string();
-        assert!(
-            message.contains("factors.toml:") && message.contains(field),
-            "{message}"
-        );
+        assert!(message.contains("factors.toml:") && message.contains(field), "{message}");
     }
     let unknown =
         BrakeSpec::from_toml_str(&format!("{DEFAULT_SPEC_TOML}\n[fluid]\nfill = 0.5\n"), "u.toml");
