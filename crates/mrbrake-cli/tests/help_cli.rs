@@ -5,7 +5,7 @@ mod common;
 
 use common::mrbrake;
 
-const SUBCOMMANDS: [&str; 18] = [
+const SUBCOMMANDS: [&str; 19] = [
     "analyze",
     "formula",
     "materials",
@@ -24,6 +24,7 @@ const SUBCOMMANDS: [&str; 18] = [
     "merge",
     "export",
     "report",
+    "uncertainty",
 ];
 
 /// The `Commands:` section of a clap help text: the first word of each entry line.

@@ -46,7 +46,7 @@ use mrbrake_fem::mesh::Mesh;
 pub use mrbrake_magnetics::ElementOrder;
 use mrbrake_magnetics::problem::{Boundary, BoundaryCondition, Problem, Region, Source};
 use mrbrake_magnetics::{Solution, Solver, SolverOptions};
-use mrbrake_materials::{CopperWire, MrFluid, library};
+use mrbrake_materials::{CopperWire, library};
 use mrbrake_observe::{Count, Observer, Silent};
 use serde::Serialize;
 
@@ -54,6 +54,7 @@ use crate::DesignError;
 use crate::drag::{DragInputs, OffStateTorque};
 use crate::formula;
 use crate::geometry::{BrakeGeometry, Direction, GapInfo, GapOrientation, PartKind};
+use crate::material_factors::{GapMedium, RegionLaws};
 use crate::mesh_build::{self, MeshLevel};
 use crate::spec::BrakeSpec;
 
@@ -661,7 +662,7 @@ fn run_analysis<F>(
 /// The field solver of one brake, with the coils of each unit and the fluid of its gaps.
 struct Model {
     geometry: BrakeGeometry,
-    fluid: Arc<MrFluid>,
+    fluid: GapMedium,
     solver: Solver,
     /// Coil tags of unit 1 and unit 2 (empty for a single brake).
     unit_coils: [Vec<u32>; 2],
@@ -698,8 +699,8 @@ impl Model {
         mesh: Arc<Mesh>,
         options: &AnalysisOptions,
     ) -> Result<Self, DesignError> {
-        let fluid = fluid_of(spec)?;
-        let problem = problem_of(&geometry, mesh)?;
+        let fluid = GapMedium::of(spec)?;
+        let problem = problem_with(&RegionLaws::new(spec, &fluid)?, &geometry, mesh)?;
         let solver_options = SolverOptions { order: options.order, ..SolverOptions::default() };
         let solver = Solver::new(problem, solver_options).map_err(numerical)?;
         let unit_coils = |unit: usize| -> Vec<u32> {
@@ -859,10 +860,10 @@ fn torque_summary(solved: &Solved) -> TorqueSummary {
 fn off_state_torque(
     spec: &BrakeSpec,
     geometry: &BrakeGeometry,
-    fluid: &MrFluid,
+    fluid: &GapMedium,
     options: &AnalysisOptions,
 ) -> OffStateTorque {
-    let eta = fluid.viscosity_pa_s();
+    let eta = fluid.surface_viscosity_pa_s();
     let unit_viscous = |unit: usize| -> f64 {
         let gaps = geometry.gaps.iter().filter(|g| g.unit == unit);
         gaps.map(|g| viscous_torque(g, eta, options.speed_rad_s)).sum()
@@ -939,17 +940,6 @@ fn material_error(e: mrbrake_materials::MaterialError) -> DesignError {
     DesignError::Material(e)
 }
 
-/// The fluid named by the spec.
-pub(crate) fn fluid_of(spec: &BrakeSpec) -> Result<Arc<MrFluid>, DesignError> {
-    let material = library::get(&spec.materials.fluid).map_err(material_error)?;
-    material.fluid.clone().ok_or_else(|| {
-        DesignError::Input(format!(
-            "materials.fluid: '{}' is not an MR fluid (see `mrbrake materials list`)",
-            spec.materials.fluid
-        ))
-    })
-}
-
 /// The magnetostatic problem: a library material per region, A = 0 on the axis and the air box.
 pub fn problem_of(geometry: &BrakeGeometry, mesh: Arc<Mesh>) -> Result<Problem, DesignError> {
     let mut regions = Vec::with_capacity(geometry.regions.len());
@@ -958,11 +948,33 @@ pub fn problem_of(geometry: &BrakeGeometry, mesh: Arc<Mesh>) -> Result<Problem, 
             .map_err(|source| DesignError::PartMaterial { part: region.name.clone(), source })?;
         regions.push(Region { tag: region.tag, material: material.magnetic.clone(), source: None });
     }
+    Ok(problem_with_regions(geometry, mesh, regions))
+}
+
+/// The magnetostatic problem with the spec's material factors ([`RegionLaws`]).
+pub(crate) fn problem_with(
+    laws: &RegionLaws<'_>,
+    geometry: &BrakeGeometry,
+    mesh: Arc<Mesh>,
+) -> Result<Problem, DesignError> {
+    let regions = geometry
+        .regions
+        .iter()
+        .map(|region| Ok(Region { tag: region.tag, material: laws.of(region)?, source: None }))
+        .collect::<Result<Vec<_>, DesignError>>()?;
+    Ok(problem_with_regions(geometry, mesh, regions))
+}
+
+fn problem_with_regions(
+    geometry: &BrakeGeometry,
+    mesh: Arc<Mesh>,
+    regions: Vec<Region>,
+) -> Problem {
     let boundaries = vec![
         Boundary { tag: geometry.axis_tag, condition: BoundaryCondition::Dirichlet },
         Boundary { tag: geometry.outer_tag, condition: BoundaryCondition::Dirichlet },
     ];
-    Ok(Problem { mesh, regions, boundaries })
+    Problem { mesh, regions, boundaries }
 }
 
 /// Drives the coils of unit 1 with `i1` and those of unit 2 with `i2` (each with its sign).
@@ -1005,10 +1017,10 @@ fn gap_results(
     solver: &Solver,
     solution: &Solution,
     gaps: &[&GapInfo],
-    fluid: &MrFluid,
+    fluid: &GapMedium,
     speed_rad_s: f64,
 ) -> Result<Vec<GapResult>, DesignError> {
-    let eta = fluid.viscosity_pa_s();
+    let eta = fluid.surface_viscosity_pa_s();
     gaps.iter()
         .map(|gap| {
             let stats = solver.region_stats(solution, gap.tag).map_err(numerical)?;
@@ -1048,7 +1060,7 @@ pub(crate) fn gap_yield_torque(
     solver: &Solver,
     solution: &Solution,
     gap: &GapInfo,
-    fluid: &MrFluid,
+    fluid: &GapMedium,
 ) -> Result<f64, DesignError> {
     let two_pi = 2.0 * std::f64::consts::PI;
     let integral = solver
@@ -1057,7 +1069,7 @@ pub(crate) fn gap_yield_torque(
                 GapOrientation::Cylindrical => gap.shear_radius_m,
                 GapOrientation::Annular => p[0],
             };
-            two_pi * r * r * fluid.tau_y_of_b(b[0].hypot(b[1]))
+            two_pi * r * r * fluid.surface_tau_y_of_b(b[0].hypot(b[1]))
         })
         .map_err(numerical)?;
     Ok(integral / gap.width_m)
@@ -1079,7 +1091,7 @@ fn viscous_torque(gap: &GapInfo, eta: f64, omega: f64) -> f64 {
 
 /// The thesis's method: volume-mean |B| over the direction's gaps → τ_y → (4.4) for cylindrical
 /// surfaces, one face of (3.7) for annular ones (the laws of [`formula`]).
-fn thesis_torque(gaps: &[GapResult], infos: &[&GapInfo], fluid: &MrFluid) -> (f64, f64) {
+fn thesis_torque(gaps: &[GapResult], infos: &[&GapInfo], fluid: &GapMedium) -> (f64, f64) {
     let mut weighted = 0.0;
     let mut volume = 0.0;
     for info in infos {
@@ -1089,7 +1101,7 @@ fn thesis_torque(gaps: &[GapResult], infos: &[&GapInfo], fluid: &MrFluid) -> (f6
         volume += v;
     }
     let mean_b = if volume > 0.0 { weighted / volume } else { 0.0 };
-    let tau = fluid.tau_y_of_b(mean_b);
+    let tau = fluid.surface_tau_y_of_b(mean_b);
     let torque = infos
         .iter()
         .map(|g| match g.orientation {
@@ -1109,7 +1121,7 @@ fn curve_point(
     solution: &Solution,
     gaps: &[GapResult],
     infos: &[&GapInfo],
-    fluid: &MrFluid,
+    fluid: &GapMedium,
     current: f64,
     friction_nm: f64,
 ) -> Result<CurvePoint, DesignError> {

@@ -40,7 +40,7 @@ use mrbrake_fem::workflow::time::{Scheme, TimeStep};
 use mrbrake_magnetics::dynamics::transient::{StepView, TransientOptions, TransientResult};
 use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
 use mrbrake_magnetics::{Solution, Solver, SolverOptions};
-use mrbrake_materials::{CopperWire, MrFluid, library};
+use mrbrake_materials::{CopperWire, library};
 use mrbrake_observe::Flow;
 use mrbrake_sysid::frd::{Frd, FrequencyPoint, MINUS_3_DB};
 use num_complex::Complex64;
@@ -48,9 +48,10 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::DesignError;
-use crate::analysis::{fluid_of, gap_yield_torque, numerical, problem_of};
+use crate::analysis::{gap_yield_torque, numerical, problem_with};
 use crate::formula;
 use crate::geometry::{BrakeGeometry, CoilInfo, GapInfo, PartKind};
+use crate::material_factors::{GapMedium, RegionLaws, conductivity_override};
 use crate::mesh_build::{self, MeshLevel};
 use crate::spec::BrakeSpec;
 
@@ -426,7 +427,7 @@ struct Model<'a> {
     spec: &'a BrakeSpec,
     geometry: BrakeGeometry,
     mesh: Arc<mrbrake_fem::mesh::Mesh>,
-    fluid: Arc<MrFluid>,
+    fluid: GapMedium,
     conductors: Vec<Conductor>,
     /// The flux-path steel's conductivity and its source.
     flux_path_sigma: (f64, String),
@@ -440,8 +441,8 @@ impl<'a> Model<'a> {
         mesh: Arc<mrbrake_fem::mesh::Mesh>,
         options: &'a ResponseOptions,
     ) -> Result<Self, DesignError> {
-        let fluid = fluid_of(spec)?;
-        let (conductors, flux_path_sigma) = conductors(&geometry, options)?;
+        let fluid = GapMedium::of(spec)?;
+        let (conductors, flux_path_sigma) = conductors(spec, &geometry, options)?;
         Ok(Self { spec, geometry, mesh, fluid, conductors, flux_path_sigma, options })
     }
 
@@ -452,7 +453,8 @@ impl<'a> Model<'a> {
         drive: impl Fn(f64, f64) -> Drive,
         waveform: Waveform,
     ) -> Result<Dynamics, DesignError> {
-        let problem = problem_of(&self.geometry, Arc::clone(&self.mesh))?;
+        let laws = RegionLaws::new(self.spec, &self.fluid)?;
+        let problem = problem_with(&laws, &self.geometry, Arc::clone(&self.mesh))?;
         let solver_options =
             SolverOptions { order: self.options.order, ..SolverOptions::default() };
         let solver = Solver::new(problem, solver_options).map_err(numerical)?;
@@ -481,29 +483,40 @@ impl<'a> Model<'a> {
 }
 
 /// The conductors of the brake: every part's library conductivity (0 when the library has none:
-/// fluid, air, coils), the flux-path steel's overridable.
+/// air, coils), or the spec's override (`steel.conductivity_S_per_m`, and
+/// `fluid.conductivity_S_per_m`, the only way the gaps conduct); the flux-path steel's overridable
+/// by the option above both.
 fn conductors(
+    spec: &BrakeSpec,
     geometry: &BrakeGeometry,
     options: &ResponseOptions,
 ) -> Result<(Vec<Conductor>, (f64, String)), DesignError> {
     let mut out = Vec::new();
     let mut flux_path = (0.0, String::from("no flux-path steel"));
     for region in &geometry.regions {
-        if matches!(region.kind, PartKind::Coil | PartKind::Fluid | PartKind::Air) {
+        let spec_value = conductivity_override(spec, region);
+        if matches!(region.kind, PartKind::Coil | PartKind::Air)
+            || (region.kind == PartKind::Fluid && spec_value.is_none())
+        {
             continue;
         }
-        let material = library::get(&region.material)
-            .map_err(|source| DesignError::PartMaterial { part: region.name.clone(), source })?;
-        let library_value = material.conductivity_s_per_m.as_ref();
-        let mut sigma = library_value.map_or(0.0, |s| s.value);
+        let library_value = match region.kind {
+            PartKind::Fluid => None,
+            _ => library::get(&region.material)
+                .map_err(|source| DesignError::PartMaterial { part: region.name.clone(), source })?
+                .conductivity_s_per_m
+                .clone(),
+        };
+        let mut sigma = spec_value.or(library_value.as_ref().map(|s| s.value)).unwrap_or(0.0);
         if region.kind == PartKind::FluxPath {
-            let source = match (options.flux_path_conductivity_s_per_m, library_value) {
-                (Some(s), _) => {
+            let source = match (options.flux_path_conductivity_s_per_m, spec_value, library_value) {
+                (Some(s), _, _) => {
                     sigma = s;
                     "given (--conductivity)".to_string()
                 }
-                (None, Some(s)) => format!("{}: {}", region.material, s.provenance.source),
-                (None, None) => format!("{}: none in the library (0)", region.material),
+                (None, Some(_), _) => "given (steel.conductivity_S_per_m)".to_string(),
+                (None, None, Some(s)) => format!("{}: {}", region.material, s.provenance.source),
+                (None, None, None) => format!("{}: none in the library (0)", region.material),
             };
             flux_path = (sigma, source);
         }

@@ -29,8 +29,20 @@ fn every_configuration() -> Vec<(ConfigurationKind, toml::Table)> {
         (ConfigurationKind::MultiDisc, table(&example_text("multi-disc.toml"))),
         (ConfigurationKind::Drum, table(&example_text("drum.toml"))),
         (ConfigurationKind::MultiDrum, multi_drum),
-        (ConfigurationKind::Bidirectional, table(&example_text("thesis-bidirectional.toml"))),
+        (
+            ConfigurationKind::Bidirectional,
+            with_factors(&example_text("thesis-bidirectional.toml")),
+        ),
     ]
+}
+
+/// The thesis brake with every material factor away from its default (a table at its defaults is
+/// not written, so its fields would not appear in the serialised spec).
+fn with_factors(text: &str) -> toml::Table {
+    let factors = "[fluid]\nyield_stress_scale = 0.9\nB_scale = 1.1\nfill_fraction = 0.8\n\
+                   conductivity_S_per_m = 1.0\n[steel]\nB_scale = 0.95\n\
+                   conductivity_S_per_m = 2e6\n";
+    toml::from_str(&format!("{text}\n{factors}")).expect("TOML")
 }
 
 fn parse(table: &toml::Table) -> BrakeSpec {
@@ -111,6 +123,8 @@ fn every_numeric_field_reads_its_quantity_with_units() {
                 Quantity::Length => ("12.5mm".into(), 0.0125),
                 Quantity::Current => ("1500mA".into(), 1.5),
                 Quantity::Integer => (toml::Value::Integer(3), 3.0),
+                Quantity::Factor => (toml::Value::Float(0.75), 0.75),
+                Quantity::Conductivity => (toml::Value::Float(2.5e6), 2.5e6),
             };
             let mut edited = table.clone();
             set(&mut edited, path.as_str(), text);

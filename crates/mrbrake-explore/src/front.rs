@@ -140,7 +140,9 @@ impl SpecWriter {
         let dimension = match variable.quantity() {
             Some(Quantity::Length) => Dimension::Length,
             Some(Quantity::Current) => Dimension::Current,
-            Some(Quantity::Integer) | None => return (1.0, String::new()),
+            Some(Quantity::Integer | Quantity::Factor | Quantity::Conductivity) | None => {
+                return (1.0, String::new());
+            }
         };
         let default = match dimension {
             Dimension::Length => (1e-3, "mm".to_string()),
@@ -171,7 +173,9 @@ impl SpecWriter {
             _ => Written { si: value, item: Value::from(value) },
         };
         let step = match variable.quantity() {
-            Some(Quantity::Integer) | None => return exact(),
+            Some(Quantity::Integer | Quantity::Factor | Quantity::Conductivity) | None => {
+                return exact();
+            }
             Some(Quantity::Length) => resolution,
             // A resolution of 0 writes every value as evaluated, currents too.
             Some(Quantity::Current) if resolution > 0.0 => CURRENT_RESOLUTION,

@@ -37,6 +37,7 @@ pub mod problem;
 pub mod runner;
 pub mod stored;
 pub mod surrogate;
+pub mod uncertainty;
 pub mod variable;
 
 pub use design::{Design, DesignSpace};
@@ -71,6 +72,9 @@ pub enum ExploreError {
     /// The optimiser's set-up.
     #[error(transparent)]
     Optim(#[from] mrbrake_optim::OptimError),
+    /// The uncertainty core (a law's parameters, a surrogate fit).
+    #[error(transparent)]
+    Uq(#[from] mrbrake_uq::UqError),
     /// The caller's observer stopped a run before every design was evaluated; every evaluation
     /// finished before the stop (and those in flight then) is in the store.
     #[error(
@@ -99,6 +103,7 @@ impl mrbrake_error::Kind for ExploreError {
             Self::Material(e) => e.kind(),
             Self::Store(e) => e.kind(),
             Self::Optim(e) => e.kind(),
+            Self::Uq(e) => e.kind(),
             Self::Internal(_) => ErrorKind::Internal,
         }
     }

@@ -139,6 +139,12 @@ impl Variable {
         match field.quantity {
             Quantity::Length => parse(text, Dimension::Length).map_err(|e| bad(e.to_string())),
             Quantity::Current => parse(text, Dimension::Current).map_err(|e| bad(e.to_string())),
+            Quantity::Conductivity => {
+                parse(text, Dimension::Conductivity).map_err(|e| bad(e.to_string()))
+            }
+            Quantity::Factor => text
+                .parse::<f64>()
+                .map_err(|_| bad(format!("'{text}' is not a number (this field is a factor)"))),
             Quantity::Integer => {
                 let value: i64 = text.parse().map_err(|_| {
                     bad(format!("'{text}' is not a whole number (this field counts something)"))
@@ -189,7 +195,9 @@ impl Variable {
     pub fn bounds(&self, lower: f64, upper: f64) -> Bounds {
         match self.quantity() {
             Some(Quantity::Integer) => Bounds::integer(lower, upper),
-            Some(Quantity::Length | Quantity::Current) => Bounds::continuous(lower, upper),
+            Some(
+                Quantity::Length | Quantity::Current | Quantity::Factor | Quantity::Conductivity,
+            ) => Bounds::continuous(lower, upper),
             None => Bounds::categorical(self.levels().len()),
         }
     }
@@ -201,6 +209,8 @@ impl Variable {
             Some(Quantity::Length) => format!("{}mm", round_sig(x * 1e3, 5)),
             Some(Quantity::Current) => format!("{}A", round_sig(x, 5)),
             Some(Quantity::Integer) => format!("{}", x.round() as i64),
+            Some(Quantity::Factor) => format!("{}", round_sig(x, 5)),
+            Some(Quantity::Conductivity) => format!("{}MS/m", round_sig(x * 1e-6, 5)),
             None => self.level(x).map_or_else(|_| format!("level {x}"), str::to_string),
         }
     }
@@ -284,7 +294,7 @@ pub fn set_field(spec: &mut toml::Table, field: &SpecField, si: f64) -> Result<(
             }
             toml::Value::Integer(rounded as i64)
         }
-        Quantity::Length | Quantity::Current => {
+        Quantity::Length | Quantity::Current | Quantity::Factor | Quantity::Conductivity => {
             if !si.is_finite() {
                 return Err(ExploreError::Input(format!("{}: {si} is not finite", field.path)));
             }

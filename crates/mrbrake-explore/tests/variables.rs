@@ -23,8 +23,23 @@ fn every_configuration() -> Vec<(ConfigurationKind, toml::Table)> {
         (ConfigurationKind::MultiDisc, example_table("multi-disc.toml")),
         (ConfigurationKind::Drum, example_table("drum.toml")),
         (ConfigurationKind::MultiDrum, multi_drum),
-        (ConfigurationKind::Bidirectional, example_table("thesis-bidirectional.toml")),
+        (
+            ConfigurationKind::Bidirectional,
+            with_factors(example_table("thesis-bidirectional.toml")),
+        ),
     ]
+}
+
+/// The thesis brake with every material factor away from its default (a `[fluid]` or `[steel]`
+/// table at its defaults is not written, so its fields would not appear in the spec's JSON).
+fn with_factors(mut table: toml::Table) -> toml::Table {
+    let factors: toml::Table = toml::from_str(
+        "[fluid]\nyield_stress_scale = 0.9\nB_scale = 1.1\nfill_fraction = 0.8\n\
+         conductivity_S_per_m = 1.0\n[steel]\nB_scale = 0.95\nconductivity_S_per_m = 2e6\n",
+    )
+    .expect("TOML");
+    table.extend(factors);
+    table
 }
 
 fn json_of(table: &toml::Table) -> Value {
@@ -64,7 +79,8 @@ fn every_numeric_field_of_every_configuration_is_a_variable() {
             assert_eq!(variable.path(), path);
             let value = match variable.quantity().expect("a numeric field") {
                 Quantity::Integer => 3.0,
-                Quantity::Length | Quantity::Current => 0.0125,
+                Quantity::Length | Quantity::Current | Quantity::Factor => 0.0125,
+                Quantity::Conductivity => 2.5e6,
             };
             let mut edited = table.clone();
             variable.set(&mut edited, value).expect("set");

@@ -46,6 +46,7 @@ pub mod response;
 pub mod rig;
 pub mod study;
 pub mod thermal;
+pub mod uncertainty;
 pub mod wording;
 
 pub use atomic::write_atomic;

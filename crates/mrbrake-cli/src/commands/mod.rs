@@ -22,6 +22,7 @@ mod study;
 mod sweep;
 mod tfest;
 mod thermal;
+mod uncertainty;
 
 /// The subcommands of `mrbrake`.
 #[derive(Debug, Subcommand)]
@@ -71,6 +72,9 @@ pub enum Command {
     Merge(sweep::MergeArgs),
     /// Export a results store as CSV or JSON.
     Export(sweep::ExportArgs),
+    /// Uncertainty bands and global sensitivities: declared uncertain inputs (--inputs FILE)
+    /// sampled by scrambled Sobol' points through the FEA, each sample kept in a resumable store.
+    Uncertainty(uncertainty::UncertaintyArgs),
     /// One self-contained HTML report (offline, printable on A4): a design ([SPEC]; default the
     /// thesis brake), a study (--store) or a characterisation (--log, --frd).
     Report(report::ReportArgs),
@@ -103,6 +107,7 @@ pub fn run(command: Command) -> CommandResult {
         Command::Optimize(a) => optimize::run(a),
         Command::Merge(a) => sweep::run_merge(a),
         Command::Export(a) => sweep::run_export(a),
+        Command::Uncertainty(a) => uncertainty::run(a),
         Command::Report(a) => report::run(a),
         Command::Schema(a) => schema::run(a),
         Command::Studio(a) => studio::run(a),

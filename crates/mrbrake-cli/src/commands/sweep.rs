@@ -113,7 +113,7 @@ pub fn settings_from(mesh: &str, speed: &str, order: u8) -> CommandResult<Evalua
 }
 
 /// The base spec's text and where it came from.
-fn base_spec(spec: Option<&PathBuf>) -> CommandResult<(String, String)> {
+pub(crate) fn base_spec(spec: Option<&PathBuf>) -> CommandResult<(String, String)> {
     Ok(match spec {
         Some(path) => (
             std::fs::read_to_string(path)
@@ -154,7 +154,7 @@ fn plan_from(a: &SweepArgs) -> CommandResult<(SweepPlan, Shard)> {
 }
 
 /// The metrics of `--record`, each a known metric (a static one is computed anyway).
-fn recorded_metrics(names: &[String]) -> CommandResult<StudyMetrics> {
+pub(crate) fn recorded_metrics(names: &[String]) -> CommandResult<StudyMetrics> {
     let mut asked = Vec::with_capacity(names.len());
     for name in names {
         let current = evaluate::current_metric_name(name.trim()).0;

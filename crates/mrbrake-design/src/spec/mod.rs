@@ -28,6 +28,7 @@
 //! by a rotating and a static wall, envelope) are checked there too, and reported through
 //! [`BrakeSpec::validate`].
 
+mod factors;
 mod raw;
 mod schema;
 mod source;
@@ -41,6 +42,9 @@ use mrbrake_units::{Dimension, parse};
 
 use crate::DesignError;
 
+pub use factors::{
+    CONDUCTIVITY_BOUNDS, FILL_FRACTION_BOUNDS, FluidFactors, SCALE_BOUNDS, SteelFactors,
+};
 pub use schema::schema;
 pub use source::SpecSource;
 pub(crate) use validate::Problems;
@@ -116,6 +120,10 @@ pub enum Quantity {
     Current,
     /// A whole number (turns, cylinders, discs, AWG gauge).
     Integer,
+    /// A dimensionless factor or fraction (`fluid.yield_stress_scale`, `fluid.fill_fraction`).
+    Factor,
+    /// An electrical conductivity (S/m).
+    Conductivity,
 }
 
 impl Quantity {
@@ -124,7 +132,8 @@ impl Quantity {
         match self {
             Self::Length => "m",
             Self::Current => "A",
-            Self::Integer => "",
+            Self::Integer | Self::Factor => "",
+            Self::Conductivity => "S/m",
         }
     }
 }
@@ -196,6 +205,8 @@ pub fn numeric_fields() -> impl Iterator<Item = &'static SpecField> + Clone {
         Spacer::FIELDS,
         Envelope::FIELDS,
         Model::FIELDS,
+        FluidFactors::FIELDS,
+        SteelFactors::FIELDS,
     ]
     .into_iter()
     .flatten()
@@ -825,6 +836,10 @@ pub struct BrakeSpec {
     pub envelope: Envelope,
     /// Model settings.
     pub model: Model,
+    /// Factors on the fluid's library data (`[fluid]`, all at their defaults when absent).
+    pub fluid: FluidFactors,
+    /// Factors on the flux-path steel's library data (`[steel]`).
+    pub steel: SteelFactors,
     /// The mechanical drag besides the fluid (`[drag]`: seals, bearings, freewheels), for the
     /// off-state torque's breakdown ([`crate::drag`]).
     pub drag: crate::drag::Drag,
@@ -844,6 +859,8 @@ impl PartialEq for BrakeSpec {
             coil,
             envelope,
             model,
+            fluid,
+            steel,
             drag,
             source: _,
         } = self;
@@ -855,6 +872,8 @@ impl PartialEq for BrakeSpec {
             && *coil == other.coil
             && *envelope == other.envelope
             && *model == other.model
+            && *fluid == other.fluid
+            && *steel == other.steel
             && *drag == other.drag
     }
 }

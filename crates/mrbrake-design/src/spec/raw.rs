@@ -10,8 +10,8 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use mrbrake_error::{FieldError, FieldErrors};
 
 use super::{
-    BrakeSpec, Coil, Configuration, ConfigurationKind, Disc, Drum, Envelope, Housing, Materials,
-    Model, Shaft, Spacer, SpecSource,
+    BrakeSpec, Coil, Configuration, ConfigurationKind, Disc, Drum, Envelope, FluidFactors, Housing,
+    Materials, Model, Shaft, Spacer, SpecSource, SteelFactors,
 };
 use crate::DesignError;
 use crate::drag::Drag;
@@ -48,6 +48,14 @@ pub(super) struct RawSpec {
     /// Model (not device) settings.
     #[serde(default)]
     model: Model,
+    /// Factors on the library fluid of the gaps (uncertainty and calibration); written only when
+    /// one differs from its default, so a spec without them keeps its design key.
+    #[serde(default, skip_serializing_if = "FluidFactors::is_default")]
+    fluid: FluidFactors,
+    /// Factors on the library steel of the flux path; written only when one differs from its
+    /// default.
+    #[serde(default, skip_serializing_if = "SteelFactors::is_default")]
+    steel: SteelFactors,
     /// The mechanical drag besides the fluid: seals, bearings, one-way bearings (optional; an
     /// absent table is left out of the JSON, so design keys of specs without it do not move).
     #[serde(default, skip_serializing_if = "Drag::is_default")]
@@ -69,6 +77,8 @@ impl RawSpec {
             spacer,
             envelope,
             model,
+            fluid,
+            steel,
             drag,
         } = self;
         let mut errors = FieldErrors::new();
@@ -83,6 +93,8 @@ impl RawSpec {
                 coil,
                 envelope,
                 model,
+                fluid,
+                steel,
                 drag,
                 source,
             }),
@@ -164,6 +176,8 @@ impl From<&BrakeSpec> for RawSpec {
             spacer: c.spacer().cloned(),
             envelope: spec.envelope.clone(),
             model: spec.model.clone(),
+            fluid: spec.fluid.clone(),
+            steel: spec.steel.clone(),
             drag: spec.drag.clone(),
         }
     }

@@ -17,8 +17,9 @@ use mrbrake_units::Dimension;
 
 use super::raw::RawSpec;
 use super::{
-    Coil, ConfigurationKind, Current, Disc, Drum, Envelope, Housing, Length, MATERIAL_FIELDS,
-    Materials, Model, OPTIONAL_TABLES, Shaft, Spacer, Wire, numeric_fields,
+    Coil, ConfigurationKind, Current, Disc, Drum, Envelope, FluidFactors, Housing, Length,
+    MATERIAL_FIELDS, Materials, Model, OPTIONAL_TABLES, Shaft, Spacer, SteelFactors, Wire,
+    numeric_fields,
 };
 
 /// The JSON Schema of a spec file.
@@ -41,6 +42,8 @@ pub fn schema() -> Value {
     order::<Spacer>(&mut schema, "spacer");
     order::<Envelope>(&mut schema, "envelope");
     order::<Model>(&mut schema, "model");
+    order::<FluidFactors>(&mut schema, "fluid");
+    order::<SteelFactors>(&mut schema, "steel");
     for field in numeric_fields() {
         if let Some(node) = node_mut(&mut schema, field.path) {
             annotate(node, field.quantity.unit(), field.bounds);
@@ -167,7 +170,8 @@ mod tests {
                 .unwrap_or(node);
             let low = number.get("exclusiveMinimum").or(number.get("minimum"));
             assert!(low.and_then(Value::as_f64).is_some(), "{}: {number}", field.path);
-            if field.quantity != Quantity::Integer {
+            // Whole numbers and factors are dimensionless: no `x-unit`.
+            if !matches!(field.quantity, Quantity::Integer | Quantity::Factor) {
                 assert_eq!(node["x-unit"], field.quantity.unit(), "{}", field.path);
             }
         }

@@ -115,6 +115,7 @@ fn check_fields(spec: &BrakeSpec, p: &mut Problems) {
         }
     }
     check_coil(spec, p);
+    super::factors::check(&spec.fluid, &spec.steel, p);
 }
 
 /// Each material is in the library and of the kind its part needs ([`MATERIAL_FIELDS`]); a flux

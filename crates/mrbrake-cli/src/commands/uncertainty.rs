@@ -1,0 +1,100 @@
+//! `mrbrake uncertainty`: propagates declared uncertain inputs (a `--inputs` TOML file) through
+//! the FEA by scrambled Sobol' samples, each stored in a resumable results store, and prints the
+//! band of every output with its Sobol' sensitivities (`mrbrake_explore::uncertainty`).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use mrbrake::design::spec::BrakeSpec;
+use mrbrake::explore::uncertainty::{self, Declarations, UncertaintyRequest};
+use mrbrake::explore::{Progress, runner};
+use mrbrake::observe::Flow;
+
+use super::sweep::{base_spec, recorded_metrics, settings_from};
+use crate::error::CommandResult;
+use crate::output::{print_json, print_text};
+use crate::progress::ProgressDisplay;
+
+/// Arguments of `mrbrake uncertainty`.
+#[derive(Debug, Args)]
+pub struct UncertaintyArgs {
+    /// Brake specification (TOML). Omitted: the embedded thesis bidirectional brake.
+    spec: Option<PathBuf>,
+    /// The uncertain inputs: a TOML file of `[[input]]` tables (`path`, `distribution` =
+    /// normal | uniform | triangular | log-normal, its parameters, optional `truncate`).
+    #[arg(long, value_name = "FILE")]
+    inputs: PathBuf,
+    /// Number of scrambled Sobol' samples (a power of two keeps them balanced).
+    #[arg(long, default_value_t = 64)]
+    samples: usize,
+    /// Seed of the scrambling and of the bootstrap.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Bootstrap replicates of the Sobol' indices' confidence intervals.
+    #[arg(long, default_value_t = 200)]
+    bootstrap: usize,
+    /// Metric to summarise (default: the static torques, mean gap B, inductance, time constant,
+    /// and every --record metric). Repeatable.
+    #[arg(long = "metric", value_name = "METRIC")]
+    metric: Vec<String>,
+    /// Also compute a dynamics or heat metric per sample (e.g. bandwidth_rad_s). Repeatable.
+    #[arg(long = "record", value_name = "METRIC")]
+    record: Vec<String>,
+    /// Results store (SQLite file); an existing store needs --resume. Default: a file beside the
+    /// inputs (`INPUTS.store`).
+    #[arg(long, value_name = "FILE")]
+    store: Option<PathBuf>,
+    /// Continue an existing store: samples already in it are not recomputed.
+    #[arg(long)]
+    resume: bool,
+    /// Analyses run at the same time (0: one per core).
+    #[arg(long, default_value_t = 0)]
+    jobs: usize,
+    /// Mesh density of every analysis: coarse, default or fine.
+    #[arg(long, default_value = "default")]
+    mesh: String,
+    /// Element order of every analysis: 1 or 2.
+    #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+    order: u8,
+    /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
+    #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
+    speed: String,
+    /// Print a JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs `mrbrake uncertainty`.
+pub fn run(a: UncertaintyArgs) -> CommandResult {
+    let (spec_text, origin) = base_spec(a.spec.as_ref())?;
+    let spec = BrakeSpec::from_toml_str(&spec_text, &origin)?;
+    let declarations = Declarations::from_path(&a.inputs, spec.configuration.is_drum())?;
+    let settings = mrbrake::explore::EvaluationSettings {
+        study: recorded_metrics(&a.record)?,
+        ..settings_from(&a.mesh, &a.speed, a.order)?
+    };
+    let request = UncertaintyRequest {
+        spec_toml: &spec_text,
+        spec_origin: &origin,
+        declarations: &declarations,
+        samples: a.samples,
+        seed: a.seed,
+        settings,
+        metrics: a.metric.clone(),
+        bootstrap: a.bootstrap,
+        jobs: a.jobs,
+    };
+    let store_path = a.store.clone().unwrap_or_else(|| a.inputs.with_extension("store"));
+    let created_by = format!("mrbrake {}", env!("CARGO_PKG_VERSION"));
+    let mut store = runner::open_sweep_store(&store_path, a.resume, &created_by)?;
+    let mut display = ProgressDisplay::new("uncertainty", a.json);
+    let result = uncertainty::propagate(&mut store, &request, &mut |p: &Progress| {
+        display.update(p);
+        Flow::Continue
+    })?;
+    display.finish();
+    if a.json {
+        return print_json(&mrbrake::report::uncertainty::json(&result));
+    }
+    print_text(&mrbrake::report::uncertainty::text(&result, &spec.name))
+}
