@@ -203,8 +203,8 @@ fn negative_quantities_get_the_range_message() {
     let manifest = write_manifest(dir.path());
     let manifest = path_str(&manifest);
     let cases: [(&[&str], &[&str]); 8] = [
-        (&["response", "--duration", "-1s"], &["duration = -1", "> 0"]),
-        (&["response", "--fluid-lag", "-1ms"], &["fluid lag", ">= 0"]),
+        (&["response", "--duration", "-1s"], &["--duration: duration", "got -1 s", "> 0"]),
+        (&["response", "--fluid-lag", "-1ms"], &["--fluid-lag", "got -0.001 s", ">= 0"]),
         (&["thermal", "--current", "-2A"], &["--current", "(0, 100] A"]),
         (&["thermal", "--period", "-1s"], &["--period", "> 0"]),
         (&["thermal", "--duty", "-0.5"], &["--duty", "(0, 1]"]),
