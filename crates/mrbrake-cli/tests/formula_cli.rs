@@ -152,7 +152,7 @@ fn bad_input_exits_2_with_a_clear_message() {
     );
     expect_input_error(
         &["formula", "single-disc", "--r1", "-3mm", "--r2", "27.5mm", "--tau-y", "1kPa"],
-        &["r1", ">= 0"],
+        &["--r1: inner disc radius", "got -0.003 m", ">= 0"],
     );
     expect_input_error(
         &["formula", "single-disc", "--r1", "30mm", "--r2", "27.5mm", "--tau-y", "1kPa"],
@@ -170,11 +170,11 @@ fn bad_input_exits_2_with_a_clear_message() {
     // viscosity the Python binding refused).
     expect_input_error(
         &["formula", "drum", "--r", "25mm", "--h", "9mm", "--tau-y", "1kPa", "--eta=-0.1Pa.s"],
-        &["eta (viscosity", ">= 0"],
+        &["--eta: viscosity", ">= 0"],
     );
     expect_input_error(
         &["formula", "drum", "--r", "25mm", "--h", "9mm", "--tau-y=-1kPa"],
-        &["tau_y", ">= 0"],
+        &["--tau-y: yield stress", ">= 0"],
     );
     expect_input_error(&["formula", "drum", "--r", "25mm", "--h", "9mm", "--b", "4T"], &["3 T"]);
     expect_input_error(

@@ -73,7 +73,8 @@ fn wrong_unit_or_negative_value_is_an_input_error() {
     assert_eq!(out.status.code(), Some(2));
     let out = mrbrake(&["materials", "show", "mrf-122eg", "--b", "-0.1T"]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("must be >= 0"));
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(err.contains("--b[0]: got -0.1 T; allowed: finite, >= 0 T"), "{err}");
 }
 
 #[test]

@@ -113,7 +113,7 @@ fn bad_input_is_exit_code_2_with_a_clear_message() {
     expect_input_error(&["report", "--frd", "f.csv", "-o", out], &["--log"]);
     expect_input_error(&["report", "--store", "missing.sqlite", "-o", out], &["missing.sqlite"]);
     expect_input_error(&["report", "--log", "missing.csv", "-o", out], &["missing.csv"]);
-    expect_input_error(&["report", "--points", "1", "-o", out], &["points = 1", "at least 2"]);
+    expect_input_error(&["report", "--points", "1", "-o", out], &["--points", "got 1", ">= 2"]);
     let nowhere = dir.path().join("no-such-folder").join("r.html");
     expect_input_error(
         &["report", "--points", "2", "--mesh", "coarse", "-o", path_str(&nowhere)],

@@ -18,11 +18,11 @@ fn bad_response_input_is_exit_code_2() {
         &["--conductivity", "not a finite number"],
     );
     expect_input_error(&["response", "--conductivity=-1MS/m"], &["conductivity", "> 0"]);
-    expect_input_error(&["response", "--fluid-lag=-1ms"], &["fluid lag", ">= 0"]);
+    expect_input_error(&["response", "--fluid-lag=-1ms"], &["--fluid-lag", "got -0.001 s", ">= 0"]);
     expect_input_error(&["response", "--bias", "2V"], &["--bias"]);
     // Rules of the library: the CLI only parses the quantities.
-    expect_input_error(&["response", "--step=-1A..2A"], &["step FROM = -1 A", ">= 0"]);
-    expect_input_error(&["response", "--bias=-0.5A"], &["bias = -0.5 A", ">= 0"]);
+    expect_input_error(&["response", "--step=-1A..2A"], &["--step: FROM", "got -1 A", ">= 0"]);
+    expect_input_error(&["response", "--bias=-0.5A"], &["--bias", "got -0.5 A", ">= 0"]);
     expect_input_error(&["response", "--eddy-at", "1s"], &["eddy-current instant", "duration"]);
     expect_input_error(&["response", "--eddy-at", "2A"], &["--eddy-at"]);
 }

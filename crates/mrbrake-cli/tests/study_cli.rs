@@ -543,6 +543,6 @@ fn surrogate_settings_out_of_range_are_input_errors_naming_the_key() {
     let store = dir.path().join("g.sqlite");
     expect_input_error(
         &["optimize", path_str(&problem), "--store", path_str(&store), "--generations", "2"],
-        &["--generations applies to NSGA-II"],
+        &["--generations: applies to NSGA-II"],
     );
 }

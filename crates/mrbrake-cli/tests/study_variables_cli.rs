@@ -71,8 +71,11 @@ fn optimize_set_fixes_a_field_and_the_variable_on_it() {
 
     // A --set that fixes every variable leaves nothing to optimise; a --set without '=' is refused.
     let all = ["optimize", path_str(&path), "--set", "g=0.5mm", "--set", "materials.bobbin=pom"];
-    expect_input_error(&all, &["problem.toml", "--set fixes every variable"]);
-    expect_input_error(&["optimize", path_str(&path), "--set", "g"], &["--set 'g'", "PATH=VALUE"]);
+    expect_input_error(&all, &["problem.toml", "set: fixes every variable"]);
+    expect_input_error(
+        &["optimize", path_str(&path), "--set", "g"],
+        &["--set: expected PATH=VALUE (got 'g'", "PATH=VALUE"],
+    );
 }
 
 #[test]
@@ -136,12 +139,12 @@ fn bad_material_and_fixed_variables_exit_2_naming_the_key_and_what_is_allowed() 
         (
             "[[variable]]\nname = \"g\"\nvalues = [\"0.5mm\", \"0.6mm\"]",
             NSGA2,
-            &["problem.toml", "variable 1 ('g').values", "materials.bobbin", "min and max"],
+            &["problem.toml", "variable[1].values", "materials.bobbin", "min and max"],
         ),
         (
             "[[variable]]\nname = \"g\"\nmin = \"0.8mm\"\nmax = \"0.4mm\"",
             NSGA2,
-            &["problem.toml", "variable 1 ('g')", "min ≤ max", "0.0008", "0.0004"],
+            &["problem.toml", "variable[1].max", "min ≤ max", "0.0008", "0.0004"],
         ),
         (
             "[[variable]]\nname = \"materials.bobbin\"\nvalues = [\"aluminium\", \"pom\"]",
@@ -166,7 +169,10 @@ fn bad_material_and_fixed_variables_exit_2_naming_the_key_and_what_is_allowed() 
             "materials.bobbin=pom,unobtainium",
             &["materials.bobbin", "'unobtainium'", "aluminium"][..],
         ),
-        ("materials.bobbin=aluminium..pom", &["--vary materials.bobbin", "list of names"][..]),
+        (
+            "materials.bobbin=aluminium..pom",
+            &["--vary: a material takes a list", "list of names"][..],
+        ),
         ("materials.bobbin=", &["materials.bobbin", "at least one material"][..]),
     ] {
         let args = sweep(vary);

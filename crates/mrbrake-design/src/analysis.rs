@@ -41,6 +41,7 @@
 use std::sync::Arc;
 use std::time::Instant;
 
+use mrbrake_error::FieldError;
 use mrbrake_fem::mesh::Mesh;
 /// The element order of [`AnalysisOptions::order`] (re-exported from `mrbrake_magnetics`).
 pub use mrbrake_magnetics::ElementOrder;
@@ -87,11 +88,13 @@ impl AnalysisOptions {
     /// at least 2 points, a speed and a seal friction that are finite and not negative.
     pub fn check(&self) -> Result<(), DesignError> {
         if self.points < 2 {
-            return Err(DesignError::Input(format!(
-                "points = {}: the torque–current sweep needs at least 2 points (0 A and the \
-                 maximum current)",
-                self.points
-            )));
+            let e = FieldError::new(
+                "points",
+                "the torque–current sweep needs 0 A and the maximum current",
+            )
+            .with_value(self.points)
+            .with_allowed(">= 2");
+            return Err(e.into());
         }
         self.check_torque_terms()
     }
@@ -100,8 +103,8 @@ impl AnalysisOptions {
     fn check_torque_terms(&self) -> Result<(), DesignError> {
         // The viscous torque opposes the motion whichever way it turns: the speed is its
         // magnitude, and a negative one is a mistake rather than a direction.
-        formula::non_negative("speed (rad/s)", self.speed_rad_s)?;
-        formula::non_negative("seal friction (N·m)", self.seal_friction_nm)?;
+        formula::non_negative("speed", "relative speed", self.speed_rad_s, "rad/s")?;
+        formula::non_negative("seal_friction", "seal friction", self.seal_friction_nm, "N·m")?;
         Ok(())
     }
 }
@@ -564,12 +567,14 @@ pub fn direction1_points(
     let mut model = Model::new(spec, geometry, mesh, options)?;
     let mut previous: Option<Solution> = None;
     let mut points = Vec::with_capacity(currents.len().min(1024));
-    for &current in currents {
+    for (k, &current) in currents.iter().enumerate() {
         if !(current.is_finite() && (0.0..=model.max_current).contains(&current)) {
-            return Err(DesignError::Input(format!(
-                "current {current} A is outside [0, {}] A (the coil's maximum current)",
-                model.max_current
-            )));
+            let e = FieldError::out_of_range(
+                format!("currents[{k}]"),
+                format!("{current} A"),
+                format!("[0, {}] A (the coil's maximum current)", model.max_current),
+            );
+            return Err(e.into());
         }
         let (point, _, solution) = model.direction1_point(current, previous.as_ref(), options)?;
         points.push(point);
@@ -1228,15 +1233,16 @@ fn coil_result(
 }
 
 /// Density of a library material (kg/m³) (0 for air / unknown with a clear error otherwise).
-fn density(material: &str) -> Result<f64, DesignError> {
+fn density(spec: &BrakeSpec, material: &str) -> Result<f64, DesignError> {
     let m = library::get(material).map_err(material_error)?;
     if let Some(fluid) = &m.fluid {
         return Ok(fluid.density_kg_m3.value);
     }
     m.density_kg_m3.as_ref().map(|d| d.value).ok_or_else(|| {
-        DesignError::Input(format!(
-            "material '{material}' has no density in the library; pick another"
-        ))
+        let field = spec.materials.key_of(material).unwrap_or("materials");
+        let e = FieldError::new(field, "the material has no density in the library; pick another")
+            .with_value(format!("'{material}'"));
+        spec.invalid(e.into())
     })
 }
 
@@ -1270,7 +1276,7 @@ fn mechanics(
             }
             _ => {}
         }
-        let rho = density(&region.material)?;
+        let rho = density(spec, &region.material)?;
         mass += rho * region.volume_m3();
         if let Some(direction) = region.rotates {
             let j: f64 = region

@@ -10,7 +10,7 @@
 
 use std::path::PathBuf;
 
-use mrbrake_error::{ErrorKind, FieldErrors, Kind};
+use mrbrake_error::{ErrorKind, FieldError, FieldErrors, Kind};
 
 /// Errors of this crate.
 #[derive(Debug, thiserror::Error)]
@@ -42,10 +42,14 @@ pub enum DesignError {
         /// The invalid fields.
         errors: FieldErrors,
     },
-    /// An argument of a formula or an analysis option outside its allowed range (the message names
-    /// it and the range). Spec fields are reported by [`DesignError::Spec`].
-    #[error("{0}")]
-    Input(String),
+    /// An argument of a formula, an analysis option, or a spec field the analysis cannot take
+    /// (a material without the data it needs, a part too thin for the mesh): the field (an
+    /// argument such as `r1`, an option such as `points`, a spec path such as `materials.fluid`),
+    /// the value and what is allowed. The front ends rename the field to their flag or keyword
+    /// ([`DesignError::with_field_names`]). Fields of an invalid spec are reported by
+    /// [`DesignError::Spec`].
+    #[error(transparent)]
+    Input(Box<FieldError>),
     /// The field solution failed: an invalid problem, or Newton did not converge (the wrapped
     /// error keeps the residual history).
     #[error("field solution")]
@@ -129,7 +133,25 @@ impl Kind for DesignError {
     }
 }
 
+impl From<FieldError> for DesignError {
+    fn from(error: FieldError) -> Self {
+        Self::Input(Box::new(error))
+    }
+}
+
 impl DesignError {
+    /// The same error with the field of an input error named as a front end names it (see
+    /// [`FieldError::renamed`]: the CLI's `--points` for `points`); other errors are unchanged.
+    pub fn with_field_names(self, names: &[(&str, &str)]) -> Self {
+        match self {
+            Self::Input(field) => Self::Input(Box::new(field.renamed(names))),
+            Self::StudyRow { label, source } => {
+                Self::StudyRow { label, source: Box::new(source.with_field_names(names)) }
+            }
+            other => other,
+        }
+    }
+
     /// The invalid fields, when this is a [`DesignError::Spec`] (or a study row that failed for one).
     pub fn field_errors(&self) -> Option<&FieldErrors> {
         match self {
@@ -143,7 +165,6 @@ impl DesignError {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mrbrake_error::FieldError;
 
     #[test]
     fn spec_errors_list_every_field_and_wrapped_errors_keep_their_kind() {
@@ -167,5 +188,15 @@ mod tests {
             source: std::io::ErrorKind::NotFound.into(),
         };
         assert!(missing.is_input_error());
+    }
+
+    #[test]
+    fn an_input_error_names_its_field_as_the_front_end_does() {
+        let e = DesignError::from(FieldError::out_of_range("points", 1, ">= 2"));
+        assert_eq!(e.kind(), ErrorKind::Input);
+        let row = DesignError::StudyRow { label: "d = 1 mm".into(), source: Box::new(e) };
+        let renamed = row.with_field_names(&[("points", "--points")]);
+        let DesignError::StudyRow { source, .. } = renamed else { panic!("{renamed:?}") };
+        assert_eq!(source.to_string(), "--points: got 1; allowed: >= 2");
     }
 }

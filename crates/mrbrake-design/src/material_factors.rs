@@ -32,6 +32,7 @@ use mrbrake_materials::{BhCurve, FieldVariable, MU_0, Magnetic, MrFluid, library
 use crate::DesignError;
 use crate::geometry::{PartKind, Region};
 use crate::spec::BrakeSpec;
+use mrbrake_error::FieldError;
 
 /// What fills the gaps, as the torque sees it: the library fluid with the spec's factors.
 #[derive(Debug, Clone)]
@@ -117,10 +118,10 @@ impl GapMedium {
 pub(crate) fn library_fluid(spec: &BrakeSpec) -> Result<Arc<MrFluid>, DesignError> {
     let material = library::get(&spec.materials.fluid)?;
     material.fluid.clone().ok_or_else(|| {
-        DesignError::Input(format!(
-            "materials.fluid: '{}' is not an MR fluid (see `mrbrake materials list`)",
-            spec.materials.fluid
-        ))
+        let e =
+            FieldError::new("materials.fluid", "not an MR fluid (see `mrbrake materials list`)")
+                .with_value(format!("'{}'", spec.materials.fluid));
+        spec.invalid(e.into())
     })
 }
 
@@ -179,10 +180,15 @@ fn scaled_magnetic(magnetic: &Magnetic, s: f64, what: &str) -> Result<Magnetic, 
         Magnetic::Linear { mu_r } => Ok(Magnetic::Linear { mu_r: 1.0 + s * (mu_r - 1.0) }),
         Magnetic::NonLinear(law) => match law.as_bh_curve() {
             Some(curve) => Ok(Magnetic::from_curve(Arc::new(scaled_curve(curve, s, what)?))),
-            None => Err(DesignError::Input(format!(
-                "{what}.B_scale: the {what}'s magnetic law is analytic, not a tabulated curve; \
-                 only tabulated curves can be scaled"
-            ))),
+            None => Err(FieldError::new(
+                format!("{what}.B_scale"),
+                format!(
+                    "the {what}'s magnetic law is analytic, not a tabulated curve; only tabulated \
+                     curves can be scaled"
+                ),
+            )
+            .with_value(s)
+            .into()),
         },
     }
 }
@@ -195,7 +201,9 @@ fn scaled_curve(curve: &BhCurve, s: f64, what: &str) -> Result<BhCurve, DesignEr
     provenance.method =
         format!("{}; polarisation scaled by {s} ({what} factors)", provenance.method);
     BhCurve::from_points(&points, provenance).map_err(|e| {
-        DesignError::Input(format!("{what}.B_scale = {s}: the scaled B-H curve is invalid: {e}"))
+        FieldError::new(format!("{what}.B_scale"), format!("the scaled B-H curve is invalid: {e}"))
+            .with_value(s)
+            .into()
     })
 }
 

@@ -61,9 +61,10 @@ impl MeshLevel {
             "coarse" => Ok(Self::Coarse),
             "default" => Ok(Self::Default),
             "fine" => Ok(Self::Fine),
-            other => Err(DesignError::Input(format!(
-                "mesh level '{other}' is not one of coarse, default, fine"
-            ))),
+            other => Err(mrbrake_error::FieldError::new("mesh", "not a mesh level")
+                .with_value(format!("'{other}'"))
+                .with_allowed("coarse, default, fine")
+                .into()),
         }
     }
 
@@ -185,17 +186,20 @@ pub fn check_resolvable(
         for rc in &region.rects {
             let thin = (rc.r1 - rc.r0).min(rc.z1 - rc.z0);
             if thin < h {
-                return Err(DesignError::Input(format!(
-                    "{}: part {} is {} thick, too thin for the mesh: at --mesh {} this brake \
-                     resolves sizes ≥ {}; change the fields that size it",
-                    spec.source
-                        .origin()
-                        .map_or_else(|| format!("spec '{}'", spec.name), str::to_string),
-                    region.name,
-                    fmt_mm(thin),
-                    level.name(),
-                    fmt_mm(h)
-                )));
+                // Not one field of the spec but a difference of fields: an error of the whole
+                // spec (its file), like the thin fields above.
+                let e = mrbrake_error::FieldError::new(
+                    "",
+                    format!(
+                        "part {} is {} thick, too thin for the mesh: at --mesh {} this brake \
+                         resolves sizes ≥ {}; change the fields that size it",
+                        region.name,
+                        fmt_mm(thin),
+                        level.name(),
+                        fmt_mm(h)
+                    ),
+                );
+                return Err(spec.invalid(e.into()));
             }
         }
     }

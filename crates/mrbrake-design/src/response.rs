@@ -36,6 +36,7 @@
 use std::sync::Arc;
 use std::time::Instant;
 
+use mrbrake_error::FieldError;
 use mrbrake_fem::workflow::time::{Scheme, TimeStep};
 use mrbrake_magnetics::dynamics::transient::{StepView, TransientOptions, TransientResult};
 use mrbrake_magnetics::dynamics::{Coil, Conductor, Drive, Dynamics, Waveform};
@@ -299,51 +300,35 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
     })
 }
 
-/// Checks the ranges of `options` (durations, currents, lag, conductivity, frequencies).
+/// Checks the ranges of `options` (durations, currents, lag, conductivity, frequencies). The
+/// errors name the options as the `[response]` table of a study does (`duration`, `step`,
+/// `bias`, `conductivity`, `fluid_lag`), and `rtol`, `eddy_at`, `frequencies`.
 pub fn check_options(options: &ResponseOptions) -> Result<(), DesignError> {
-    let positive = |name: &str, v: f64| {
-        if v > 0.0 && v.is_finite() {
-            Ok(())
-        } else {
-            Err(DesignError::Input(format!("response: {name} = {v} must be finite and > 0")))
-        }
-    };
-    positive("duration", options.duration_s)?;
-    positive("rtol", options.rtol)?;
+    use formula::{finite, non_negative, positive};
+    positive("duration", "duration of the step response", options.duration_s, "s")?;
+    positive("rtol", "relative tolerance of the time steps", options.rtol, "")?;
     // Currents are magnitudes of one unit's drive (the other direction is the other unit's coil).
-    for (name, current) in [("step FROM", Some(options.step_from_a)), ("bias", options.bias_a)] {
-        if let Some(i) = current
-            && !(i.is_finite() && i >= 0.0)
-        {
-            return Err(DesignError::Input(format!(
-                "response: {name} = {i} A must be finite and >= 0"
-            )));
-        }
+    non_negative("step", "FROM, the current before the step", options.step_from_a, "A")?;
+    if let Some(to) = options.step_to_a {
+        finite("step", "TO, the current after the step", to, "A")?;
     }
-    if let Some(to) = options.step_to_a
-        && !to.is_finite()
-    {
-        return Err(DesignError::Input(format!("response: step TO = {to} A must be finite")));
+    if let Some(bias) = options.bias_a {
+        non_negative("bias", "DC bias of the frequency response", bias, "A")?;
     }
-    if !(options.fluid_lag_s >= 0.0 && options.fluid_lag_s.is_finite()) {
-        return Err(DesignError::Input(format!(
-            "response: fluid lag = {} s must be finite and >= 0",
-            options.fluid_lag_s
-        )));
-    }
+    non_negative("fluid_lag", "first-order lag of the fluid", options.fluid_lag_s, "s")?;
     if let Some(s) = options.flux_path_conductivity_s_per_m {
-        positive("flux-path conductivity", s)?;
+        positive("conductivity", "conductivity of the flux-path steel", s, "S/m")?;
     }
     if let Some(t) = options.eddy_at_s
         && !(t >= 0.0 && t <= options.duration_s)
     {
-        return Err(DesignError::Input(format!(
-            "response: the eddy-current instant {t} s must lie in [0, duration = {} s]",
-            options.duration_s
-        )));
+        let e = FieldError::new("eddy_at", "the eddy-current instant lies in the step response")
+            .with_value(format!("{t} s"))
+            .with_allowed(format!("[0, duration = {} s]", options.duration_s));
+        return Err(e.into());
     }
-    if options.omegas_rad_s.iter().any(|w| !(*w > 0.0 && w.is_finite())) {
-        return Err(DesignError::Input("response: frequencies must be finite and > 0".into()));
+    for (k, &w) in options.omegas_rad_s.iter().enumerate() {
+        positive(&format!("frequencies[{k}]"), "angular frequency", w, "rad/s")?;
     }
     Ok(())
 }
@@ -390,11 +375,10 @@ impl<'a> ResponseModel<'a> {
     /// release from `from`), as in [`Response::step`].
     pub fn step(&self, unit: usize, from: f64, to: f64) -> Result<StepResponse, DesignError> {
         if unit >= self.units() {
-            return Err(DesignError::Input(format!(
-                "response: direction {} of a brake with {}",
-                unit + 1,
-                self.units()
-            )));
+            let e = FieldError::new("direction", "a direction of the brake")
+                .with_value(unit + 1)
+                .with_allowed(format!("1 to {}", self.units()));
+            return Err(e.into());
         }
         self.model.step_response(unit, from, to, None).map(|(step, _)| step)
     }
@@ -417,9 +401,9 @@ fn step_drive(from: f64, to: f64) -> Result<(f64, Waveform), DesignError> {
     if from.abs() >= f64::MIN_POSITIVE {
         return Ok((from, Waveform::Release));
     }
-    Err(DesignError::Input(
-        "response: the step must change the current (--step FROM..TO, FROM != TO)".into(),
-    ))
+    let e = FieldError::new("step", "the step must change the current (FROM != TO)")
+        .with_value(format!("{from} A..{to} A"));
+    Err(e.into())
 }
 
 /// The brake's field model with conductivities.
@@ -709,7 +693,7 @@ impl Model<'_> {
     /// The resistance of one coil at the options' temperature (the thesis's coil formulas).
     fn coil_resistance(&self, coil: &CoilInfo) -> Result<f64, DesignError> {
         let wire = CopperWire::from_diameter(self.spec.wire_diameter_m())
-            .map_err(|e| DesignError::Input(e.to_string()))?;
+            .map_err(DesignError::Material)?;
         let mean_radius = 0.5 * (coil.rect.r0 + coil.rect.r1);
         let max = self.spec.coil.max_current.a();
         let electrics = formula::coil_electrics(

@@ -86,17 +86,20 @@ impl DesignSpace {
         let mut base: toml::Table = toml::from_str(base_toml).map_err(internal)?;
         let is_drum = spec.configuration.is_drum();
         for (path, value) in overrides {
-            apply_override(&mut base, path, value, is_drum)
-                .map_err(|e| ExploreError::Input(format!("{origin}: --set {path}={value}: {e}")))?;
+            apply_override(&mut base, path, value, is_drum).map_err(|e| {
+                // The change's field (its spec path) with the value it was given.
+                e.map_field(|f| {
+                    let f = if f.value.is_none() { f.with_value(value) } else { f };
+                    f.in_file(origin, None)
+                })
+            })?;
         }
         let mut variables = Vec::with_capacity(variable_names.len());
         for name in variable_names {
             let variable = crate::variable::resolve(name, is_drum)?;
             if variables.iter().any(|v: &Variable| v.path() == variable.path()) {
-                return Err(ExploreError::Input(format!(
-                    "variable '{name}' ({}) is given twice",
-                    variable.path()
-                )));
+                let message = format!("variable ({}): given twice", variable.path());
+                return Err(ExploreError::input(name, message));
             }
             variables.push(variable);
         }
@@ -139,11 +142,11 @@ impl DesignSpace {
     /// The design at `values` (SI, one per variable, in order).
     pub fn design(&self, values: &[f64]) -> Result<Design, ExploreError> {
         if values.len() != self.variables.len() {
-            return Err(ExploreError::Input(format!(
-                "a design needs {} values, got {}",
-                self.variables.len(),
-                values.len()
-            )));
+            let e =
+                mrbrake_error::FieldError::new("values", "one value per variable of the design")
+                    .with_value(values.len())
+                    .with_allowed(self.variables.len().to_string());
+            return Err(e.into());
         }
         let mut table = self.base.clone();
         let mut named = Vec::with_capacity(values.len());

@@ -100,9 +100,12 @@ impl EvaluationSettings {
         self.analysis_options().check()?;
         let h = self.convection_w_m2k;
         if !(h.is_finite() && h > 0.0) {
-            return Err(ExploreError::Input(format!(
-                "convection = {h} W/(m²·K) must be finite and > 0"
-            )));
+            let e = mrbrake_error::FieldError::out_of_range(
+                "convection",
+                format!("{h} W/(m²·K)"),
+                "finite, > 0 W/(m²·K)",
+            );
+            return Err(e.into());
         }
         Ok(())
     }

@@ -72,7 +72,8 @@ pub fn designs(
     }
     let problem = study.problem().clone();
     let base_text = std::fs::read_to_string(&problem.spec_path).map_err(|e| {
-        ExploreError::Input(format!("{}: cannot read it: {e}", problem.spec_path.display()))
+        ExploreError::input("", format!("cannot read it: {e}"))
+            .in_file(&problem.spec_path.display().to_string())
     })?;
     let writer = SpecWriter::new(&base_text, &problem, study.space().is_drum())?;
     let variables = study.space().variables().to_vec();
@@ -124,9 +125,9 @@ impl SpecWriter {
         problem: &crate::problem::OptimizationProblem,
         is_drum: bool,
     ) -> Result<Self, ExploreError> {
-        let mut document: DocumentMut = base_text
-            .parse()
-            .map_err(|e| ExploreError::Input(format!("{}: {e}", problem.spec_path.display())))?;
+        let mut document: DocumentMut = base_text.parse().map_err(|e: toml_edit::TomlError| {
+            ExploreError::input("", e.to_string()).in_file(&problem.spec_path.display().to_string())
+        })?;
         for (path, text) in &problem.overrides {
             let (path, value) = override_value(path, text, is_drum)?;
             set_value(&mut document, &path, value)?;
@@ -295,16 +296,17 @@ fn set_value(
     value: Option<Value>,
 ) -> Result<(), ExploreError> {
     let mut parts: Vec<&str> = path.split('.').collect();
-    let last = parts.pop().filter(|s| !s.is_empty()).ok_or_else(|| {
-        ExploreError::Input(format!("'{path}' is not a dotted spec path such as drum.gap"))
-    })?;
+    let last = parts
+        .pop()
+        .filter(|s| !s.is_empty())
+        .ok_or_else(|| ExploreError::input(path, "not a dotted spec path such as drum.gap"))?;
     let mut table: &mut dyn toml_edit::TableLike = document.as_table_mut();
     for part in parts {
         if table.get(part).is_none() {
             table.insert(part, toml_edit::table());
         }
         table = table.get_mut(part).and_then(Item::as_table_like_mut).ok_or_else(|| {
-            ExploreError::Input(format!("'{path}': '{part}' is a value, not a table"))
+            ExploreError::input(path, format!("'{part}' is a value, not a table"))
         })?;
     }
     match value {

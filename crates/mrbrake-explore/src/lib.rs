@@ -48,10 +48,12 @@ pub use runner::{Progress, RunSummary, Runner};
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ExploreError {
-    /// Bad input: a variable, value, problem-file field or plan that is not allowed (the message
-    /// names it and the allowed values).
-    #[error("{0}")]
-    Input(String),
+    /// Bad input: a variable, value, problem-file field or plan that is not allowed: the file
+    /// (the problem file, when the input came from one), the field (a problem-file key such as
+    /// `algorithm.population` or `variable[2].min`, a spec path, or an argument such as `--vary`),
+    /// the value and what is allowed.
+    #[error(transparent)]
+    Input(Box<mrbrake_error::FieldError>),
     /// The base spec or the analysis set-up.
     #[error(transparent)]
     Design(#[from] mrbrake_design::DesignError),
@@ -89,6 +91,78 @@ pub enum ExploreError {
     /// A defect or an unexpected internal state.
     #[error("internal error: {0}")]
     Internal(String),
+}
+
+impl From<mrbrake_error::FieldError> for ExploreError {
+    fn from(error: mrbrake_error::FieldError) -> Self {
+        Self::Input(Box::new(error))
+    }
+}
+
+impl From<Box<mrbrake_error::FieldError>> for ExploreError {
+    fn from(error: Box<mrbrake_error::FieldError>) -> Self {
+        Self::Input(error)
+    }
+}
+
+impl ExploreError {
+    /// An input error about `field` (empty: the whole input) saying `message`.
+    pub(crate) fn input(field: impl Into<String>, message: impl Into<String>) -> Self {
+        mrbrake_error::FieldError::new(field, message).into()
+    }
+
+    /// The field error of an input error of this crate or of the design crate (an option the
+    /// design library checks); `None` for any other error.
+    fn field_error(self) -> Result<Box<mrbrake_error::FieldError>, Self> {
+        match self {
+            Self::Input(field) | Self::Design(mrbrake_design::DesignError::Input(field)) => {
+                Ok(field)
+            }
+            other => Err(other),
+        }
+    }
+
+    /// The same error with `change` applied to its field error, when it has one.
+    pub(crate) fn map_field(
+        self,
+        change: impl FnOnce(mrbrake_error::FieldError) -> mrbrake_error::FieldError,
+    ) -> Self {
+        match self.field_error() {
+            Ok(field) => Self::Input(Box::new(change(*field))),
+            Err(other) => other,
+        }
+    }
+
+    /// The same error with the field of an input error inside `parent` (the `[response]`
+    /// options' `duration` becomes `response.duration`).
+    pub(crate) fn under(self, parent: &str) -> Self {
+        self.map_field(|f| f.under(parent))
+    }
+
+    /// The same error located in `file`, when it is an input error not located yet.
+    pub(crate) fn in_file(self, file: &str) -> Self {
+        self.map_field(|f| if f.file.is_some() { f } else { f.in_file(file, None) })
+    }
+
+    /// The same error saying that `metric` needs the field (a setting the metric's analysis uses).
+    pub(crate) fn for_metric(self, metric: &str) -> Self {
+        self.map_field(|mut f| {
+            f.message = if f.message.is_empty() {
+                format!("for metric '{metric}'")
+            } else {
+                format!("{}, for metric '{metric}'", f.message)
+            };
+            f
+        })
+    }
+
+    /// The same error with the field of an input error named as a front end names it (see
+    /// [`mrbrake_error::FieldError::renamed`]: the CLI's `--max-evaluations` for
+    /// `max_evaluations`); an error located in a file keeps the file's key (a problem file's
+    /// `speed` is not the `--speed` flag), other errors are unchanged.
+    pub fn with_field_names(self, names: &[(&str, &str)]) -> Self {
+        self.map_field(|f| if f.file.is_some() { f } else { f.renamed(names) })
+    }
 }
 
 impl mrbrake_error::Kind for ExploreError {

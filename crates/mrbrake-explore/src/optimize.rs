@@ -238,12 +238,17 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
                 found.and_then(serde_json::Value::as_f64)
             };
             let value = value.ok_or_else(|| {
-                ExploreError::Input(format!(
-                    "algorithm.start = \"base\": the base spec has no value for {} among the \
-                     variable's (e.g. turns computed from the window, or a material not listed); \
-                     give it in the spec or start at the centre",
-                    variable.path()
-                ))
+                let e = mrbrake_error::FieldError::new(
+                    "algorithm.start",
+                    format!(
+                        "the base spec has no value for {} among the variable's (e.g. turns \
+                         computed from the window, or a material not listed); give it in the spec \
+                         or start at the centre",
+                        variable.path()
+                    ),
+                )
+                .with_value("\"base\"");
+                ExploreError::from(e).in_file(&self.problem.path.display().to_string())
             })?;
             point.push(bounds.repair(value));
         }
@@ -457,12 +462,11 @@ pub fn check(problem: &OptimizationProblem) -> Result<(), ExploreError> {
 fn space_and_bounds(
     problem: &OptimizationProblem,
 ) -> Result<(DesignSpace, Vec<Bounds>), ExploreError> {
+    let problem_file = problem.path.display().to_string();
     let spec_text = std::fs::read_to_string(&problem.spec_path).map_err(|e| {
-        ExploreError::Input(format!(
-            "{}: spec = '{}': cannot read it: {e}",
-            problem.path.display(),
-            problem.spec_path.display()
-        ))
+        let e = mrbrake_error::FieldError::new("spec", format!("cannot read it: {e}"))
+            .with_value(format!("'{}'", problem.spec_path.display()));
+        ExploreError::from(e).in_file(&problem_file)
     })?;
     let names: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
     let mut space = DesignSpace::new(
@@ -472,15 +476,9 @@ fn space_and_bounds(
         &names,
         problem.settings.clone(),
     )
-    .map_err(|e| match e {
-        // A variable the spec cannot take (unknown, given twice) is the problem file's fault.
-        ExploreError::Input(message)
-            if !message.starts_with(&*problem.spec_path.to_string_lossy()) =>
-        {
-            ExploreError::Input(format!("{}: {message}", problem.path.display()))
-        }
-        other => other,
-    })?;
+    // A variable the spec cannot take (unknown, given twice) or a setting out of range is the
+    // problem file's fault (a change the spec cannot take is already located in the spec).
+    .map_err(|e| e.in_file(&problem_file))?;
     for (index, b) in problem.variables.iter().enumerate() {
         if !b.levels.is_empty() {
             space.set_levels(index, &b.levels)?;

@@ -10,6 +10,7 @@
 //! the points whose index is `K` modulo `N`, so `N` processes with the same plan cover every point
 //! exactly once.
 
+use mrbrake_error::FieldError;
 use mrbrake_optim::rng::Rng;
 use mrbrake_optim::sampling;
 use mrbrake_optim::space::Bounds;
@@ -55,10 +56,11 @@ impl VarySpec {
     /// Splits `NAME=VALUES` into the name and the raw values text.
     pub fn split(argument: &str) -> Result<(String, String), ExploreError> {
         let (name, values) = argument.split_once('=').ok_or_else(|| {
-            ExploreError::Input(format!(
-                "--vary '{argument}': expected NAME=VALUES, e.g. g=0.5mm,0.75mm,1mm or \
-                 h=5mm..10mm:6 or R0=20mm..30mm (with --sample)"
-            ))
+            FieldError::new("vary", "expected NAME=VALUES")
+                .with_value(format!("'{argument}'"))
+                .with_allowed(
+                    "e.g. g=0.5mm,0.75mm,1mm or h=5mm..10mm:6 or R0=20mm..30mm (with --sample)",
+                )
         })?;
         Ok((name.trim().to_string(), values.trim().to_string()))
     }
@@ -66,8 +68,11 @@ impl VarySpec {
     /// Parses the values text of `variable`: a material variable takes its materials by name,
     /// each checked against the library and the part ([`Variable::with_levels`]).
     pub fn parse(variable: &Variable, text: &str) -> Result<Self, ExploreError> {
-        let bad =
-            |why: &str| ExploreError::Input(format!("--vary {}={text}: {why}", variable.name));
+        let bad = |why: &str| {
+            ExploreError::from(
+                FieldError::new("vary", why).with_value(format!("{}={text}", variable.name)),
+            )
+        };
         if variable.is_categorical() {
             if text.contains("..") {
                 return Err(bad(
@@ -171,9 +176,11 @@ impl Sampling {
     /// Parses `lhs:N` or `sobol:N` (the seed comes separately).
     pub fn parse(text: &str, seed: u64) -> Result<Self, ExploreError> {
         let bad = || {
-            ExploreError::Input(format!(
-                "--sample '{text}': expected lhs:N or sobol:N with N ≥ 1 (e.g. lhs:64)"
-            ))
+            ExploreError::from(
+                FieldError::new("sample", "not a sampling")
+                    .with_value(format!("'{text}'"))
+                    .with_allowed("lhs:N or sobol:N with N ≥ 1 (e.g. lhs:64)"),
+            )
         };
         let (kind, n) = text.split_once(':').ok_or_else(bad)?;
         let n: usize = n.trim().parse().map_err(|_| bad())?;
@@ -193,13 +200,15 @@ impl Sampling {
 /// can finish; a larger plan is an input error before anything is allocated.
 pub const MAX_PLAN_POINTS: usize = 10_000_000;
 
-/// The number of points of a plan as a checked count, or an input error above [`MAX_PLAN_POINTS`].
-fn check_plan_size(count: Option<usize>, what: &str) -> Result<(), ExploreError> {
+/// The number of points of a plan as a checked count, or an input error of `field` (`vary`,
+/// `sample`) above [`MAX_PLAN_POINTS`].
+fn check_plan_size(count: Option<usize>, field: &str) -> Result<(), ExploreError> {
     match count {
         Some(n) if n <= MAX_PLAN_POINTS => Ok(()),
-        _ => Err(ExploreError::Input(format!(
-            "{what}: the plan would have more than {MAX_PLAN_POINTS} points; sweep fewer"
-        ))),
+        _ => Err(FieldError::new(field, "the plan has too many points; sweep fewer")
+            .with_value(count.map_or_else(|| "more than usize::MAX".to_string(), |n| n.to_string()))
+            .with_allowed(format!("<= {MAX_PLAN_POINTS} points"))
+            .into()),
     }
 }
 
@@ -214,19 +223,20 @@ pub fn points(
             let mut levels = Vec::with_capacity(specs.len());
             for spec in specs {
                 levels.push(spec.levels().ok_or_else(|| {
-                    ExploreError::Input(format!(
-                        "--vary {}: bounds without a count need --sample lhs:N or sobol:N; for a \
-                         grid give lower..upper:count",
-                        spec.name
-                    ))
+                    FieldError::new(
+                        "vary",
+                        "bounds without a count need --sample lhs:N or sobol:N; for a grid give \
+                         lower..upper:count",
+                    )
+                    .with_value(&spec.name)
                 })?);
             }
             let count = levels.iter().try_fold(1usize, |n, l| n.checked_mul(l.len()));
-            check_plan_size(count, "--vary")?;
+            check_plan_size(count, "vary")?;
             Ok(sampling::full_factorial(&levels))
         }
         Sampling::LatinHypercube { n, .. } | Sampling::Sobol { n } => {
-            check_plan_size(Some(n), "--sample")?;
+            check_plan_size(Some(n), "sample")?;
             let mut bounds = Vec::with_capacity(specs.len());
             for (variable, spec) in variables.iter().zip(specs) {
                 match &spec.values {
@@ -235,10 +245,12 @@ pub fn points(
                     }
                     Values::Levels(levels) => bounds.push(Bounds::categorical(levels.len())),
                     Values::List(_) => {
-                        return Err(ExploreError::Input(format!(
-                            "--vary {}: sampling needs bounds lower..upper, not a list",
-                            spec.name
-                        )));
+                        let e = FieldError::new(
+                            "vary",
+                            "sampling needs bounds lower..upper, not a list",
+                        )
+                        .with_value(&spec.name);
+                        return Err(e.into());
                     }
                 }
             }
@@ -273,10 +285,12 @@ impl Shard {
     /// Parses `K/N` (e.g. `$SLURM_ARRAY_TASK_ID/4`, `$JOB_COMPLETION_INDEX/8`).
     pub fn parse(text: &str) -> Result<Self, ExploreError> {
         let bad = |why: &str| {
-            ExploreError::Input(format!(
-                "--shard '{text}': {why}; expected K/N with 0 ≤ K < N (0-based, as Slurm array \
-                 indices from 0 and Kubernetes completion indices are)"
-            ))
+            ExploreError::from(
+                FieldError::new("shard", why).with_value(format!("'{text}'")).with_allowed(
+                    "K/N with 0 ≤ K < N (0-based, as Slurm array indices from 0 and Kubernetes \
+                 completion indices are)",
+                ),
+            )
         };
         let (k, n) = text.split_once('/').ok_or_else(|| bad("no '/'"))?;
         let index: usize = k.trim().parse().map_err(|_| bad("K is not a whole number"))?;
@@ -327,6 +341,9 @@ pub struct SweepPlan {
 
 /// The plan of a sweep (shared by the CLI's `sweep` and the Python package's `mrbrake.sweep`).
 pub fn sweep_plan(request: &SweepRequest<'_>) -> Result<SweepPlan, ExploreError> {
+    if request.vary.is_empty() {
+        return Err(ExploreError::input("vary", "give at least one variable (NAME=VALUES)"));
+    }
     let pairs: Vec<(String, String)> =
         request.vary.iter().map(|v| VarySpec::split(v)).collect::<Result<_, _>>()?;
     let names: Vec<String> = pairs.iter().map(|(n, _)| n.clone()).collect();
@@ -386,15 +403,17 @@ mod tests {
         let h = resolve("h", true).unwrap();
         let e = VarySpec::parse(&g, "0.5mm..1mm:1000000000000").unwrap_err();
         assert!(e.to_string().contains("at most"), "{e}");
+        assert!(e.to_string().starts_with("vary: "), "{e}");
         let specs = vec![
             VarySpec::parse(&g, "0.5mm..1mm:10000").unwrap(),
             VarySpec::parse(&h, "5mm..10mm:10000").unwrap(),
         ];
         let vars = [g.clone(), h.clone()];
         let e = points(&vars, &specs, Sampling::FullFactorial).unwrap_err();
-        assert!(e.to_string().contains("more than"), "{e}");
+        assert!(e.to_string().contains("got 100000000; allowed: <= 10000000 points"), "{e}");
         let sobol = Sampling::parse("sobol:1000000000000", 1).unwrap();
-        assert!(points(&vars, &specs, sobol).unwrap_err().to_string().contains("--sample"));
+        let e = points(&vars, &specs, sobol).unwrap_err().to_string();
+        assert!(e.starts_with("sample: the plan has too many points"), "{e}");
     }
 
     #[test]

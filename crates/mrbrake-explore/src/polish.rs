@@ -40,6 +40,29 @@ pub struct PolishRequest {
     pub max_evaluations: usize,
 }
 
+impl PolishRequest {
+    /// Checks the request's ranges before any design is evaluated (a front design numbered from
+    /// 1, at least one evaluation); the errors name `polish` and `polish_evaluations`.
+    pub fn check(&self) -> Result<(), ExploreError> {
+        if self.design == 0 {
+            let e = mrbrake_error::FieldError::new("polish", "front designs are numbered from 1")
+                .with_value(0)
+                .with_allowed(">= 1");
+            return Err(e.into());
+        }
+        if self.max_evaluations == 0 || self.max_evaluations > crate::problem::MAX_EVALUATIONS {
+            let allowed = format!("1 to {}", crate::problem::MAX_EVALUATIONS);
+            let e = mrbrake_error::FieldError::out_of_range(
+                "polish_evaluations",
+                self.max_evaluations,
+                allowed,
+            );
+            return Err(e.into());
+        }
+        Ok(())
+    }
+}
+
 /// A polish's outcome.
 #[derive(Debug, Clone)]
 pub struct Polished {
@@ -71,25 +94,30 @@ pub fn run(
     request: &PolishRequest,
     observer: &mut dyn Observer<OptimizeProgress>,
 ) -> Result<Polished, ExploreError> {
+    request.check()?;
     if let Some(material) = problem.variables.iter().find(|v| !v.levels.is_empty()) {
-        return Err(ExploreError::Input(format!(
-            "--polish steps each variable along an order, and the materials of '{}' ({}) have \
-             none; polish with the material fixed (optimize --set {}=…)",
-            material.name,
-            material.levels.join(", "),
-            material.name
-        )));
+        return Err(ExploreError::input(
+            "polish",
+            format!(
+                "steps each variable along an order, and the materials of '{}' ({}) have none; \
+                 polish with the material fixed (optimize --set {}=…)",
+                material.name,
+                material.levels.join(", "),
+                material.name
+            ),
+        ));
     }
     let evaluations: Vec<_> = result.evaluated.iter().map(|e| e.evaluation.clone()).collect();
     let front = front_of(problem, &evaluations);
     let index =
         request.design.checked_sub(1).and_then(|k| front.get(k)).copied().ok_or_else(|| {
-            ExploreError::Input(format!(
-                "--polish {}: the front has {} design(s); give 1 to {}",
-                request.design,
-                front.len(),
-                front.len()
-            ))
+            let e = mrbrake_error::FieldError::new(
+                "polish",
+                format!("the front has {} design(s)", front.len()),
+            )
+            .with_value(request.design)
+            .with_allowed(format!("1 to {}", front.len()));
+            ExploreError::from(e)
         })?;
     let start = result.evaluated[index].clone();
     let (derived, objective) = derived_problem(problem, &start, request)?;
@@ -148,10 +176,13 @@ fn derived_problem(
             problem.objectives.iter().position(|o| o.metric == metric.trim()).ok_or_else(|| {
                 let names: Vec<&str> =
                     problem.objectives.iter().map(|o| o.metric.as_str()).collect();
-                ExploreError::Input(format!(
-                    "--polish-objective {metric}: not an objective of the problem ({})",
-                    names.join(", ")
-                ))
+                let e = mrbrake_error::FieldError::new(
+                    "polish_objective",
+                    "not an objective of the problem",
+                )
+                .with_value(metric)
+                .with_allowed(names.join(", "));
+                ExploreError::from(e)
             })?
         }
     };

@@ -59,6 +59,7 @@ use std::path::{Path, PathBuf};
 
 use mrbrake_design::analysis::ElementOrder;
 use mrbrake_design::mesh_build::MeshLevel;
+use mrbrake_error::FieldError;
 use mrbrake_units::{Dimension, parse};
 use schemars::JsonSchema;
 use serde::Deserialize;
@@ -519,7 +520,8 @@ impl OptimizationProblem {
     /// Reads and checks a problem file.
     pub fn from_path(path: &Path) -> Result<Self, ExploreError> {
         let text = std::fs::read_to_string(path).map_err(|e| {
-            ExploreError::Input(format!("{}: cannot read the problem file: {e}", path.display()))
+            ExploreError::input("", format!("cannot read the problem file: {e}"))
+                .in_file(&path.display().to_string())
         })?;
         Self::from_toml_str(&text, path)
     }
@@ -527,8 +529,9 @@ impl OptimizationProblem {
     /// Parses problem-file text; `path` locates the spec and names the file in messages.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Self, ExploreError> {
         let origin = path.display().to_string();
-        let bad = |what: String| ExploreError::Input(format!("{origin}: {what}"));
-        let raw: RawProblem = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
+        let bad = |e: ExploreError| e.in_file(&origin);
+        let raw: RawProblem =
+            toml::from_str(text).map_err(|e| bad(ExploreError::input("", e.to_string())))?;
         let folder = path.parent().unwrap_or_else(|| Path::new("."));
         let mut settings = settings_of(&raw).map_err(bad)?;
         let (variables, fixed) = variables_of(&raw.variables).map_err(bad)?;
@@ -542,7 +545,8 @@ impl OptimizationProblem {
             &constraints,
             &objectives,
         )
-        .map_err(bad)?;
+        // The metric settings' readers name the key in their text.
+        .map_err(|e| bad(ExploreError::input("", e)))?;
         let mut notes = legacy_name_notes(&raw, &origin);
         notes.extend(fixed.iter().map(|(name, value)| {
             format!("{origin}: variable '{name}' is fixed at {value}: set, not varied")
@@ -604,10 +608,11 @@ impl OptimizationProblem {
             self.overrides.push((path.clone(), value.clone()));
         }
         if self.variables.is_empty() {
-            return Err(ExploreError::Input(format!(
-                "{}: --set fixes every variable of the problem: nothing to optimise",
-                self.path.display()
-            )));
+            let e = ExploreError::input(
+                "set",
+                "fixes every variable of the problem: nothing to optimise",
+            );
+            return Err(e.in_file(&self.path.display().to_string()));
         }
         Ok(())
     }
@@ -632,24 +637,35 @@ fn legacy_name_notes(raw: &RawProblem, origin: &str) -> Vec<String> {
     notes
 }
 
-// The readers of each part of the file return what is wrong, naming the table and the field; the
-// caller prefixes the file.
+// The readers of each part of the file return what is wrong, naming the key (`algorithm.poll`,
+// `variable[2].min`); the caller locates it in the file.
+
+/// The error of a variable, argument or metric (its field named as written, `g`) moved to the
+/// key of the problem file that gave it (`variable[1].min`), keeping the name in the message.
+fn at_key(e: ExploreError, key: &str) -> ExploreError {
+    e.map_field(|mut f| {
+        if !f.field.is_empty() && f.field != key {
+            f.message = format!("'{}': {}", f.field, f.message);
+        }
+        f.field = key.to_string();
+        f
+    })
+}
 
 /// Mesh level, element order and speed over the defaults.
-fn settings_of(raw: &RawProblem) -> Result<EvaluationSettings, String> {
+fn settings_of(raw: &RawProblem) -> Result<EvaluationSettings, ExploreError> {
     let mut settings = EvaluationSettings::default();
     if let Some(mesh) = &raw.mesh {
-        settings.mesh = MeshLevel::parse(mesh).map_err(|e| format!("mesh: {e}"))?;
+        settings.mesh = MeshLevel::parse(mesh)?;
     }
     if let Some(degree) = raw.order {
-        settings.order = ElementOrder::from_degree(degree)
-            .ok_or_else(|| format!("order: {degree} is not allowed; use 1 or 2"))?;
+        settings.order = ElementOrder::try_from(degree)?;
     }
     if let Some(speed) = &raw.speed {
-        settings.speed_rad_s =
-            parse(speed, Dimension::AngularVelocity).map_err(|e| format!("speed: {e}"))?;
+        settings.speed_rad_s = parse(speed, Dimension::AngularVelocity)
+            .map_err(|e| ExploreError::input("speed", e.to_string()))?;
     }
-    settings.check().map_err(|e| e.to_string())?;
+    settings.check()?;
     Ok(settings)
 }
 
@@ -668,28 +684,34 @@ fn overrides_of(set: &toml::Table) -> Vec<(String, String)> {
 
 /// The variables with their bounds in SI, read with each variable's own unit, and the fixed ones
 /// as `(name, value)` overrides.
-fn variables_of(raw: &[RawVariable]) -> Result<(Vec<VariableBounds>, Overrides), String> {
+fn variables_of(raw: &[RawVariable]) -> Result<(Vec<VariableBounds>, Overrides), ExploreError> {
     if raw.is_empty() {
-        return Err("no [[variable]]: give at least one design variable".into());
+        return Err(ExploreError::input(
+            "variable",
+            "no [[variable]]: give at least one design variable",
+        ));
     }
     let (mut variables, mut fixed) = (Vec::new(), Vec::new());
     for (i, v) in raw.iter().enumerate() {
-        let where_ = format!("variable {} ('{}')", i + 1, v.name);
+        let key = format!("variable[{}]", i + 1);
         // Bounds read with the variable's own unit; the symbol resolves against the spec
         // later, so read them with the field the name denotes for either configuration.
         let variable = crate::variable::resolve(&v.name, true)
             .or_else(|_| crate::variable::resolve(&v.name, false))
-            .map_err(|e| format!("{where_}: {e}"))?;
-        match variable_of(v, &variable).map_err(|e| format!("{where_}{e}"))? {
+            .map_err(|e| at_key(e, &format!("{key}.name")))?;
+        match variable_of(v, &variable).map_err(|e| e.under(&key))? {
             Read::Varied(bounds) => variables.push(bounds),
             Read::Fixed(value) => fixed.push((v.name.clone(), value)),
         }
     }
     if variables.is_empty() {
-        return Err(format!(
-            "every [[variable]] is fixed ({}): nothing to optimise; vary at least one, or analyse \
-             the design with mrbrake analyze",
-            fixed.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+        return Err(ExploreError::input(
+            "variable",
+            format!(
+                "every [[variable]] is fixed ({}): nothing to optimise; vary at least one, or \
+                 analyse the design with mrbrake analyze",
+                fixed.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+            ),
         ));
     }
     Ok((variables, fixed))
@@ -705,9 +727,9 @@ enum Read {
 }
 
 /// One `[[variable]]` of the resolved `variable`: `min`/`max` (equal: fixed) or `value` for a
-/// numeric field, `values` (one: fixed) or `value` for a material; the error starts with the key
-/// (`.min: …`, `: …`).
-fn variable_of(v: &RawVariable, variable: &Variable) -> Result<Read, String> {
+/// numeric field, `values` (one: fixed) or `value` for a material; the error names the key
+/// (`min`, or none for the whole table).
+fn variable_of(v: &RawVariable, variable: &Variable) -> Result<Read, ExploreError> {
     let text_of = |q: &RawQuantity| match q {
         RawQuantity::Number(x) => x.to_string(),
         RawQuantity::Integer(i) => i.to_string(),
@@ -717,26 +739,32 @@ fn variable_of(v: &RawVariable, variable: &Variable) -> Result<Read, String> {
     match given {
         (false, false, true) => {
             let value = text_of(v.value.as_ref().expect("matched Some"));
-            check_fixed(variable, &value).map_err(|e| format!(".value: {e}"))?;
+            check_fixed(variable, &value).map_err(|e| at_key(e, "value"))?;
             return Ok(Read::Fixed(value));
         }
         (false, true, false) if variable.is_categorical() => {}
         (true, false, false) if !variable.is_categorical() => {}
         _ if variable.is_categorical() => {
-            return Err(": a material takes values = [\"…\", …] (its materials) or value".into());
-        }
-        _ if v.values.is_some() => {
-            return Err(format!(
-                ".values: a list of values is for the material of a part ({}); '{}' is a number: \
-                 give min and max, or value (a fixed variable)",
-                material_paths(),
-                variable.path()
+            return Err(ExploreError::input(
+                "",
+                "a material takes values = [\"…\", …] (its materials) or value",
             ));
         }
-        _ => return Err(": give min and max, or value (a fixed variable)".into()),
+        _ if v.values.is_some() => {
+            return Err(ExploreError::input(
+                "values",
+                format!(
+                    "a list of values is for the material of a part ({}); '{}' is a number: give \
+                     min and max, or value (a fixed variable)",
+                    material_paths(),
+                    variable.path()
+                ),
+            ));
+        }
+        _ => return Err(ExploreError::input("", "give min and max, or value (a fixed variable)")),
     }
     if let Some(levels) = &v.values {
-        let variable = variable.clone().with_levels(levels).map_err(|e| format!(".values: {e}"))?;
+        let variable = variable.clone().with_levels(levels).map_err(|e| at_key(e, "values"))?;
         return Ok(match variable.levels() {
             [only] => Read::Fixed(only.clone()),
             levels => Read::Varied(VariableBounds {
@@ -747,17 +775,21 @@ fn variable_of(v: &RawVariable, variable: &Variable) -> Result<Read, String> {
             }),
         });
     }
-    let read = |q: &Option<RawQuantity>, which: &str| -> Result<f64, String> {
-        let q = q.as_ref().ok_or_else(|| format!(": give both min and max (no {which})"))?;
+    let read = |q: &Option<RawQuantity>, which: &str| -> Result<f64, ExploreError> {
+        let q = q.as_ref().ok_or_else(|| {
+            ExploreError::input("", format!("give both min and max (no {which})"))
+        })?;
         match q {
             RawQuantity::Number(x) => Ok(*x),
             RawQuantity::Integer(i) => Ok(*i as f64),
-            RawQuantity::Text(t) => variable.parse_value(t).map_err(|e| format!(".{which}: {e}")),
+            RawQuantity::Text(t) => variable.parse_value(t).map_err(|e| at_key(e, which)),
         }
     };
     let (min, max) = (read(&v.min, "min")?, read(&v.max, "max")?);
     if !(min.is_finite() && max.is_finite() && min <= max) {
-        return Err(format!(": needs min ≤ max, got {min} and {max}"));
+        let e =
+            FieldError::new("max", "needs min ≤ max").with_value(format!("min {min}, max {max}"));
+        return Err(e.into());
     }
     if (max - min).abs() <= 0.0 {
         return Ok(Read::Fixed(text_of(v.min.as_ref().expect("read above"))));
@@ -780,23 +812,30 @@ fn check_fixed(variable: &Variable, value: &str) -> Result<(), ExploreError> {
 }
 
 /// The constraints, each with a min, a max or both, in the metric's unit.
-fn constraints_of(raw: &[RawConstraint]) -> Result<Vec<Constraint>, String> {
+fn constraints_of(raw: &[RawConstraint]) -> Result<Vec<Constraint>, ExploreError> {
     let mut constraints = Vec::new();
     for (i, c) in raw.iter().enumerate() {
-        let where_ = format!("constraint {} ('{}')", i + 1, c.metric);
-        let info = known_metric(&c.metric).map_err(|e| format!("{where_}: {e}"))?;
-        let read = |q: &Option<RawQuantity>, which: &str| -> Result<Option<f64>, String> {
+        let key = format!("constraint[{}]", i + 1);
+        let info = known_metric(&c.metric).map_err(|e| e.under(&key))?;
+        let read = |q: &Option<RawQuantity>, which: &str| -> Result<Option<f64>, ExploreError> {
             q.as_ref()
-                .map(|q| metric_value(q, info.unit).map_err(|e| format!("{where_}.{which}: {e}")))
+                .map(|q| {
+                    metric_value(q, info.unit)
+                        .map_err(|e| e.under(&format!("{key}.{which}")).for_metric(info.name))
+                })
                 .transpose()
         };
         let (min, max) = (read(&c.min, "min")?, read(&c.max, "max")?);
         if min.is_none() && max.is_none() {
-            return Err(format!("{where_}: give min, max or both"));
+            let e = ExploreError::input(&key, "give min, max or both");
+            return Err(e.for_metric(info.name));
         }
         if let (Some(lo), Some(hi)) = (min, max) {
             if lo > hi {
-                return Err(format!("{where_}: min {lo} is above max {hi}"));
+                let e = FieldError::new(format!("{key}.min"), "above max")
+                    .with_value(lo)
+                    .with_allowed(format!("<= max = {hi}"));
+                return Err(ExploreError::from(e).for_metric(info.name));
             }
         }
         constraints.push(Constraint { metric: info.name.to_string(), min, max });
@@ -805,21 +844,27 @@ fn constraints_of(raw: &[RawConstraint]) -> Result<Vec<Constraint>, String> {
 }
 
 /// At least one objective, each minimised or maximised.
-fn objectives_of(raw: &[RawObjective]) -> Result<Vec<Objective>, String> {
+fn objectives_of(raw: &[RawObjective]) -> Result<Vec<Objective>, ExploreError> {
     if raw.is_empty() {
-        return Err("no [[objective]]: give one (pattern search) or more (nsga2)".into());
+        return Err(ExploreError::input(
+            "objective",
+            "no [[objective]]: give one (pattern search) or more (nsga2)",
+        ));
     }
     let mut objectives = Vec::new();
     for (i, o) in raw.iter().enumerate() {
-        let where_ = format!("objective {} ('{}')", i + 1, o.metric);
-        let info = known_metric(&o.metric).map_err(|e| format!("{where_}: {e}"))?;
+        let key = format!("objective[{}]", i + 1);
+        let info = known_metric(&o.metric).map_err(|e| e.under(&key))?;
         let goal = match o.goal.trim().to_ascii_lowercase().as_str() {
             "minimize" | "minimise" | "min" => Goal::Minimize,
             "maximize" | "maximise" | "max" => Goal::Maximize,
             other => {
-                return Err(format!(
-                    "{where_}.goal: '{other}' is not allowed; use minimize or maximize"
-                ));
+                let e = FieldError::out_of_range(
+                    format!("{key}.goal"),
+                    format!("'{other}'"),
+                    "minimize or maximize",
+                );
+                return Err(ExploreError::from(e).for_metric(info.name));
             }
         };
         objectives.push(Objective { metric: info.name.to_string(), goal });
@@ -844,20 +889,22 @@ impl Algorithm {
     /// The algorithm with `budget` applied; an override the algorithm has no use for
     /// (`--generations` for pattern search) or out of range is an input error naming the flag.
     pub fn with_budget(&self, budget: BudgetOverride) -> Result<Algorithm, ExploreError> {
-        let bad = |what: String| ExploreError::Input(what);
         let not_nsga2 = |kind: &str, max_evaluations: usize| {
             if budget.generations.is_some() {
-                return Err(bad(format!(
-                    "--generations applies to NSGA-II; {kind} takes --max-evaluations"
-                )));
+                let e = FieldError::new(
+                    "generations",
+                    format!(
+                        "applies to NSGA-II; {kind} takes a number of evaluations (max_evaluations)"
+                    ),
+                );
+                return Err(ExploreError::from(e));
             }
             let max = budget.max_evaluations.unwrap_or(max_evaluations);
             let limit =
                 if kind == "surrogate" { MAX_SURROGATE_EVALUATIONS } else { MAX_EVALUATIONS };
             if max == 0 || max > limit {
-                return Err(bad(format!(
-                    "--max-evaluations {max} is not allowed; use 1 to {limit}"
-                )));
+                let e = FieldError::out_of_range("max_evaluations", max, format!("1 to {limit}"));
+                return Err(e.into());
             }
             Ok(max)
         };
@@ -868,19 +915,21 @@ impl Algorithm {
                 }
                 if let Some(max) = budget.max_evaluations {
                     if max < population {
-                        return Err(bad(format!(
-                            "--max-evaluations {max} is less than one generation of NSGA-II \
-                             (population {population}); use at least {population}"
-                        )));
+                        let e = FieldError::new(
+                            "max_evaluations",
+                            format!(
+                                "less than one generation of NSGA-II (population {population})"
+                            ),
+                        )
+                        .with_value(max)
+                        .with_allowed(format!(">= {population}"));
+                        return Err(e.into());
                     }
                     generations = generations.min(max / population - 1);
                 }
                 let designs = generations.checked_add(1).and_then(|g| g.checked_mul(population));
                 if designs.is_none_or(|d| d > MAX_EVALUATIONS) {
-                    return Err(bad(format!(
-                        "--generations {generations} of {population} is more than \
-                         {MAX_EVALUATIONS} designs; use fewer"
-                    )));
+                    return Err(too_many_generations("generations", generations, population).into());
                 }
                 Ok(Algorithm::Nsga2 { population, generations, seed: budget.seed.unwrap_or(seed) })
             }
@@ -905,6 +954,14 @@ impl Algorithm {
             Algorithm::PatternSearch { .. } => "pattern-search",
         }
     }
+}
+
+/// The error of `field` (`generations`, `algorithm.generations`) when `generations` of
+/// `population` are more than [`MAX_EVALUATIONS`] designs.
+fn too_many_generations(field: &str, generations: usize, population: usize) -> FieldError {
+    FieldError::new(field, format!("generations of {population} designs are too many; use fewer"))
+        .with_value(generations)
+        .with_allowed(format!("(generations + 1) × {population} <= {MAX_EVALUATIONS} designs"))
 }
 
 /// The largest NSGA-II population (each generation holds and sorts it in memory).
@@ -948,16 +1005,17 @@ fn algorithm_of(
     a: &RawAlgorithm,
     objectives: &[Objective],
     variables: &[VariableBounds],
-) -> Result<Algorithm, String> {
+) -> Result<Algorithm, ExploreError> {
     let seed = a.seed.unwrap_or(1);
     let kind = match a.kind.trim().to_ascii_lowercase().as_str() {
         "nsga2" | "nsga-ii" => "nsga2",
         "surrogate" | "bayesian" => "surrogate",
         "pattern-search" | "pattern_search" => "pattern-search",
         other => {
-            return Err(format!(
-                "algorithm.kind: '{other}' is not allowed; use nsga2, surrogate or pattern-search"
-            ));
+            let allowed = "nsga2, surrogate or pattern-search";
+            return Err(
+                FieldError::out_of_range("algorithm.kind", format!("'{other}'"), allowed).into()
+            );
         }
     };
     check_keys_of(a, kind)?;
@@ -973,14 +1031,17 @@ fn algorithm_of(
 fn check_categorical_search(
     variables: &[VariableBounds],
     algorithm: &Algorithm,
-) -> Result<(), String> {
+) -> Result<(), ExploreError> {
     let material = variables.iter().find(|v| !v.levels.is_empty());
     match (material, algorithm) {
-        (Some(v), Algorithm::PatternSearch { .. }) => Err(format!(
-            "algorithm.kind = pattern-search steps each variable along an order, and the \
-             materials of '{}' ({}) have none; use nsga2, or fix the material (value = \"…\")",
-            v.name,
-            v.levels.join(", ")
+        (Some(v), Algorithm::PatternSearch { .. }) => Err(ExploreError::input(
+            "algorithm.kind",
+            format!(
+                "pattern-search steps each variable along an order, and the materials of '{}' \
+                 ({}) have none; use nsga2, or fix the material (value = \"…\")",
+                v.name,
+                v.levels.join(", ")
+            ),
         )),
         _ => Ok(()),
     }
@@ -989,7 +1050,7 @@ fn check_categorical_search(
 /// Refuses a key of another kind of algorithm that would otherwise be silently ignored: a
 /// surrogate key (`batch`) with another kind, any other kind's key with the surrogate. (NSGA-II and
 /// pattern search keep ignoring each other's keys, as files written before the surrogate expect.)
-fn check_keys_of(a: &RawAlgorithm, kind: &str) -> Result<(), String> {
+fn check_keys_of(a: &RawAlgorithm, kind: &str) -> Result<(), ExploreError> {
     let given = [
         ("population", a.population.is_some()),
         ("generations", a.generations.is_some()),
@@ -1020,36 +1081,31 @@ fn check_keys_of(a: &RawAlgorithm, kind: &str) -> Result<(), String> {
         .filter(|(_, keys)| keys.contains(key))
         .map(|(k, _)| format!("\"{k}\""))
         .collect();
-    Err(format!(
-        "algorithm.{key} applies to kind = {}, not to kind = \"{kind}\"",
-        owners.join(" or ")
+    Err(ExploreError::input(
+        format!("algorithm.{key}"),
+        format!("applies to kind = {}, not to kind = \"{kind}\"", owners.join(" or ")),
     ))
 }
 
-fn nsga2_of(a: &RawAlgorithm, seed: u64) -> Result<Algorithm, String> {
+fn nsga2_of(a: &RawAlgorithm, seed: u64) -> Result<Algorithm, ExploreError> {
     let population = a.population.unwrap_or(24);
     if population < 4 || population % 2 == 1 || population > MAX_POPULATION {
-        return Err(format!(
-            "algorithm.population: {population} is not allowed; use an even number from 4 to \
-             {MAX_POPULATION}"
-        ));
+        let allowed = format!("an even number from 4 to {MAX_POPULATION}");
+        return Err(FieldError::out_of_range("algorithm.population", population, allowed).into());
     }
     let generations = a.generations.unwrap_or(10);
     let designs = generations.checked_add(1).and_then(|g| g.checked_mul(population));
     if designs.is_none_or(|d| d > MAX_EVALUATIONS) {
-        return Err(format!(
-            "algorithm.generations: {generations} generations of {population} is more than \
-             {MAX_EVALUATIONS} designs; use fewer"
-        ));
+        return Err(too_many_generations("algorithm.generations", generations, population).into());
     }
     Ok(Algorithm::Nsga2 { population, generations, seed })
 }
 
 /// The surrogate's settings, each checked against the range
 /// [`mrbrake_optim::surrogate::SurrogateOptions::validate`] allows (which checks them again).
-fn surrogate_of(a: &RawAlgorithm, variables: usize, seed: u64) -> Result<Algorithm, String> {
+fn surrogate_of(a: &RawAlgorithm, variables: usize, seed: u64) -> Result<Algorithm, ExploreError> {
     let out_of_range = |key: &str, value: &dyn std::fmt::Display, allowed: String| {
-        Err(format!("algorithm.{key}: {value} is not allowed; use {allowed}"))
+        Err(FieldError::out_of_range(format!("algorithm.{key}"), value, allowed).into())
     };
     let max_evaluations = a.max_evaluations.unwrap_or(200);
     if max_evaluations == 0 || max_evaluations > MAX_SURROGATE_EVALUATIONS {
@@ -1075,7 +1131,9 @@ fn surrogate_of(a: &RawAlgorithm, variables: usize, seed: u64) -> Result<Algorit
     }
     let acquisition = match a.acquisition.as_deref() {
         None => mrbrake_optim::surrogate::Acquisition::default(),
-        Some(text) => text.parse().map_err(|e| format!("algorithm.acquisition: {e}"))?,
+        Some(text) => text
+            .parse()
+            .map_err(|e| ExploreError::input("algorithm.acquisition", format!("{e}")))?,
     };
     let stall_tolerance = a.stall_tolerance.unwrap_or(1e-3);
     if !(stall_tolerance.is_finite() && (0.0..=1.0).contains(&stall_tolerance)) {
@@ -1101,84 +1159,95 @@ fn pattern_search_of(
     objectives: usize,
     variables: &[VariableBounds],
     seed: u64,
-) -> Result<Algorithm, String> {
+) -> Result<Algorithm, ExploreError> {
     if objectives != 1 {
-        return Err(format!(
-            "algorithm.kind = pattern-search optimises one objective; {objectives} are given \
-             (use nsga2 or surrogate for several)"
+        return Err(ExploreError::input(
+            "algorithm.kind",
+            format!(
+                "pattern-search optimises one objective; {objectives} are given (use nsga2 or \
+                 surrogate for several)"
+            ),
         ));
     }
     let random_poll = match a.poll.as_deref().map(str::trim) {
         None | Some("compass") => false,
         Some("random" | "random-orthogonal") => true,
         Some(other) => {
-            return Err(format!("algorithm.poll: '{other}' is not allowed; use compass or random"));
+            let e = FieldError::out_of_range(
+                "algorithm.poll",
+                format!("'{other}'"),
+                "compass or random",
+            );
+            return Err(e.into());
         }
     };
     let start = start_of(a.start.as_ref(), variables)?;
     let max_evaluations = a.max_evaluations.unwrap_or(200);
     if max_evaluations == 0 || max_evaluations > MAX_EVALUATIONS {
-        return Err(format!(
-            "algorithm.max_evaluations: {max_evaluations} is not allowed; use 1 to {MAX_EVALUATIONS}"
-        ));
+        let allowed = format!("1 to {MAX_EVALUATIONS}");
+        let e = FieldError::out_of_range("algorithm.max_evaluations", max_evaluations, allowed);
+        return Err(e.into());
     }
     Ok(Algorithm::PatternSearch { max_evaluations, seed, random_poll, start })
 }
 
 /// `algorithm.start`: `centre`, `base`, or a table of values by variable name (each inside its
 /// bounds, read with the variable's unit).
-fn start_of(raw: Option<&RawStart>, variables: &[VariableBounds]) -> Result<Start, String> {
+fn start_of(raw: Option<&RawStart>, variables: &[VariableBounds]) -> Result<Start, ExploreError> {
     let table = match raw {
         None => return Ok(Start::Centre),
         Some(RawStart::Named(name)) => {
             return match name.trim() {
                 "centre" | "center" => Ok(Start::Centre),
                 "base" => Ok(Start::Base),
-                other => Err(format!(
-                    "algorithm.start: '{other}' is not allowed; use centre, base or a table of \
-                     values by variable name"
-                )),
+                other => Err(FieldError::out_of_range(
+                    "algorithm.start",
+                    format!("'{other}'"),
+                    "centre, base or a table of values by variable name",
+                )
+                .into()),
             };
         }
         Some(RawStart::Values(table)) => table,
     };
     let mut values = vec![None; variables.len()];
     for (name, value) in table {
-        let where_ = format!("algorithm.start.{name}");
+        let key = format!("algorithm.start.{name}");
         let index =
             variables.iter().position(|v| v.name.trim() == name.trim()).ok_or_else(|| {
                 let names: Vec<&str> = variables.iter().map(|v| v.name.as_str()).collect();
-                format!(
-                    "{where_}: not a variable of this problem (variables: {})",
-                    names.join(", ")
-                )
+                FieldError::new(&key, "not a variable of this problem")
+                    .with_allowed(names.join(", "))
             })?;
         let variable = &variables[index];
         let field = crate::variable::resolve(name, true)
             .or_else(|_| crate::variable::resolve(name, false))
-            .map_err(|e| format!("{where_}: {e}"))?;
+            .map_err(|e| at_key(e, &key))?;
         let si = match value {
             toml::Value::Float(x) => *x,
             toml::Value::Integer(i) => *i as f64,
-            toml::Value::String(text) => {
-                field.parse_value(text).map_err(|e| format!("{where_}: {e}"))?
+            toml::Value::String(text) => field.parse_value(text).map_err(|e| at_key(e, &key))?,
+            other => {
+                let e = FieldError::new(&key, "not a number or a quantity").with_value(other);
+                return Err(e.into());
             }
-            other => return Err(format!("{where_}: {other} is not a number or a quantity")),
         };
         if field.quantity() == Some(crate::variable::Quantity::Integer)
             && (si - si.round()).abs() > 1e-9
         {
-            return Err(format!(
-                "{where_}: {si} is not a whole number (this field counts something)"
-            ));
+            let e = FieldError::new(&key, "not a whole number (this field counts something)")
+                .with_value(si);
+            return Err(e.into());
         }
         if !(si.is_finite() && (variable.min..=variable.max).contains(&si)) {
-            return Err(format!(
-                "{where_}: {} is outside the variable's bounds {} to {}",
-                field.display_value(si),
-                field.display_value(variable.min),
-                field.display_value(variable.max)
-            ));
+            let e = FieldError::new(&key, "outside the variable's bounds")
+                .with_value(field.display_value(si))
+                .with_allowed(format!(
+                    "{} to {}",
+                    field.display_value(variable.min),
+                    field.display_value(variable.max)
+                ));
+            return Err(e.into());
         }
         values[index] = Some(si);
     }
@@ -1190,23 +1259,26 @@ fn start_of(raw: Option<&RawStart>, variables: &[VariableBounds]) -> Result<Star
 fn hypervolume_reference_of(
     a: &RawAlgorithm,
     objectives: &[Objective],
-) -> Result<Option<Vec<f64>>, String> {
+) -> Result<Option<Vec<f64>>, ExploreError> {
     let Some(raw) = &a.hypervolume_reference else { return Ok(None) };
     if raw.len() != objectives.len() {
-        return Err(format!(
-            "algorithm.hypervolume_reference: {} values for {} objectives; give one per objective, \
-             in the order of the [[objective]] tables",
-            raw.len(),
-            objectives.len()
-        ));
+        let e = FieldError::new(
+            "algorithm.hypervolume_reference",
+            "one value per objective, in the order of the [[objective]] tables",
+        )
+        .with_value(format!("{} values", raw.len()))
+        .with_allowed(format!("{} values", objectives.len()));
+        return Err(e.into());
     }
     let mut reference = Vec::with_capacity(raw.len());
     for (k, (q, objective)) in raw.iter().zip(objectives).enumerate() {
-        let where_ = format!("algorithm.hypervolume_reference[{}] ({})", k + 1, objective.metric);
+        let key = format!("algorithm.hypervolume_reference[{}]", k + 1);
         let unit = metric_info(&objective.metric).map_or("", |m| m.unit);
-        let value = metric_value(q, unit).map_err(|e| format!("{where_}: {e}"))?;
+        let value =
+            metric_value(q, unit).map_err(|e| e.under(&key).for_metric(&objective.metric))?;
         if !value.is_finite() {
-            return Err(format!("{where_}: {value} is not a finite number"));
+            let e = FieldError::out_of_range(&key, value, "finite");
+            return Err(ExploreError::from(e).for_metric(&objective.metric));
         }
         reference.push(match objective.goal {
             Goal::Minimize => value,
@@ -1222,19 +1294,21 @@ pub const MAX_MANUFACTURING_RESOLUTION: f64 = 1e-3;
 
 /// `manufacturing_resolution`: a length from 0 to [`MAX_MANUFACTURING_RESOLUTION`] (default
 /// 0.01 mm).
-fn resolution_of(raw: Option<&RawQuantity>) -> Result<f64, String> {
+fn resolution_of(raw: Option<&RawQuantity>) -> Result<f64, ExploreError> {
     let Some(q) = raw else { return Ok(DEFAULT_MANUFACTURING_RESOLUTION) };
     let value = match q {
         RawQuantity::Number(x) => *x,
         RawQuantity::Integer(i) => *i as f64,
-        RawQuantity::Text(text) => {
-            parse(text, Dimension::Length).map_err(|e| format!("manufacturing_resolution: {e}"))?
-        }
+        RawQuantity::Text(text) => parse(text, Dimension::Length)
+            .map_err(|e| ExploreError::input("manufacturing_resolution", e.to_string()))?,
     };
     if !(value.is_finite() && (0.0..=MAX_MANUFACTURING_RESOLUTION).contains(&value)) {
-        return Err(format!(
-            "manufacturing_resolution: {value} m is not allowed; use 0 (no rounding) to 1mm"
-        ));
+        let e = FieldError::out_of_range(
+            "manufacturing_resolution",
+            format!("{value} m"),
+            "0 (no rounding) to 1mm",
+        );
+        return Err(e.into());
     }
     Ok(value)
 }
@@ -1242,14 +1316,14 @@ fn resolution_of(raw: Option<&RawQuantity>) -> Result<f64, String> {
 /// The default manufacturing resolution of the written front designs: 0.01 mm.
 pub const DEFAULT_MANUFACTURING_RESOLUTION: f64 = 1e-5;
 
-pub(crate) fn known_metric(
-    name: &str,
-) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
+/// The metric called `name` (its current name or a legacy one); an error names the field
+/// `metric`, the name and the metrics there are.
+pub fn known_metric(name: &str) -> Result<&'static crate::evaluate::MetricInfo, ExploreError> {
     metric_info(current_metric_name(name.trim()).0).ok_or_else(|| {
-        ExploreError::Input(format!(
-            "unknown metric '{name}'; allowed: {}",
-            METRICS.iter().map(|m| m.name).collect::<Vec<_>>().join(", ")
-        ))
+        FieldError::new("metric", "unknown metric")
+            .with_value(format!("'{name}'"))
+            .with_allowed(METRICS.iter().map(|m| m.name).collect::<Vec<_>>().join(", "))
+            .into()
     })
 }
 
@@ -1270,13 +1344,13 @@ fn metric_value(q: &RawQuantity, unit: &str) -> Result<f64, ExploreError> {
                 "°C" => Dimension::TemperatureCelsius,
                 _ => {
                     return text.trim().parse::<f64>().map_err(|_| {
-                        ExploreError::Input(format!(
-                            "'{text}': give a bare number in {unit} for this metric"
-                        ))
+                        FieldError::new("", format!("give a bare number in {unit} for this metric"))
+                            .with_value(format!("'{text}'"))
+                            .into()
                     });
                 }
             };
-            parse(text, dimension).map_err(|e| ExploreError::Input(e.to_string()))
+            parse(text, dimension).map_err(|e| ExploreError::input("", e.to_string()))
         }
     }
 }
@@ -1344,7 +1418,8 @@ generations = 2
         let bad = GOOD.replace("torque_max_Nm", "torque_maximum");
         let e = OptimizationProblem::from_toml_str(&bad, Path::new("p.toml")).unwrap_err();
         let text = e.to_string();
-        assert!(text.contains("p.toml") && text.contains("constraint 1"), "{text}");
+        assert!(text.contains("p.toml: constraint[1].metric: unknown metric"), "{text}");
+        assert!(text.contains("got 'torque_maximum'"), "{text}");
         assert!(e.is_input_error());
         let odd = GOOD.replace("population = 8", "population = 7");
         let text = OptimizationProblem::from_toml_str(&odd, Path::new("p.toml")).unwrap_err();
@@ -1353,12 +1428,12 @@ generations = 2
         assert!(OptimizationProblem::from_toml_str(&ps, Path::new("p.toml")).is_err());
         let cubic = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\norder = 3");
         let text = OptimizationProblem::from_toml_str(&cubic, Path::new("p.toml")).unwrap_err();
-        assert!(text.to_string().contains("order: 3 is not allowed; use 1 or 2"), "{text}");
+        assert!(text.to_string().contains("p.toml: order: got 3; allowed: 1 or 2"), "{text}");
         let ps_zero = ps
             .replace("[[objective]]\nmetric = \"volume_m3\"\n", "")
             .replace("kind = \"pattern-search\"", "kind = \"pattern-search\"\nmax_evaluations = 0");
         let text = OptimizationProblem::from_toml_str(&ps_zero, Path::new("p.toml")).unwrap_err();
-        assert!(text.to_string().contains("algorithm.max_evaluations: 0"), "{text}");
+        assert!(text.to_string().contains("algorithm.max_evaluations: got 0"), "{text}");
         let quadratic = GOOD.replace("mesh = \"coarse\"", "mesh = \"coarse\"\norder = 2");
         let p = OptimizationProblem::from_toml_str(&quadratic, Path::new("p.toml")).unwrap();
         assert_eq!(p.settings.order, ElementOrder::P2);
@@ -1382,7 +1457,8 @@ generations = 2
         );
         assert_eq!(quick(None, None).unwrap(), nsga);
         let e = quick(None, Some(7)).unwrap_err().to_string();
-        assert!(e.contains("--max-evaluations 7") && e.contains("at least 8"), "{e}");
+        assert!(e.starts_with("max_evaluations: less than one generation"), "{e}");
+        assert!(e.contains("got 7; allowed: >= 8"), "{e}");
         assert!(quick(Some(usize::MAX), None).is_err());
         let ps = Algorithm::PatternSearch {
             max_evaluations: 200,
@@ -1398,7 +1474,10 @@ generations = 2
             Algorithm::PatternSearch { max_evaluations: 12, .. }
         ));
         assert!(
-            b(Some(3), None).unwrap_err().to_string().contains("--generations applies to NSGA-II")
+            b(Some(3), None)
+                .unwrap_err()
+                .to_string()
+                .starts_with("generations: applies to NSGA-II")
         );
         assert!(b(None, Some(0)).is_err());
     }
@@ -1469,12 +1548,12 @@ generations = 2
         bad("acquisition = \"qparego\"", "acquisition");
         bad("max_evaluations = 0", "algorithm.max_evaluations");
         bad("stall_tolerance = -1.0", "algorithm.stall_tolerance");
-        bad("population = 8", "algorithm.population applies to kind = \"nsga2\"");
+        bad("population = 8", "algorithm.population: applies to kind = \"nsga2\"");
         bad("start = \"base\"", "algorithm.start");
         bad("hypervolume_reference = [1.0]", "algorithm.hypervolume_reference");
         let nsga_batch = GOOD.replace("population = 8", "population = 8\nbatch = 2");
         let e = OptimizationProblem::from_toml_str(&nsga_batch, Path::new("p.toml")).unwrap_err();
-        assert!(e.to_string().contains("algorithm.batch applies to kind = \"surrogate\""), "{e}");
+        assert!(e.to_string().contains("algorithm.batch: applies to kind = \"surrogate\""), "{e}");
         let coarse = GOOD.replace(
             "mesh = \"coarse\"",
             "mesh = \"coarse\"\nmanufacturing_resolution = \"0.1mm\"",

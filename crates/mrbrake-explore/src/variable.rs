@@ -20,6 +20,7 @@
 
 use mrbrake_design::spec::{MATERIAL_FIELDS, MaterialField, numeric_fields};
 pub use mrbrake_design::spec::{Quantity, SpecField};
+use mrbrake_error::FieldError;
 use mrbrake_optim::space::Bounds;
 use mrbrake_store::VariableValue;
 use mrbrake_units::{Dimension, parse};
@@ -100,21 +101,24 @@ impl Variable {
     /// ([`MaterialField::check_suits`]), none twice, at least one. An error names the variable, the
     /// level and the allowed materials; a numeric variable takes no levels.
     pub fn with_levels(mut self, levels: &[String]) -> Result<Self, ExploreError> {
-        let bad = |why: String| ExploreError::Input(format!("variable '{}': {why}", self.name));
+        let name = self.name.clone();
+        let bad = |why: String| ExploreError::input(&name, format!("variable: {why}"));
         let VariableKind::Material { field, levels: own } = &mut self.kind else {
             return Err(bad("a numeric field takes min and max, not a list of levels".into()));
         };
         if levels.is_empty() {
-            return Err(bad(format!("give at least one material; allowed: {}", allowed(field))));
+            let e = FieldError::new(&name, "variable: give at least one material")
+                .with_allowed(allowed(field));
+            return Err(e.into());
         }
         let mut names: Vec<String> = Vec::with_capacity(levels.len());
         for level in levels {
-            field.check_suits(level).map_err(ExploreError::Input)?;
-            let name = level.trim().to_ascii_lowercase();
-            if names.contains(&name) {
-                return Err(bad(format!("the material '{name}' is listed twice")));
+            field.check_suits(level)?;
+            let level = level.trim().to_ascii_lowercase();
+            if names.contains(&level) {
+                return Err(bad(format!("the material '{level}' is listed twice")));
             }
-            names.push(name);
+            names.push(level);
         }
         *own = names;
         Ok(self)
@@ -124,9 +128,7 @@ impl Variable {
     /// takes a whole number; a material variable a level's name (its index is returned).
     pub fn parse_value(&self, text: &str) -> Result<f64, ExploreError> {
         let text = text.trim();
-        let bad = |why: String| {
-            ExploreError::Input(format!("variable '{}' ({}): {why}", self.name, self.path()))
-        };
+        let bad = |why: String| self.error(why);
         let field = match &self.kind {
             VariableKind::Numeric(field) => field,
             VariableKind::Material { levels, .. } => {
@@ -163,13 +165,22 @@ impl Variable {
         let levels = self.levels();
         let index = x.round();
         if (x - index).abs() > 1e-9 || index < 0.0 || index as usize >= levels.len() {
-            return Err(ExploreError::Input(format!(
-                "variable '{}': {x} is not the index of one of its {} materials",
-                self.name,
-                levels.len()
-            )));
+            let e = FieldError::new(&self.name, "variable: not the index of one of its materials")
+                .with_value(x)
+                .with_allowed(format!("0 to {}", levels.len().saturating_sub(1)));
+            return Err(e.into());
         }
         Ok(&levels[index as usize])
+    }
+
+    /// An input error about this variable (named as written) and the field it sets, saying `why`.
+    fn error(&self, why: String) -> ExploreError {
+        let message = if self.name == self.path() {
+            format!("variable: {why}")
+        } else {
+            format!("variable ({}): {why}", self.path())
+        };
+        ExploreError::input(&self.name, message)
     }
 
     /// The value a stored record keeps: the number, or the material by name.
@@ -258,22 +269,26 @@ pub fn resolve(name: &str, is_drum: bool) -> Result<Variable, ExploreError> {
     }
     if let Some(&(symbol, drum, disc)) = SYMBOLS.iter().find(|(s, _, _)| *s == trimmed) {
         let path = if is_drum { drum } else { disc };
-        let field = path.and_then(|path| numeric_fields().find(|f| f.path == path)).ok_or_else(|| {
-            ExploreError::Input(format!(
-                "variable '{symbol}' has no meaning for a {} brake; name the field instead (one of: {})",
-                if is_drum { "drum" } else { "disc" },
-                field_list()
-            ))
-        })?;
+        let field =
+            path.and_then(|path| numeric_fields().find(|f| f.path == path)).ok_or_else(|| {
+                let configuration = if is_drum { "drum" } else { "disc" };
+                FieldError::new(
+                    symbol,
+                    format!(
+                        "variable: no meaning for a {configuration} brake; name the field instead"
+                    ),
+                )
+                .with_allowed(field_list())
+            })?;
         return Ok(variable(field));
     }
-    Err(ExploreError::Input(format!(
-        "unknown design variable '{trimmed}': use a spec field ({}), a material ({}) or a thesis \
-         symbol ({})",
+    let e = FieldError::new(trimmed, "unknown design variable").with_allowed(format!(
+        "a spec field ({}), a material ({}) or a thesis symbol ({})",
         field_list(),
         MATERIAL_FIELDS.iter().map(|f| f.path).collect::<Vec<_>>().join(", "),
         SYMBOLS.iter().map(|s| s.0).collect::<Vec<_>>().join(", ")
-    )))
+    ));
+    Err(e.into())
 }
 
 fn field_list() -> String {
@@ -287,16 +302,14 @@ pub fn set_field(spec: &mut toml::Table, field: &SpecField, si: f64) -> Result<(
         Quantity::Integer => {
             let rounded = si.round();
             if (si - rounded).abs() > 1e-9 || rounded < 0.0 {
-                return Err(ExploreError::Input(format!(
-                    "{}: {si} is not a non-negative whole number",
-                    field.path
-                )));
+                let e = FieldError::out_of_range(field.path, si, "a whole number >= 0");
+                return Err(e.into());
             }
             toml::Value::Integer(rounded as i64)
         }
         Quantity::Length | Quantity::Current | Quantity::Factor | Quantity::Conductivity => {
             if !si.is_finite() {
-                return Err(ExploreError::Input(format!("{}: {si} is not finite", field.path)));
+                return Err(FieldError::out_of_range(field.path, si, "finite").into());
             }
             toml::Value::Float(si)
         }
@@ -311,16 +324,17 @@ pub fn set_path(
     value: Option<toml::Value>,
 ) -> Result<(), ExploreError> {
     let mut parts: Vec<&str> = path.split('.').collect();
-    let last = parts.pop().filter(|s| !s.is_empty()).ok_or_else(|| {
-        ExploreError::Input(format!("'{path}' is not a dotted spec path such as drum.gap"))
-    })?;
+    let last = parts
+        .pop()
+        .filter(|s| !s.is_empty())
+        .ok_or_else(|| FieldError::new(path, "not a dotted spec path such as drum.gap"))?;
     let mut table = spec;
     for part in parts {
         let entry =
             table.entry(part.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        table = entry.as_table_mut().ok_or_else(|| {
-            ExploreError::Input(format!("'{path}': '{part}' is a value, not a table"))
-        })?;
+        table = entry
+            .as_table_mut()
+            .ok_or_else(|| FieldError::new(path, format!("'{part}' is a value, not a table")))?;
     }
     match value {
         Some(v) => {
@@ -337,9 +351,9 @@ pub fn set_path(
 /// the `set` of the Python package) into its path and value, both trimmed.
 pub fn parse_set(text: &str) -> Result<(String, String), ExploreError> {
     let (path, value) = text.split_once('=').ok_or_else(|| {
-        ExploreError::Input(format!(
-            "--set '{text}': expected PATH=VALUE, e.g. coil.turns=fill or materials.bobbin=pom"
-        ))
+        FieldError::new("set", "expected PATH=VALUE")
+            .with_value(format!("'{text}'"))
+            .with_allowed("e.g. coil.turns=fill or materials.bobbin=pom")
     })?;
     Ok((path.trim().to_string(), value.trim().to_string()))
 }

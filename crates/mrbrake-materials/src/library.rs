@@ -344,6 +344,25 @@ pub fn bh_curve(name: &str) -> Result<Arc<BhCurve>, MaterialError> {
     }
 }
 
+/// Checks the points at which a material's curves are read for people (the `--b`/`--h` of
+/// `mrbrake materials show`, Python's `b_of_h`, `tau_y_of_b` and `to_dict`): each finite and not
+/// negative, the range the B-H and τ_y curves are tabulated on (odd and even in their variable).
+/// The error names `field` with the point's index (`b[2]`), its value in `unit` and the range.
+pub fn check_curve_points(
+    field: &str,
+    values: &[f64],
+    unit: &str,
+) -> Result<(), Box<mrbrake_error::FieldError>> {
+    match values.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
+        None => Ok(()),
+        Some(k) => Err(Box::new(mrbrake_error::FieldError::out_of_range(
+            format!("{field}[{k}]"),
+            format!("{} {unit}", values[k]),
+            format!("finite, >= 0 {unit}"),
+        ))),
+    }
+}
+
 /// All materials, parsed on first use.
 pub fn all() -> Result<&'static [Material], MaterialError> {
     library()

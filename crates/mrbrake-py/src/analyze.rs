@@ -31,8 +31,7 @@ fn options(
     temperature: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<AnalysisOptions> {
     let points = currents.unwrap_or(AnalysisOptions::default().points);
-    let order = ElementOrder::from_degree(order.into())
-        .ok_or_else(|| error::input(format!("order must be 1 or 2, got {order}")))?;
+    let order = ElementOrder::try_from(i64::from(order)).map_err(error::to_py)?;
     Ok(AnalysisOptions {
         mesh: MeshLevel::parse(mesh).map_err(error::to_py)?,
         points,
@@ -64,7 +63,8 @@ fn analyze(
             let spec = input.load()?;
             AnalysisRequest::of(&spec).options(options).run_with_field()
         })
-        .map_err(error::to_py)?;
+        // The library's `points` is the keyword `currents`.
+        .map_err(|e| error::to_py(e.with_field_names(&[("points", "currents")])))?;
     Ok(PyAnalysis { analysis, field })
 }
 

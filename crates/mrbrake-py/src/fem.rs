@@ -24,12 +24,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 #[pyfunction]
 #[pyo3(signature = (problem, order=None))]
 fn fem_solve(py: Python<'_>, problem: PathBuf, order: Option<u8>) -> PyResult<PyFemSolution> {
-    let order = order
-        .map(|o| {
-            ElementOrder::from_degree(o.into())
-                .ok_or_else(|| error::input(format!("order must be 1 or 2, got {o}")))
-        })
-        .transpose()?;
+    let order =
+        order.map(|o| ElementOrder::try_from(i64::from(o))).transpose().map_err(error::to_py)?;
     py.detach(|| {
         let solved = problem_file::solve(&problem, order).map_err(error::to_py)?;
         let report = serde_json::to_value(solved.report()).map_err(error::internal)?;

@@ -40,12 +40,11 @@ pub struct PyMaterial {
     material: &'static Material,
 }
 
-/// Values of a non-negative float64 array (a `ValueError` names `name` otherwise).
-fn non_negative(values: &PyReadonlyArray1<'_, f64>, name: &str) -> PyResult<Vec<f64>> {
+/// Values of a float64 array of curve points `name` (in `unit`), by the library's rule
+/// ([`library::check_curve_points`]: finite, not negative).
+fn curve_points(values: &PyReadonlyArray1<'_, f64>, name: &str, unit: &str) -> PyResult<Vec<f64>> {
     let values = values.as_array().to_vec();
-    if let Some(v) = values.iter().find(|v| v.is_nan() || **v < 0.0) {
-        return Err(error::input(format!("{name}: {v} must be >= 0")));
-    }
+    library::check_curve_points(name, &values, unit).map_err(error::to_py)?;
     Ok(values)
 }
 
@@ -104,7 +103,7 @@ impl PyMaterial {
         py: Python<'py>,
         h: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let h = non_negative(&h, "h")?;
+        let h = curve_points(&h, "h", "A/m")?;
         Ok(h.iter().map(|&h| self.material.magnetic.b_of_h(h)).collect::<Vec<_>>().into_pyarray(py))
     }
 
@@ -117,7 +116,7 @@ impl PyMaterial {
         let Some(fluid) = &self.material.fluid else {
             return Err(error::input(format!("{} is not an MR fluid", self.material.name)));
         };
-        let b = non_negative(&b, "b")?;
+        let b = curve_points(&b, "b", "T")?;
         Ok(b.iter().map(|&b| fluid.tau_y_of_b(b)).collect::<Vec<_>>().into_pyarray(py))
     }
 
@@ -130,8 +129,8 @@ impl PyMaterial {
         b: Option<PyReadonlyArray1<'_, f64>>,
         h: Option<PyReadonlyArray1<'_, f64>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let b = b.map_or(Ok(DEFAULT_B_T.to_vec()), |b| non_negative(&b, "b"))?;
-        let h = h.map_or(Ok(DEFAULT_H_A_PER_M.to_vec()), |h| non_negative(&h, "h"))?;
+        let b = b.map_or(Ok(DEFAULT_B_T.to_vec()), |b| curve_points(&b, "b", "T"))?;
+        let h = h.map_or(Ok(DEFAULT_H_A_PER_M.to_vec()), |h| curve_points(&h, "h", "A/m"))?;
         json_to_py(py, &show_json(self.material, &b, &h))
     }
 

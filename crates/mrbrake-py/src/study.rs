@@ -30,8 +30,7 @@ fn settings(
     order: u8,
     speed: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<EvaluationSettings> {
-    let order = ElementOrder::from_degree(order.into())
-        .ok_or_else(|| error::input(format!("order must be 1 or 2, got {order}")))?;
+    let order = ElementOrder::try_from(i64::from(order)).map_err(error::to_py)?;
     Ok(EvaluationSettings {
         mesh: MeshLevel::parse(mesh).map_err(error::to_py)?,
         speed_rad_s: quantity(speed, "1rad/s", Dimension::AngularVelocity, "speed")?,
@@ -102,9 +101,6 @@ fn sweep<'py>(
     order: u8,
     speed: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if vary.is_empty() {
-        return Err(error::input("vary: give at least one variable (NAME=VALUES)"));
-    }
     let spec = SpecInput::from_py(spec)?;
     let sampling = match sample {
         Some(text) => Sampling::parse(&text, seed).map_err(error::to_py)?,

@@ -68,7 +68,11 @@ def test_bad_arguments_are_value_errors(cli):
     code, message = cli.fail("analyze", "--mesh", "bogus")
     with pytest.raises(ValueError) as e:
         mrbrake.analyze(mesh="bogus")
-    assert str(e.value) == message
+    # The same field error, named by the CLI's flag and by the keyword argument.
+    assert message == f"--{e.value}" and str(e.value).startswith("mesh: ")
+    assert "coarse, default, fine" in message
+    with pytest.raises(ValueError, match=r"^currents: .*got 1; allowed: >= 2"):
+        mrbrake.analyze(currents=1)
     for kwargs in [dict(order=3), dict(currents=1), dict(speed="5 parsecs"), dict(spec=42)]:
         with pytest.raises(ValueError):
             mrbrake.analyze(**kwargs)

@@ -4,13 +4,14 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake::design::analysis::{AnalysisOptions, AnalysisRequest, ElementOrder};
+use mrbrake::design::analysis::{AnalysisOptions, AnalysisRequest};
 use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::design::spec::{BrakeSpec, default_spec};
 use mrbrake::observe::{Count, Flow};
 use mrbrake::report::analysis as report;
 use mrbrake::units::{Dimension, parse};
 
+use super::field_flags;
 use crate::error::CommandResult;
 use crate::error::InputError;
 use crate::output::{print_json, print_text};
@@ -28,7 +29,7 @@ pub struct AnalyzeArgs {
     mesh: String,
     /// Element order of the field solution: 1 (linear triangles) or 2 (quadratic, 6-node
     /// triangles on the same mesh: about four times the unknowns, B one order more accurate).
-    #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+    #[arg(long, value_name = "1|2", default_value_t = 1)]
     order: u8,
     /// Number of currents in the torque–current sweep (0 to the maximum current).
     #[arg(long, default_value_t = 21)]
@@ -71,7 +72,7 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         None => default_spec(),
     };
     let options = AnalysisOptions {
-        mesh: MeshLevel::parse(&a.mesh)?,
+        mesh: MeshLevel::parse(&a.mesh).map_err(field_flags::design)?,
         points: a.points,
         speed_rad_s: parse(&a.speed, Dimension::AngularVelocity)
             .map_err(|e| InputError(format!("--speed: {e}")))?,
@@ -79,7 +80,7 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
             .map_err(|e| InputError(format!("--seal-friction: {e}")))?,
         temperature_c: parse(&a.temperature, Dimension::TemperatureCelsius)
             .map_err(|e| InputError(format!("--temperature: {e}")))?,
-        order: ElementOrder::from_degree(a.order.into()).expect("clap accepts only 1 and 2"),
+        order: super::field_flags::order(a.order)?,
     };
     let mut display = ProgressDisplay::steps("analyze", "currents", a.json);
     let request = AnalysisRequest::of(&spec).options(options).observe(|c: &Count| {
@@ -87,10 +88,10 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         Flow::Continue
     });
     let (analysis, field) = if a.plot_dir.is_some() {
-        let (analysis, field) = request.run_with_field()?;
+        let (analysis, field) = request.run_with_field().map_err(field_flags::design)?;
         (analysis, Some(field))
     } else {
-        (request.run()?, None)
+        (request.run().map_err(field_flags::design)?, None)
     };
     display.finish();
     for w in &analysis.warnings {

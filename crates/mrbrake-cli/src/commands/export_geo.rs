@@ -34,7 +34,7 @@ pub fn run(args: ExportGeoArgs) -> CommandResult {
         Some(path) => BrakeSpec::from_path(path)?,
         None => default_spec(),
     };
-    let level = MeshLevel::parse(&args.mesh)?;
+    let level = MeshLevel::parse(&args.mesh).map_err(super::field_flags::design)?;
     // The spec's errors name its file and lines.
     let validated = spec.validate()?;
     let warnings = validated.warnings;

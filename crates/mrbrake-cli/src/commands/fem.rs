@@ -5,7 +5,6 @@
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use mrbrake::fem::discretisation::dofs::ElementOrder;
 use mrbrake::problem_file::{self, Physics};
 use mrbrake::report::field_map::{FieldMap, View, save_field_map};
 
@@ -28,7 +27,7 @@ pub struct SolveArgs {
     problem: PathBuf,
     /// Element order: 1 (linear triangles) or 2 (quadratic, 6-node triangles on the same mesh);
     /// overrides the problem file's `order` key (default 1).
-    #[arg(long, value_name = "1|2", value_parser = clap::value_parser!(u8).range(1..=2))]
+    #[arg(long, value_name = "1|2")]
     order: Option<u8>,
     /// Print a JSON object (probes, regions, coils, energy_J, newton_iterations, converged, nodes,
     /// elements, order, unknowns, timings_s) instead of text.
@@ -58,9 +57,7 @@ pub fn run(command: FemCommand) -> CommandResult {
 
 fn solve(args: SolveArgs) -> CommandResult {
     crate::output::check_plot_path("--plot", args.plot.as_deref())?;
-    let order = args
-        .order
-        .map(|degree| ElementOrder::from_degree(degree.into()).expect("clap accepts only 1 and 2"));
+    let order = args.order.map(super::field_flags::order).transpose()?;
     // The library reads the file's physics and solves it; a plot (|B| and flux lines) only has a
     // meaning for a magnetic file, so a heat file's --plot is refused before the solve.
     if args.plot.is_some() {

@@ -213,7 +213,7 @@ fn brake_torque(brake: ClosedFormBrake, a: &FluidArgs, gap: Option<&str>) -> Com
         eta_pa_s: optional("--eta", a.eta.as_deref(), Dimension::Viscosity)?,
         gap_m: optional("--gap", gap, Dimension::Length)?,
     };
-    let answer = formula::torque(&request)?;
+    let answer = formula::torque(&request).map_err(super::field_flags::design)?;
     let report = BrakeFormulaReport(&answer);
     if a.json {
         return print_json(&report.json());
@@ -240,7 +240,7 @@ fn coil(a: CoilArgs) -> CommandResult {
             Dimension::TemperatureCelsius,
         )?,
     };
-    let answer = formula::coil(&request)?;
+    let answer = formula::coil(&request).map_err(super::field_flags::design)?;
     for warning in &answer.warnings {
         eprintln!("warning: {warning}");
     }

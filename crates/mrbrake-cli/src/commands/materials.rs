@@ -6,7 +6,6 @@ use mrbrake::report::materials::{self as report, DEFAULT_B_T, DEFAULT_H_A_PER_M}
 use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
-use crate::error::InputError;
 use crate::output::{print_json, print_text};
 
 /// `mrbrake materials` subcommands.
@@ -64,23 +63,12 @@ fn list(a: &ListArgs) -> CommandResult {
     print_text(&report::list_text(&rows))
 }
 
-/// Parses a list of non-negative quantities of one dimension.
-fn non_negative_values(flag: &str, texts: &[String], dim: Dimension) -> CommandResult<Vec<f64>> {
-    texts
-        .iter()
-        .map(|t| {
-            let v = parse(t, dim)?;
-            if v < 0.0 {
-                return Err(InputError(format!(
-                    "{flag} {t}: must be >= 0 ({} in {})",
-                    dim.describe(),
-                    dim.si_unit()
-                ))
-                .into());
-            }
-            Ok(v)
-        })
-        .collect()
+/// Parses the curve points of `--b` or `--h` (`flag`), of one dimension, checked by the library's
+/// rule ([`library::check_curve_points`]).
+fn curve_points(flag: &str, texts: &[String], dim: Dimension) -> CommandResult<Vec<f64>> {
+    let values = texts.iter().map(|t| parse(t, dim)).collect::<Result<Vec<f64>, _>>()?;
+    library::check_curve_points(flag, &values, dim.si_unit())?;
+    Ok(values)
 }
 
 fn show(a: &ShowArgs) -> CommandResult {
@@ -88,12 +76,12 @@ fn show(a: &ShowArgs) -> CommandResult {
     let b_values = if a.b.is_empty() {
         DEFAULT_B_T.to_vec()
     } else {
-        non_negative_values("--b", &a.b, Dimension::FluxDensity)?
+        curve_points("--b", &a.b, Dimension::FluxDensity)?
     };
     let h_values = if a.h.is_empty() {
         DEFAULT_H_A_PER_M.to_vec()
     } else {
-        non_negative_values("--h", &a.h, Dimension::FieldStrength)?
+        curve_points("--h", &a.h, Dimension::FieldStrength)?
     };
     if a.json {
         return print_json(&report::show_json(material, &b_values, &h_values));

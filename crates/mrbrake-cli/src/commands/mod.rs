@@ -8,6 +8,7 @@ mod analyze;
 mod characterize;
 mod export_geo;
 mod fem;
+mod field_flags;
 mod formula;
 mod freqresp;
 mod haptic;

@@ -86,7 +86,8 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
     }
     let path = a.problem.as_ref().ok_or_else(|| InputError("give a PROBLEM.toml".into()))?;
     let mut problem = OptimizationProblem::from_path(path)?;
-    problem.apply_set(&parse_sets(&a.set)?)?;
+    let sets = parse_sets(&a.set).map_err(super::field_flags::study)?;
+    problem.apply_set(&sets).map_err(super::field_flags::study)?;
     for note in &problem.notes {
         eprintln!("note: {note}");
     }
@@ -95,23 +96,16 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
         max_evaluations: a.max_evaluations,
         seed: a.seed,
     };
-    problem.algorithm = problem.algorithm.with_budget(budget)?;
-    let polish = match a.polish {
-        Some(0) => {
-            return Err(InputError("--polish 0: front designs are numbered from 1".into()).into());
-        }
-        Some(design) => {
-            if a.polish_evaluations == 0 {
-                return Err(InputError("--polish-evaluations 0: give at least 1".into()).into());
-            }
-            Some(PolishRequest {
-                design,
-                objective: a.polish_objective.clone(),
-                max_evaluations: a.polish_evaluations,
-            })
-        }
-        None => None,
-    };
+    problem.algorithm = problem.algorithm.with_budget(budget).map_err(super::field_flags::study)?;
+    let polish = a.polish.map(|design| PolishRequest {
+        design,
+        objective: a.polish_objective.clone(),
+        max_evaluations: a.polish_evaluations,
+    });
+    // The library's rules, checked before the optimisation runs.
+    if let Some(request) = &polish {
+        request.check().map_err(super::field_flags::study)?;
+    }
     let store_path = a.store.clone().unwrap_or_else(|| optimize::default_store_path(path));
     let mut store = optimize::open_problem_store(&problem, &store_path, a.resume)?;
     let mut display = ProgressDisplay::new("optimize", a.json);
@@ -119,7 +113,8 @@ pub fn run(a: OptimizeArgs) -> CommandResult {
         display.update_optimize(p);
         Flow::Continue
     };
-    let result = optimize::run_with(&problem, &mut store, a.jobs, polish.as_ref(), &mut observer)?;
+    let result = optimize::run_with(&problem, &mut store, a.jobs, polish.as_ref(), &mut observer)
+        .map_err(super::field_flags::study)?;
     display.finish();
 
     let report = OptimizationReport {

@@ -6,13 +6,14 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use mrbrake::design::analysis::{AnalysisOptions, AnalysisRequest, ElementOrder};
+use mrbrake::design::analysis::{AnalysisOptions, AnalysisRequest};
 use mrbrake::design::geometry;
 use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::design::spec::{BrakeSpec, DEFAULT_SPEC_TOML, default_spec};
 use mrbrake::report::html::design::DesignReport;
 use mrbrake::units::{Dimension, parse};
 
+use super::field_flags;
 use crate::error::{CommandResult, InputError};
 
 /// Arguments of `mrbrake report`.
@@ -53,7 +54,7 @@ pub struct ReportArgs {
     #[arg(long, default_value = "default")]
     mesh: String,
     /// Element order of a design report's field solution: 1 or 2.
-    #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+    #[arg(long, value_name = "1|2", default_value_t = 1)]
     order: u8,
     /// Currents in a design report's torque–current sweep.
     #[arg(long, default_value_t = 21)]
@@ -100,16 +101,19 @@ fn design_page(a: &ReportArgs) -> CommandResult<String> {
         None => (default_spec(), DEFAULT_SPEC_TOML.to_string()),
     };
     let options = AnalysisOptions {
-        mesh: MeshLevel::parse(&a.mesh)?,
+        mesh: MeshLevel::parse(&a.mesh).map_err(field_flags::design)?,
         points: a.points,
         speed_rad_s: parse(&a.speed, Dimension::AngularVelocity)
             .map_err(|e| InputError(format!("--speed: {e}")))?,
         temperature_c: parse(&a.temperature, Dimension::TemperatureCelsius)
             .map_err(|e| InputError(format!("--temperature: {e}")))?,
-        order: ElementOrder::from_degree(a.order.into()).expect("clap accepts only 1 and 2"),
+        order: super::field_flags::order(a.order)?,
         ..AnalysisOptions::default()
     };
-    let (analysis, field) = AnalysisRequest::of(&spec).options(options).run_with_field()?;
+    let (analysis, field) = AnalysisRequest::of(&spec)
+        .options(options)
+        .run_with_field()
+        .map_err(field_flags::design)?;
     for w in &analysis.warnings {
         eprintln!("warning: {w}");
     }
@@ -240,7 +244,7 @@ fn extra_sections(
     let mut sections = Vec::new();
     if a.response {
         let mut options = mrbrake::design::response::ResponseOptions {
-            mesh: mrbrake::design::mesh_build::MeshLevel::parse(&a.mesh)?,
+            mesh: MeshLevel::parse(&a.mesh).map_err(field_flags::design)?,
             ..Default::default()
         };
         // The eddy-current map at the instant `mrbrake response --plot-dir` draws by default.
@@ -250,7 +254,7 @@ fn extra_sections(
     }
     if a.thermal {
         let options = mrbrake::design::thermal::ThermalOptions {
-            mesh: mrbrake::design::mesh_build::MeshLevel::parse(&a.mesh)?,
+            mesh: MeshLevel::parse(&a.mesh).map_err(field_flags::design)?,
             current_a: spec.coil.max_current.a(),
             behaviour: true,
             ..Default::default()

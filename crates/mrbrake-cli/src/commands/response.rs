@@ -12,6 +12,7 @@ use mrbrake::design::spec::{BrakeSpec, default_spec};
 use mrbrake::report::response as report;
 use mrbrake::units::{Dimension, parse};
 
+use super::field_flags;
 use crate::error::{CommandResult, InputError};
 use crate::output::{print_json, print_text};
 
@@ -74,7 +75,8 @@ fn quantity(flag: &str, text: &str, dimension: Dimension) -> Result<f64, InputEr
 
 fn options(a: &ResponseArgs) -> Result<ResponseOptions, InputError> {
     let mut o = ResponseOptions {
-        mesh: MeshLevel::parse(&a.mesh).map_err(|e| InputError(e.to_string()))?,
+        mesh: MeshLevel::parse(&a.mesh)
+            .map_err(|e| InputError(field_flags::design(e).to_string()))?,
         order: ElementOrder::P1,
         drive: ResponseDrive::parse(&a.drive).map_err(|e| InputError(format!("--drive: {e}")))?,
         duration_s: quantity("duration", &a.duration, Dimension::Time)?,
@@ -110,7 +112,7 @@ pub fn run(a: ResponseArgs) -> CommandResult {
         Some(path) => BrakeSpec::from_path(path)?,
         None => default_spec(),
     };
-    let r = response(&spec, &options(&a)?)?;
+    let r = response(&spec, &options(&a)?).map_err(field_flags::design)?;
     if let Some(path) = &a.frd {
         mrbrake::report::write_atomic(path, r.frequency_response.to_csv().as_bytes())?;
     }

@@ -33,8 +33,10 @@ pub struct ThesisTablesArgs {
 pub fn run(command: StudyCommand) -> CommandResult {
     match command {
         StudyCommand::ThesisTables(a) => {
-            let options =
-                AnalysisOptions { mesh: MeshLevel::parse(&a.mesh)?, ..AnalysisOptions::default() };
+            let options = AnalysisOptions {
+                mesh: MeshLevel::parse(&a.mesh).map_err(super::field_flags::design)?,
+                ..AnalysisOptions::default()
+            };
             let tables = study::thesis_tables(&options)?;
             if a.json {
                 return print_json(&tables);

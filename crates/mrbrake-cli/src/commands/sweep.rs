@@ -3,22 +3,21 @@
 
 use std::path::PathBuf;
 
+use super::field_flags;
 use crate::error::Context;
 use clap::Args;
-use mrbrake::design::analysis::ElementOrder;
 use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::design::spec::DEFAULT_SPEC_TOML;
 use mrbrake::explore::metrics::StudyMetrics;
 use mrbrake::explore::plan::{self, Sampling, Shard, SweepPlan, SweepRequest};
 use mrbrake::explore::variable::parse_sets;
-use mrbrake::explore::{EvaluationSettings, Progress, Runner, evaluate, runner, stored};
+use mrbrake::explore::{EvaluationSettings, Progress, Runner, runner, stored};
 use mrbrake::observe::Flow;
 use mrbrake::report::study::{self as study_report, SweepReport};
 use mrbrake::store::Store;
 use mrbrake::units::{Dimension, parse};
 
 use crate::error::CommandResult;
-use crate::error::InputError;
 use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
 
@@ -61,7 +60,7 @@ pub struct SweepArgs {
     #[arg(long, default_value = "default")]
     mesh: String,
     /// Element order of every analysis: 1 (linear) or 2 (quadratic triangles).
-    #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+    #[arg(long, value_name = "1|2", default_value_t = 1)]
     order: u8,
     /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
     #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
@@ -105,9 +104,9 @@ pub struct ExportArgs {
 /// The evaluation settings from the common flags.
 pub fn settings_from(mesh: &str, speed: &str, order: u8) -> CommandResult<EvaluationSettings> {
     Ok(EvaluationSettings {
-        mesh: MeshLevel::parse(mesh)?,
+        mesh: MeshLevel::parse(mesh).map_err(super::field_flags::design)?,
         speed_rad_s: parse(speed, Dimension::AngularVelocity).context("--speed")?,
-        order: ElementOrder::from_degree(order.into()).expect("clap accepts only 1 and 2"),
+        order: field_flags::order(order)?,
         ..EvaluationSettings::default()
     })
 }
@@ -127,13 +126,13 @@ pub(crate) fn base_spec(spec: Option<&PathBuf>) -> CommandResult<(String, String
 /// The sweep's plan and shard, from the arguments.
 fn plan_from(a: &SweepArgs) -> CommandResult<(SweepPlan, Shard)> {
     let (spec_text, origin) = base_spec(a.spec.as_ref())?;
-    let overrides = parse_sets(&a.set)?;
+    let overrides = parse_sets(&a.set).map_err(field_flags::study)?;
     let sampling = match &a.sample {
-        Some(text) => Sampling::parse(text, a.seed)?,
+        Some(text) => Sampling::parse(text, a.seed).map_err(field_flags::study)?,
         None => Sampling::FullFactorial,
     };
     let shard = match &a.shard {
-        Some(text) => Shard::parse(text)?,
+        Some(text) => Shard::parse(text).map_err(field_flags::study)?,
         None => Shard::ALL,
     };
     let request = SweepRequest {
@@ -148,7 +147,7 @@ fn plan_from(a: &SweepArgs) -> CommandResult<(SweepPlan, Shard)> {
             ..settings_from(&a.mesh, &a.speed, a.order)?
         },
     };
-    let plan = plan::sweep_plan(&request)?;
+    let plan = plan::sweep_plan(&request).map_err(field_flags::study)?;
     mrbrake::explore::metrics::check_space(&plan.space, std::path::Path::new(&origin))?;
     Ok((plan, shard))
 }
@@ -157,12 +156,9 @@ fn plan_from(a: &SweepArgs) -> CommandResult<(SweepPlan, Shard)> {
 pub(crate) fn recorded_metrics(names: &[String]) -> CommandResult<StudyMetrics> {
     let mut asked = Vec::with_capacity(names.len());
     for name in names {
-        let current = evaluate::current_metric_name(name.trim()).0;
-        let info = evaluate::metric_info(current).ok_or_else(|| {
-            InputError(format!(
-                "--record '{name}': unknown metric (the list: mrbrake optimize --list-metrics)"
-            ))
-        })?;
+        // The library's rule (a current or legacy name), named by the flag.
+        let info = mrbrake::explore::problem::known_metric(name)
+            .map_err(|e| e.with_field_names(&[("metric", "--record")]))?;
         asked.push(info.name);
     }
     Ok(StudyMetrics::new(asked, &[], Default::default(), Default::default()))

@@ -11,6 +11,7 @@ use mrbrake::design::thermal::{Cooling, ThermalError, ThermalOptions, analyze_th
 use mrbrake::report::thermal as report;
 use mrbrake::units::{Dimension, parse};
 
+use super::field_flags;
 use crate::error::{CommandError, CommandResult, InputError};
 use crate::output::{print_json, print_text};
 
@@ -114,17 +115,15 @@ fn options(a: &ThermalArgs, spec: &BrakeSpec) -> Result<ThermalOptions, InputErr
         time_s: quantity("time", &a.time, Dimension::Time)?,
         dt_s: quantity("dt", &a.dt, Dimension::Time)?,
         speed_rad_s: quantity("speed", &a.speed, Dimension::AngularVelocity)?,
-        mesh: MeshLevel::parse(&a.mesh).map_err(|e| InputError(format!("--mesh: {e}")))?,
+        mesh: MeshLevel::parse(&a.mesh)
+            .map_err(|e| InputError(field_flags::design(e).to_string()))?,
         behaviour: !a.no_behaviour,
     })
 }
 
 /// An option out of range named by its flag.
 fn flagged(e: ThermalError) -> CommandError {
-    match e {
-        ThermalError::Option { name, message } => InputError(format!("--{name}: {message}")).into(),
-        other => other.into(),
-    }
+    field_flags::thermal(e).into()
 }
 
 /// Runs `mrbrake thermal`.

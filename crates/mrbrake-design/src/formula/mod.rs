@@ -32,6 +32,7 @@
 
 use std::f64::consts::PI;
 
+use mrbrake_error::FieldError;
 use mrbrake_materials::CopperWire;
 use serde::Serialize;
 
@@ -74,45 +75,69 @@ impl BrakeTorque {
     }
 }
 
-/// Checks that `value` is finite and strictly positive; the error names `field`.
-pub(crate) fn positive(field: &str, value: f64) -> Result<f64, DesignError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(DesignError::Input(format!("{field} must be a finite number > 0, got {value}")))
+/// `value` in `unit` (SI) when it is `ok`, else the field error of `field` (the argument's name,
+/// `r1`), described as `what` (`inner disc radius`), with the value and `allowed` in `unit`.
+fn checked(
+    ok: bool,
+    (field, what): (&str, &str),
+    value: f64,
+    unit: &str,
+    allowed: &str,
+) -> Result<f64, DesignError> {
+    if ok {
+        return Ok(value);
     }
+    let with_unit = |text: String| if unit.is_empty() { text } else { format!("{text} {unit}") };
+    let e = FieldError::new(field, what)
+        .with_value(with_unit(value.to_string()))
+        .with_allowed(with_unit(allowed.to_string()));
+    Err(e.into())
 }
 
-/// Checks that `value` is finite and not negative; the error names `field`.
-pub(crate) fn non_negative(field: &str, value: f64) -> Result<f64, DesignError> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(value)
-    } else {
-        Err(DesignError::Input(format!("{field} must be a finite number >= 0, got {value}")))
-    }
+/// Checks that `value` (in `unit`) is finite and strictly positive; the error names `field`
+/// (the argument, e.g. `r2`) and what it is (`outer disc radius`).
+pub(crate) fn positive(
+    field: &str,
+    what: &str,
+    value: f64,
+    unit: &str,
+) -> Result<f64, DesignError> {
+    checked(value.is_finite() && value > 0.0, (field, what), value, unit, "finite, > 0")
+}
+
+/// Checks that `value` (in `unit`) is finite and not negative; the error names `field` and what
+/// it is.
+pub(crate) fn non_negative(
+    field: &str,
+    what: &str,
+    value: f64,
+    unit: &str,
+) -> Result<f64, DesignError> {
+    checked(value.is_finite() && value >= 0.0, (field, what), value, unit, "finite, >= 0")
+}
+
+/// Checks that `value` (in `unit`) is finite; the error names `field` and what it is.
+pub(crate) fn finite(field: &str, what: &str, value: f64, unit: &str) -> Result<f64, DesignError> {
+    checked(value.is_finite(), (field, what), value, unit, "finite")
 }
 
 fn check_viscous(v: Option<Viscous>) -> Result<Option<Viscous>, DesignError> {
     if let Some(v) = v {
-        non_negative("eta (viscosity)", v.eta_pa_s)?;
-        if !v.omega_rad_s.is_finite() {
-            return Err(DesignError::Input(format!(
-                "speed must be a finite angular velocity, got {}",
-                v.omega_rad_s
-            )));
-        }
-        positive("gap", v.gap_m)?;
+        non_negative("eta", "viscosity", v.eta_pa_s, "Pa·s")?;
+        finite("speed", "relative speed", v.omega_rad_s, "rad/s")?;
+        positive("gap", "fluid gap", v.gap_m, "m")?;
     }
     Ok(v)
 }
 
 fn check_radii(r1: f64, r2: f64) -> Result<(), DesignError> {
-    non_negative("r1 (inner disc radius)", r1)?;
-    positive("r2 (outer disc radius)", r2)?;
+    non_negative("r1", "inner disc radius", r1, "m")?;
+    positive("r2", "outer disc radius", r2, "m")?;
     if r2 <= r1 {
-        return Err(DesignError::Input(format!(
-            "r2 (outer radius, {r2} m) must be larger than r1 (inner radius, {r1} m)"
-        )));
+        let e = FieldError::new("r2", "the outer disc radius must be larger than the inner one")
+            .with_value(format!("{r2} m"))
+            .with_allowed(format!("> r1 = {r1} m"));
+        return Err(e.into());
     }
     Ok(())
 }
@@ -179,12 +204,13 @@ pub fn multi_disc(
     viscous: Option<Viscous>,
 ) -> Result<BrakeTorque, DesignError> {
     if !(1..=MAX_SURFACES).contains(&n) {
-        return Err(DesignError::Input(format!(
-            "discs = {n} is not allowed: a multi-disc brake has 1 to {MAX_SURFACES} discs"
-        )));
+        let e = FieldError::new("discs", "rotating discs of a multi-disc brake")
+            .with_value(n)
+            .with_allowed(format!("1 to {MAX_SURFACES}"));
+        return Err(e.into());
     }
     check_radii(r1_m, r2_m)?;
-    non_negative("tau_y (yield stress)", tau_y_pa)?;
+    non_negative("tau_y", "yield stress", tau_y_pa, "Pa")?;
     let viscous = check_viscous(viscous)?;
     // Each disc shears fluid on both faces.
     let faces = 2.0 * f64::from(n);
@@ -201,9 +227,9 @@ pub fn drum(
     tau_y_pa: f64,
     viscous: Option<Viscous>,
 ) -> Result<BrakeTorque, DesignError> {
-    positive("r (drum radius)", r_m)?;
-    positive("h (drum height)", h_m)?;
-    non_negative("tau_y (yield stress)", tau_y_pa)?;
+    positive("r", "drum radius", r_m, "m")?;
+    positive("h", "drum height", h_m, "m")?;
+    non_negative("tau_y", "yield stress", tau_y_pa, "Pa")?;
     let viscous = check_viscous(viscous)?;
     let yield_nm = 4.0 * PI * tau_y_pa * r_m * r_m * h_m;
     let viscous_nm = viscous
@@ -231,16 +257,19 @@ pub fn multi_drum(
     tau_y_pa: f64,
     viscous_eta_omega: Option<(f64, f64)>,
 ) -> Result<BrakeTorque, DesignError> {
-    positive("r0 (innermost fluid-surface radius)", r0_m)?;
-    positive("h (drum height)", h_m)?;
-    positive("d (cylinder thickness)", d_m)?;
-    positive("g (fluid gap)", g_m)?;
-    non_negative("tau_y (yield stress)", tau_y_pa)?;
+    positive("r0", "innermost fluid-surface radius", r0_m, "m")?;
+    positive("h", "cylinder height", h_m, "m")?;
+    positive("d", "cylinder thickness", d_m, "m")?;
+    positive("g", "fluid gap", g_m, "m")?;
+    non_negative("tau_y", "yield stress", tau_y_pa, "Pa")?;
     if !(1..=MAX_SURFACES).contains(&surfaces) {
-        return Err(DesignError::Input(format!(
-            "surfaces = {surfaces} is not allowed: a multi-drum brake has 1 to {MAX_SURFACES} fluid \
-             surfaces (the thesis's final design has 4)"
-        )));
+        let e = FieldError::new(
+            "surfaces",
+            "fluid surfaces of a multi-drum brake (the thesis's final design has 4)",
+        )
+        .with_value(surfaces)
+        .with_allowed(format!("1 to {MAX_SURFACES}"));
+        return Err(e.into());
     }
     let viscous = check_viscous(viscous_eta_omega.map(|(eta_pa_s, omega_rad_s)| Viscous {
         eta_pa_s,
@@ -262,15 +291,15 @@ pub fn multi_drum(
 /// 2 A in 0.5 mm wire gives 4.62 A/mm² (thesis 4.2.2). Note that the current density in the copper
 /// itself is `I / (π d²/4)` ([`conductor_current_density`]), 10.2 A/mm² for the same wire.
 pub fn current_density_thesis(current_a: f64, wire_diameter_m: f64) -> Result<f64, DesignError> {
-    non_negative("current", current_a.abs())?;
-    positive("wire diameter", wire_diameter_m)?;
+    finite("current", "coil current", current_a, "A")?;
+    positive("wire_diameter", "wire diameter", wire_diameter_m, "m")?;
     Ok(current_a.abs() / (3f64.sqrt() * wire_diameter_m * wire_diameter_m))
 }
 
 /// Current density in the copper cross-section, `I / (π d² / 4)` (A/m²).
 pub fn conductor_current_density(current_a: f64, wire_diameter_m: f64) -> Result<f64, DesignError> {
-    non_negative("current", current_a.abs())?;
-    positive("wire diameter", wire_diameter_m)?;
+    finite("current", "coil current", current_a, "A")?;
+    positive("wire_diameter", "wire diameter", wire_diameter_m, "m")?;
     Ok(current_a.abs() / (PI * wire_diameter_m * wire_diameter_m / 4.0))
 }
 
@@ -293,17 +322,24 @@ pub fn turns_in_window(
     window_height_m: f64,
     wire_radius_m: f64,
 ) -> Result<WindowTurns, DesignError> {
-    positive("window width", window_width_m)?;
-    positive("window height", window_height_m)?;
-    positive("wire radius", wire_radius_m)?;
+    positive("window_width", "winding window width", window_width_m, "m")?;
+    positive("window_height", "winding window height", window_height_m, "m")?;
+    positive("wire_radius", "wire radius", wire_radius_m, "m")?;
     let r = wire_radius_m;
-    if window_width_m < 2.0 * r || window_height_m < 2.0 * r {
-        return Err(DesignError::Input(format!(
-            "the winding window {:.3} mm × {:.3} mm is smaller than one wire of diameter {:.3} mm",
-            window_width_m * 1e3,
-            window_height_m * 1e3,
-            2.0 * r * 1e3
-        )));
+    for (field, side) in [("window_width", window_width_m), ("window_height", window_height_m)] {
+        if side < 2.0 * r {
+            let e = FieldError::new(
+                field,
+                format!(
+                    "the winding window {:.3} mm × {:.3} mm is smaller than one wire",
+                    window_width_m * 1e3,
+                    window_height_m * 1e3,
+                ),
+            )
+            .with_value(format!("{:.3} mm", side * 1e3))
+            .with_allowed(format!(">= the wire diameter, {:.3} mm", 2.0 * r * 1e3));
+            return Err(e.into());
+        }
     }
     // (4.2): i ∈ Z+, the whole number of staggered layers; a tiny tolerance keeps exact fits exact.
     let i = ((window_height_m - 2.0 * r) / (3f64.sqrt() * r) + 1e-9).floor();
@@ -376,9 +412,9 @@ pub fn coil_electrics(
     temperature_c: f64,
 ) -> Result<CoilElectrics, DesignError> {
     if turns == 0 {
-        return Err(DesignError::Input("turns must be at least 1".into()));
+        return Err(FieldError::out_of_range("turns", turns, ">= 1").into());
     }
-    positive("coil mean radius", mean_radius_m)?;
+    positive("mean_radius", "coil mean radius", mean_radius_m, "m")?;
     let r_per_m = wire.resistance_ohm_per_m_at(temperature_c)?;
     let wire_length_m = f64::from(turns) * 2.0 * PI * mean_radius_m;
     let resistance_20c_ohm = wire_length_m * wire.resistance_ohm_per_m_20c;

@@ -10,6 +10,7 @@
 //! [`ClosedFormCoil`] from [`coil`], with the warnings a designer should see (more turns than fit,
 //! a current above the wire's rating).
 
+use mrbrake_error::FieldError;
 use mrbrake_materials::{CopperWire, MrFluid, library};
 
 use super::{
@@ -172,21 +173,23 @@ pub struct ClosedFormTorque {
 /// `[0, MAX_FLUX_DENSITY_T]`).
 fn yield_stress(request: &TorqueRequest) -> Result<YieldStress, DesignError> {
     match (request.tau_y_pa, request.b_t) {
-        (Some(_), Some(_)) => Err(DesignError::Input("give tau_y or b, not both".into())),
+        (Some(_), Some(_)) => Err(FieldError::new("b", "give tau_y or b, not both").into()),
         (Some(tau), None) => {
-            super::non_negative("tau_y (yield stress, Pa)", tau).map(YieldStress::Given)
+            super::non_negative("tau_y", "yield stress", tau, "Pa").map(YieldStress::Given)
         }
         (None, Some(b)) if (0.0..=MAX_FLUX_DENSITY_T).contains(&b) => {
             Ok(YieldStress::AtFluxDensity(b))
         }
-        (None, Some(b)) => Err(DesignError::Input(format!(
-            "b must be between 0 T and {MAX_FLUX_DENSITY_T} T, got {b}"
-        ))),
-        (None, None) => Err(DesignError::Input(
+        (None, Some(b)) => Err(FieldError::new("b", "mean flux density in the fluid")
+            .with_value(format!("{b} T"))
+            .with_allowed(format!("between 0 T and {MAX_FLUX_DENSITY_T} T"))
+            .into()),
+        (None, None) => Err(FieldError::new(
+            "tau_y",
             "give tau_y or b: the yield stress (e.g. 24.315kPa), or the mean flux density in the \
-             fluid (e.g. 0.46T) to read it from the fluid's τ_y(B) curve"
-                .into(),
-        )),
+             fluid (e.g. 0.46T) to read it from the fluid's τ_y(B) curve",
+        )
+        .into()),
     }
 }
 
@@ -197,19 +200,17 @@ pub fn torque(request: &TorqueRequest) -> Result<ClosedFormTorque, DesignError> 
     let fluid = library::fluid(request.fluid.as_deref().unwrap_or(DEFAULT_FLUID))?;
     let yield_stress = yield_stress(request)?;
     if let Some(eta) = request.eta_pa_s {
-        super::non_negative("eta (viscosity, Pa·s)", eta)?;
+        super::non_negative("eta", "viscosity", eta, "Pa·s")?;
     }
-    if let Some(speed) = request.speed_rad_s
-        && !speed.is_finite()
-    {
-        return Err(DesignError::Input(format!("speed must be a finite number, got {speed}")));
+    if let Some(speed) = request.speed_rad_s {
+        super::finite("speed", "relative speed", speed, "rad/s")?;
     }
     let (source, eta_pa_s) = FluidSource::resolve(fluid, yield_stress, request.eta_pa_s);
     let tau = source.tau_y_pa;
     let viscous_at = |gap_m: Option<f64>| -> Result<Option<Viscous>, DesignError> {
         let Some(omega_rad_s) = request.speed_rad_s else { return Ok(None) };
         let gap_m = gap_m.ok_or_else(|| {
-            DesignError::Input("speed needs gap (the fluid gap sheared at that speed)".into())
+            FieldError::new("gap", "speed needs gap (the fluid gap sheared at that speed)")
         })?;
         Ok(Some(Viscous { eta_pa_s, omega_rad_s, gap_m }))
     };
@@ -316,15 +317,17 @@ pub fn coil(request: &CoilRequest) -> Result<ClosedFormCoil, DesignError> {
         Some(WireChoice::Awg(awg)) => CopperWire::awg(awg)?,
         Some(WireChoice::Diameter(d)) => CopperWire::from_diameter(d)?,
         None => {
-            return Err(DesignError::Input(
-                "give the wire: awg (a gauge, 18-32) or wire_diameter (bare copper)".into(),
-            ));
+            let e = FieldError::new(
+                "awg",
+                "give the wire: awg (a gauge, 18-32) or wire_diameter (bare copper)",
+            );
+            return Err(e.into());
         }
     };
     let window = turns_in_window(cw, ch, wire.diameter_m / 2.0)?;
     let turns = request.turns.unwrap_or(window.turns);
     let inner = request.inner_radius_m.unwrap_or(DEFAULT_COIL_INNER_RADIUS_M);
-    super::non_negative("inner radius (m)", inner)?;
+    super::non_negative("inner_radius", "inner radius of the winding", inner, "m")?;
     let current_a = request.current_a.unwrap_or(DEFAULT_COIL_CURRENT_A);
     let temperature_c = request.temperature_c.unwrap_or(DEFAULT_COPPER_TEMPERATURE_C);
     let mean_radius_m = coil_mean_radius(inner, cw);

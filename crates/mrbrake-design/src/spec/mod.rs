@@ -434,6 +434,22 @@ impl Materials {
         self.bobbin.as_deref().unwrap_or(&self.non_magnetic)
     }
 
+    /// The key of the first `materials` field that names `material` (`materials.flux_path`), for
+    /// an error about a part made of it; `None` when no field names it.
+    pub fn key_of(&self, material: &str) -> Option<&'static str> {
+        let keys = [
+            ("materials.flux_path", Some(&self.flux_path)),
+            ("materials.non_magnetic", Some(&self.non_magnetic)),
+            ("materials.bobbin", self.bobbin.as_ref()),
+            ("materials.shaft", Some(&self.shaft)),
+            ("materials.fluid", Some(&self.fluid)),
+            ("materials.coil", Some(&self.coil)),
+            ("materials.spacer", self.spacer.as_ref()),
+            ("materials.surroundings", Some(&self.surroundings)),
+        ];
+        keys.into_iter().find(|(_, name)| name.is_some_and(|n| n == material)).map(|(key, _)| key)
+    }
+
     /// The spacer's material: `spacer`, or the `non_magnetic` material when it is not given.
     pub fn spacer(&self) -> &str {
         self.spacer.as_deref().unwrap_or(&self.non_magnetic)
@@ -551,27 +567,25 @@ impl MaterialField {
 
     /// Checks that `name` is a library material that suits the part; the error names the field,
     /// the material and the allowed materials.
-    pub fn check_suits(&self, name: &str) -> Result<(), String> {
+    pub fn check_suits(&self, name: &str) -> Result<(), Box<mrbrake_error::FieldError>> {
         let wanted = name.trim().to_ascii_lowercase();
         let kind = mrbrake_materials::library::names()
             .into_iter()
             .find(|(n, _)| *n == wanted)
             .map(|(_, kind)| kind);
-        let allowed = || self.suitable().join(", ");
+        let error = |message: String| {
+            let e = mrbrake_error::FieldError::new(self.path, message)
+                .with_value(format!("'{name}'"))
+                .with_allowed(self.suitable().join(", "));
+            Box::new(e)
+        };
         match kind {
-            None => Err(format!(
-                "{}: '{name}' is not in the material library; allowed for {}: {}",
-                self.path,
-                self.part,
-                allowed()
-            )),
-            Some(kind) if !self.suits.contains(&kind) => Err(format!(
-                "{}: '{name}' is a {} material, which does not suit {}; allowed: {}",
-                self.path,
+            None => Err(error(format!("not in the material library (for {})", self.part))),
+            Some(kind) if !self.suits.contains(&kind) => Err(error(format!(
+                "a {} material, which does not suit {}",
                 kind.as_str(),
-                self.part,
-                allowed()
-            )),
+                self.part
+            ))),
             Some(_) => Ok(()),
         }
     }

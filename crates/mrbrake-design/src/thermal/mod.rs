@@ -34,6 +34,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::Instant;
 
+use mrbrake_error::FieldError;
 use mrbrake_fem::mesh::Mesh;
 use mrbrake_fem::workflow::time::{Event, Scheme, TimeOptions, TimeStep};
 use mrbrake_heat::{
@@ -63,17 +64,12 @@ pub enum ThermalError {
     /// The heat solver.
     #[error(transparent)]
     Heat(#[from] HeatError),
-    /// A material without thermal data, or a design the model cannot take.
-    #[error("{0}")]
-    Input(String),
-    /// An option outside its range, by its name (the CLI's flag without the dashes).
-    #[error("{name}: {message}")]
-    Option {
-        /// The option, e.g. `duty`.
-        name: &'static str,
-        /// The value and the allowed range.
-        message: String,
-    },
+    /// An option outside its range, or an operating point the model cannot reach: the option
+    /// (named as the `[thermal]` table of a study names it: `duty`, `insulation_class`), the
+    /// value and what is allowed. The front ends rename it ([`ThermalError::with_field_names`]).
+    /// A part without thermal data is an invalid spec ([`DesignError::Spec`]).
+    #[error(transparent)]
+    Input(Box<FieldError>),
     /// A material's data (e.g. a viscosity outside its temperature range).
     #[error(transparent)]
     Material(#[from] mrbrake_materials::MaterialError),
@@ -84,8 +80,27 @@ impl mrbrake_error::Kind for ThermalError {
         match self {
             Self::Design(e) => e.kind(),
             Self::Heat(e) => e.kind(),
-            Self::Input(_) | Self::Option { .. } => mrbrake_error::ErrorKind::Input,
+            Self::Input(_) => mrbrake_error::ErrorKind::Input,
             Self::Material(e) => e.kind(),
+        }
+    }
+}
+
+impl From<FieldError> for ThermalError {
+    fn from(error: FieldError) -> Self {
+        Self::Input(Box::new(error))
+    }
+}
+
+impl ThermalError {
+    /// The same error with the field of an input error named as a front end names it (see
+    /// [`FieldError::renamed`]: the CLI's `--insulation-class` for `insulation_class`); other
+    /// errors are unchanged.
+    pub fn with_field_names(self, names: &[(&str, &str)]) -> Self {
+        match self {
+            Self::Input(field) => Self::Input(Box::new(field.renamed(names))),
+            Self::Design(e) => Self::Design(e.with_field_names(names)),
+            other => other,
         }
     }
 }
@@ -252,11 +267,13 @@ fn region_of(
             .coils
             .iter()
             .find(|c| c.tag == tag)
-            .ok_or_else(|| ThermalError::Input(format!("coil region {tag} has no coil")))?;
+            .ok_or_else(|| DesignError::Internal(format!("coil region {tag} has no coil")))?;
         let fill = winding_fill(spec, coil);
-        let w = Winding::impregnated(fill)
-            .and_then(|w| w.properties())
-            .map_err(|e| ThermalError::Input(format!("coil winding: {e}")))?;
+        let w = Winding::impregnated(fill).and_then(|w| w.properties()).map_err(|e| {
+            let e = FieldError::new("coil", format!("the winding's thermal model: {e}"))
+                .with_value(format!("a copper fill factor of {fill:.3}"));
+            spec.invalid(e.into())
+        })?;
         return Ok(Region {
             tag,
             k_radial: w.k_radial_w_per_mk,
@@ -265,10 +282,23 @@ fn region_of(
             source: Source::None,
         });
     }
-    let p = thermal(material).map_err(|e| {
-        ThermalError::Input(format!("part {tag} ({material}): no thermal data: {e}"))
-    })?;
+    let p = thermal(material)
+        .map_err(|e| no_thermal_data(spec, &format!("part {tag}"), material, &e))?;
     Ok(Region::isotropic(tag, p.k_w_per_mk, p.volumetric_heat_capacity()))
+}
+
+/// The invalid-spec error of `part` (`part 3`, `part 'unit1.core'`), made of `material` that has
+/// no thermal data: the `materials` key that names it, the material and why.
+fn no_thermal_data(
+    spec: &BrakeSpec,
+    part: &str,
+    material: &str,
+    why: &mrbrake_materials::MaterialError,
+) -> DesignError {
+    let field = spec.materials.key_of(material).unwrap_or("materials");
+    let e = FieldError::new(field, format!("{part}: no thermal data: {why}"))
+        .with_value(format!("'{material}'"));
+    spec.invalid(e.into())
 }
 
 /// The heat problem of the brake `spec` at `options` (current, speed, ambient, h).
@@ -295,7 +325,7 @@ pub fn thermal_problem_on_mesh(
     let mut parts = ThermalParts { coils: Vec::new(), gaps: Vec::new(), fill_factor: 0.0 };
     let eta = mrbrake_materials::library::fluid(&spec.materials.fluid)
         .map(|f| f.viscosity_pa_s())
-        .map_err(|e| ThermalError::Input(e.to_string()))?;
+        .map_err(ThermalError::Material)?;
     for part in geometry.regions.iter().filter(|r| r.kind != PartKind::Air) {
         let mut region = region_of(spec, geometry, part.tag, part.kind, &part.material)?;
         if let Some(coil) = geometry.coils.iter().find(|c| c.tag == part.tag) {
@@ -679,7 +709,10 @@ fn continuous_current(
         (lo, f_lo) = (hi, f_hi);
         hi *= 2.0;
         if hi > 1e4 {
-            return Err(ThermalError::Input("the coil never reaches the limit below 10 kA".into()));
+            let e =
+                FieldError::new("insulation_class", "the coil never reaches the limit below 10 kA")
+                    .with_value(format!("{limit_c} °C"));
+            return Err(e.into());
         }
         f_hi = excess(solver, hi)?;
     }
@@ -777,52 +810,49 @@ fn crossing(curve: &Warmup, limit: f64) -> Option<f64> {
     Some(curve.time_s[k - 1] + (limit - t0) / (t1 - t0) * (curve.time_s[k] - curve.time_s[k - 1]))
 }
 
-/// Checks the options, naming the option and its allowed range.
+/// Checks the options, naming the option (as the `[thermal]` table of a study does: `current`,
+/// `duty`, `ambient`, `h`, `emissivity`, `insulation_class`, `dt`, `time`, `period`, `speed`),
+/// its value and its allowed range.
 pub fn validate_options(o: &ThermalOptions) -> Result<(), ThermalError> {
-    let bad = |name: &'static str, message: String| Err(ThermalError::Option { name, message });
+    let bad = |field: &str, value: String, allowed: String| {
+        Err(FieldError::out_of_range(field, value, allowed).into())
+    };
     let absolute_zero = -mrbrake_heat::ZERO_CELSIUS_K;
     if !(o.current_a.is_finite() && o.current_a > 0.0 && o.current_a <= 100.0) {
-        return bad("current", format!("{} A must be in (0, 100] A", o.current_a));
+        return bad("current", format!("{} A", o.current_a), "(0, 100] A".into());
     }
     if !(o.duty > 0.0 && o.duty <= 1.0) {
-        return bad("duty", format!("{} must be in (0, 1]", o.duty));
+        return bad("duty", o.duty.to_string(), "(0, 1]".into());
     }
     if !(o.ambient_c.is_finite() && o.ambient_c > absolute_zero && o.ambient_c <= 200.0) {
-        return bad("ambient", format!("{} °C must be in (-273.15, 200] °C", o.ambient_c));
+        return bad("ambient", format!("{} °C", o.ambient_c), "(-273.15, 200] °C".into());
     }
     if let Cooling::Fixed { h_w_per_m2k: h } = o.cooling {
         if !(h.is_finite() && h > 0.0 && h <= 1e5) {
-            return bad("h", format!("{h} W/(m² K) must be in (0, 1e5] W/(m² K)"));
+            return bad("h", format!("{h} W/(m² K)"), "(0, 1e5] W/(m² K)".into());
         }
     }
     if !(0.0..=1.0).contains(&o.emissivity) {
-        return bad("emissivity", format!("{} must be in [0, 1]", o.emissivity));
+        return bad("emissivity", o.emissivity.to_string(), "[0, 1]".into());
     }
     if !(o.limit_c.is_finite() && o.limit_c > o.ambient_c && o.limit_c <= 1000.0) {
-        return bad(
-            "insulation-class",
-            format!(
-                "{} °C must be above the ambient ({} °C) and <= 1000 °C",
-                o.limit_c, o.ambient_c
-            ),
-        );
+        let allowed = format!("above the ambient ({} °C) and <= 1000 °C", o.ambient_c);
+        return bad("insulation_class", format!("{} °C", o.limit_c), allowed);
     }
     if !(o.dt_s.is_finite() && o.dt_s > 0.0) {
-        return bad("dt", format!("{} s must be > 0", o.dt_s));
+        return bad("dt", format!("{} s", o.dt_s), "> 0 s".into());
     }
     if !(o.time_s.is_finite() && o.time_s >= o.dt_s && o.time_s / o.dt_s <= 1e6) {
-        return bad(
-            "time",
-            format!("{} s must be >= the step ({} s) and at most 1e6 steps", o.time_s, o.dt_s),
-        );
+        let allowed = format!(">= the step ({} s) and at most 1e6 steps", o.dt_s);
+        return bad("time", format!("{} s", o.time_s), allowed);
     }
     if let Some(p) = o.period_s {
         if !(p.is_finite() && p > 0.0) {
-            return bad("period", format!("{p} s must be > 0"));
+            return bad("period", format!("{p} s"), "> 0 s".into());
         }
     }
     if !(o.speed_rad_s.is_finite() && o.speed_rad_s >= 0.0 && o.speed_rad_s <= 1e4) {
-        return bad("speed", format!("{} rad/s must be in [0, 1e4] rad/s", o.speed_rad_s));
+        return bad("speed", format!("{} rad/s", o.speed_rad_s), "[0, 1e4] rad/s".into());
     }
     Ok(())
 }

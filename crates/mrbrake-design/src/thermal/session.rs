@@ -157,13 +157,9 @@ pub fn check_thermal_data(spec: &BrakeSpec) -> Result<(), ThermalError> {
         geometry.regions.iter().filter(|r| !matches!(r.kind, PartKind::Air | PartKind::Coil));
     for part in needed {
         mrbrake_materials::thermal::thermal(&part.material).map_err(|e| {
-            ThermalError::Input(format!(
-                "part '{}' ({}): no thermal data: {e}",
-                part.name, part.material
-            ))
+            super::no_thermal_data(spec, &format!("part '{}'", part.name), &part.material, &e)
         })?;
     }
-    mrbrake_materials::library::fluid(&spec.materials.fluid)
-        .map_err(|e| ThermalError::Input(e.to_string()))?;
+    mrbrake_materials::library::fluid(&spec.materials.fluid)?;
     Ok(())
 }

@@ -272,16 +272,19 @@ pub(super) fn check(
     if analyses.iter().any(|a| !a.is_thermal() && *a != Analysis::Haptic) {
         let metric = first(false);
         check_options(&study.response.options(evaluation))
-            .map_err(|e| ExploreError::Input(format!("metric '{metric}': [response]: {e}")))?;
+            .map_err(|e| ExploreError::from(e).under("response").for_metric(metric))?;
         if study.response.conductivity_s_per_m.is_none() {
             let name = &spec.materials.flux_path;
             let material = mrbrake_materials::library::get(name)?;
             if material.conductivity_s_per_m.is_none() {
-                return Err(ExploreError::Input(format!(
-                    "metric '{metric}' needs the electrical conductivity of the flux-path steel \
-                     '{name}', which the material library does not give: set [response] \
-                     conductivity (e.g. \"5.8MS/m\")"
-                )));
+                return Err(ExploreError::input(
+                    "response.conductivity",
+                    format!(
+                        "metric '{metric}' needs the electrical conductivity of the flux-path \
+                         steel '{name}', which the material library does not give: set [response] \
+                         conductivity (e.g. \"5.8MS/m\")"
+                    ),
+                ));
             }
         }
     }
@@ -295,16 +298,20 @@ pub(super) fn check(
         study
             .haptic
             .config()
-            .map_err(|e| ExploreError::Input(format!("metric '{metric}': {e}")))?;
+            .map_err(|e| ExploreError::input("haptic", e.to_string()).for_metric(metric))?;
     }
     if analyses.iter().any(|a| a.is_thermal()) {
         let metric = first(true);
         let options = study.thermal.options(spec, evaluation);
-        mrbrake_design::thermal::validate_options(&options)
-            .map_err(|e| ExploreError::Input(format!("metric '{metric}': [thermal] {e}")))?;
+        mrbrake_design::thermal::validate_options(&options).map_err(|e| match e {
+            mrbrake_design::thermal::ThermalError::Input(field) => {
+                ExploreError::Input(field).under("thermal").for_metric(metric)
+            }
+            other => ExploreError::input("thermal", other.to_string()).for_metric(metric),
+        })?;
         if spec.validate().is_ok() {
             check_thermal_data(spec).map_err(|e| {
-                ExploreError::Input(format!("metric '{metric}' needs thermal data: {e}"))
+                ExploreError::input("", format!("metric '{metric}' needs thermal data: {e}"))
             })?;
         }
     }

@@ -302,10 +302,8 @@ pub fn check_space(space: &crate::DesignSpace, path: &std::path::Path) -> Result
         return Ok(());
     }
     if let Ok(spec) = space.base_design()?.spec {
-        settings.study.check(&spec, settings).map_err(|e| match e {
-            ExploreError::Input(text) => ExploreError::Input(format!("{}: {text}", path.display())),
-            other => other,
-        })?;
+        let file = path.display().to_string();
+        settings.study.check(&spec, settings).map_err(|e| e.in_file(&file))?;
     }
     Ok(())
 }

@@ -79,8 +79,8 @@ impl Declarations {
     /// symbols as the spec's configuration does.
     pub fn from_toml_str(text: &str, origin: &str, is_drum: bool) -> Result<Self, ExploreError> {
         let raw: RawFile = toml::from_str(text)
-            .map_err(|e| ExploreError::Input(format!("{origin}: {}", e.to_string().trim_end())))?;
-        let bad = |key: String, why: String| ExploreError::Input(format!("{origin}: {key}: {why}"));
+            .map_err(|e| ExploreError::input("", e.to_string().trim_end()).in_file(origin))?;
+        let bad = |key: String, why: String| ExploreError::input(key, why).in_file(origin);
         if raw.input.is_empty() {
             return Err(bad("input".into(), "declares no [[input]]".into()));
         }
@@ -117,7 +117,7 @@ impl Declarations {
     pub fn from_path(path: &std::path::Path, is_drum: bool) -> Result<Self, ExploreError> {
         let origin = path.display().to_string();
         let text = std::fs::read_to_string(path)
-            .map_err(|e| ExploreError::Input(format!("{origin}: cannot read: {e}")))?;
+            .map_err(|e| ExploreError::input("", format!("cannot read: {e}")).in_file(&origin))?;
         Self::from_toml_str(&text, &origin, is_drum)
     }
 

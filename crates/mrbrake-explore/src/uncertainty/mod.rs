@@ -129,10 +129,12 @@ pub fn propagate(
 ) -> Result<Uncertainty, ExploreError> {
     let start = Instant::now();
     if !(2..=MAX_SAMPLES).contains(&request.samples) {
-        return Err(ExploreError::Input(format!(
-            "--samples {}: must be in [2, {MAX_SAMPLES}]",
-            request.samples
-        )));
+        return Err(mrbrake_error::FieldError::out_of_range(
+            "samples",
+            request.samples,
+            format!("2..={MAX_SAMPLES}"),
+        )
+        .into());
     }
     let declarations = request.declarations;
     let names: Vec<String> = declarations.inputs.iter().map(|i| i.path.clone()).collect();
@@ -160,13 +162,17 @@ pub fn propagate(
     let left_out_reason =
         (1..records.len()).find(|k| !kept.contains(k)).and_then(|k| records[k].reason.clone());
     if kept.len() < 2 {
-        return Err(ExploreError::Input(format!(
-            "only {} of {} samples are valid brakes with an analysis (first reason: {}); narrow \
-             the declared spreads",
-            kept.len(),
-            request.samples,
-            left_out_reason.as_deref().unwrap_or("none")
-        )));
+        return Err(ExploreError::input(
+            "input",
+            format!(
+                "only {} of {} samples are valid brakes with an analysis (first reason: {}); \
+                 narrow the declared spreads",
+                kept.len(),
+                request.samples,
+                left_out_reason.as_deref().unwrap_or("none")
+            ),
+        )
+        .in_file(&declarations.origin));
     }
     let unit: Vec<Vec<f64>> = kept.iter().map(|&k| sample.unit[k - 1].clone()).collect();
     let mut outputs = Vec::new();

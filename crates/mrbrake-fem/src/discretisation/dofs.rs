@@ -55,6 +55,19 @@ impl ElementOrder {
     }
 }
 
+/// The order of polynomial degree `degree`, the one rule of an element order for every front end
+/// and problem file: anything but 1 and 2 is a field error naming `order`, the value and `1 or 2`
+/// (the caller locates it in its file or names its flag).
+impl TryFrom<i64> for ElementOrder {
+    type Error = Box<mrbrake_error::FieldError>;
+
+    fn try_from(degree: i64) -> Result<Self, Self::Error> {
+        Self::from_degree(degree).ok_or_else(|| {
+            Box::new(mrbrake_error::FieldError::out_of_range("order", degree, "1 or 2"))
+        })
+    }
+}
+
 impl std::fmt::Display for ElementOrder {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "P{}", self.degree())

@@ -145,9 +145,9 @@ pub fn load(path: &Path) -> Result<HeatFile, HeatError> {
     }
     let order = match raw.order {
         None => ElementOrder::P1,
-        Some(d) => ElementOrder::from_degree(d).ok_or_else(|| {
-            HeatError::from(FieldError::out_of_range("order", d, "1 or 2").in_file(&file, None))
-        })?,
+        Some(d) => {
+            ElementOrder::try_from(d).map_err(|e| HeatError::from(e.in_file(&file, None)))?
+        }
     };
     let mesh_path = path.parent().unwrap_or(Path::new(".")).join(&raw.mesh);
     let (gmsh, scale) =
