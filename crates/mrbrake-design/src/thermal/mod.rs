@@ -780,15 +780,15 @@ fn crossing(curve: &Warmup, limit: f64) -> Option<f64> {
 /// Checks the options, naming the option and its allowed range.
 pub fn validate_options(o: &ThermalOptions) -> Result<(), ThermalError> {
     let bad = |name: &'static str, message: String| Err(ThermalError::Option { name, message });
-    let absolute_zero = -mrbrake_heat::ZERO_CELSIUS_K;
     if !(o.current_a.is_finite() && o.current_a > 0.0 && o.current_a <= 100.0) {
         return bad("current", format!("{} A must be in (0, 100] A", o.current_a));
     }
     if !(o.duty > 0.0 && o.duty <= 1.0) {
         return bad("duty", format!("{} must be in (0, 1]", o.duty));
     }
-    if !(o.ambient_c.is_finite() && o.ambient_c > absolute_zero && o.ambient_c <= 200.0) {
-        return bad("ambient", format!("{} °C must be in (-273.15, 200] °C", o.ambient_c));
+    if !mrbrake_heat::AMBIENT_C.contains(o.ambient_c) {
+        let allowed = mrbrake_heat::AMBIENT_C.describe("°C");
+        return bad("ambient", format!("{} °C must be in {allowed}", o.ambient_c));
     }
     if let Cooling::Fixed { h_w_per_m2k: h } = o.cooling {
         if !(h.is_finite() && h > 0.0 && h <= 1e5) {
