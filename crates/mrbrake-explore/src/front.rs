@@ -71,9 +71,10 @@ pub fn designs(
         return Ok(Vec::new());
     }
     let problem = study.problem().clone();
-    let base_text = std::fs::read_to_string(&problem.spec_path).map_err(|e| {
-        ExploreError::Input(format!("{}: cannot read it: {e}", problem.spec_path.display()))
-    })?;
+    let base_text = mrbrake_error::read::text(&problem.spec_path, mrbrake_error::read::SETTINGS)
+        .map_err(|e| {
+            ExploreError::Input(format!("{}: cannot read it: {e}", problem.spec_path.display()))
+        })?;
     let writer = SpecWriter::new(&base_text, &problem, study.space().is_drum())?;
     let variables = study.space().variables().to_vec();
     let bounds = study.bounds().to_vec();

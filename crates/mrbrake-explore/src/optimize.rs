@@ -457,13 +457,14 @@ pub fn check(problem: &OptimizationProblem) -> Result<(), ExploreError> {
 fn space_and_bounds(
     problem: &OptimizationProblem,
 ) -> Result<(DesignSpace, Vec<Bounds>), ExploreError> {
-    let spec_text = std::fs::read_to_string(&problem.spec_path).map_err(|e| {
-        ExploreError::Input(format!(
-            "{}: spec = '{}': cannot read it: {e}",
-            problem.path.display(),
-            problem.spec_path.display()
-        ))
-    })?;
+    let spec_text = mrbrake_error::read::text(&problem.spec_path, mrbrake_error::read::SETTINGS)
+        .map_err(|e| {
+            ExploreError::Input(format!(
+                "{}: spec = '{}': cannot read it: {e}",
+                problem.path.display(),
+                problem.spec_path.display()
+            ))
+        })?;
     let names: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
     let mut space = DesignSpace::new(
         &spec_text,
@@ -523,7 +524,8 @@ pub fn open_problem_store(
     let problem_path = problem.path.as_path();
     let mut store = Store::open_or_create(store_path, resume)?;
     if store.meta("problem")?.is_none() {
-        let text = std::fs::read_to_string(problem_path).unwrap_or_default();
+        let text = mrbrake_error::read::text(problem_path, mrbrake_error::read::SETTINGS)
+            .unwrap_or_default();
         store.set_meta("problem", &text)?;
     }
     Ok(store)
