@@ -250,27 +250,48 @@ impl RigConfig {
 
     /// Checks ranges; the error names the file, the field, its value and what is allowed.
     pub fn validate(&self, source: &str) -> Result<(), SimError> {
-        let pair = |(field, msg): (&'static str, String)| FieldError::new(field, msg);
+        let pair = |(field, msg): (&'static str, String)| Box::new(FieldError::new(field, msg));
         self.check_plant()
             .and_then(|()| self.check_protocols())
             .and_then(|()| super::check_run_size(self).map_err(pair))
             .and_then(|()| self.hysteresis.check().map_err(pair))
             .and_then(|()| self.minor_loops.check(self.brake.current_max_a).map_err(pair))
-            .map_err(|e| SimError::from(e.in_file(source, None)))
+            .map_err(|e| SimError::from((*e).in_file(source, None)))?;
+        self.check_preisach().map_err(|e| match e {
+            SimError::Input(field) => SimError::from((*field).in_file(source, None)),
+            other => other,
+        })
+    }
+
+    /// The Preisach model is built once here, so that a loop and prior it cannot represent are
+    /// refused naming the file (found by the fuzzer: the run named only the field).
+    fn check_preisach(&self) -> Result<(), SimError> {
+        if self.hysteresis.model != super::preisach::HysteresisKind::Preisach {
+            return Ok(());
+        }
+        let b = &self.brake;
+        super::preisach::PreisachHysteresis::new(
+            &self.hysteresis,
+            &b.rising,
+            &b.falling,
+            b.current_max_a,
+        )
+        .map(|_| ())
     }
 
     /// Brake, motor, sensor and acquisition: the first bad field.
-    fn check_plant(&self) -> Result<(), FieldError> {
+    fn check_plant(&self) -> Result<(), Box<FieldError>> {
         let coefficients = "a non-empty list of finite coefficients";
         for (field, list) in
             [("brake.rising", &self.brake.rising), ("brake.falling", &self.brake.falling)]
         {
             if list.is_empty() || list.iter().any(|c| !c.is_finite()) {
-                return Err(FieldError::out_of_range(field, format!("{list:?}"), coefficients));
+                let bad = list.iter().find(|c| !c.is_finite()).map_or("[]".into(), f64::to_string);
+                return Err(Box::new(FieldError::out_of_range(field, bad, coefficients)));
             }
         }
         let s = &self.sensor;
-        let checks: [(&str, f64, bool, String); 8] = [
+        let checks: [(&str, f64, bool, String); 9] = [
             (
                 "brake.current_max_A",
                 self.brake.current_max_a,
@@ -288,6 +309,13 @@ impl RigConfig {
                 self.motor.belt_ratio,
                 positive(self.motor.belt_ratio),
                 "> 0".into(),
+            ),
+            // Found by the fuzzer: an infinite motor voltage was accepted and the log held NaN.
+            (
+                "motor.voltage_V",
+                self.motor.voltage_v,
+                positive(self.motor.voltage_v) && self.motor.voltage_v <= 1e6,
+                "(0, 1e6] V".into(),
             ),
             (
                 "sensor.stiffness_Nm_per_rad",
@@ -327,7 +355,7 @@ impl RigConfig {
     }
 
     /// The characterisation and frequency-response protocols: the first bad field.
-    fn check_protocols(&self) -> Result<(), FieldError> {
+    fn check_protocols(&self) -> Result<(), Box<FieldError>> {
         let c = &self.characterization;
         let max = self.brake.current_max_a;
         let f = &self.frequency_response;
@@ -394,10 +422,10 @@ impl RigConfig {
 }
 
 /// The first check that failed, as a field error with its value and the allowed range.
-fn first_failed(checks: &[(&str, f64, bool, String)]) -> Result<(), FieldError> {
+fn first_failed(checks: &[(&str, f64, bool, String)]) -> Result<(), Box<FieldError>> {
     match checks.iter().find(|(_, _, ok, _)| !ok) {
         Some((field, value, _, allowed)) => {
-            Err(FieldError::out_of_range(*field, value, allowed.clone()))
+            Err(Box::new(FieldError::out_of_range(*field, value, allowed.clone())))
         }
         None => Ok(()),
     }
