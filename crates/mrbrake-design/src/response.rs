@@ -571,15 +571,17 @@ impl Model<'_> {
     }
 
     /// The first step of the adaptive transient: a ten-thousandth of the duration, but at most a
-    /// tenth of the fastest physical time constant the torque can follow (the fluid's lag and
-    /// the magnetic diffusion time `μ0 σ d²` of the thinnest conducting part, a lower bound since
-    /// μr ≥ 1), so that a long duration cannot step over the whole rise in one implicit step (the
-    /// step controller only grows a step it has resolved, issue 33).
+    /// tenth of the fastest time scale the torque output can follow — the fluid's lag (the output
+    /// is filtered by it), or without a lag the magnetic diffusion time `μ0 σ d²` of the thinnest
+    /// conducting part (a lower bound since μr ≥ 1) — so that a long duration cannot step over
+    /// the whole rise in one implicit step (the step controller only grows a step it has
+    /// resolved, issue 33).
     fn first_step_s(&self) -> f64 {
-        let mut first = 1e-4 * self.options.duration_s;
+        let first = 1e-4 * self.options.duration_s;
         if self.options.fluid_lag_s > 0.0 {
-            first = first.min(0.1 * self.options.fluid_lag_s);
+            return first.min(0.1 * self.options.fluid_lag_s);
         }
+        let mut first = first;
         for c in self.conductors.iter().filter(|c| c.conductivity_s_per_m > 0.0) {
             if let Some(d) = thinnest_extent_m(&self.mesh, c.tag) {
                 let diffusion = mrbrake_materials::MU_0 * c.conductivity_s_per_m * d * d;
