@@ -139,7 +139,8 @@ fn plot_paths_must_be_svg_or_png() {
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
 }
 
-/// Writes a two-frequency test: input 1 + 0.5 sin(ωt), output 0.8 times it, 0.3 rad late.
+/// Writes a two-frequency test: input 1 + 0.5 sin(ωt), output 0.8 times it, 0.01 ω rad late (a
+/// delay, so that the response varies with frequency: `tfest` refuses data without dynamics).
 fn write_manifest(dir: &Path) -> std::path::PathBuf {
     let mut manifest = String::from("frequency_rad_s,file\n");
     for (k, omega) in [10.0f64, 30.0].into_iter().enumerate() {
@@ -147,7 +148,7 @@ fn write_manifest(dir: &Path) -> std::path::PathBuf {
         for i in 0..4000 {
             let t = f64::from(i) * 1e-3;
             let input = 1.0 + 0.5 * (omega * t).sin();
-            let output = 1.0 + 0.4 * (omega * t - 0.3).sin();
+            let output = 1.0 + 0.4 * (omega * t - 0.01 * omega).sin();
             log.push_str(&format!("{t},{input},{output}\n"));
         }
         let name = format!("log{k}.csv");

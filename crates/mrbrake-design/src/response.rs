@@ -173,9 +173,10 @@ pub struct StepResponse {
     /// Torque after the fluid's lag (N·m): yield torque of the direction's gaps.
     #[serde(rename = "torque_Nm")]
     pub torque_nm: Vec<f64>,
-    /// Time to 63 % of the torque change (s), `None` if not reached.
+    /// Time to 63 % of the torque change (s), `None` if not reached or not resolved by the time
+    /// steps ([`resolved_rise_time`]).
     pub t63_s: Option<f64>,
-    /// Time to 90 % (s).
+    /// Time to 90 % (s), `None` as `t63_s`.
     pub t90_s: Option<f64>,
     /// Time steps taken (accepted, rejected).
     pub steps: [usize; 2],
@@ -255,7 +256,14 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
     let max_current = spec.coil.max_current.a();
     let to = options.step_to_a.unwrap_or(max_current);
     step_drive(options.step_from_a, to)?;
+    let bias = options.bias_a.unwrap_or(0.5 * max_current);
+    check_bias(bias, max_current)?;
     let model = ResponseModel::new(spec, options)?.model;
+    // The frequency response first: a bias without small-signal gain is an input error, found
+    // before the (longer) transients.
+    let t0 = Instant::now();
+    let (dc_gain, frequency_response) = model.frequency_response(bias)?;
+    let frequency_s = t0.elapsed().as_secs_f64();
     let t0 = Instant::now();
     // The directions' transients are independent: one thread each (on two cores the step
     // responses of the bidirectional brake take the time of one).
@@ -275,10 +283,6 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
         eddy = eddy.or(field);
     }
     let step_s = t0.elapsed().as_secs_f64();
-    let t0 = Instant::now();
-    let bias = options.bias_a.unwrap_or(0.5 * max_current);
-    let (dc_gain, frequency_response) = model.frequency_response(bias)?;
-    let frequency_s = t0.elapsed().as_secs_f64();
     Ok(Response {
         name: spec.name.clone(),
         drive: options.drive,
@@ -390,6 +394,18 @@ impl<'a> ResponseModel<'a> {
         let bandwidth = frd.bandwidth_rad_s(MINUS_3_DB);
         Ok((gain, frd, bandwidth))
     }
+}
+
+/// The bias of a frequency response must lie within the coil's rating (above it the prediction
+/// is of a coil the spec does not allow).
+fn check_bias(bias: f64, max_current: f64) -> Result<(), DesignError> {
+    if bias > max_current {
+        let e = FieldError::new("bias", "above the spec's maximum current (coil.max_current)")
+            .with_value(format!("{bias} A"))
+            .with_allowed(format!("0 < bias <= {max_current} A"));
+        return Err(e.into());
+    }
+    Ok(())
 }
 
 /// The drive amplitude and waveform of a step from `from` to `to` amperes: `to · Step(from/to)`,
@@ -529,7 +545,8 @@ impl Model<'_> {
         };
         let mut dynamics = self.dynamics(unit, drive, waveform)?;
         let duration = self.options.duration_s;
-        let step = TimeStep::Adaptive { rtol: self.options.rtol, dt_initial_s: 1e-4 * duration };
+        let step =
+            TimeStep::Adaptive { rtol: self.options.rtol, dt_initial_s: self.first_step_s() };
         let transient = TransientOptions::new(duration, Scheme::Bdf2, step);
         let (result, yield_torque, eddy) =
             self.observed_transient(&mut dynamics, &transient, unit, keep_at)?;
@@ -540,14 +557,37 @@ impl Model<'_> {
         let current = result.coils[0].current_a.iter().map(|i| i * sign).collect();
         let response = StepResponse {
             direction: unit + 1,
-            t63_s: rise_time(&time, &torque, 0.63),
-            t90_s: rise_time(&time, &torque, 0.90),
+            t63_s: resolved_rise_time(&time, &torque, 0.63),
+            t90_s: resolved_rise_time(&time, &torque, 0.90),
             steps: [time.len() - 1, result.rejected_steps],
             time_s: time,
             current_a: current,
             torque_nm: torque,
         };
         Ok((response, eddy))
+    }
+
+    /// The first step of the adaptive transient: a ten-thousandth of the duration, but at most a
+    /// tenth of the fastest time scale the torque output can follow — the fluid's lag (the output
+    /// is filtered by it), or without a lag the magnetic diffusion time `μ0 σ d²` of the thinnest
+    /// conducting part (a lower bound since μr ≥ 1) — so that a long duration cannot step over
+    /// the whole rise in one implicit step (the step controller only grows a step it has
+    /// resolved, issue 33).
+    fn first_step_s(&self) -> f64 {
+        let first = 1e-4 * self.options.duration_s;
+        if self.options.fluid_lag_s > 0.0 {
+            return first.min(0.1 * self.options.fluid_lag_s);
+        }
+        let mut first = first;
+        for c in self.conductors.iter().filter(|c| c.conductivity_s_per_m > 0.0) {
+            if let Some(d) = thinnest_extent_m(&self.mesh, c.tag) {
+                let diffusion = mrbrake_materials::MU_0 * c.conductivity_s_per_m * d * d;
+                if diffusion > 0.0 {
+                    first = first.min(0.1 * diffusion);
+                }
+            }
+        }
+        first
     }
 
     /// The transient of `dynamics` with the yield torque of every level and the eddy-current
@@ -615,6 +655,8 @@ impl Model<'_> {
     /// The small-signal torque per current of direction 1 about `bias` amperes: the DC gain and
     /// the normalised response at the options' frequencies.
     fn frequency_response(&self, bias: f64) -> Result<(f64, Frd), DesignError> {
+        let max_current = self.spec.coil.max_current.a();
+        check_bias(bias, max_current)?;
         let unit = 0;
         let drive = |sign: f64, _| Drive::Current { amplitude_a: sign };
         let mut dynamics = self.dynamics(unit, drive, Waveform::Step { initial: 0.0 })?;
@@ -641,6 +683,19 @@ impl Model<'_> {
             gains.push(gain);
         }
         let dc = gains[0];
+        if !(dc.norm() > 0.0 && dc.re.is_finite() && dc.im.is_finite()) {
+            let e = FieldError::new(
+                "bias",
+                format!(
+                    "no small-signal gain there (dT/dI = {} N·m/A): the yield torque has no slope \
+                     (at 0 A it grows as the square of the current)",
+                    dc.re
+                ),
+            )
+            .with_value(format!("{bias} A"))
+            .with_allowed(format!("a bias with a torque slope, 0 < bias <= {max_current} A"));
+            return Err(e.into());
+        }
         let points = self
             .options
             .omegas_rad_s
@@ -722,6 +777,35 @@ pub fn first_order_lag(time: &[f64], input: &[f64], tau: f64) -> Vec<f64> {
         out.push(u1 + (y0 - u0) * decay - (u1 - u0) * (tau / h) * (1.0 - decay));
     }
     out
+}
+
+/// The smaller side of the bounding box of the triangles tagged `tag` (m), `None` without any.
+fn thinnest_extent_m(mesh: &mrbrake_fem::mesh::Mesh, tag: u32) -> Option<f64> {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for (triangle, _) in mesh.triangles.iter().zip(&mesh.triangle_tags).filter(|(_, t)| **t == tag)
+    {
+        for &node in triangle {
+            for axis in 0..2 {
+                lo[axis] = lo[axis].min(mesh.nodes[node][axis]);
+                hi[axis] = hi[axis].max(mesh.nodes[node][axis]);
+            }
+        }
+    }
+    let extent = (hi[0] - lo[0]).min(hi[1] - lo[1]);
+    extent.is_finite().then_some(extent)
+}
+
+/// [`rise_time`] when the steps resolve it: the step holding the crossing spans at most a quarter
+/// of the time from the start to the crossing, so the interpolated instant is not an artefact of
+/// one long step (issue 33: a 1e6 s run used to report a t63 interpolated inside its first step);
+/// `None` otherwise, as when the level is not reached.
+pub fn resolved_rise_time(time: &[f64], y: &[f64], fraction: f64) -> Option<f64> {
+    let t = rise_time(time, y, fraction)?;
+    let start = *time.first()?;
+    let k = time.partition_point(|&s| s < t).clamp(1, time.len().max(2) - 1);
+    let step = time.get(k)? - time.get(k - 1)?;
+    (step <= 0.25 * (t - start)).then_some(t)
 }
 
 /// The first time `y` has covered `fraction` of its change from the first to the last sample

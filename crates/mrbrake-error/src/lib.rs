@@ -120,16 +120,18 @@ impl<K: Kind + ?Sized> Kind for Box<K> {
     }
 }
 
-/// A path the user gave that does not exist, may not be read or is of the wrong type is an input
-/// error; any other I/O failure is [`ErrorKind::Io`].
+/// A path the user gave that does not exist, may not be read, is of the wrong type or is larger
+/// than its kind's limit ([`read`]) is an input error; any other I/O failure is [`ErrorKind::Io`].
 #[cfg(feature = "std")]
 impl Kind for std::io::Error {
     fn kind(&self) -> ErrorKind {
         use std::io::ErrorKind as Io;
         match std::io::Error::kind(self) {
-            Io::NotFound | Io::PermissionDenied | Io::NotADirectory | Io::IsADirectory => {
-                ErrorKind::Input
-            }
+            Io::NotFound
+            | Io::PermissionDenied
+            | Io::NotADirectory
+            | Io::IsADirectory
+            | Io::FileTooLarge => ErrorKind::Input,
             _ => ErrorKind::Io,
         }
     }
@@ -139,6 +141,8 @@ impl Kind for std::io::Error {
 mod field;
 #[cfg(feature = "std")]
 pub mod message;
+#[cfg(feature = "std")]
+pub mod read;
 #[cfg(feature = "std")]
 pub use field::{FieldError, FieldErrors};
 

@@ -71,10 +71,11 @@ pub fn designs(
         return Ok(Vec::new());
     }
     let problem = study.problem().clone();
-    let base_text = std::fs::read_to_string(&problem.spec_path).map_err(|e| {
-        ExploreError::input("", format!("cannot read it: {e}"))
-            .in_file(&problem.spec_path.display().to_string())
-    })?;
+    let base_text = mrbrake_error::read::text(&problem.spec_path, mrbrake_error::read::SETTINGS)
+        .map_err(|e| {
+            ExploreError::input("", format!("cannot read it: {e}"))
+                .in_file(&problem.spec_path.display().to_string())
+        })?;
     let writer = SpecWriter::new(&base_text, &problem, study.space().is_drum())?;
     let variables = study.space().variables().to_vec();
     let bounds = study.bounds().to_vec();

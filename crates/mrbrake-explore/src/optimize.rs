@@ -463,11 +463,12 @@ fn space_and_bounds(
     problem: &OptimizationProblem,
 ) -> Result<(DesignSpace, Vec<Bounds>), ExploreError> {
     let problem_file = problem.path.display().to_string();
-    let spec_text = std::fs::read_to_string(&problem.spec_path).map_err(|e| {
-        let e = mrbrake_error::FieldError::new("spec", format!("cannot read it: {e}"))
-            .with_value(format!("'{}'", problem.spec_path.display()));
-        ExploreError::from(e).in_file(&problem_file)
-    })?;
+    let spec_text = mrbrake_error::read::text(&problem.spec_path, mrbrake_error::read::SETTINGS)
+        .map_err(|e| {
+            let e = mrbrake_error::FieldError::new("spec", format!("cannot read it: {e}"))
+                .with_value(format!("'{}'", problem.spec_path.display()));
+            ExploreError::from(e).in_file(&problem_file)
+        })?;
     let names: Vec<String> = problem.variables.iter().map(|v| v.name.clone()).collect();
     let mut space = DesignSpace::new(
         &spec_text,
@@ -521,7 +522,8 @@ pub fn open_problem_store(
     let problem_path = problem.path.as_path();
     let mut store = Store::open_or_create(store_path, resume)?;
     if store.meta("problem")?.is_none() {
-        let text = std::fs::read_to_string(problem_path).unwrap_or_default();
+        let text = mrbrake_error::read::text(problem_path, mrbrake_error::read::SETTINGS)
+            .unwrap_or_default();
         store.set_meta("problem", &text)?;
     }
     Ok(store)

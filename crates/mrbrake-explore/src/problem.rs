@@ -519,7 +519,7 @@ pub struct OptimizationProblem {
 impl OptimizationProblem {
     /// Reads and checks a problem file.
     pub fn from_path(path: &Path) -> Result<Self, ExploreError> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
+        let text = mrbrake_error::read::text(path, mrbrake_error::read::SETTINGS).map_err(|e| {
             ExploreError::input("", format!("cannot read the problem file: {e}"))
                 .in_file(&path.display().to_string())
         })?;
@@ -586,7 +586,7 @@ impl OptimizationProblem {
     pub fn apply_set(&mut self, sets: &[(String, String)]) -> Result<(), ExploreError> {
         // The base spec's configuration decides what a symbol names; a spec that cannot be read
         // is reported by the run itself, and names are then compared as written.
-        let is_drum = std::fs::read_to_string(&self.spec_path)
+        let is_drum = mrbrake_error::read::text(&self.spec_path, mrbrake_error::read::SETTINGS)
             .ok()
             .and_then(|text| mrbrake_design::spec::BrakeSpec::from_toml_str(&text, "spec").ok())
             .map(|spec| spec.configuration.is_drum());

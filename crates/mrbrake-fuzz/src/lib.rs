@@ -4,7 +4,9 @@
 //! Brief overview:
 //! - [`mod@targets`] lists one [`Target`] per input format — brake spec, magnetic and heat problem
 //!   files, MSH 2.2 and 4.1, optimisation problem, rig configuration, CSV logs (characterisation),
-//!   sine-test manifest, FRD, inverse-model JSON, results store — each with its seed corpus (the
+//!   sine-test manifest, FRD, inverse-model JSON, results store, and (issue 33) magnetodynamic
+//!   problem files, brake-model files, Preisach rigs with their minor-loop programs and the
+//!   `response`/`thermal` options — each with its seed corpus (the
 //!   files of `examples/` and the test fixtures, plus files the library writes itself) and a
 //!   function that feeds one input through the loader and, where cheap, the next stage.
 //! - [`mutate`] derives a new input from a corpus entry: byte flips, deletions, duplications,
@@ -15,6 +17,10 @@
 //!   limit is a finding too, and an input whose outcome (ok, or the error's kind and its first
 //!   words with digits removed) has not been seen joins the corpus — outcome diversity stands in
 //!   for the coverage feedback a compiler-instrumented fuzzer would have.
+//!
+//! The issue 33 targets check its properties on every execution (`targets::hardening`): an
+//! accepted input gives only finite numbers, a refused file names its file; a violation panics and
+//! is recorded as a crash like any other.
 //!
 //! Every crash found becomes a file under `crates/mrbrake-fuzz/regressions/<target>/` that
 //! `tests/regressions.rs` replays. `mrbrake-fuzz --seconds N` is the bounded CI run (`.ci/run`);
@@ -51,7 +57,7 @@ impl Outcome {
 }
 
 /// The first 60 characters of `message` without digits or file paths (signature of a check).
-fn normalise(message: &str) -> String {
+pub(crate) fn normalise(message: &str) -> String {
     let without_paths = message.rsplit(".toml").next().unwrap_or(message);
     without_paths
         .chars()

@@ -17,6 +17,8 @@ use mrbrake_sysid::tfest::{TfestOptions, tfest};
 
 use crate::Outcome;
 
+mod hardening;
+
 /// One input format: its name, seed inputs and the function that runs one input.
 pub struct Target {
     /// Short name (`spec`, `msh22`, …).
@@ -61,6 +63,14 @@ fn scratch() -> PathBuf {
         }
         cell.as_ref().map(|d| d.path().to_path_buf()).unwrap_or_default()
     })
+}
+
+/// Copies the repository file `relative` into the scratch folder as `name` (once per thread).
+fn scratch_with(name: &str, relative: &str) {
+    let path = scratch().join(name);
+    if !path.exists() {
+        std::fs::write(&path, read(relative)).expect("write a scratch file");
+    }
 }
 
 fn write_scratch(name: &str, input: &[u8]) -> PathBuf {
@@ -119,6 +129,9 @@ pub fn targets() -> Vec<Target> {
         Target { name: "model-json", seeds: vec![model_seed()], run: run_model },
         Target { name: "store", seeds: vec![store_seed()], run: run_store },
     ]
+    .into_iter()
+    .chain(hardening::targets())
+    .collect()
 }
 
 fn spec_seeds() -> Vec<Vec<u8>> {

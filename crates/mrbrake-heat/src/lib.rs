@@ -112,6 +112,17 @@ impl mrbrake_error::Kind for HeatError {
     }
 }
 
+/// The ambient temperatures every reader accepts (°C): above absolute zero, at most 200 °C (the
+/// range of the air properties of natural convection and of the brake's materials' thermal
+/// data). One rule for `thermal --ambient` and a heat problem file's `T_amb_C` (issue 33).
+pub const AMBIENT_C: mrbrake_schema::Bounds =
+    mrbrake_schema::Bounds::open_closed(-ZERO_CELSIUS_K, 200.0);
+
+/// The fixed and initial temperatures a heat problem file accepts (°C): above absolute zero, at
+/// most 2000 °C (no thermal data of the library holds beyond; a larger value is a unit mistake).
+pub const TEMPERATURE_C: mrbrake_schema::Bounds =
+    mrbrake_schema::Bounds::open_closed(-ZERO_CELSIUS_K, 2000.0);
+
 /// Kelvin of degrees Celsius.
 pub fn kelvin(celsius: f64) -> f64 {
     celsius + ZERO_CELSIUS_K

@@ -328,6 +328,30 @@ impl HeatSolver {
         Ok(())
     }
 
+    /// A steady state needs a way out for heat: a convection (h > 0), radiation (ε > 0) or
+    /// fixed-temperature boundary. With every boundary adiabatic the steady problem is singular
+    /// (its matrix has the constants as null space, and with a source there is no solution at
+    /// all); this is said before a solve that would only report a zero pivot (issue 33).
+    fn check_heat_path(&self) -> Result<(), HeatError> {
+        let way_out = self.problem.boundaries.iter().any(|b| match b.condition {
+            BoundaryCondition::Convection { h_w_per_m2k, .. } => h_w_per_m2k > 0.0,
+            BoundaryCondition::Radiation { emissivity, .. } => emissivity > 0.0,
+            BoundaryCondition::Temperature { .. } => true,
+            BoundaryCondition::Adiabatic => false,
+        });
+        if way_out {
+            return Ok(());
+        }
+        let e = FieldError::new(
+            "boundary",
+            "no heat leaves the problem: every boundary is adiabatic (or has h = 0, emissivity = \
+             0), so there is no steady temperature; give a convection, radiation or \
+             fixed-temperature boundary, or solve a [transient]",
+        )
+        .with_allowed("at least one boundary with h > 0, emissivity > 0 or a fixed T_C");
+        Err(e.into())
+    }
+
     /// A uniform start at `t_k` with the fixed temperatures imposed.
     pub fn uniform(&self, t_k: f64) -> Vec<f64> {
         let mut u = vec![t_k; self.assembly.basis().dofs().len()];
@@ -415,6 +439,7 @@ impl HeatSolver {
         &mut self,
         initial: Option<&[f64]>,
     ) -> Result<(Vec<f64>, NewtonReport), HeatError> {
+        self.check_heat_path()?;
         self.form.capacity = None;
         self.prepare_steady();
         let mut u = match initial {

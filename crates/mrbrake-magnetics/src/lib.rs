@@ -75,6 +75,9 @@ pub enum MagneticsError {
     /// allowed.
     #[error(transparent)]
     Input(Box<mrbrake_error::FieldError>),
+    /// Every invalid field of a table at once (a problem file's `[transient]` step keys).
+    #[error(transparent)]
+    Fields(#[from] mrbrake_error::FieldErrors),
     /// An error of the mesh / finite-element layer (mesh file, invalid mesh, factorisation).
     #[error(transparent)]
     Fem(#[from] mrbrake_fem::FemError),
@@ -121,7 +124,7 @@ impl mrbrake_error::Kind for MagneticsError {
     fn kind(&self) -> mrbrake_error::ErrorKind {
         use mrbrake_error::ErrorKind;
         match self {
-            Self::Input(_) => ErrorKind::Input,
+            Self::Input(_) | Self::Fields(_) => ErrorKind::Input,
             Self::Fem(e) => e.kind(),
             Self::Material(e) => e.kind(),
             Self::NotConverged { .. } | Self::Numerical(_) => ErrorKind::Numerical,

@@ -82,8 +82,8 @@ impl BhCurve {
     /// Reads and validates a user CSV file (header `H_A_per_m,B_T`); its provenance is the path.
     pub fn from_csv_file(path: &Path) -> Result<Self, MaterialError> {
         let file = path.display().to_string();
-        let text =
-            std::fs::read_to_string(path).map_err(|source| MaterialError::io(&file, source))?;
+        let text = mrbrake_error::read::text(path, mrbrake_error::read::MODEL)
+            .map_err(|source| MaterialError::io(&file, source))?;
         Self::from_csv_str(&text, &file, Provenance::user_file(&file))
     }
 

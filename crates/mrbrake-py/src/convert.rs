@@ -80,8 +80,13 @@ impl SpecInput {
                 (DEFAULT_SPEC_TOML.to_string(), "thesis-bidirectional.toml (embedded)".into())
             }
             Self::Path(path) => (
-                std::fs::read_to_string(&path).map_err(|e| {
-                    PyOSError::new_err(format!("cannot read the spec {}: {e}", path.display()))
+                mrbrake::error::read::text(&path, mrbrake::error::read::SETTINGS).map_err(|e| {
+                    let message = format!("cannot read the spec {}: {e}", path.display());
+                    if e.kind() == std::io::ErrorKind::NotFound {
+                        pyo3::exceptions::PyFileNotFoundError::new_err(message)
+                    } else {
+                        PyOSError::new_err(message)
+                    }
                 })?,
                 path.display().to_string(),
             ),

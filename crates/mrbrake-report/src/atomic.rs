@@ -88,6 +88,51 @@ pub fn temp_path_for(path: &Path) -> Result<PathBuf, ReportError> {
     Ok(dir.join(format!(".{name}.tmp-{}-{n}{extension}", std::process::id())))
 }
 
+/// A folder of outputs written in full before any of it appears (all or nothing, issue 33): the
+/// files go to a hidden sibling folder first ([`StagedDir::write`]); [`StagedDir::commit`] moves
+/// them into the target folder once every other output of the command succeeded too. Dropped
+/// without a commit (a later step failed), the staged files are removed and the target is
+/// untouched.
+#[derive(Debug)]
+pub struct StagedDir {
+    staging: PathBuf,
+    target: PathBuf,
+}
+
+impl StagedDir {
+    /// Runs `write` on a fresh staging folder beside `target`; on its failure nothing is left.
+    pub fn write(
+        target: &Path,
+        write: impl FnOnce(&Path) -> Result<(), ReportError>,
+    ) -> Result<Self, ReportError> {
+        let staging = temp_path_for(target)?;
+        std::fs::create_dir_all(&staging)
+            .map_err(|source| ReportError::Io { path: target.to_path_buf(), source })?;
+        let staged = Self { staging, target: target.to_path_buf() };
+        write(&staged.staging)?;
+        Ok(staged)
+    }
+
+    /// Moves the staged files into the target folder (created if missing), replacing files of
+    /// the same name.
+    pub fn commit(self) -> Result<(), ReportError> {
+        let io_err = |source| ReportError::Io { path: self.target.clone(), source };
+        std::fs::create_dir_all(&self.target).map_err(io_err)?;
+        for entry in std::fs::read_dir(&self.staging).map_err(io_err)? {
+            let entry = entry.map_err(io_err)?;
+            std::fs::rename(entry.path(), self.target.join(entry.file_name())).map_err(io_err)?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for StagedDir {
+    fn drop(&mut self) {
+        // Best effort: after a commit the folder is empty; without one it holds the garbage.
+        let _ = std::fs::remove_dir_all(&self.staging);
+    }
+}
+
 /// The temporary files being written at this moment.
 pub fn pending_temp_files() -> Vec<PathBuf> {
     PENDING.lock().map(|list| list.clone()).unwrap_or_default()
@@ -170,6 +215,27 @@ fn copy_into_special(tmp: &Path, target: &Path) -> std::io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_staged_folder_appears_only_on_commit() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("plots");
+        let failed = StagedDir::write(&target, |d| {
+            std::fs::write(d.join("a.svg"), "a").unwrap();
+            Err(ReportError::Io { path: d.to_path_buf(), source: std::io::ErrorKind::Other.into() })
+        });
+        assert!(failed.is_err());
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing left behind");
+        let staged = StagedDir::write(&target, |d| {
+            std::fs::write(d.join("a.svg"), "a")
+                .map_err(|source| ReportError::Io { path: d.to_path_buf(), source })
+        })
+        .unwrap();
+        assert!(!target.exists());
+        staged.commit().unwrap();
+        assert_eq!(std::fs::read_to_string(target.join("a.svg")).unwrap(), "a");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "the staging folder is gone");
+    }
     use mrbrake_error::Kind as _;
 
     fn temp_leftovers(dir: &Path) -> Vec<String> {

@@ -80,7 +80,7 @@ pub fn text(r: &Response, source: &str) -> String {
 }
 
 fn ms(t: Option<f64>) -> String {
-    t.map_or("not reached".into(), |t| format!("{:.2} ms", t * 1e3))
+    t.map_or("not reached or not resolved by the steps".into(), |t| format!("{:.2} ms", t * 1e3))
 }
 
 /// The step-response figure (torque against time, each direction; the second dashed, as the

@@ -153,7 +153,7 @@ fn opened_spec(config: &Config) -> Result<(String, String), StudioError> {
     match &config.spec {
         None => Ok(("spec.toml".into(), mrbrake_design::spec::DEFAULT_SPEC_TOML.to_string())),
         Some(path) => {
-            let text = std::fs::read_to_string(path)
+            let text = mrbrake_error::read::text(path, mrbrake_error::read::SETTINGS)
                 .map_err(|e| StudioError::Open(format!("{}: cannot read: {e}", path.display())))?;
             if text.len() > config.limits.spec_bytes {
                 return Err(StudioError::Open(format!(

@@ -309,7 +309,7 @@ fn check_polar_agrees(source: &Path, text: &str, response: &[Complex64]) -> Resu
 
 /// Reads an FRD CSV file; `weight_col` names an optional weight column.
 pub fn read_frd(path: &Path, weight_col: Option<&str>) -> Result<Frd, SysidError> {
-    let text = std::fs::read_to_string(path)
+    let text = mrbrake_error::read::text(path, mrbrake_error::read::MODEL)
         .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
     read_frd_from(path, &text, weight_col)
 }

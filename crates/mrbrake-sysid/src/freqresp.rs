@@ -225,14 +225,40 @@ pub fn analyse_test(
             "the output has no component at {omega_rad_s} rad/s: gain and phase are undefined"
         )));
     }
-    Ok(MeasuredPoint {
+    let measured = MeasuredPoint {
         point: FrequencyPoint::new(omega_rad_s, g),
         quality_percent: fy.fit_percent,
         input_fit_percent: fu.fit_percent,
         tracking: tracking_error(u, y)?,
         periods: whole as usize,
         file: source.to_path_buf(),
-    })
+    };
+    check_finite(&measured, u, y).map_err(file_err)?;
+    Ok(measured)
+}
+
+/// Every number a point reports must be finite: samples near the largest double (1e308) overflow
+/// the sums of squares of the fits and the tracking error (issue 33: `freqresp` printed "inf"),
+/// so such a log is refused with the size of its largest sample.
+fn check_finite(point: &MeasuredPoint, input: &[f64], output: &[f64]) -> Result<(), String> {
+    let g = point.point.response;
+    let numbers = [
+        g.re,
+        g.im,
+        point.point.magnitude_db(),
+        point.quality_percent,
+        point.input_fit_percent,
+        point.tracking.rmse_nm,
+    ];
+    if numbers.iter().all(|v| v.is_finite()) {
+        return Ok(());
+    }
+    let largest = input.iter().chain(output).fold(0.0_f64, |m, v| m.max(v.abs()));
+    Err(format!(
+        "the samples are too large to analyse at {} rad/s (largest |sample| {largest:e}: the fit's \
+         sums of squares overflow double precision); check the log's units",
+        point.point.omega_rad_s
+    ))
 }
 
 /// The value of a column whose samples are all equal (`None` when they vary).
@@ -252,7 +278,7 @@ pub struct ManifestEntry {
 
 /// Reads a manifest CSV with columns `frequency_rad_s,file`.
 pub fn read_manifest(path: &Path) -> Result<Vec<ManifestEntry>, SysidError> {
-    let text = std::fs::read_to_string(path)
+    let text = mrbrake_error::read::text(path, mrbrake_error::read::LOG)
         .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
     let base = path.parent().unwrap_or(Path::new("."));
     let file_err = crate::log::file_error(path);

@@ -99,7 +99,7 @@ pub fn read_log(
     channel_cols: &[&str],
     min_samples: usize,
 ) -> Result<Log, SysidError> {
-    let file = std::fs::File::open(path)
+    let file = mrbrake_error::read::open(path, mrbrake_error::read::LOG)
         .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })?;
     read_log_from(
         path,

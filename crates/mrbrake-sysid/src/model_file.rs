@@ -33,7 +33,7 @@ pub fn parse_inverse_model(source: &Path, text: &str) -> Result<InverseModel, Sy
 
 /// The text of a model file (an I/O error names it).
 pub(crate) fn read_text(path: &Path) -> Result<String, SysidError> {
-    std::fs::read_to_string(path)
+    mrbrake_error::read::text(path, mrbrake_error::read::MODEL)
         .map_err(|source| SysidError::Io { path: path.to_path_buf(), source })
 }
 

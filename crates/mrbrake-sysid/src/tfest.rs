@@ -350,6 +350,7 @@ fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
     if frd.responses().all(|g| g.norm() <= 0.0) {
         return Err(FieldError::new("frd", "tfest: every response is zero: nothing to fit").into());
     }
+    check_has_dynamics(frd)?;
     let w_min = frd.omegas().fold(f64::INFINITY, f64::min);
     let w_max = frd.omegas().fold(0.0, f64::max);
     let decades = (w_max / w_min).log10();
@@ -365,6 +366,27 @@ fn check_request(frd: &Frd, options: &TfestOptions) -> Result<(), SysidError> {
         )
         .with_value(format!("{decades:.1} decades"))
         .with_allowed(format!("<= {:.1} decades", MAX_DECADES_TIMES_DEGREE / m.max(n) as f64))
+        .into());
+    }
+    Ok(())
+}
+
+/// Data whose response is the same at every frequency carry no dynamics: every model with the
+/// right DC gain fits them and the fit percentage (relative to the data's spread) is undefined
+/// (issue 33: it printed "−inf %"), so the request is refused.
+fn check_has_dynamics(frd: &Frd) -> Result<(), SysidError> {
+    let n = frd.len().max(1) as f64;
+    let mean = frd.responses().fold(Complex64::default(), |a, g| a + g).scale(1.0 / n);
+    let spread = frd.responses().map(|g| (g - mean).norm()).fold(0.0, f64::max);
+    let scale = frd.responses().map(|g| g.norm()).fold(0.0, f64::max);
+    if spread <= 1e-12 * scale {
+        return Err(FieldError::new(
+            "frd",
+            "tfest: the response is the same at every frequency: no dynamics to fit (a constant \
+             gain has no poles)",
+        )
+        .with_value(format!("G = {} {:+}j at all {} points", mean.re, mean.im, frd.len()))
+        .with_allowed("a response that varies with frequency")
         .into());
     }
     Ok(())

@@ -74,6 +74,39 @@ pub enum ProblemFileError {
     /// A heat problem file's error (its reader and solver).
     #[error(transparent)]
     Heat(#[from] mrbrake_heat::HeatError),
+    /// A solve of a valid file failed numerically: the file and, in words, the keys most likely
+    /// responsible; the solver's own error (with its step, time and history) is the cause.
+    #[error("{}: the solve failed; check {keys}", path.display())]
+    Solve {
+        /// The file.
+        path: PathBuf,
+        /// The keys of the file most likely responsible.
+        keys: &'static str,
+        /// The solver's failure.
+        #[source]
+        source: Box<ProblemFileError>,
+    },
+}
+
+/// The keys of a magnetic problem file behind most numerical failures.
+const MAGNETIC_KEYS: &str = "the regions' materials and conductivity_S_per_m, the sources' turns, \
+    current_A and drive, and the [transient] waveform and steps (a value valid on its own can \
+    still be far outside what the mesh and the time steps resolve)";
+
+/// The keys of a heat problem file behind most numerical failures.
+const HEAT_KEYS: &str = "the regions' materials and heat sources (a Joule current too large for \
+    the cooling), the boundaries' h_W_per_m2K, emissivity and temperatures, and the [transient] \
+    steps";
+
+impl ProblemFileError {
+    /// A numerical failure of the solve of `path` wrapped with `keys`; other errors unchanged.
+    fn in_solve(self, path: &Path, keys: &'static str) -> Self {
+        if self.kind() == ErrorKind::Numerical {
+            Self::Solve { path: path.to_owned(), keys, source: Box::new(self) }
+        } else {
+            self
+        }
+    }
 }
 
 impl Kind for ProblemFileError {
@@ -85,6 +118,7 @@ impl Kind for ProblemFileError {
             Self::UnknownPhysics { .. } => ErrorKind::Input,
             Self::Magnetics(e) => e.kind(),
             Self::Heat(e) => e.kind(),
+            Self::Solve { source, .. } => source.kind(),
         }
     }
 }
@@ -159,17 +193,19 @@ pub struct ProblemField {
 /// Reads, solves and post-processes the problem file at `path` with the solver of its physics;
 /// `order` replaces the file's element order (`fem solve --order`).
 pub fn solve(path: &Path, order: Option<ElementOrder>) -> Result<Solved, ProblemFileError> {
-    let text = std::fs::read_to_string(path)
+    let text = mrbrake_error::read::text(path, mrbrake_error::read::SETTINGS)
         .map_err(|source| ProblemFileError::Read { path: path.to_owned(), source })?;
     Ok(match physics_of(&text, path)? {
         Physics::Magnetics => {
             let (report, solver, solution) =
-                mrbrake_magnetics::problem_file::solve_file_with_order(path, order)?;
+                mrbrake_magnetics::problem_file::solve_file_with_order(path, order)
+                    .map_err(|e| ProblemFileError::from(e).in_solve(path, MAGNETIC_KEYS))?;
             Solved::Magnetics { report: Box::new(report), solver: Box::new(solver), solution }
         }
         Physics::Heat => {
             let (report, solver, temperature_k) =
-                mrbrake_heat::problem_file::solve_file(path, order)?;
+                mrbrake_heat::problem_file::solve_file(path, order)
+                    .map_err(|e| ProblemFileError::from(e).in_solve(path, HEAT_KEYS))?;
             Solved::Heat { report: Box::new(report), solver: Box::new(solver), temperature_k }
         }
     })

@@ -61,7 +61,8 @@ fn solve(args: SolveArgs) -> CommandResult {
     // The library reads the file's physics and solves it; a plot (|B| and flux lines) only has a
     // meaning for a magnetic file, so a heat file's --plot is refused before the solve.
     if args.plot.is_some() {
-        let text = std::fs::read_to_string(&args.problem).unwrap_or_default();
+        let settings = mrbrake::error::read::SETTINGS;
+        let text = mrbrake::error::read::text(&args.problem, settings).unwrap_or_default();
         if problem_file::physics_of(&text, &args.problem)? == Physics::Heat {
             return Err(InputError(
                 "--plot draws |B| maps of magnetostatic files; for a heat file use --vtu".into(),

@@ -94,7 +94,7 @@ fn design_page(a: &ReportArgs) -> CommandResult<String> {
     let (spec, text) = match &a.spec {
         Some(path) => {
             let spec = BrakeSpec::from_path(path)?;
-            let text = std::fs::read_to_string(path)
+            let text = mrbrake::error::read::text(path, mrbrake::error::read::SETTINGS)
                 .map_err(|e| InputError(format!("{}: cannot read: {e}", path.display())))?;
             (spec, text)
         }

@@ -9,6 +9,7 @@ use mrbrake::design::response::{
     ElementOrder, ResponseDrive, ResponseOptions, parse_step, response,
 };
 use mrbrake::design::spec::{BrakeSpec, default_spec};
+use mrbrake::report::atomic::StagedDir;
 use mrbrake::report::response as report;
 use mrbrake::units::{Dimension, parse};
 
@@ -106,30 +107,40 @@ fn options(a: &ResponseArgs) -> Result<ResponseOptions, InputError> {
     Ok(o)
 }
 
-/// Runs `mrbrake response`.
+/// Runs `mrbrake response`. All or nothing: the plots are staged, the model and the FRD composed
+/// in memory, and nothing is written until every output is ready.
 pub fn run(a: ResponseArgs) -> CommandResult {
     let spec = match &a.spec {
         Some(path) => BrakeSpec::from_path(path)?,
         None => default_spec(),
     };
     let r = response(&spec, &options(&a)?).map_err(field_flags::design)?;
+    let source =
+        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
+    let model = match &a.save_model {
+        Some(path) => {
+            let mut model = mrbrake::sim::brake_model::BrakeModel::read(path)?;
+            let word = super::analyze::command_word(a.spec.as_deref(), &source);
+            let how = format!("mrbrake response {word} (--mesh {} --drive {})", a.mesh, a.drive);
+            mrbrake::device::brake_model::add_dynamics(&mut model, &r, &how)?;
+            Some((path, model.to_json()))
+        }
+        None => None,
+    };
+    let plots = match &a.plot_dir {
+        Some(dir) => Some(StagedDir::write(dir, |staging| {
+            report::write_plots(&r, staging, a.spec.is_none(), a.png)
+        })?),
+        None => None,
+    };
     if let Some(path) = &a.frd {
         mrbrake::report::write_atomic(path, r.frequency_response.to_csv().as_bytes())?;
     }
-    if let Some(dir) = &a.plot_dir {
-        std::fs::create_dir_all(dir).map_err(|e| {
-            InputError(format!("--plot-dir {}: cannot create it: {e}", dir.display()))
-        })?;
-        report::write_plots(&r, dir, a.spec.is_none(), a.png)?;
+    if let Some(plots) = plots {
+        plots.commit()?;
     }
-    let source =
-        a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
-    if let Some(path) = &a.save_model {
-        let mut model = mrbrake::sim::brake_model::BrakeModel::read(path)?;
-        let word = super::analyze::command_word(a.spec.as_deref(), &source);
-        let how = format!("mrbrake response {word} (--mesh {} --drive {})", a.mesh, a.drive);
-        mrbrake::device::brake_model::add_dynamics(&mut model, &r, &how)?;
-        mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
+    if let Some((path, json)) = model {
+        mrbrake::report::write_atomic(path, json.as_bytes())?;
     }
     if a.json {
         return print_json(&r);

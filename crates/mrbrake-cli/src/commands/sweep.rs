@@ -115,7 +115,7 @@ pub fn settings_from(mesh: &str, speed: &str, order: u8) -> CommandResult<Evalua
 pub(crate) fn base_spec(spec: Option<&PathBuf>) -> CommandResult<(String, String)> {
     Ok(match spec {
         Some(path) => (
-            std::fs::read_to_string(path)
+            mrbrake::error::read::text(path, mrbrake::error::read::SETTINGS)
                 .with_context(|| format!("cannot read the spec {}", path.display()))?,
             path.display().to_string(),
         ),

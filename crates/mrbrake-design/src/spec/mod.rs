@@ -947,7 +947,7 @@ impl BrakeSpec {
 
     /// Reads and parses a spec file.
     pub fn from_path(path: &std::path::Path) -> Result<Self, DesignError> {
-        let text = std::fs::read_to_string(path)
+        let text = mrbrake_error::read::text(path, mrbrake_error::read::SETTINGS)
             .map_err(|source| DesignError::Read { path: path.to_path_buf(), source })?;
         Self::from_toml_str(&text, &path.display().to_string())
     }

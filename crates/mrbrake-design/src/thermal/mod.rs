@@ -817,15 +817,15 @@ pub fn validate_options(o: &ThermalOptions) -> Result<(), ThermalError> {
     let bad = |field: &str, value: String, allowed: String| {
         Err(FieldError::out_of_range(field, value, allowed).into())
     };
-    let absolute_zero = -mrbrake_heat::ZERO_CELSIUS_K;
     if !(o.current_a.is_finite() && o.current_a > 0.0 && o.current_a <= 100.0) {
         return bad("current", format!("{} A", o.current_a), "(0, 100] A".into());
     }
     if !(o.duty > 0.0 && o.duty <= 1.0) {
         return bad("duty", o.duty.to_string(), "(0, 1]".into());
     }
-    if !(o.ambient_c.is_finite() && o.ambient_c > absolute_zero && o.ambient_c <= 200.0) {
-        return bad("ambient", format!("{} °C", o.ambient_c), "(-273.15, 200] °C".into());
+    if !mrbrake_heat::AMBIENT_C.contains(o.ambient_c) {
+        let allowed = mrbrake_heat::AMBIENT_C.describe("°C");
+        return bad("ambient", format!("{} °C", o.ambient_c), allowed);
     }
     if let Cooling::Fixed { h_w_per_m2k: h } = o.cooling {
         if !(h.is_finite() && h > 0.0 && h <= 1e5) {

@@ -116,7 +116,7 @@ impl Declarations {
     /// Reads a declarations file.
     pub fn from_path(path: &std::path::Path, is_drum: bool) -> Result<Self, ExploreError> {
         let origin = path.display().to_string();
-        let text = std::fs::read_to_string(path)
+        let text = mrbrake_error::read::text(path, mrbrake_error::read::SETTINGS)
             .map_err(|e| ExploreError::input("", format!("cannot read: {e}")).in_file(&origin))?;
         Self::from_toml_str(&text, &origin, is_drum)
     }

@@ -74,7 +74,7 @@ pub fn read_problem_mesh(
 
 /// Reads a Gmsh MSH 2.2 or 4.1 ASCII file, scaling coordinates by `length_scale` (metres per file unit).
 pub fn read_msh(path: &Path, length_scale: f64) -> Result<GmshMesh, FemError> {
-    let text = std::fs::read_to_string(path)
+    let text = mrbrake_error::read::text(path, mrbrake_error::read::MESH)
         .map_err(|source| FemError::Io { path: path.display().to_string(), source })?;
     parse_msh(&text, &path.display().to_string(), length_scale)
 }

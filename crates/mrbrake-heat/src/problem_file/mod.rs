@@ -136,7 +136,7 @@ fn file_error(message: String, file: &str) -> HeatError {
 /// Reads and checks a heat problem file and its mesh.
 pub fn load(path: &Path) -> Result<HeatFile, HeatError> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path)
+    let text = mrbrake_error::read::text(path, mrbrake_error::read::SETTINGS)
         .map_err(|e| file_error(format!("cannot read: {e}"), &file))?;
     let raw: RawFile = toml::from_str(&text).map_err(|e| file_error(e.to_string(), &file))?;
     if raw.physics != "heat" {
@@ -303,6 +303,15 @@ fn source_of(raw: &RawRegion, mesh: &Mesh, k: usize, errors: &mut Errors) -> Sou
 fn regions_of(raw: &[RawRegion], mesh: &Mesh, errors: &mut Errors) -> Vec<Region> {
     let mut regions = Vec::new();
     for (k, r) in raw.iter().enumerate() {
+        // One material per surface, as the magnetic reader requires: a second [[region]] of the
+        // same surface used to be ignored silently (issue 33).
+        if let Some(first) = raw[..k].iter().position(|earlier| earlier.physical == r.physical) {
+            let message = format!(
+                "= {} is defined twice (also region[{first}]): one [[region]] per surface",
+                r.physical
+            );
+            errors.add("region", k, "physical", message);
+        }
         let material = material_of(r, k, errors);
         let source = source_of(r, mesh, k, errors);
         if let Some((k_radial, k_axial, rho_c)) = material {
@@ -339,11 +348,18 @@ fn check_coverage(raw: &[RawRegion], mesh: &Mesh, errors: &mut Errors) {
     }
 }
 
+/// Why a temperature outside its bounds is refused, in words.
+fn why_out(celsius: f64) -> &'static str {
+    if celsius <= -crate::ZERO_CELSIUS_K { " is below absolute zero" } else { " is out of range" }
+}
+
 fn temperature(value: Option<f64>, key: &str, k: usize, errors: &mut Errors) -> f64 {
+    let bounds = if key == "T_amb_C" { crate::AMBIENT_C } else { crate::TEMPERATURE_C };
     match value {
-        Some(t) if t.is_finite() && t > -crate::ZERO_CELSIUS_K => kelvin(t),
+        Some(t) if bounds.contains(t) => kelvin(t),
         Some(t) => {
-            errors.add("boundary", k, key, format!("= {t} °C is below absolute zero (-273.15 °C)"));
+            let allowed = bounds.describe("°C");
+            errors.add("boundary", k, key, format!("= {t} °C{}: allowed {allowed}", why_out(t)));
             crate::T20_K
         }
         None => {
@@ -426,9 +442,11 @@ fn transient_of(raw: &RawFile, errors: &mut Errors) -> Option<(TimeOptions, Opti
         })
         .ok();
     let initial = match t.t_initial_c {
-        Some(c) if c.is_finite() && c > -crate::ZERO_CELSIUS_K => Some(kelvin(c)),
+        Some(c) if crate::TEMPERATURE_C.contains(c) => Some(kelvin(c)),
         Some(c) => {
-            errors.add("transient", 0, "T_initial_C", format!("= {c} °C is below absolute zero"));
+            let allowed = crate::TEMPERATURE_C.describe("°C");
+            let message = format!("= {c} °C{}: allowed {allowed}", why_out(c));
+            errors.add("transient", 0, "T_initial_C", message);
             None
         }
         None => None,

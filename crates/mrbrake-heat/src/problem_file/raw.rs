@@ -29,6 +29,9 @@ const NUMBERS: &[(&str, &str, Bounds)] = &[
     ("region.joule.alpha_per_K", "1/K", ALPHA),
     ("boundary.h_W_per_m2K", "W/(m2 K)", CONVECTION),
     ("boundary.emissivity", "", EMISSIVITY),
+    ("boundary.T_amb_C", "°C", crate::AMBIENT_C),
+    ("boundary.T_C", "°C", crate::TEMPERATURE_C),
+    ("transient.T_initial_C", "°C", crate::TEMPERATURE_C),
     ("transient.t_end", "s", POSITIVE),
     ("transient.dt", "s", POSITIVE),
 ];

@@ -251,7 +251,10 @@ pub fn solve_file(
         let (t, report) = run_transient(&mut solver, &file, path)?;
         (t, Some(report), 0)
     } else {
-        let (t, report) = solver.steady(None)?;
+        let (t, report) = solver.steady(None).map_err(|e| match e {
+            HeatError::Input(f) => HeatError::from((*f).in_file(path.display().to_string(), None)),
+            other => other,
+        })?;
         (t, None, report.iterations)
     };
     let solve = solve_start.elapsed().as_secs_f64();

@@ -209,8 +209,9 @@ pub(super) fn voltage_drive(value: &toml::Value, field: &str) -> Result<Drive, M
                 .to_string(),
         )
     })?;
-    if resistance <= 0.0 {
-        let e = FieldError::out_of_range("source.drive.series_resistance_ohm", resistance, "> 0 Ω");
+    if !super::raw::SERIES_RESISTANCE.contains(resistance) {
+        let allowed = super::raw::SERIES_RESISTANCE.describe("Ω");
+        let e = FieldError::out_of_range("source.drive.series_resistance_ohm", resistance, allowed);
         return Err(e.under(field).into());
     }
     Ok(Drive::Voltage { amplitude_v, series_resistance_ohm: resistance })
@@ -379,9 +380,13 @@ fn transient_of(raw: &RawTransient, file: &str) -> Result<TransientOptions, Magn
         scheme: raw.scheme.as_deref(),
         max_steps: raw.max_steps,
     };
+    // Every bad step key at once, as the heat reader reports them.
     let time = TimeOptions::from_keys(&keys).map_err(|errors| {
-        let first = errors.errors()[0].clone().under("transient");
-        MagneticsError::from(first.in_file(file, None))
+        let mut all = mrbrake_error::FieldErrors::new();
+        for e in errors {
+            all.push(e.under("transient").in_file(file, None));
+        }
+        MagneticsError::from(all)
     })?;
     Ok(TransientOptions {
         time,
@@ -448,7 +453,15 @@ fn waveform_of(
     let missing = |key: &str| input_in(file, field, format!("kind = \"{}\" needs `{key}`", w.kind));
     let waveform = match w.kind.as_str() {
         "step" => Waveform::Step { initial: 0.0 },
-        "ramp" => Waveform::Ramp { rise_s: w.rise_s.ok_or_else(|| missing("rise_s"))? },
+        "ramp" => {
+            let rise_s = w.rise_s.ok_or_else(|| missing("rise_s"))?;
+            if !super::raw::RISE.contains(rise_s) {
+                let allowed = super::raw::RISE.describe("s");
+                let e = FieldError::out_of_range("waveform.rise_s", rise_s, allowed);
+                return Err(e.under("transient").in_file(file, None).into());
+            }
+            Waveform::Ramp { rise_s }
+        }
         "sine" => Waveform::Sine {
             frequency_hz: w.frequency_hz.ok_or_else(|| missing("frequency_Hz"))?,
             offset: w.offset.unwrap_or(0.0),
@@ -479,7 +492,7 @@ fn read_waveform_csv(
     field: &str,
     name: &str,
 ) -> Result<Vec<(f64, f64)>, MagneticsError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = mrbrake_error::read::text(path, mrbrake_error::read::MODEL).map_err(|e| {
         input(field, format!("file = \"{name}\": cannot read {}: {e}", path.display()))
     })?;
     let mut points: Vec<(f64, f64)> = Vec::new();

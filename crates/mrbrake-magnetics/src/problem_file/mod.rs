@@ -108,7 +108,7 @@ fn order_of(value: Option<&toml::Value>, file: &str) -> Result<ElementOrder, Mag
 /// Reads a problem file and everything it refers to (mesh, B-H files).
 pub fn load(path: &Path) -> Result<ProblemFile, MagneticsError> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path)
+    let text = mrbrake_error::read::text(path, mrbrake_error::read::SETTINGS)
         .map_err(|e| MagneticsError::in_file(&file, "", format!("cannot read: {e}")))?;
     let raw: RawFile =
         toml::from_str(&text).map_err(|e| MagneticsError::in_file(&file, "", e.to_string()))?;
@@ -414,10 +414,14 @@ fn source_of(value: &toml::Value, field: &str) -> Result<Source, MagneticsError>
     }
     match (number(table, "turns", field)?, number(table, "current_A", field)?) {
         (Some(turns), Some(current_a)) => {
-            if turns <= 0.0 {
-                return Err(FieldError::out_of_range("source.turns", turns, "> 0")
-                    .under(field)
-                    .into());
+            if !raw::TURNS.contains(turns) {
+                return Err(FieldError::out_of_range(
+                    "source.turns",
+                    turns,
+                    raw::TURNS.describe(""),
+                )
+                .under(field)
+                .into());
             }
             Ok(Source::Coil { turns, current_a })
         }
@@ -434,9 +438,14 @@ fn voltage_source(
     drive: &toml::Value,
     field: &str,
 ) -> Result<Source, MagneticsError> {
-    let turns = number(table, "turns", field)?
-        .filter(|&n| n > 0.0)
-        .ok_or_else(|| MagneticsError::field(field, "a voltage-driven source needs `turns` > 0"))?;
+    let turns =
+        number(table, "turns", field)?.filter(|&n| raw::TURNS.contains(n)).ok_or_else(|| {
+            let allowed = raw::TURNS.describe("");
+            MagneticsError::field(
+                field,
+                format!("a voltage-driven source needs `turns` in {allowed}"),
+            )
+        })?;
     if table.contains_key("current_A") || table.contains_key("current_density_A_per_m2") {
         return Err(MagneticsError::field(
             field,

@@ -15,8 +15,16 @@ pub(super) const MAX_ITERATIONS: Bounds = Bounds::at_least(1.0);
 pub(super) const TOLERANCE: Bounds = Bounds::open(0.0, 1.0);
 /// `solver.quadrature_degree`: the triangle rules of degree 1 to 5.
 pub(super) const QUADRATURE_DEGREE: Bounds = Bounds::closed(1.0, 5.0);
-/// `region.conductivity_S_per_m`: finite and ≥ 0.
-pub(super) const CONDUCTIVITY: Bounds = Bounds::at_least(0.0);
+/// `region.conductivity_S_per_m`: in [0, 1e9] S/m (silver conducts 6.3e7 S/m; a larger value is
+/// a unit mistake and makes the eddy term overflow the solve, issue 33).
+pub(super) const CONDUCTIVITY: Bounds = Bounds::closed(0.0, 1e9);
+/// `source.turns`: in (0, 1e7] (beyond it no winding fits any mesh of this solver).
+pub(super) const TURNS: Bounds = Bounds::open_closed(0.0, 1e7);
+/// `source.drive.series_resistance_ohm`: in [1e-6, 1e9] Ω (a winding has at least micro-ohms;
+/// below, the circuit equation is singular in double precision).
+pub(super) const SERIES_RESISTANCE: Bounds = Bounds::closed(1e-6, 1e9);
+/// `transient.waveform.rise_s`: in [1e-9, 1e9] s (a faster change is a step: `kind = "step"`).
+pub(super) const RISE: Bounds = Bounds::closed(1e-9, 1e9);
 /// `transient.t_end`, `transient.dt` (s): finite and > 0.
 pub(super) const DURATION: Bounds = Bounds::above(0.0);
 /// `harmonic.frequencies_Hz`: finite and ≥ 0.
@@ -33,7 +41,7 @@ const NUMBERS: &[(&str, &str, Bounds)] = &[
     ("transient.t_end", "s", DURATION),
     ("transient.dt", "s", DURATION),
     ("transient.adaptive.dt_initial", "s", DURATION),
-    ("transient.waveform.rise_s", "s", DURATION),
+    ("transient.waveform.rise_s", "s", RISE),
     ("transient.waveform.frequency_Hz", "Hz", FREQUENCY),
 ];
 

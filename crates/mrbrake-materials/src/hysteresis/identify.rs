@@ -508,6 +508,7 @@ pub fn read_loop_file(path: &Path) -> Result<Vec<(f64, f64)>, MaterialError> {
             message: format!("the file has {size} bytes; at most {MAX_LOOP_FILE_BYTES} are read"),
         });
     }
-    let text = std::fs::read_to_string(path).map_err(|e| MaterialError::io(&file, e))?;
+    let text = mrbrake_error::read::text(path, mrbrake_error::read::LOG)
+        .map_err(|e| MaterialError::io(&file, e))?;
     read_loop_csv(&text, &file)
 }

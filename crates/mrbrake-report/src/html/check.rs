@@ -16,6 +16,7 @@ fn attribute<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
 fn as_number(v: &Value) -> Option<f64> {
     match v {
         Value::Number(n) => n.as_f64(),
+        Value::Null => Some(f64::NAN),
         Value::String(s) if s == "NaN" => Some(f64::NAN),
         Value::String(s) if s == "inf" => Some(f64::INFINITY),
         Value::String(s) if s == "-inf" => Some(f64::NEG_INFINITY),
@@ -52,14 +53,15 @@ pub fn numbers_agree(page: &str, json: &Value) -> Result<usize, String> {
 /// `shown` is `expected` rounded to the digits `shown` has.
 fn agree(pointer: &str, shown: &str, expected: f64) -> Result<(), String> {
     let spelled = |s: &str| match s {
-        "NaN" => Some(f64::NAN),
+        "NaN" | super::writer::UNDEFINED => Some(f64::NAN),
         "inf" => Some(f64::INFINITY),
         "-inf" => Some(f64::NEG_INFINITY),
         _ => s.parse::<f64>().ok(),
     };
     let x = spelled(shown).ok_or_else(|| format!("{pointer}: '{shown}' is not a number"))?;
     if !x.is_finite() || !expected.is_finite() {
-        let same = (x.is_nan() && expected.is_nan()) || x.total_cmp(&expected).is_eq();
+        let undefined = shown == super::writer::UNDEFINED && !expected.is_finite();
+        let same = undefined || (x.is_nan() && expected.is_nan()) || x.total_cmp(&expected).is_eq();
         return if same {
             Ok(())
         } else {

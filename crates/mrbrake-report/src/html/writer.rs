@@ -25,17 +25,15 @@ pub fn escape(text: &str) -> String {
     out
 }
 
-/// `value` with `decimals` digits after the point; non-finite values as `NaN`, `inf`, `-inf`
-/// (the spelling of the results store's JSON export).
+/// `value` with `decimals` digits after the point; a non-finite value as [`UNDEFINED`].
 pub fn fixed(value: f64, decimals: usize) -> String {
-    if value.is_nan() {
-        "NaN".into()
-    } else if value.is_infinite() {
-        if value > 0.0 { "inf".into() } else { "-inf".into() }
-    } else {
-        format!("{value:.decimals$}")
-    }
+    if value.is_finite() { format!("{value:.decimals$}") } else { UNDEFINED.into() }
 }
+
+/// What a page shows for a number that is undefined (NaN or infinite, e.g. the dynamic range of
+/// a brake whose off-state torque is zero): the JSON has `null` there (docs/CONVENTIONS.md), and
+/// no page prints "inf" or "NaN" as if it were a value.
+pub const UNDEFINED: &str = "—";
 
 /// HTML being written: a string and the stack of open elements.
 #[derive(Debug, Default)]
@@ -256,8 +254,8 @@ mod tests {
 
     #[test]
     fn numbers_name_their_json_value() {
-        assert_eq!(fixed(f64::NAN, 2), "NaN");
-        assert_eq!(fixed(f64::NEG_INFINITY, 2), "-inf");
+        assert_eq!(fixed(f64::NAN, 2), UNDEFINED);
+        assert_eq!(fixed(f64::NEG_INFINITY, 2), UNDEFINED);
         assert_eq!(fixed(0.123456, 3), "0.123");
         let mut t = Table::new("c", &["what", "r [mm]"]);
         t.row(vec![Cell::text("gap"), Cell::json(0.0255, 2, "/gaps/0/r_m", 1e3)]);

@@ -239,6 +239,10 @@ pub struct Thermal {
     pub source: String,
 }
 
+/// The most samples a static curve may have: the fits and the simulators' tables are sized by it
+/// (issue 33: a 1e8-point curve aborted the process on a failed allocation). The FEA writes tens.
+pub const MAX_CURVE_POINTS: usize = 100_000;
+
 /// The polynomial through an anhysteretic static curve (see [`UnitModel::branches`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StaticFit {
@@ -260,11 +264,10 @@ pub struct UnitBranches {
 impl BrakeModel {
     /// Reads and checks a model file; every error names the file (and the field).
     pub fn read(path: &Path) -> Result<Self, SimError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
-            what: "brake model",
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text =
+            mrbrake_error::read::text(path, mrbrake_error::read::MODEL).map_err(|source| {
+                SimError::Io { what: "brake model", path: path.to_path_buf(), source }
+            })?;
         Self::from_json(&path.display().to_string(), &text)
     }
 
@@ -343,6 +346,22 @@ impl BrakeModel {
                 ));
             }
             unit.validate().map_err(|(field, msg)| (at(&field), msg))?;
+            // A model is checked as the simulators will use it, when it is written as when it
+            // is read: a curve no branch polynomial fits is refused here, naming the file and
+            // the field, not later by a simulator that names neither (issue 33).
+            if let Err(e) = unit.branches() {
+                let (field, points) = if unit.adds_off_state() {
+                    ("static_curve", unit.static_curve.current_a.len())
+                } else {
+                    ("hysteresis", 0)
+                };
+                let hint = if points > 0 {
+                    format!(" ({points} points; an analysis with more --points samples it finer)")
+                } else {
+                    String::new()
+                };
+                return Err((at(field), format!("the simulators cannot run it: {e}{hint}")));
+            }
         }
         Ok(())
     }
@@ -512,9 +531,12 @@ impl StaticCurve {
     /// Checks the samples against the unit's current range.
     fn validate(&self, current_max_a: f64) -> Result<(), (String, String)> {
         let (i, t) = (&self.current_a, &self.torque_nm);
-        if i.len() < 2 || i.len() != t.len() {
-            let msg =
-                format!("{} currents and {} torques; need ≥ 2 of each, as many", i.len(), t.len());
+        if i.len() < 2 || i.len() != t.len() || i.len() > MAX_CURVE_POINTS {
+            let msg = format!(
+                "{} currents and {} torques; need ≥ 2 of each, as many, at most {MAX_CURVE_POINTS}",
+                i.len(),
+                t.len()
+            );
             return Err(("current_A".into(), msg));
         }
         if let Some(k) = i.iter().chain(t).position(|v| !v.is_finite()) {

@@ -8,6 +8,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::SimError;
+use mrbrake_error::FieldError;
 
 /// The whole rig.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -227,11 +228,10 @@ impl Default for RigConfig {
 impl RigConfig {
     /// Reads and checks a configuration file.
     pub fn read(path: &Path) -> Result<Self, SimError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
-            what: "rig configuration",
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text =
+            mrbrake_error::read::text(path, mrbrake_error::read::SETTINGS).map_err(|source| {
+                SimError::Io { what: "rig configuration", path: path.to_path_buf(), source }
+            })?;
         Self::from_toml(&path.display().to_string(), &text)
     }
 
@@ -248,108 +248,186 @@ impl RigConfig {
         toml::to_string(self).unwrap_or_default()
     }
 
-    /// Checks ranges; the error names the file and the field.
+    /// Checks ranges; the error names the file, the field, its value and what is allowed.
     pub fn validate(&self, source: &str) -> Result<(), SimError> {
+        let pair = |(field, msg): (&'static str, String)| Box::new(FieldError::new(field, msg));
         self.check_plant()
             .and_then(|()| self.check_protocols())
-            .and_then(|()| super::check_run_size(self))
-            .and_then(|()| self.hysteresis.check())
-            .and_then(|()| self.minor_loops.check(self.brake.current_max_a))
-            .map_err(|(field, msg)| {
-                SimError::from(mrbrake_error::FieldError::new(field, msg).in_file(source, None))
-            })
+            .and_then(|()| super::check_run_size(self).map_err(pair))
+            .and_then(|()| self.hysteresis.check().map_err(pair))
+            .and_then(|()| self.minor_loops.check(self.brake.current_max_a).map_err(pair))
+            .map_err(|e| SimError::from((*e).in_file(source, None)))?;
+        self.check_preisach().map_err(|e| match e {
+            SimError::Input(field) => SimError::from((*field).in_file(source, None)),
+            other => other,
+        })
     }
 
-    /// Brake, motor, sensor and acquisition; `Err((field, message))` for the first bad field.
-    fn check_plant(&self) -> Result<(), (&'static str, String)> {
-        let bad = |field, msg: &str| Err((field, msg.to_string()));
-        if self.brake.rising.is_empty() || self.brake.rising.iter().any(|c| !c.is_finite()) {
-            return bad("brake.rising", "must be a non-empty list of finite coefficients");
+    /// The Preisach model is built once here, so that a loop and prior it cannot represent are
+    /// refused naming the file (found by the fuzzer: the run named only the field).
+    fn check_preisach(&self) -> Result<(), SimError> {
+        if self.hysteresis.model != super::preisach::HysteresisKind::Preisach {
+            return Ok(());
         }
-        if self.brake.falling.is_empty() || self.brake.falling.iter().any(|c| !c.is_finite()) {
-            return bad("brake.falling", "must be a non-empty list of finite coefficients");
-        }
-        if !positive(self.brake.current_max_a) {
-            let msg = format!("{} must be > 0", self.brake.current_max_a);
-            return Err(("brake.current_max_A", msg));
-        }
-        if !non_negative(self.brake.viscous_nm_s_per_rad) {
-            return bad("brake.viscous_Nm_s_per_rad", "must be ≥ 0");
-        }
-        if !positive(self.motor.belt_ratio) {
-            return bad("motor.belt_ratio", "must be > 0");
-        }
-        if !positive(self.sensor.stiffness_nm_per_rad)
-            || !positive(self.sensor.full_scale_nm)
-            || !positive(self.sensor.full_scale_v)
+        let b = &self.brake;
+        super::preisach::PreisachHysteresis::new(
+            &self.hysteresis,
+            &b.rising,
+            &b.falling,
+            b.current_max_a,
+        )
+        .map(|_| ())
+    }
+
+    /// Brake, motor, sensor and acquisition: the first bad field.
+    fn check_plant(&self) -> Result<(), Box<FieldError>> {
+        let coefficients = "a non-empty list of finite coefficients";
+        for (field, list) in
+            [("brake.rising", &self.brake.rising), ("brake.falling", &self.brake.falling)]
         {
-            return bad(
-                "sensor",
-                "stiffness_Nm_per_rad, full_scale_Nm and full_scale_V must be > 0",
-            );
+            if list.is_empty() || list.iter().any(|c| !c.is_finite()) {
+                let bad = list.iter().find(|c| !c.is_finite()).map_or("[]".into(), f64::to_string);
+                return Err(Box::new(FieldError::out_of_range(field, bad, coefficients)));
+            }
         }
-        if self.sensor.full_scale_v > super::MAX_FULL_SCALE_V {
-            let msg =
-                format!("{} must be ≤ {} V", self.sensor.full_scale_v, super::MAX_FULL_SCALE_V);
-            return Err(("sensor.full_scale_V", msg));
-        }
-        if !non_negative(self.sensor.noise_std_v) || !(1..=32).contains(&self.sensor.adc_bits) {
-            return bad("sensor", "noise_std_V must be ≥ 0 and adc_bits within 1..=32");
-        }
-        if !positive(self.daq.sample_rate_hz) || !positive(self.daq.output_rate_hz) {
-            return bad("daq", "sample_rate_Hz and output_rate_Hz must be > 0");
-        }
-        let ratio = self.daq.output_rate_hz / self.daq.sample_rate_hz;
-        if ratio < 1.0 || (ratio - ratio.round()).abs() > 1e-9 {
-            let msg = format!(
-                "{} must be an integer multiple of sample_rate_Hz",
-                self.daq.output_rate_hz
-            );
-            return Err(("daq.output_rate_Hz", msg));
-        }
-        Ok(())
+        let s = &self.sensor;
+        let checks: [(&str, f64, bool, String); 9] = [
+            (
+                "brake.current_max_A",
+                self.brake.current_max_a,
+                positive(self.brake.current_max_a),
+                "> 0 A".into(),
+            ),
+            (
+                "brake.viscous_Nm_s_per_rad",
+                self.brake.viscous_nm_s_per_rad,
+                non_negative(self.brake.viscous_nm_s_per_rad),
+                ">= 0".into(),
+            ),
+            (
+                "motor.belt_ratio",
+                self.motor.belt_ratio,
+                positive(self.motor.belt_ratio),
+                "> 0".into(),
+            ),
+            // Found by the fuzzer: an infinite motor voltage was accepted and the log held NaN.
+            (
+                "motor.voltage_V",
+                self.motor.voltage_v,
+                positive(self.motor.voltage_v) && self.motor.voltage_v <= 1e6,
+                "(0, 1e6] V".into(),
+            ),
+            (
+                "sensor.stiffness_Nm_per_rad",
+                s.stiffness_nm_per_rad,
+                positive(s.stiffness_nm_per_rad),
+                "> 0".into(),
+            ),
+            ("sensor.full_scale_Nm", s.full_scale_nm, positive(s.full_scale_nm), "> 0".into()),
+            (
+                "sensor.full_scale_V",
+                s.full_scale_v,
+                positive(s.full_scale_v) && s.full_scale_v <= super::MAX_FULL_SCALE_V,
+                format!("(0, {}] V", super::MAX_FULL_SCALE_V),
+            ),
+            ("sensor.noise_std_V", s.noise_std_v, non_negative(s.noise_std_v), ">= 0 V".into()),
+            (
+                "sensor.adc_bits",
+                f64::from(s.adc_bits),
+                (1..=32).contains(&s.adc_bits),
+                "1..=32".into(),
+            ),
+        ];
+        first_failed(&checks)?;
+        let d = &self.daq;
+        let ratio = d.output_rate_hz / d.sample_rate_hz;
+        let checks: [(&str, f64, bool, String); 3] = [
+            ("daq.sample_rate_Hz", d.sample_rate_hz, positive(d.sample_rate_hz), "> 0 Hz".into()),
+            ("daq.output_rate_Hz", d.output_rate_hz, positive(d.output_rate_hz), "> 0 Hz".into()),
+            (
+                "daq.output_rate_Hz",
+                d.output_rate_hz,
+                ratio >= 1.0 && (ratio - ratio.round()).abs() <= 1e-9,
+                format!("an integer multiple of sample_rate_Hz = {} Hz", d.sample_rate_hz),
+            ),
+        ];
+        first_failed(&checks)
     }
 
-    /// The characterisation and frequency-response protocols; `Err((field, message))` for the first
-    /// bad field.
-    fn check_protocols(&self) -> Result<(), (&'static str, String)> {
-        let bad = |field, msg: &str| Err((field, msg.to_string()));
+    /// The characterisation and frequency-response protocols: the first bad field.
+    fn check_protocols(&self) -> Result<(), Box<FieldError>> {
         let c = &self.characterization;
-        if !positive(c.step_a)
-            || c.step_a > self.brake.current_max_a
-            || !positive(c.step_s)
-            || !non_negative(c.pause_s)
-            || c.repetitions == 0
-        {
-            return bad(
-                "characterization",
-                "step_A must be in (0, current_max_A], step_s > 0, pause_s ≥ 0, repetitions ≥ 1",
-            );
-        }
+        let max = self.brake.current_max_a;
         let f = &self.frequency_response;
-        if !positive(f.omega_min_rad_s)
-            || !non_negative(f.omega_max_rad_s - f.omega_min_rad_s)
-            || f.points_per_decade == 0
-        {
-            return bad(
-                "frequency_response",
-                "need 0 < omega_min_rad_s ≤ omega_max_rad_s and points_per_decade ≥ 1",
-            );
+        let checks: [(&str, f64, bool, String); 11] = [
+            (
+                "characterization.step_A",
+                c.step_a,
+                positive(c.step_a) && c.step_a <= max,
+                format!("(0, current_max_A = {max}] A"),
+            ),
+            ("characterization.step_s", c.step_s, positive(c.step_s), "> 0 s".into()),
+            ("characterization.pause_s", c.pause_s, non_negative(c.pause_s), ">= 0 s".into()),
+            (
+                "characterization.repetitions",
+                c.repetitions as f64,
+                c.repetitions >= 1,
+                ">= 1".into(),
+            ),
+            (
+                "frequency_response.omega_min_rad_s",
+                f.omega_min_rad_s,
+                positive(f.omega_min_rad_s),
+                "> 0 rad/s".into(),
+            ),
+            (
+                "frequency_response.omega_max_rad_s",
+                f.omega_max_rad_s,
+                non_negative(f.omega_max_rad_s - f.omega_min_rad_s),
+                format!(">= omega_min_rad_s = {} rad/s", f.omega_min_rad_s),
+            ),
+            (
+                "frequency_response.points_per_decade",
+                f.points_per_decade as f64,
+                f.points_per_decade >= 1,
+                ">= 1".into(),
+            ),
+            (
+                "frequency_response.torque_max_Nm",
+                f.torque_max_nm,
+                positive(f.torque_max_nm - f.torque_min_nm),
+                format!("> torque_min_Nm = {} N·m", f.torque_min_nm),
+            ),
+            (
+                "frequency_response.periods_measured",
+                f.periods_measured,
+                positive(f.periods_measured),
+                "> 0".into(),
+            ),
+            (
+                "frequency_response.periods_discarded",
+                f.periods_discarded,
+                non_negative(f.periods_discarded),
+                ">= 0".into(),
+            ),
+            (
+                "frequency_response.settle_s",
+                f.settle_s,
+                non_negative(f.settle_s) && non_negative(f.min_measure_s),
+                "settle_s and min_measure_s >= 0 s".into(),
+            ),
+        ];
+        first_failed(&checks)
+    }
+}
+
+/// The first check that failed, as a field error with its value and the allowed range.
+fn first_failed(checks: &[(&str, f64, bool, String)]) -> Result<(), Box<FieldError>> {
+    match checks.iter().find(|(_, _, ok, _)| !ok) {
+        Some((field, value, _, allowed)) => {
+            Err(Box::new(FieldError::out_of_range(*field, value, allowed.clone())))
         }
-        if !positive(f.torque_max_nm - f.torque_min_nm) {
-            return bad("frequency_response.torque_max_Nm", "must exceed torque_min_Nm");
-        }
-        if !(positive(f.periods_measured)
-            && non_negative(f.periods_discarded)
-            && non_negative(f.settle_s)
-            && non_negative(f.min_measure_s))
-        {
-            return bad(
-                "frequency_response",
-                "periods and durations must be non-negative (periods_measured > 0)",
-            );
-        }
-        Ok(())
+        None => Ok(()),
     }
 }
 

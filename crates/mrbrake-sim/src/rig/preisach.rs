@@ -119,9 +119,43 @@ impl HysteresisConfig {
             let msg = format!("{} is outside (0, 1]", self.width_spread);
             return Err(("hysteresis.width_spread", msg));
         }
-        Ok(())
+        self.check_prior_support()
+    }
+
+    /// The prior `g(d/n)` of the relay width `d` cells (`d = 1 … n−1`).
+    fn prior(&self, d: usize) -> f64 {
+        let z = (d as f64 / self.levels as f64 - self.width_mean) / self.width_spread;
+        match self.weight {
+            WeightShape::Gaussian => (-0.5 * z * z).exp(),
+            WeightShape::Lorentzian => 1.0 / (1.0 + z * z),
+        }
+    }
+
+    /// Two individually valid prior parameters can be jointly degenerate: a spread much narrower
+    /// than one cell (`1/levels`) centred between the grid's relay widths leaves every relay
+    /// without weight, and the fit then divides by zero (issue 33: 30 000 NaN torques in a rig
+    /// log). Refused, for the Preisach model, with both values and what would do.
+    fn check_prior_support(&self) -> Result<(), (&'static str, String)> {
+        let peak = (1..self.levels).map(|d| self.prior(d)).fold(0.0_f64, f64::max);
+        if self.model != HysteresisKind::Preisach || peak >= MIN_PRIOR_PEAK {
+            return Ok(());
+        }
+        let (n, cell) = (self.levels, 1.0 / self.levels as f64);
+        Err((
+            "hysteresis.width_spread",
+            format!(
+                "with width_mean = {} and width_spread = {}, no relay width of the {n}-level grid \
+                 (multiples of 1/{n}) has prior weight: the spread is far narrower than a cell; \
+                 allowed: width_spread >= {cell} (one cell), or width_mean on a multiple of {cell}",
+                self.width_mean, self.width_spread
+            ),
+        ))
     }
 }
+
+/// The smallest largest prior weight over the grid's relay widths that still fits a loop: below
+/// it the conditions' rows are numerically zero and the profile that meets them is unbounded.
+const MIN_PRIOR_PEAK: f64 = 1e-12;
 
 /// The Preisach brake hysteresis: Everett table, rising branch, turning-point memory.
 #[derive(Debug, Clone)]
@@ -158,6 +192,17 @@ impl PreisachHysteresis {
             points: vec![0.0],
             input: 0.0,
         };
+        if model.everett.iter().any(|e| !e.is_finite()) {
+            return Err(FieldError::new(
+                "hysteresis",
+                "the Preisach weight of this loop and prior is not finite: try a wider width_spread",
+            )
+            .with_value(format!(
+                "width_mean = {}, width_spread = {}, levels = {n}",
+                config.width_mean, config.width_spread
+            ))
+            .into());
+        }
         model.check_reversible_part()?;
         Ok(model)
     }
@@ -311,13 +356,7 @@ fn loop_widths(
 /// least squares (Lawson & Hanson 1974, ch. 23) with the conditions as a heavily weighted block.
 fn fit_weight(config: &HysteresisConfig, width: &[f64]) -> Result<Vec<f64>, SimError> {
     let n = width.len() + 1;
-    let shape = |d: usize| {
-        let z = (d as f64 / n as f64 - config.width_mean) / config.width_spread;
-        match config.weight {
-            WeightShape::Gaussian => (-0.5 * z * z).exp(),
-            WeightShape::Lorentzian => 1.0 / (1.0 + z * z),
-        }
-    };
+    let shape = |d: usize| config.prior(d);
     // Centre index c = i + j − 1 ∈ [0, 2n − 4] for 0 ≤ j < i ≤ n − 1.
     let centres = 2 * n - 3;
     let mut kernel = vec![0.0; (n - 1) * centres];

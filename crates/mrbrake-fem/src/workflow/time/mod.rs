@@ -148,7 +148,7 @@ pub enum TimeStep {
     },
 }
 
-/// Default bound on the number of steps of one run.
+/// Default and largest bound on the number of steps of one run.
 pub const DEFAULT_MAX_STEPS: usize = 1_000_000;
 
 /// The settings of one run: from `t = 0` to `t_end_s`.
@@ -241,6 +241,13 @@ impl TimeOptions {
         }
         if self.max_steps == 0 {
             errors.add("max_steps", "= 0: a run needs at least one step");
+        } else if self.max_steps > DEFAULT_MAX_STEPS {
+            // The bound is a bound on work: a file may lower it, never raise it (every physics and
+            // `thermal` stop at the same 1e6 steps, issue 33).
+            errors.add(
+                "max_steps",
+                format!("= {} exceeds the limit of {DEFAULT_MAX_STEPS} steps", self.max_steps),
+            );
         }
         match self.step {
             TimeStep::Fixed { dt_s } if !(dt_s > 0.0 && dt_s.is_finite()) => {
