@@ -173,6 +173,11 @@ function sendField(input) {
 // --- rendering the state --------------------------------------------------------------------
 function render(state) {
   if (!state || !state.id) return;
+  // The long poll and an edit's own answer race: an answer older than the state shown (a POST
+  // answered before a solve finished, arriving after the poll's newer state) must not bring
+  // the page back in time.
+  const shown = studio.state;
+  if (shown && shown.id === state.id && state.revision < shown.revision) return;
   studio.state = state;
   studio.revision = Math.max(studio.revision, state.revision);
   const instant = state.instant || {};
