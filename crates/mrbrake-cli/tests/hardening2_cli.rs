@@ -49,11 +49,11 @@ fn a_bias_without_gain_or_above_the_rating_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let frd = dir.path().join("frd.csv");
     let args = ["response", SPEC, "--mesh", "coarse", "--bias", "0A", "--frd", path_str(&frd)];
-    expect_input_error(&args, &["bias = 0 A", "small-signal gain"]);
+    expect_input_error(&args, &["--bias", "got 0 A", "small-signal gain"]);
     assert!(!frd.exists(), "a refused response wrote {}", frd.display());
     expect_input_error(
         &["response", SPEC, "--mesh", "coarse", "--bias", "100A"],
-        &["bias = 100 A", "maximum current", "coil.max_current"],
+        &["--bias", "got 100 A", "maximum current", "coil.max_current"],
     );
 }
 
