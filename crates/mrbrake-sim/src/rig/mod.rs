@@ -200,6 +200,21 @@ pub const MAX_TEST_FREQUENCIES: f64 = 10_000.0;
 /// value overflows the ADC step).
 pub const MAX_FULL_SCALE_V: f64 = 1e3;
 
+/// A plant model of the rig must be stable (every pole in the open left half-plane): an
+/// unstable motor or brake model grows without bound and fills the log with NaN (found by the
+/// fuzzer: a motor denominator `[2e-5, 1e-300, -1]`).
+fn check_stable(g: &TransferFunction) -> Result<(), String> {
+    let poles = g.poles().map_err(|e| e.to_string())?;
+    match poles.iter().find(|p| !(p.re < 0.0)) {
+        Some(p) => Err(format!(
+            "the model is not stable: a pole at {:.4e}{:+.4e}j (every pole must have a negative \
+             real part)",
+            p.re, p.im
+        )),
+        None => Ok(()),
+    }
+}
+
 /// Checks that the brake and motor models discretise at the output rate (degenerate
 /// coefficients overflow) and that both protocols fit [`MAX_RUN_STEPS`] (and the sine tests
 /// [`MAX_TEST_FREQUENCIES`]) before anything is allocated; `Err((field, message))` otherwise.
@@ -216,6 +231,7 @@ fn check_run_size(config: &RigConfig) -> Result<(), (&'static str, String)> {
     for (field, num, den) in models {
         TransferFunction::new(num.clone(), den.clone())
             .map_err(|e| e.to_string())
+            .and_then(|g| check_stable(&g).map(|()| g))
             .and_then(|g| DiscreteStateSpace::zoh(&g, 1.0 / rate).map_err(|e| e.to_string()))
             .map_err(|e| (field, e))?;
     }
