@@ -205,7 +205,7 @@ pub const MAX_FULL_SCALE_V: f64 = 1e3;
 /// fuzzer: a motor denominator `[2e-5, 1e-300, -1]`).
 fn check_stable(g: &TransferFunction) -> Result<(), String> {
     let poles = g.poles().map_err(|e| e.to_string())?;
-    match poles.iter().find(|p| !(p.re < 0.0)) {
+    match poles.iter().find(|p| p.re.is_nan() || p.re >= 0.0) {
         Some(p) => Err(format!(
             "the model is not stable: a pole at {:.4e}{:+.4e}j (every pole must have a negative \
              real part)",
