@@ -306,7 +306,22 @@ pub struct OffStateTorque {
     pub sources: OffStateSources,
 }
 
+/// One term of an [`OffStateTorque`]: its name, its JSON key, its value (N·m) and its source.
+pub type OffStateTerm<'a> = (&'static str, &'static str, f64, &'a str);
+
 impl OffStateTorque {
+    /// The terms in print order, for every report of the breakdown.
+    pub fn terms(&self) -> [OffStateTerm<'_>; 5] {
+        let s = &self.sources;
+        [
+            ("viscous", "viscous_Nm", self.viscous_nm, &s.viscous),
+            ("seals", "seal_Nm", self.seal_nm, &s.seal),
+            ("bearings", "bearing_Nm", self.bearing_nm, &s.bearing),
+            ("freewheel", "freewheel_Nm", self.freewheel_nm, &s.freewheel),
+            ("remanent", "remanent_Nm", self.remanent_nm, &s.remanent),
+        ]
+    }
+
     /// The terms other than the viscous one: the constant friction the analysis adds to every
     /// point of the torque–current curve.
     pub fn constant_friction_nm(&self) -> f64 {

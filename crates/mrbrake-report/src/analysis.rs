@@ -80,16 +80,7 @@ fn torque_text(out: &mut String, a: &Analysis) {
 
 /// The off-state torque's terms, each with its source, and the rotors' magnetic pull.
 fn off_state_text(out: &mut String, a: &Analysis) {
-    let b = &a.torque_off;
-    let s = &b.sources;
-    let terms = [
-        ("viscous", b.viscous_nm, &s.viscous),
-        ("seals", b.seal_nm, &s.seal),
-        ("bearings", b.bearing_nm, &s.bearing),
-        ("freewheel", b.freewheel_nm, &s.freewheel),
-        ("remanent", b.remanent_nm, &s.remanent),
-    ];
-    for (name, value, source) in terms {
+    for (name, _, value, source) in a.torque_off.terms() {
         let _ = writeln!(out, "    {name:<10} {value:>9.5} N·m  {source}");
     }
     let f = &a.rotor_forces;

@@ -173,15 +173,7 @@ impl DesignReport<'_> {
             "N·m",
         );
         row("off-state torque", t.off_state_nm, 4, "/torque/off_state_Nm", 1.0, "N·m");
-        let b = &a.torque_off;
-        let terms = [
-            ("viscous", b.viscous_nm, "viscous_Nm", &b.sources.viscous),
-            ("seals", b.seal_nm, "seal_Nm", &b.sources.seal),
-            ("bearings", b.bearing_nm, "bearing_Nm", &b.sources.bearing),
-            ("freewheel", b.freewheel_nm, "freewheel_Nm", &b.sources.freewheel),
-            ("remanent", b.remanent_nm, "remanent_Nm", &b.sources.remanent),
-        ];
-        for (name, value, key, source) in terms {
+        for (name, key, value, source) in a.torque_off.terms() {
             let what = format!("  off-state: {name} ({source})");
             row(&what, value, 5, &format!("/torque_off/{key}"), 1.0, "N·m");
         }
