@@ -119,16 +119,23 @@ fn the_studio_edits_solves_and_matches_the_cli() {
     b.eval(&tab, "document.getElementById('pin').click(), true");
     b.wait_until(&tab, "!document.getElementById('compare').hidden", 30, "the comparison");
     set_field(&mut b, &tab, "coil.max_current", "1.5A");
-    // The edit clears the current result until the new one arrives, coarse mesh first (the stage
-    // shown as done may still be the previous design's for a moment): wait for the table's row of
-    // the current design on the default mesh itself.
+    // Right after the pin the table already holds the pinned design and the current one (the
+    // same design, solved): wait until the page shows the edit (its TOML text, rendered in the
+    // same call as the table), then for the table's row of the edited design on the default mesh.
     let rows = "document.querySelectorAll('#compare-table tbody tr')";
     let current_default = format!(
-        "(() => {{ const r = {rows}; return r.length === 2 && \
+        "(() => {{ const r = {rows}; \
+         return document.getElementById('toml').value.includes('\"1.5A\"') && r.length === 2 && \
          r[1].querySelector('th').textContent === 'current (default)'; }})()"
     );
     b.wait_until(&tab, &current_default, 600, "the pinned design and the current one");
-    assert_eq!(b.eval(&tab, &format!("{rows}.length")), 2, "the pinned design and the current one");
+    let torque_cells = format!(
+        "[...{rows}].map(r => Number(JSON.parse(r.querySelector('td').dataset.value)))"
+    );
+    let torques = b.eval(&tab, &torque_cells);
+    let torques: Vec<f64> = torques.as_array().unwrap().iter().filter_map(|t| t.as_f64()).collect();
+    assert_eq!(torques.len(), 2, "the pinned design and the current one: {torques:?}");
+    assert!(torques[1] < torques[0], "less current brakes less: {torques:?}");
 
     // An invalid value: the field's error in the CLI's words, no solve.
     set_field(&mut b, &tab, "drum.gap", "-1mm");
