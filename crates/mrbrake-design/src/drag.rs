@@ -194,6 +194,27 @@ fn is_default_kind(kind: &BearingKind) -> bool {
 }
 
 impl Drag {
+    /// The numeric fields of `[drag]` a study or a calibration may vary: the seals per rotor and
+    /// the drag torques of one seal and of one freewheel (the bearings' count and load stay
+    /// fixed: their friction is negligible beside the seals', [`OffStateTorque`]).
+    pub const FIELDS: &'static [crate::spec::SpecField] = &[
+        crate::spec::SpecField {
+            path: "drag.seals_per_rotor",
+            quantity: crate::spec::Quantity::Integer,
+            bounds: crate::spec::Bounds::closed(0.0, MAX_COUNT as f64),
+        },
+        crate::spec::SpecField {
+            path: "drag.seal_torque",
+            quantity: crate::spec::Quantity::Torque,
+            bounds: crate::spec::Bounds::closed(0.0, MAX_ITEM_TORQUE_NM),
+        },
+        crate::spec::SpecField {
+            path: "drag.freewheel_drag",
+            quantity: crate::spec::Quantity::Torque,
+            bounds: crate::spec::Bounds::closed(0.0, MAX_ITEM_TORQUE_NM),
+        },
+    ];
+
     /// True for the table an absent `[drag]` stands for (the spec's JSON, which design keys hash,
     /// then leaves it out, so the keys of every spec without `[drag]` stay what they were).
     pub fn is_default(&self) -> bool {

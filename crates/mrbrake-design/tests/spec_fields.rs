@@ -36,12 +36,14 @@ fn every_configuration() -> Vec<(ConfigurationKind, toml::Table)> {
     ]
 }
 
-/// The thesis brake with every material factor away from its default (a table at its defaults is
-/// not written, so its fields would not appear in the serialised spec).
+/// The thesis brake with every material factor away from its default and the `[drag]` fields a
+/// study may vary given (a table at its defaults is not written, so its fields would not appear
+/// in the serialised spec; the bearings' count, bore and load are not study fields and stay out).
 fn with_factors(text: &str) -> toml::Table {
     let factors = "[fluid]\nyield_stress_scale = 0.9\nB_scale = 1.1\nfill_fraction = 0.8\n\
                    conductivity_S_per_m = 1.0\n[steel]\nB_scale = 0.95\n\
-                   conductivity_S_per_m = 2e6\n";
+                   conductivity_S_per_m = 2e6\n[drag]\nseals_per_rotor = 2\n\
+                   seal_torque = 0.01\nfreewheel_drag = 0.005\n";
     toml::from_str(&format!("{text}\n{factors}")).expect("TOML")
 }
 
@@ -125,6 +127,7 @@ fn every_numeric_field_reads_its_quantity_with_units() {
                 Quantity::Integer => (toml::Value::Integer(3), 3.0),
                 Quantity::Factor => (toml::Value::Float(0.75), 0.75),
                 Quantity::Conductivity => (toml::Value::Float(2.5e6), 2.5e6),
+                Quantity::Torque => ("20mNm".into(), 0.02),
             };
             let mut edited = table.clone();
             set(&mut edited, path.as_str(), text);

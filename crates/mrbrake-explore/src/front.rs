@@ -142,7 +142,10 @@ impl SpecWriter {
         let dimension = match variable.quantity() {
             Some(Quantity::Length) => Dimension::Length,
             Some(Quantity::Current) => Dimension::Current,
-            Some(Quantity::Integer | Quantity::Factor | Quantity::Conductivity) | None => {
+            Some(
+                Quantity::Integer | Quantity::Factor | Quantity::Conductivity | Quantity::Torque,
+            )
+            | None => {
                 return (1.0, String::new());
             }
         };
@@ -175,7 +178,10 @@ impl SpecWriter {
             _ => Written { si: value, item: Value::from(value) },
         };
         let step = match variable.quantity() {
-            Some(Quantity::Integer | Quantity::Factor | Quantity::Conductivity) | None => {
+            Some(
+                Quantity::Integer | Quantity::Factor | Quantity::Conductivity | Quantity::Torque,
+            )
+            | None => {
                 return exact();
             }
             Some(Quantity::Length) => resolution,
@@ -244,7 +250,7 @@ impl SpecWriter {
 /// The path and value of a `[set]` override as the file writes it: a study variable's field with
 /// the user's quantity as text (`"30mm"`), `fill` for the turns removes them, any other field its
 /// TOML value (as [`crate::variable::apply_override`] reads them).
-fn override_value(
+pub(crate) fn override_value(
     path: &str,
     text: &str,
     is_drum: bool,
@@ -291,7 +297,7 @@ fn get_value<'d>(document: &'d DocumentMut, path: &str) -> Option<&'d Value> {
 
 /// Sets (`Some`) or removes (`None`) the value at a dotted path, creating missing tables; a
 /// replaced value keeps its comments (decor).
-fn set_value(
+pub(crate) fn set_value(
     document: &mut DocumentMut,
     path: &str,
     value: Option<Value>,

@@ -21,10 +21,14 @@
 //!   [`front`] writes the front's designs (in the base spec's units, rounded and evaluated again),
 //!   [`polish`] refines one by a local pattern search.
 //!
+//! [`uncertainty`] propagates declared input spreads through the FEA; [`calibrate`] fits spec
+//! fields to a rig's measured loop.
+//!
 //! Runs and optimisations report to an [`mrbrake_observe::Observer`] ([`Progress`] per stored
 //! design, [`optimize::OptimizeProgress`] over a whole optimisation), which may stop them; every
 //! evaluation finished before a stop stays in the store.
 
+pub mod calibrate;
 pub mod design;
 pub mod evaluate;
 pub mod front;
@@ -77,6 +81,9 @@ pub enum ExploreError {
     /// The uncertainty core (a law's parameters, a surrogate fit).
     #[error(transparent)]
     Uq(#[from] mrbrake_uq::UqError),
+    /// A rig log or its characterisation (`mrbrake calibrate --log`).
+    #[error(transparent)]
+    Sysid(#[from] mrbrake_sysid::SysidError),
     /// The caller's observer stopped a run before every design was evaluated; every evaluation
     /// finished before the stop (and those in flight then) is in the store.
     #[error(
@@ -178,6 +185,7 @@ impl mrbrake_error::Kind for ExploreError {
             Self::Store(e) => e.kind(),
             Self::Optim(e) => e.kind(),
             Self::Uq(e) => e.kind(),
+            Self::Sysid(e) => e.kind(),
             Self::Internal(_) => ErrorKind::Internal,
         }
     }

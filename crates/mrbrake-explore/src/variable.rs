@@ -144,6 +144,7 @@ impl Variable {
             Quantity::Conductivity => {
                 parse(text, Dimension::Conductivity).map_err(|e| bad(e.to_string()))
             }
+            Quantity::Torque => parse(text, Dimension::Torque).map_err(|e| bad(e.to_string())),
             Quantity::Factor => text
                 .parse::<f64>()
                 .map_err(|_| bad(format!("'{text}' is not a number (this field is a factor)"))),
@@ -207,7 +208,11 @@ impl Variable {
         match self.quantity() {
             Some(Quantity::Integer) => Bounds::integer(lower, upper),
             Some(
-                Quantity::Length | Quantity::Current | Quantity::Factor | Quantity::Conductivity,
+                Quantity::Length
+                | Quantity::Current
+                | Quantity::Factor
+                | Quantity::Conductivity
+                | Quantity::Torque,
             ) => Bounds::continuous(lower, upper),
             None => Bounds::categorical(self.levels().len()),
         }
@@ -222,6 +227,7 @@ impl Variable {
             Some(Quantity::Integer) => format!("{}", x.round() as i64),
             Some(Quantity::Factor) => format!("{}", round_sig(x, 5)),
             Some(Quantity::Conductivity) => format!("{}MS/m", round_sig(x * 1e-6, 5)),
+            Some(Quantity::Torque) => format!("{}mNm", round_sig(x * 1e3, 5)),
             None => self.level(x).map_or_else(|_| format!("level {x}"), str::to_string),
         }
     }
@@ -307,7 +313,11 @@ pub fn set_field(spec: &mut toml::Table, field: &SpecField, si: f64) -> Result<(
             }
             toml::Value::Integer(rounded as i64)
         }
-        Quantity::Length | Quantity::Current | Quantity::Factor | Quantity::Conductivity => {
+        Quantity::Length
+        | Quantity::Current
+        | Quantity::Factor
+        | Quantity::Conductivity
+        | Quantity::Torque => {
             if !si.is_finite() {
                 return Err(FieldError::out_of_range(field.path, si, "finite").into());
             }

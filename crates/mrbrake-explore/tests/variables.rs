@@ -30,12 +30,14 @@ fn every_configuration() -> Vec<(ConfigurationKind, toml::Table)> {
     ]
 }
 
-/// The thesis brake with every material factor away from its default (a `[fluid]` or `[steel]`
-/// table at its defaults is not written, so its fields would not appear in the spec's JSON).
+/// The thesis brake with every material factor away from its default and the `[drag]` fields a
+/// study may vary given (a `[fluid]`, `[steel]` or `[drag]` table at its defaults is not written,
+/// so its fields would not appear in the spec's JSON).
 fn with_factors(mut table: toml::Table) -> toml::Table {
     let factors: toml::Table = toml::from_str(
         "[fluid]\nyield_stress_scale = 0.9\nB_scale = 1.1\nfill_fraction = 0.8\n\
-         conductivity_S_per_m = 1.0\n[steel]\nB_scale = 0.95\nconductivity_S_per_m = 2e6\n",
+         conductivity_S_per_m = 1.0\n[steel]\nB_scale = 0.95\nconductivity_S_per_m = 2e6\n\
+         [drag]\nseals_per_rotor = 2\nseal_torque = 0.01\nfreewheel_drag = 0.005\n",
     )
     .expect("TOML");
     table.extend(factors);
@@ -81,6 +83,7 @@ fn every_numeric_field_of_every_configuration_is_a_variable() {
                 Quantity::Integer => 3.0,
                 Quantity::Length | Quantity::Current | Quantity::Factor => 0.0125,
                 Quantity::Conductivity => 2.5e6,
+                Quantity::Torque => 0.02,
             };
             let mut edited = table.clone();
             variable.set(&mut edited, value).expect("set");

@@ -27,6 +27,7 @@
 pub mod analysis;
 pub mod atomic;
 pub mod bode;
+pub mod calibration;
 pub mod chart;
 pub mod fem;
 pub mod field_map;

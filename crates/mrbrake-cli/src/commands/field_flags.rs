@@ -72,6 +72,8 @@ const STUDY_FLAGS: &[(&str, &str)] = &[
     ("mesh", "--mesh"),
     ("speed", "--speed"),
     ("order", "--order"),
+    ("points", "--points"),
+    ("parameter", "--parameter"),
 ];
 
 /// The element order of `--order` by the library's rule (1 or 2), an error naming the flag.

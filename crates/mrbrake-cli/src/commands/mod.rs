@@ -5,6 +5,7 @@ use crate::error::CommandResult;
 use clap::Subcommand;
 
 mod analyze;
+mod calibrate;
 mod characterize;
 mod export_geo;
 mod fem;
@@ -76,6 +77,10 @@ pub enum Command {
     /// Uncertainty bands and global sensitivities: declared uncertain inputs (--inputs FILE)
     /// sampled by scrambled Sobol' points through the FEA, each sample kept in a resumable store.
     Uncertainty(uncertainty::UncertaintyArgs),
+    /// Calibration against a rig: fit spec fields (--parameter) so the predicted torque–current
+    /// curve matches a characterisation log's loop; estimates, standard errors, correlations,
+    /// unidentifiable groups, a calibrated spec (-o) and brake model (--save-model).
+    Calibrate(calibrate::CalibrateArgs),
     /// One self-contained HTML report (offline, printable on A4): a design ([SPEC]; default the
     /// thesis brake), a study (--store) or a characterisation (--log, --frd).
     Report(report::ReportArgs),
@@ -109,6 +114,7 @@ pub fn run(command: Command) -> CommandResult {
         Command::Merge(a) => sweep::run_merge(a),
         Command::Export(a) => sweep::run_export(a),
         Command::Uncertainty(a) => uncertainty::run(a),
+        Command::Calibrate(a) => calibrate::run(a),
         Command::Report(a) => report::run(a),
         Command::Schema(a) => schema::run(a),
         Command::Studio(a) => studio::run(a),

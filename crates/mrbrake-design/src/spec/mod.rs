@@ -124,6 +124,8 @@ pub enum Quantity {
     Factor,
     /// An electrical conductivity (S/m).
     Conductivity,
+    /// A torque (N·m): the drag of a seal or a freewheel (`drag.seal_torque`).
+    Torque,
 }
 
 impl Quantity {
@@ -134,6 +136,7 @@ impl Quantity {
             Self::Current => "A",
             Self::Integer | Self::Factor => "",
             Self::Conductivity => "S/m",
+            Self::Torque => "N·m",
         }
     }
 }
@@ -207,6 +210,7 @@ pub fn numeric_fields() -> impl Iterator<Item = &'static SpecField> + Clone {
         Model::FIELDS,
         FluidFactors::FIELDS,
         SteelFactors::FIELDS,
+        crate::drag::Drag::FIELDS,
     ]
     .into_iter()
     .flatten()

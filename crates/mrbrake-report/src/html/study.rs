@@ -420,6 +420,7 @@ fn variable_display(name: &str) -> (f64, &'static str, usize) {
         Ok(Some(Quantity::Integer)) => (1.0, "count", 0),
         Ok(Some(Quantity::Factor)) => (1.0, "factor", 4),
         Ok(Some(Quantity::Conductivity)) => (1e-6, "MS/m", 4),
+        Ok(Some(Quantity::Torque)) => (1e3, "mN·m", 4),
         Ok(None) => (1.0, "material", 0),
         Err(_) => (1.0, "SI", 6),
     }

@@ -1,0 +1,101 @@
+//! `mrbrake calibrate`: fits chosen spec fields so that the design's predicted static
+//! torque–current curve matches a rig log's measured loop, with standard errors, correlations
+//! and the parameter groups the data cannot separate (`mrbrake_explore::calibrate`); writes the
+//! calibrated spec and, on request, its brake model.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use mrbrake::explore::calibrate::{self, CalibrationRequest, DEFAULT_POINTS};
+use mrbrake::explore::variable::parse_sets;
+use mrbrake::uq::calibration::CalibrationOptions;
+
+use super::field_flags;
+use super::sweep::{base_spec, settings_from};
+use crate::error::CommandResult;
+use crate::output::{print_json, print_text};
+
+/// Arguments of `mrbrake calibrate`.
+#[derive(Debug, Args)]
+pub struct CalibrateArgs {
+    /// Brake specification (TOML). Omitted: the embedded thesis bidirectional brake.
+    spec: Option<PathBuf>,
+    /// The rig log: a repeated-ramp characterisation CSV (time_s, current_A, torque_Nm), as
+    /// `mrbrake rig characterize` writes it. Its currents must reach the spec's maximum current.
+    #[arg(long, value_name = "LOG.csv")]
+    log: PathBuf,
+    /// A spec field to fit: PATH (bounds ½ to 1½ times its value) or PATH=LOW..HIGH with units
+    /// (drum.gap=0.5mm..0.8mm, fluid.yield_stress_scale=0.5..1.2, drag.seal_torque=0..0.2Nm).
+    /// Repeatable.
+    #[arg(long = "parameter", value_name = "PATH[=LOW..HIGH]", required = true)]
+    parameter: Vec<String>,
+    /// A fixed change before fitting, PATH=VALUE (e.g. drag.seals_per_rotor=2). Repeatable.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    set: Vec<String>,
+    /// Currents compared, evenly from 0 to the maximum current.
+    #[arg(long, default_value_t = DEFAULT_POINTS)]
+    points: usize,
+    /// Most residual evaluations (each one an FEA of the torque–current curve).
+    #[arg(long, default_value_t = 120)]
+    max_evaluations: usize,
+    /// Analyses run at the same time (0: one per core).
+    #[arg(long, default_value_t = 0)]
+    jobs: usize,
+    /// Mesh density of every analysis: coarse, default or fine.
+    #[arg(long, default_value = "default")]
+    mesh: String,
+    /// Element order of every analysis: 1 or 2.
+    #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+    order: u8,
+    /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
+    #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
+    speed: String,
+    /// Write the calibrated spec here (the spec's text with the estimates and their provenance).
+    #[arg(short = 'o', long = "output", value_name = "FILE.toml")]
+    output: Option<PathBuf>,
+    /// Write the calibrated design's brake model (JSON) here, for the rig and the haptic simulation.
+    #[arg(long, value_name = "FILE.json")]
+    save_model: Option<PathBuf>,
+    /// Print a JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs `mrbrake calibrate`.
+pub fn run(a: CalibrateArgs) -> CommandResult {
+    let (spec_toml, spec_origin) = base_spec(a.spec.as_ref())?;
+    let request = CalibrationRequest {
+        spec_toml,
+        spec_origin: spec_origin.clone(),
+        overrides: parse_sets(&a.set).map_err(field_flags::study)?,
+        parameters: a.parameter.clone(),
+        log: a.log.clone(),
+        points: a.points,
+        settings: settings_from(&a.mesh, &a.speed, a.order)?,
+        jobs: a.jobs,
+        options: CalibrationOptions {
+            max_evaluations: a.max_evaluations,
+            ..CalibrationOptions::default()
+        },
+    };
+    let result = calibrate::run(&request).map_err(field_flags::study)?;
+    if let Some(path) = &a.output {
+        mrbrake::report::write_atomic(path, result.calibrated_spec.as_bytes())?;
+    }
+    if let Some(path) = &a.save_model {
+        let how = format!("mrbrake calibrate {spec_origin} --log {}", a.log.display());
+        let identity =
+            mrbrake::explore::design::analysis_identity(&result.spec, &result.analysis_options)?;
+        let model = mrbrake::device::brake_model::from_analysis(
+            &result.analysis,
+            &result.analysis_options,
+            Some(identity),
+            &how,
+        )?;
+        mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
+    }
+    if a.json {
+        return print_json(&mrbrake::report::calibration::json(&result));
+    }
+    print_text(&mrbrake::report::calibration::text(&result, &result.spec.name))
+}

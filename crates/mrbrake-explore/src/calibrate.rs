@@ -1,0 +1,625 @@
+//! Calibration against a rig (issue 29 §3): the spec fields chosen as parameters are fitted so
+//! that the design's predicted static torque–current curve — the real FEA at every trial point —
+//! matches the loop measured on a rig, with standard errors, correlations and the parameter
+//! groups the data cannot separate.
+//!
+//! Brief overview:
+//! 1. **The measurement** ([`MeasuredLoop`]): the log is characterised as `mrbrake characterize`
+//!    does ([`mrbrake_sysid::request::CharacterizationRequest`]: ramps segmented, samples binned
+//!    by current per branch). The anhysteretic FEA predicts one curve, so it is compared with the
+//!    **middle of the loop**, the mean of the rising and the falling branch at each current (the
+//!    classical estimate of the anhysteretic curve from a symmetric loop; Jiles & Atherton,
+//!    J. Magn. Magn. Mater. 61, 48–60, 1986, §2), each branch's binned means interpolated
+//!    linearly at the analysis currents. The measurement noise is estimated from the raw torque
+//!    samples by the median absolute deviation of their first differences, `σ = MAD(ΔT) /
+//!    (0.6745 √2)` (robust to the slow ramp and to outliers; Hampel, JASA 69, 383–393, 1974; the
+//!    differences of white noise have variance 2σ²), and that of a compared point as σ over the
+//!    root of the samples averaged into it.
+//! 2. **The model**: a [`DesignSpace`] over the spec (with the fixed `--set` changes) whose
+//!    variables are the parameters; a trial point is a design analysed by
+//!    [`mrbrake_design::analysis::AnalysisRequest`] with `points` currents from 0 to the spec's
+//!    maximum current (direction 1: the unit the rig drives first); the residual at each current
+//!    is predicted − measured torque. A trial point that is not a valid brake gives a non-finite
+//!    residual, which only rejects that step.
+//! 3. **The fit**: [`mrbrake_uq::calibration::calibrate`], projected Levenberg–Marquardt in the
+//!    bound-normalised parameters with a finite-difference Jacobian whose columns are analysed in
+//!    parallel. Chosen over a surrogate because each static evaluation costs about a second and
+//!    a fit with three parameters needs a few tens of them: the surrogate's own training set
+//!    would cost as much, and its error would enter the standard errors.
+//! 4. **Statistics**: the standard errors use the residual's own scale `s² = ‖r‖²/(m − p)`
+//!    (Bates & Watts 1988, ch. 2), which includes the model's misfit and is the honest scale when
+//!    the model cannot reach the noise; the ratio `s / σ_point` is reported as the lack of fit
+//!    (≈ 1: the model explains the loop to within the noise). A pair the curve cannot separate is
+//!    named by [`mrbrake_uq::identifiability`] with the data that would separate it.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde::Serialize;
+use toml_edit::{DocumentMut, Value};
+
+use mrbrake_design::analysis::{Analysis, AnalysisOptions, AnalysisRequest};
+use mrbrake_design::spec::{BrakeSpec, Quantity};
+use mrbrake_sysid::characterize::Characterization;
+use mrbrake_sysid::request::CharacterizationRequest;
+use mrbrake_uq::RunError;
+use mrbrake_uq::calibration::{Calibration, CalibrationOptions, Parameter, calibrate};
+
+use crate::variable::{Variable, resolve};
+use crate::{DesignSpace, EvaluationSettings, ExploreError};
+
+/// Currents compared by default: every 0.1 of the maximum current.
+pub const DEFAULT_POINTS: usize = 11;
+
+/// How far the log's highest current may fall short of the spec's maximum current (relative):
+/// the rig's ramps stop at the last step below it.
+pub const CURRENT_COVERAGE_TOLERANCE: f64 = 0.02;
+
+/// The factor on the nominal value that bounds a parameter given without bounds: `[½, 1½] ×`
+/// nominal, inside the field's own range.
+pub const DEFAULT_SPAN: f64 = 0.5;
+
+/// One parameter to fit: a numeric spec field (its path as given and as resolved) with bounds.
+#[derive(Debug, Clone)]
+pub struct ParameterRequest {
+    /// As given, without its bounds (`drum.gap`, or the thesis symbol `g`).
+    pub name: String,
+    /// The spec field.
+    pub variable: Variable,
+    /// Lower bound (SI).
+    pub lower: f64,
+    /// Upper bound (SI).
+    pub upper: f64,
+    /// Start: the spec's value (the field's default when the spec leaves it out), moved into the
+    /// bounds.
+    pub start: f64,
+}
+
+/// What to calibrate.
+#[derive(Debug, Clone)]
+pub struct CalibrationRequest {
+    /// The spec's text.
+    pub spec_toml: String,
+    /// Where it came from (messages, the calibrated spec's provenance).
+    pub spec_origin: String,
+    /// Fixed changes applied before calibrating (`--set PATH=VALUE`).
+    pub overrides: Vec<(String, String)>,
+    /// The parameters, each `PATH` or `PATH=LOW..HIGH` (values with units).
+    pub parameters: Vec<String>,
+    /// The rig log (the characterisation's CSV).
+    pub log: PathBuf,
+    /// Currents compared, from 0 to the maximum current (≥ 3).
+    pub points: usize,
+    /// The analyses' settings (mesh, order, speed, temperature).
+    pub settings: EvaluationSettings,
+    /// Worker threads for the Jacobian's columns (0: one per core).
+    pub jobs: usize,
+    /// The fit's budget and tolerances.
+    pub options: CalibrationOptions,
+}
+
+/// The loop measured on the rig, at the compared currents.
+#[derive(Debug, Clone, Serialize)]
+pub struct MeasuredLoop {
+    /// The log.
+    pub source: String,
+    /// Compared currents (A).
+    pub current_a: Vec<f64>,
+    /// Middle of the loop at them (N·m).
+    pub torque_nm: Vec<f64>,
+    /// Rising and falling branch at them (N·m).
+    pub rising_nm: Vec<f64>,
+    /// Falling branch at them (N·m).
+    pub falling_nm: Vec<f64>,
+    /// Noise of one torque sample (N·m).
+    pub sample_noise_nm: f64,
+    /// Noise of one compared point (N·m).
+    pub point_noise_nm: f64,
+    /// The log's current range (A).
+    pub current_range_a: (f64, f64),
+    /// Repetitions of the ramp in the log.
+    pub repetitions: usize,
+}
+
+/// One fitted parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct FittedParameter {
+    /// As given to `--parameter`.
+    pub name: String,
+    /// The spec path.
+    pub path: String,
+    /// Its SI unit ("" for factors and counts).
+    pub unit: &'static str,
+    /// Start value (SI).
+    pub start: f64,
+    /// Estimate (SI).
+    pub estimate: f64,
+    /// Standard error (SI; infinite for a parameter the curve does not depend on).
+    pub standard_error: f64,
+    /// Lower bound.
+    pub lower: f64,
+    /// Upper bound.
+    pub upper: f64,
+    /// True when it ended on a bound.
+    pub at_bound: bool,
+}
+
+/// The outcome of a calibration.
+#[derive(Debug, Clone)]
+pub struct Calibrated {
+    /// The parameters with their estimates.
+    pub parameters: Vec<FittedParameter>,
+    /// The fit itself (correlations, identifiability, history).
+    pub fit: Calibration,
+    /// Unidentifiable groups by parameter name.
+    pub unidentifiable: Vec<Vec<String>>,
+    /// The measured loop.
+    pub measured: MeasuredLoop,
+    /// The prediction at the start and at the estimate (N·m, at the compared currents).
+    pub predicted_before_nm: Vec<f64>,
+    /// At the estimate.
+    pub predicted_after_nm: Vec<f64>,
+    /// `s / σ_point` at the estimate (module docs).
+    pub lack_of_fit: f64,
+    /// The spec's text with the fixed changes and the estimates, each with its provenance.
+    pub calibrated_spec: String,
+    /// The calibrated design's analysis and its options (for a brake model).
+    pub analysis: Analysis,
+    /// Its options.
+    pub analysis_options: AnalysisOptions,
+    /// The calibrated spec.
+    pub spec: BrakeSpec,
+    /// Wall time (s).
+    pub total_s: f64,
+}
+
+/// Runs the calibration of `request` (module docs).
+pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
+    let start = Instant::now();
+    check_request(request)?;
+    let probe = DesignSpace::new(
+        &request.spec_toml,
+        &request.spec_origin,
+        &request.overrides,
+        &[],
+        request.settings.clone(),
+    )?;
+    // The base may be invalid until the parameters have their start values (a seal count set
+    // by `--set` whose torque is a parameter): only the start design must be a brake.
+    let base = probe.base_design()?;
+    let parameters = request
+        .parameters
+        .iter()
+        .map(|text| parse_parameter(text, &base.spec_toml, probe.is_drum()))
+        .collect::<Result<Vec<_>, _>>()?;
+    let names: Vec<String> = parameters.iter().map(|p| p.variable.path().to_string()).collect();
+    let space = DesignSpace::new(
+        &request.spec_toml,
+        &request.spec_origin,
+        &request.overrides,
+        &names,
+        request.settings.clone(),
+    )?;
+    let start_values: Vec<f64> = parameters.iter().map(|p| p.start).collect();
+    let start_spec = space.design(&start_values)?.spec.map_err(|source| {
+        ExploreError::InvalidBase { what: "mrbrake calibrate (at the parameters' start)", source }
+    })?;
+    let options = analysis_options(request);
+    let currents = compared_currents(start_spec.coil.max_current.a(), request.points);
+    let measured = measure(&request.log, &currents)?;
+    let model = Model { space: &space, options, measured: &measured.torque_nm };
+    let bounds: Vec<Parameter> = parameters
+        .iter()
+        .map(|p| Parameter { start: p.start, lower: p.lower, upper: p.upper })
+        .collect();
+    let fit =
+        with_threads(request.jobs, || calibrate(|x| model.residual(x), &bounds, &request.options))?
+            .map_err(|e| match e {
+                RunError::Uq(e) => ExploreError::Uq(e),
+                RunError::Model(e) => e,
+            })?;
+    let before = model.predict(&start_values)?;
+    let (spec, analysis) = model.analyse(&fit.estimate)?;
+    let after: Vec<f64> = analysis.torque_current_curve.iter().map(|p| p.torque_nm).collect();
+    let fitted = fitted_parameters(&parameters, &fit);
+    let unidentifiable = fit
+        .identifiability
+        .unidentifiable
+        .iter()
+        .map(|group| group.iter().map(|&j| parameters[j].name.clone()).collect())
+        .collect();
+    let s = fit.residual_rms_after * residual_scale(fit.residuals.len(), parameters.len());
+    let calibrated_spec = calibrated_text(request, &fitted, &measured, probe.is_drum())?;
+    Ok(Calibrated {
+        lack_of_fit: s / measured.point_noise_nm.max(f64::MIN_POSITIVE),
+        parameters: fitted,
+        fit,
+        unidentifiable,
+        measured,
+        predicted_before_nm: before,
+        predicted_after_nm: after,
+        calibrated_spec,
+        analysis,
+        analysis_options: options,
+        spec,
+        total_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// `√(m / (m − p))`: the factor from the residual RMS to the estimate `s` of its scale.
+fn residual_scale(m: usize, p: usize) -> f64 {
+    if m > p { (m as f64 / (m - p) as f64).sqrt() } else { f64::INFINITY }
+}
+
+fn check_request(request: &CalibrationRequest) -> Result<(), ExploreError> {
+    if request.parameters.is_empty() {
+        return Err(ExploreError::input("parameter", "give at least one parameter to fit"));
+    }
+    if !(3..=201).contains(&request.points) {
+        let e = mrbrake_error::FieldError::out_of_range("points", request.points, "3..=201");
+        return Err(e.into());
+    }
+    if request.points <= request.parameters.len() {
+        return Err(ExploreError::input(
+            "points",
+            format!(
+                "{} compared currents cannot determine {} parameters with their errors; \
+                 give more points",
+                request.points,
+                request.parameters.len()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn analysis_options(request: &CalibrationRequest) -> AnalysisOptions {
+    let s = &request.settings;
+    AnalysisOptions {
+        mesh: s.mesh,
+        points: request.points,
+        speed_rad_s: s.speed_rad_s,
+        seal_friction_nm: s.seal_friction_nm,
+        temperature_c: s.temperature_c,
+        order: s.order,
+    }
+}
+
+/// The analysis's currents: `points` from 0 to `max_current` evenly.
+fn compared_currents(max_current: f64, points: usize) -> Vec<f64> {
+    (0..points).map(|k| max_current * k as f64 / (points - 1) as f64).collect()
+}
+
+/// Runs `f` on a pool of `jobs` threads (0: rayon's default pool).
+fn with_threads<T: Send>(jobs: usize, f: impl FnOnce() -> T + Send) -> Result<T, ExploreError> {
+    if jobs == 0 {
+        return Ok(f());
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| ExploreError::Internal(format!("cannot start {jobs} threads: {e}")))?;
+    Ok(pool.install(f))
+}
+
+/// The design model: a trial point's predicted curve.
+struct Model<'a> {
+    space: &'a DesignSpace,
+    options: AnalysisOptions,
+    measured: &'a [f64],
+}
+
+impl Model<'_> {
+    /// The spec and analysis at `x`.
+    fn analyse(&self, x: &[f64]) -> Result<(BrakeSpec, Analysis), ExploreError> {
+        let design = self.space.design(x)?;
+        let spec = design.spec.map_err(|source| ExploreError::InvalidBase {
+            what: "the calibrated design",
+            source,
+        })?;
+        let analysis = AnalysisRequest::of(&spec).options(self.options).run()?;
+        Ok((spec, analysis))
+    }
+
+    fn predict(&self, x: &[f64]) -> Result<Vec<f64>, ExploreError> {
+        let (_, analysis) = self.analyse(x)?;
+        Ok(analysis.torque_current_curve.iter().map(|p| p.torque_nm).collect())
+    }
+
+    /// Predicted − measured; NaN at a point that is not a valid brake (the step is rejected).
+    fn residual(&self, x: &[f64]) -> Result<Vec<f64>, ExploreError> {
+        let design = self.space.design(x)?;
+        let Ok(spec) = design.spec else {
+            return Ok(vec![f64::NAN; self.measured.len()]);
+        };
+        let analysis = AnalysisRequest::of(&spec).options(self.options).run()?;
+        let curve = &analysis.torque_current_curve;
+        if curve.len() != self.measured.len() {
+            return Err(ExploreError::Internal(format!(
+                "the analysis gave {} points, {} asked for",
+                curve.len(),
+                self.measured.len()
+            )));
+        }
+        Ok(curve.iter().zip(self.measured).map(|(p, m)| p.torque_nm - m).collect())
+    }
+}
+
+/// Reads `text` (`PATH` or `PATH=LOW..HIGH`) as a parameter of the spec `spec_toml` (SI TOML).
+pub fn parse_parameter(
+    text: &str,
+    spec_toml: &str,
+    is_drum: bool,
+) -> Result<ParameterRequest, ExploreError> {
+    let bad = |why: String| ExploreError::input("--parameter", format!("'{text}': {why}"));
+    let (path, range) = match text.split_once('=') {
+        Some((p, r)) => (p.trim(), Some(r.trim())),
+        None => (text.trim(), None),
+    };
+    let variable = resolve(path, is_drum)?;
+    let field = match variable.quantity() {
+        Some(Quantity::Integer) => {
+            return Err(bad("a whole-number field cannot be fitted by least squares".into()));
+        }
+        None => return Err(bad("a material cannot be fitted by least squares".into())),
+        Some(_) => field_bounds(&variable),
+    };
+    let nominal = nominal_value(spec_toml, variable.path());
+    let (lower, upper) = match range {
+        Some(range) => {
+            let (lo, hi) = range
+                .split_once("..")
+                .ok_or_else(|| bad("bounds are written LOW..HIGH, e.g. 0.5..1.2".into()))?;
+            (variable.parse_value(lo)?, variable.parse_value(hi)?)
+        }
+        None => match nominal {
+            Some(v) if v > 0.0 => (v * (1.0 - DEFAULT_SPAN), v * (1.0 + DEFAULT_SPAN)),
+            _ => {
+                return Err(bad(
+                    "its value is zero or not given: give bounds, PATH=LOW..HIGH".into()
+                ));
+            }
+        },
+    };
+    let lower = if field.contains(lower) { lower } else { lower.max(field.min) };
+    let upper = upper.min(field.max);
+    if !(lower.is_finite() && upper.is_finite() && lower < upper && field.contains(lower)) {
+        return Err(bad(format!(
+            "the bounds must satisfy LOW < HIGH inside the field's range {}",
+            field.describe(variable.quantity().map_or("", Quantity::unit))
+        )));
+    }
+    let start = nominal.unwrap_or(0.5 * (lower + upper)).clamp(lower, upper);
+    Ok(ParameterRequest { name: path.to_string(), variable, lower, upper, start })
+}
+
+/// The field's own range.
+fn field_bounds(variable: &Variable) -> mrbrake_design::spec::Bounds {
+    mrbrake_design::spec::numeric_fields()
+        .find(|f| f.path == variable.path())
+        .map_or(mrbrake_design::spec::Bounds::closed(f64::MIN, f64::MAX), |f| f.bounds)
+}
+
+/// The value of `path` in a spec written in SI (`Design::spec_toml`), or the default of a factor
+/// table's field the spec leaves out (1 for the factors, 0 for a drag torque not given).
+fn nominal_value(spec_toml: &str, path: &str) -> Option<f64> {
+    let table: toml::Table = toml::from_str(spec_toml).ok()?;
+    let mut value = toml::Value::Table(table);
+    for part in path.split('.') {
+        match value.get(part) {
+            Some(v) => value = v.clone(),
+            None => return default_value(path),
+        }
+    }
+    value.as_float().or_else(|| value.as_integer().map(|i| i as f64))
+}
+
+fn default_value(path: &str) -> Option<f64> {
+    let (table, key) = path.split_once('.')?;
+    let defaults = match table {
+        "fluid" => serde_json::to_value(mrbrake_design::spec::FluidFactors::default()).ok()?,
+        "steel" => serde_json::to_value(mrbrake_design::spec::SteelFactors::default()).ok()?,
+        "drag" => return Some(0.0),
+        _ => return None,
+    };
+    defaults.get(key)?.as_f64()
+}
+
+/// The loop of the log at `currents` (module docs).
+fn measure(log: &Path, currents: &[f64]) -> Result<MeasuredLoop, ExploreError> {
+    let source = log.display().to_string();
+    let characterized = CharacterizationRequest::new(log).run().map_err(|e| match e {
+        // A loop the characterisation cannot read names its column; the log names the file.
+        mrbrake_sysid::SysidError::Input(f) if f.file.is_none() => {
+            ExploreError::Input(Box::new(f.in_file(&source, None)))
+        }
+        other => ExploreError::Sysid(other),
+    })?;
+    let c = &characterized.characterization;
+    let max_current = currents[currents.len() - 1];
+    if c.current_max_a < max_current * (1.0 - CURRENT_COVERAGE_TOLERANCE) {
+        return Err(log_error(
+            &source,
+            format!(
+                "its currents reach {:.4} A, short of the spec's maximum current {max_current} A: \
+                 the loop must cover the range the model predicts",
+                c.current_max_a
+            ),
+        ));
+    }
+    let rising: Vec<f64> = currents.iter().map(|&i| interpolate(&c.rising_mean, i)).collect();
+    let falling: Vec<f64> = currents.iter().map(|&i| interpolate(&c.falling_mean, i)).collect();
+    let torque: Vec<f64> = rising.iter().zip(&falling).map(|(r, f)| 0.5 * (r + f)).collect();
+    let sample_noise_nm = sample_noise(characterized.torque_nm());
+    let averaged = averaged_samples(c);
+    Ok(MeasuredLoop {
+        source,
+        current_a: currents.to_vec(),
+        torque_nm: torque,
+        rising_nm: rising,
+        falling_nm: falling,
+        sample_noise_nm,
+        point_noise_nm: sample_noise_nm / averaged.sqrt(),
+        current_range_a: (c.current_min_a, c.current_max_a),
+        repetitions: c.repetitions,
+    })
+}
+
+fn log_error(source: &str, message: String) -> ExploreError {
+    ExploreError::input("--log", message).in_file(source)
+}
+
+/// Samples averaged into one compared point: the two branches' samples per bin, summed.
+fn averaged_samples(c: &Characterization) -> f64 {
+    let per_bin = |samples: usize, bins: usize| samples as f64 / bins.max(1) as f64;
+    (per_bin(c.rising.samples, c.rising_mean.len())
+        + per_bin(c.falling.samples, c.falling_mean.len()))
+    .max(1.0)
+}
+
+/// `MAD(ΔT) / (0.6745 √2)` (module docs).
+fn sample_noise(torque: &[f64]) -> f64 {
+    let mut differences: Vec<f64> = torque.windows(2).map(|w| w[1] - w[0]).collect();
+    if differences.is_empty() {
+        return 0.0;
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+    };
+    let centre = median(&mut differences);
+    let mut deviations: Vec<f64> = differences.iter().map(|d| (d - centre).abs()).collect();
+    median(&mut deviations) / (0.674_489_750_196_081_7 * std::f64::consts::SQRT_2)
+}
+
+/// Linear interpolation in a branch's binned means (sorted by current), held at the ends.
+fn interpolate(points: &[(f64, f64)], x: f64) -> f64 {
+    let Some(first) = points.first() else { return f64::NAN };
+    if x <= first.0 {
+        return first.1;
+    }
+    for w in points.windows(2) {
+        let ((x0, y0), (x1, y1)) = (w[0], w[1]);
+        if x <= x1 {
+            let t = if x1 > x0 { (x - x0) / (x1 - x0) } else { 1.0 };
+            return y0 + t * (y1 - y0);
+        }
+    }
+    points[points.len() - 1].1
+}
+
+fn fitted_parameters(parameters: &[ParameterRequest], fit: &Calibration) -> Vec<FittedParameter> {
+    parameters
+        .iter()
+        .enumerate()
+        .map(|(j, p)| FittedParameter {
+            name: p.name.clone(),
+            path: p.variable.path().to_string(),
+            unit: p.variable.quantity().map_or("", Quantity::unit),
+            start: p.start,
+            estimate: fit.estimate[j],
+            standard_error: fit.standard_error[j],
+            lower: p.lower,
+            upper: p.upper,
+            at_bound: fit.at_bound[j],
+        })
+        .collect()
+}
+
+/// The spec's own text with the fixed changes and the estimates set in place (SI numbers), each
+/// estimate with a comment saying where it came from; every other line kept.
+fn calibrated_text(
+    request: &CalibrationRequest,
+    fitted: &[FittedParameter],
+    measured: &MeasuredLoop,
+    is_drum: bool,
+) -> Result<String, ExploreError> {
+    let mut document: DocumentMut =
+        request.spec_toml.parse().map_err(|e: toml_edit::TomlError| {
+            ExploreError::input("", e.to_string()).in_file(&request.spec_origin)
+        })?;
+    for (path, text) in &request.overrides {
+        let (path, value) = crate::front::override_value(path, text, is_drum)?;
+        crate::front::set_value(&mut document, &path, value)?;
+    }
+    for p in fitted {
+        // Removed first: a replaced value would keep its old comment, and the provenance
+        // replaces it.
+        let mut value = Value::from(p.estimate);
+        let unit = if p.unit.is_empty() { String::new() } else { format!(" {}", p.unit) };
+        value.decor_mut().set_suffix(format!(
+            "  # calibrated: {:.6e} ± {:.2e}{unit} (1 s.e.), from {:.6e}; mrbrake calibrate on {}",
+            p.estimate, p.standard_error, p.start, measured.source
+        ));
+        crate::front::set_value(&mut document, &p.path, None)?;
+        crate::front::set_value(&mut document, &p.path, Some(value))?;
+    }
+    Ok(document.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SPEC: &str = include_str!("../../../examples/specs/thesis-bidirectional.toml");
+
+    fn si_spec() -> String {
+        let space = DesignSpace::new(SPEC, "thesis", &[], &[], EvaluationSettings::default());
+        space.unwrap().base_design().unwrap().spec_toml
+    }
+
+    #[test]
+    fn the_noise_of_white_samples_on_a_ramp_is_found() {
+        // Deterministic pseudo-normal noise (sum of 12 uniforms − 6) of σ = 0.01 on a slow ramp.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut uniform = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let torque: Vec<f64> = (0..20_000)
+            .map(|k| 1e-4 * k as f64 + 0.01 * ((0..12).map(|_| uniform()).sum::<f64>() - 6.0))
+            .collect();
+        let sigma = sample_noise(&torque);
+        assert!((sigma - 0.01).abs() < 0.0005, "{sigma}");
+        assert!(sample_noise(&[1.0]).abs() < 1e-300);
+    }
+
+    #[test]
+    fn branches_are_interpolated_linearly_and_held_at_their_ends() {
+        let points = [(0.0, 1.0), (1.0, 3.0), (2.0, 4.0)];
+        assert!((interpolate(&points, 0.5) - 2.0).abs() < 1e-12);
+        assert!((interpolate(&points, 1.5) - 3.5).abs() < 1e-12);
+        assert!((interpolate(&points, -1.0) - 1.0).abs() < 1e-12);
+        assert!((interpolate(&points, 9.0) - 4.0).abs() < 1e-12);
+        assert!(interpolate(&[], 1.0).is_nan());
+    }
+
+    #[test]
+    fn parameters_take_their_start_from_the_spec_and_default_bounds_around_it() {
+        let spec = si_spec();
+        let gap = parse_parameter("drum.gap", &spec, true).unwrap();
+        assert!((gap.start - 0.5e-3).abs() < 1e-15);
+        assert!((gap.lower - 0.25e-3).abs() < 1e-15 && (gap.upper - 0.75e-3).abs() < 1e-15);
+        // A factor the spec leaves out starts at its default, its bounds inside its range.
+        let fill = parse_parameter("fluid.fill_fraction", &spec, true).unwrap();
+        assert!((fill.start - 1.0).abs() < 1e-15 && (fill.upper - 1.0).abs() < 1e-15);
+        let seal = parse_parameter("drag.seal_torque=0..50mNm", &spec, true).unwrap();
+        assert_eq!(seal.name, "drag.seal_torque");
+        assert!(seal.start.abs() < 1e-15 && (seal.upper - 0.05).abs() < 1e-15);
+        assert!(parse_parameter("drag.seal_torque", &spec, true).is_err());
+        assert!(parse_parameter("drum.gap=1mm..0.5mm", &spec, true).is_err());
+        assert!(parse_parameter("coil.turns", &spec, true).is_err());
+    }
+
+    #[test]
+    fn the_compared_currents_run_from_zero_to_the_maximum() {
+        let c = compared_currents(2.0, 5);
+        assert_eq!(c.len(), 5);
+        assert!(c[0].abs() < 1e-15 && (c[4] - 2.0).abs() < 1e-15 && (c[1] - 0.5).abs() < 1e-15);
+        assert!((residual_scale(10, 2) - (10.0f64 / 8.0).sqrt()).abs() < 1e-15);
+        assert!(residual_scale(2, 2).is_infinite());
+    }
+}

@@ -1,0 +1,154 @@
+//! The report of `mrbrake calibrate`: its JSON (the contract of issue 29: `parameters[]`,
+//! `correlation`, `unidentifiable`, `residual_rms_before_Nm`, `residual_rms_after_Nm`, `noise_Nm`,
+//! `evaluations`, `timings_s.total`, plus the compared curve) and its text.
+
+use serde_json::{Value, json};
+
+use mrbrake_explore::calibrate::Calibrated;
+
+/// The JSON of a calibration.
+pub fn json(c: &Calibrated) -> Value {
+    let fit = &c.fit;
+    let m = &c.measured;
+    let curve: Vec<Value> = (0..m.current_a.len())
+        .map(|k| {
+            json!({
+                "current_A": m.current_a[k],
+                "measured_Nm": m.torque_nm[k],
+                "rising_Nm": m.rising_nm[k],
+                "falling_Nm": m.falling_nm[k],
+                "predicted_before_Nm": c.predicted_before_nm[k],
+                "predicted_after_Nm": c.predicted_after_nm[k],
+            })
+        })
+        .collect();
+    let weak: Vec<Value> = fit
+        .identifiability
+        .weak_directions
+        .iter()
+        .map(|d| {
+            json!({
+                "collinearity_index": finite(d.collinearity_index()),
+                "loadings": d.loadings,
+                "parameters": d.parameters.iter().map(|&j| c.parameters[j].name.clone()).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    json!({
+        "log": m.source,
+        "parameters": c.parameters.iter().map(|p| json!({
+            "name": p.name,
+            "path": p.path,
+            "unit": p.unit,
+            "start": p.start,
+            "estimate": p.estimate,
+            "standard_error": finite(p.standard_error),
+            "lower": p.lower,
+            "upper": p.upper,
+            "at_bound": p.at_bound,
+        })).collect::<Vec<_>>(),
+        "correlation": fit.correlation,
+        "unidentifiable": c.unidentifiable,
+        "weak_directions": weak,
+        "residual_rms_before_Nm": fit.residual_rms_before,
+        "residual_rms_after_Nm": fit.residual_rms_after,
+        "noise_Nm": m.sample_noise_nm,
+        "point_noise_Nm": m.point_noise_nm,
+        "lack_of_fit": finite(c.lack_of_fit),
+        "evaluations": fit.evaluations,
+        "iterations": fit.iterations,
+        "termination": fit.termination,
+        "converged": fit.termination.converged(),
+        "log_current_range_A": [m.current_range_a.0, m.current_range_a.1],
+        "repetitions": m.repetitions,
+        "curve": curve,
+        "calibrated": {
+            "torque_at_max_current_Nm": c.analysis.torque.at_max_current_nm,
+            "torque_off_Nm": c.analysis.torque.off_state_nm,
+            "time_constant_s": c.analysis.coil.time_constant_s,
+        },
+        "timings_s": { "total": c.total_s },
+    })
+}
+
+/// A number, or `null` where it is not finite (docs/CONVENTIONS.md: an infinite standard error is
+/// a parameter the data do not determine).
+fn finite(x: f64) -> Value {
+    if x.is_finite() { json!(x) } else { Value::Null }
+}
+
+/// The text of a calibration: the parameters with their errors, the correlations, the groups the
+/// data cannot separate, and the curve before and after.
+pub fn text(c: &Calibrated, name: &str) -> String {
+    let fit = &c.fit;
+    let m = &c.measured;
+    let mut out = format!(
+        "{name}: calibrated to {} ({} repetitions, {:.3}–{:.3} A), {} evaluations, {} iterations \
+         ({:?}), {:.1} s\n",
+        m.source,
+        m.repetitions,
+        m.current_range_a.0,
+        m.current_range_a.1,
+        fit.evaluations,
+        fit.iterations,
+        fit.termination,
+        c.total_s
+    );
+    out.push_str("parameters (start → estimate ± standard error, bounds):\n");
+    for p in &c.parameters {
+        let se = if p.standard_error.is_finite() {
+            format!("{:.4e}", p.standard_error)
+        } else {
+            "not determined".into()
+        };
+        out.push_str(&format!(
+            "  {:<28} {:.6} → {:.6} ± {se} {}  [{}, {}]{}\n",
+            p.path,
+            p.start,
+            p.estimate,
+            p.unit,
+            p.lower,
+            p.upper,
+            if p.at_bound { "  (on a bound)" } else { "" }
+        ));
+    }
+    if c.parameters.len() > 1 {
+        out.push_str("correlation:\n");
+        for (p, row) in c.parameters.iter().zip(&fit.correlation) {
+            let cells: Vec<String> = row.iter().map(|r| format!("{r:>7.3}")).collect();
+            out.push_str(&format!("  {:<28} {}\n", p.path, cells.join(" ")));
+        }
+    }
+    for group in &c.unidentifiable {
+        out.push_str(&format!(
+            "unidentifiable together: {} — the static curve moves them alike; data that \
+             separate them: a second quantity they affect differently (the coil's time constant \
+             or a frequency response, the off-state torque, a measured gap)\n",
+            group.join(", ")
+        ));
+    }
+    out.push_str(&format!(
+        "residual RMS {:.5} N·m → {:.5} N·m; noise {:.5} N·m per sample, {:.5} N·m per compared \
+         point; lack of fit {:.1} (1: the model explains the loop to within the noise)\n",
+        fit.residual_rms_before,
+        fit.residual_rms_after,
+        m.sample_noise_nm,
+        m.point_noise_nm,
+        c.lack_of_fit
+    ));
+    out.push_str("current [A]  measured [N·m]  before [N·m]  after [N·m]\n");
+    for k in 0..m.current_a.len() {
+        out.push_str(&format!(
+            "  {:>8.4}  {:>13.5}  {:>12.5}  {:>11.5}\n",
+            m.current_a[k], m.torque_nm[k], c.predicted_before_nm[k], c.predicted_after_nm[k]
+        ));
+    }
+    out.push_str(&format!(
+        "calibrated design: {:.4} N·m at the maximum current, {:.4} N·m off, coil time constant \
+         {:.2} ms",
+        c.analysis.torque.at_max_current_nm,
+        c.analysis.torque.off_state_nm,
+        c.analysis.coil.time_constant_s * 1e3
+    ));
+    out
+}
