@@ -115,6 +115,19 @@ fn rig_sysid_and_haptic_commands_end_their_text_with_one_newline() {
         .find(|p| p.extension().is_some_and(|x| x == "csv"))
         .expect("a characterisation log");
     ends_with_one_newline(&["characterize", path_str(&log)]);
+    ends_with_one_newline(&[
+        "calibrate",
+        "--log",
+        path_str(&log),
+        "--parameter",
+        "fluid.yield_stress_scale",
+        "--mesh",
+        "coarse",
+        "--points",
+        "3",
+        "--max-evaluations",
+        "3",
+    ]);
     ends_with_one_newline(&["freqresp", &format!("{freq_dir}/manifest.csv")]);
     ends_with_one_newline(&["tfest", &format!("{freq_dir}/frd.csv"), "--poles", "2"]);
     ends_with_one_newline(&["haptic", "wall", "--device", "bidirectional"]);

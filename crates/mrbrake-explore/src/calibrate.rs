@@ -90,7 +90,9 @@ pub struct CalibrationRequest {
     pub log: PathBuf,
     /// Currents compared, from 0 to the maximum current (≥ 3).
     pub points: usize,
-    /// The analyses' settings (mesh, order, speed, temperature).
+    /// The analyses' settings (mesh, order, speed, temperature); the dynamics or heat metrics its
+    /// `study` asks for (e.g. `bandwidth_rad_s`) are predicted for the start and the calibrated
+    /// design after the fit (an independent check against a measured value).
     pub settings: EvaluationSettings,
     /// Worker threads for the Jacobian's columns (0: one per core).
     pub jobs: usize,
@@ -144,6 +146,17 @@ pub struct FittedParameter {
     pub at_bound: bool,
 }
 
+/// A metric predicted before and after the calibration.
+#[derive(Debug, Clone, Serialize)]
+pub struct Prediction {
+    /// The metric's name (as in the store).
+    pub metric: String,
+    /// At the parameters' start.
+    pub before: Option<f64>,
+    /// At the estimate.
+    pub after: Option<f64>,
+}
+
 /// The outcome of a calibration.
 #[derive(Debug, Clone)]
 pub struct Calibrated {
@@ -159,6 +172,9 @@ pub struct Calibrated {
     pub predicted_before_nm: Vec<f64>,
     /// At the estimate.
     pub predicted_after_nm: Vec<f64>,
+    /// The study metrics asked for, predicted at the start and at the estimate (`None` where
+    /// the evaluation gave none).
+    pub predictions: Vec<Prediction>,
     /// `s / σ_point` at the estimate (module docs).
     pub lack_of_fit: f64,
     /// The spec's text with the fixed changes and the estimates, each with its provenance.
@@ -230,7 +246,9 @@ pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
         .collect();
     let s = fit.residual_rms_after * residual_scale(fit.residuals.len(), parameters.len());
     let calibrated_spec = calibrated_text(request, &fitted, &measured, probe.is_drum())?;
+    let predictions = predictions(&request.settings, &start_spec, &spec);
     Ok(Calibrated {
+        predictions,
         lack_of_fit: s / measured.point_noise_nm.max(f64::MIN_POSITIVE),
         parameters: fitted,
         fit,
@@ -244,6 +262,30 @@ pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
         spec,
         total_s: start.elapsed().as_secs_f64(),
     })
+}
+
+/// The study's recorded metrics of the start and the calibrated design (module docs).
+fn predictions(
+    settings: &EvaluationSettings,
+    start: &BrakeSpec,
+    end: &BrakeSpec,
+) -> Vec<Prediction> {
+    if settings.study.is_static() {
+        return Vec::new();
+    }
+    let [before, after] =
+        [start, end].map(|spec| crate::evaluate::evaluate(spec, settings).metrics);
+    settings
+        .study
+        .requested()
+        .iter()
+        .map(|&metric| {
+            let find = |m: &[(String, f64)]| {
+                m.iter().find(|(n, _)| n == metric).map(|(_, v)| *v).filter(|v| v.is_finite())
+            };
+            Prediction { metric: metric.to_string(), before: find(&before), after: find(&after) }
+        })
+        .collect()
 }
 
 /// `√(m / (m − p))`: the factor from the residual RMS to the estimate `s` of its scale.
@@ -364,7 +406,7 @@ pub fn parse_parameter(
         None => return Err(bad("a material cannot be fitted by least squares".into())),
         Some(_) => field_bounds(&variable),
     };
-    let nominal = nominal_value(spec_toml, variable.path());
+    let nominal = nominal_value(spec_toml, &variable)?;
     let (lower, upper) = match range {
         Some(range) => {
             let (lo, hi) = range
@@ -400,18 +442,26 @@ fn field_bounds(variable: &Variable) -> mrbrake_design::spec::Bounds {
         .map_or(mrbrake_design::spec::Bounds::closed(f64::MIN, f64::MAX), |f| f.bounds)
 }
 
-/// The value of `path` in a spec written in SI (`Design::spec_toml`), or the default of a factor
-/// table's field the spec leaves out (1 for the factors, 0 for a drag torque not given).
-fn nominal_value(spec_toml: &str, path: &str) -> Option<f64> {
-    let table: toml::Table = toml::from_str(spec_toml).ok()?;
+/// The value of `variable`'s field in a spec's TOML (a number in SI or a quantity with its unit),
+/// or the default of a factor table's field the spec leaves out (1 for the factors, 0 for a drag
+/// torque not given); `None` when neither is known.
+fn nominal_value(spec_toml: &str, variable: &Variable) -> Result<Option<f64>, ExploreError> {
+    let path = variable.path();
+    let table: toml::Table = toml::from_str(spec_toml)
+        .map_err(|e| ExploreError::Internal(format!("a design's TOML does not parse: {e}")))?;
     let mut value = toml::Value::Table(table);
     for part in path.split('.') {
         match value.get(part) {
             Some(v) => value = v.clone(),
-            None => return default_value(path),
+            None => return Ok(default_value(path)),
         }
     }
-    value.as_float().or_else(|| value.as_integer().map(|i| i as f64))
+    Ok(match value {
+        toml::Value::Float(x) => Some(x),
+        toml::Value::Integer(i) => Some(i as f64),
+        toml::Value::String(text) => Some(variable.parse_value(&text)?),
+        _ => None,
+    })
 }
 
 fn default_value(path: &str) -> Option<f64> {
@@ -610,6 +660,9 @@ mod tests {
         assert_eq!(seal.name, "drag.seal_torque");
         assert!(seal.start.abs() < 1e-15 && (seal.upper - 0.05).abs() < 1e-15);
         assert!(parse_parameter("drag.seal_torque", &spec, true).is_err());
+        // The spec's own text (an invalid base is kept as written): a quantity with its unit.
+        let written = parse_parameter("drum.gap=0.3mm..1.2mm", SPEC, true).unwrap();
+        assert!((written.start - 0.5e-3).abs() < 1e-15, "{}", written.start);
         assert!(parse_parameter("drum.gap=1mm..0.5mm", &spec, true).is_err());
         assert!(parse_parameter("coil.turns", &spec, true).is_err());
     }

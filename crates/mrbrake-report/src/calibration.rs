@@ -2,7 +2,10 @@
 //! `correlation`, `unidentifiable`, `residual_rms_before_Nm`, `residual_rms_after_Nm`, `noise_Nm`,
 //! `evaluations`, `timings_s.total`, plus the compared curve) and its text.
 
+use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
+
+use crate::chart::{Figure, Panel, Series, Shape};
 
 use mrbrake_explore::calibrate::Calibrated;
 
@@ -62,6 +65,7 @@ pub fn json(c: &Calibrated) -> Value {
         "log_current_range_A": [m.current_range_a.0, m.current_range_a.1],
         "repetitions": m.repetitions,
         "curve": curve,
+        "predictions": c.predictions,
         "calibrated": {
             "torque_at_max_current_Nm": c.analysis.torque.at_max_current_nm,
             "torque_off_Nm": c.analysis.torque.off_state_nm,
@@ -143,6 +147,15 @@ pub fn text(c: &Calibrated, name: &str) -> String {
             m.current_a[k], m.torque_nm[k], c.predicted_before_nm[k], c.predicted_after_nm[k]
         ));
     }
+    for p in &c.predictions {
+        let show = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.5}"));
+        out.push_str(&format!(
+            "predicted {}: {} before, {} calibrated\n",
+            p.metric,
+            show(p.before),
+            show(p.after)
+        ));
+    }
     out.push_str(&format!(
         "calibrated design: {:.4} N·m at the maximum current, {:.4} N·m off, coil time constant \
          {:.2} ms",
@@ -151,4 +164,44 @@ pub fn text(c: &Calibrated, name: &str) -> String {
         c.analysis.coil.time_constant_s * 1e3
     ));
     out
+}
+
+/// The calibration's figure: the measured branches and the middle of the loop the fit compares
+/// with, the prediction at the start and at the estimate, and the residuals below.
+pub fn figure(c: &Calibrated) -> Figure {
+    let m = &c.measured;
+    let curve = |values: &[f64]| -> Vec<(f64, f64)> {
+        m.current_a.iter().copied().zip(values.iter().copied()).collect()
+    };
+    let residual = |values: &[f64]| -> Vec<(f64, f64)> {
+        m.current_a
+            .iter()
+            .zip(values.iter().zip(&m.torque_nm))
+            .map(|(&i, (p, t))| (i, p - t))
+            .collect()
+    };
+    let loop_panel = Panel::new("current [A]", "torque [N·m]")
+        .series(Series::dashed("measured, rising", curve(&m.rising_nm)).color(0))
+        .series(Series::dashed("measured, falling", curve(&m.falling_nm)).color(1))
+        .series(
+            Series::points("measured, middle of the loop", curve(&m.torque_nm))
+                .color(2)
+                .shape(Shape::Ring)
+                .marker_size(5),
+        )
+        .series(Series::line("predicted, start", curve(&c.predicted_before_nm)).color(3))
+        .series(
+            Series::line("predicted, calibrated", curve(&c.predicted_after_nm))
+                .color(4)
+                .line_width(2),
+        )
+        .legend(SeriesLabelPosition::LowerRight);
+    let residuals = Panel::new("current [A]", "predicted − measured [N·m]")
+        .series(Series::line_points("start", residual(&c.predicted_before_nm)).color(3))
+        .series(Series::line_points("calibrated", residual(&c.predicted_after_nm)).color(4));
+    Figure::new(format!("calibration to {}", m.source))
+        .panel(loop_panel)
+        .panel(residuals)
+        .row_weights(vec![2.0, 1.0])
+        .size(900, 800)
 }

@@ -11,7 +11,7 @@ use mrbrake::explore::variable::parse_sets;
 use mrbrake::uq::calibration::CalibrationOptions;
 
 use super::field_flags;
-use super::sweep::{base_spec, settings_from};
+use super::sweep::{base_spec, recorded_metrics, settings_from};
 use crate::error::CommandResult;
 use crate::output::{print_json, print_text};
 
@@ -50,12 +50,19 @@ pub struct CalibrateArgs {
     /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
     #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
     speed: String,
+    /// Also predict a dynamics or heat metric (e.g. bandwidth_rad_s) of the start and the
+    /// calibrated design, to compare with a measurement the fit did not use. Repeatable.
+    #[arg(long = "record", value_name = "METRIC")]
+    record: Vec<String>,
     /// Write the calibrated spec here (the spec's text with the estimates and their provenance).
     #[arg(short = 'o', long = "output", value_name = "FILE.toml")]
     output: Option<PathBuf>,
     /// Write the calibrated design's brake model (JSON) here, for the rig and the haptic simulation.
     #[arg(long, value_name = "FILE.json")]
     save_model: Option<PathBuf>,
+    /// Plot the measured loop and the prediction before and after (SVG or PNG by the extension).
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
     /// Print a JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -71,7 +78,10 @@ pub fn run(a: CalibrateArgs) -> CommandResult {
         parameters: a.parameter.clone(),
         log: a.log.clone(),
         points: a.points,
-        settings: settings_from(&a.mesh, &a.speed, a.order)?,
+        settings: mrbrake::explore::EvaluationSettings {
+            study: recorded_metrics(&a.record)?,
+            ..settings_from(&a.mesh, &a.speed, a.order)?
+        },
         jobs: a.jobs,
         options: CalibrationOptions {
             max_evaluations: a.max_evaluations,
@@ -79,6 +89,9 @@ pub fn run(a: CalibrateArgs) -> CommandResult {
         },
     };
     let result = calibrate::run(&request).map_err(field_flags::study)?;
+    if let Some(path) = &a.plot {
+        mrbrake::report::calibration::figure(&result).save(path)?;
+    }
     if let Some(path) = &a.output {
         mrbrake::report::write_atomic(path, result.calibrated_spec.as_bytes())?;
     }
