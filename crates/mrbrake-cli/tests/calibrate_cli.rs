@@ -179,3 +179,82 @@ fn bad_logs_and_parameters_are_input_errors() {
         &["--points"],
     );
 }
+
+/// The rig's prototype log and frequency response (the thesis brake's measured lag, thesis (5.5)).
+fn prototype_data(dir: &Path) -> (std::path::PathBuf, std::path::PathBuf) {
+    let (char_dir, freq_dir) = (dir.join("char"), dir.join("freq"));
+    for (protocol, out) in [("characterize", &char_dir), ("freqresp", &freq_dir)] {
+        let o = mrbrake(&["rig", protocol, "--out", path_str(out)]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let o = mrbrake(&["freqresp", path_str(&freq_dir.join("manifest.csv"))]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    (char_dir.join("characterization.csv"), freq_dir.join("frd.csv"))
+}
+
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release only: frequency responses of a brake")]
+fn a_frequency_response_is_fitted_with_the_loop() {
+    let dir = tempfile::tempdir().unwrap();
+    let (log, frd) = prototype_data(dir.path());
+    let plot = dir.path().join("calibration.svg");
+    let v = json(&[
+        "calibrate",
+        "--mesh",
+        "coarse",
+        "--log",
+        path_str(&log),
+        "--frd",
+        path_str(&frd),
+        "--parameter",
+        "steel.conductivity_S_per_m=1MS/m..30MS/m",
+        "--max-evaluations",
+        "12",
+        "--plot",
+        path_str(&plot),
+        "--json",
+    ]);
+    let f = &v["frequency_response"];
+    let (before, after) = (f["rms_before"].as_f64().unwrap(), f["rms_after"].as_f64().unwrap());
+    assert!(after <= before, "the response's misfit grew: {before} → {after}");
+    // A more conductive steel lags more (eddy currents): the fit raises it towards the
+    // prototype's slower response.
+    let sigma = v["parameters"][0]["estimate"].as_f64().unwrap();
+    assert!(sigma > v["parameters"][0]["start"].as_f64().unwrap(), "{sigma}");
+    let measured = f["bandwidth_measured_rad_s"].as_f64().unwrap();
+    assert!((measured - 63.0).abs() < 5.0, "the rig's prototype: {measured} rad/s");
+    assert_eq!(
+        f["measured"].as_array().unwrap().len(),
+        f["predicted_after"].as_array().unwrap().len()
+    );
+    assert!(std::fs::metadata(&plot).unwrap().len() > 1000);
+}
+
+#[test]
+fn a_bad_frequency_response_file_is_an_input_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut log = String::from("time_s,current_A,torque_Nm\n");
+    let mut t = 0.0;
+    for _ in 0..3 {
+        for k in (0..=2000).chain((0..2000).rev()) {
+            log.push_str(&format!("{t},{},{}\n", k as f64 * 1e-3, k as f64 * 2e-3));
+            t += 1e-3;
+        }
+    }
+    let log_path = dir.path().join("loop.csv");
+    std::fs::write(&log_path, log).unwrap();
+    let frd = dir.path().join("bad-frd.csv");
+    std::fs::write(&frd, "w,gain\n1,2\n").unwrap();
+    expect_input_error(
+        &[
+            "calibrate",
+            "--log",
+            path_str(&log_path),
+            "--frd",
+            path_str(&frd),
+            "--parameter",
+            "drum.gap",
+        ],
+        &["bad-frd.csv"],
+    );
+}

@@ -39,8 +39,10 @@ use serde::Serialize;
 use toml_edit::{DocumentMut, Value};
 
 use mrbrake_design::analysis::{Analysis, AnalysisOptions, AnalysisRequest};
+use mrbrake_design::response::{ResponseModel, ResponseOptions};
 use mrbrake_design::spec::{BrakeSpec, Quantity};
 use mrbrake_sysid::characterize::Characterization;
+use mrbrake_sysid::frd::Frd;
 use mrbrake_sysid::request::CharacterizationRequest;
 use mrbrake_uq::RunError;
 use mrbrake_uq::calibration::{Calibration, CalibrationOptions, Parameter, calibrate};
@@ -88,6 +90,8 @@ pub struct CalibrationRequest {
     pub parameters: Vec<String>,
     /// The rig log (the characterisation's CSV).
     pub log: PathBuf,
+    /// Frequency-response data of the same brake (an FRD CSV, `mrbrake freqresp`), fitted too.
+    pub frd: Option<PathBuf>,
     /// Currents compared, from 0 to the maximum current (≥ 3).
     pub points: usize,
     /// The analyses' settings (mesh, order, speed, temperature); the dynamics or heat metrics its
@@ -146,6 +150,35 @@ pub struct FittedParameter {
     pub at_bound: bool,
 }
 
+/// The measured and predicted frequency responses (normalised to unit DC gain), compared at the
+/// measured frequencies.
+#[derive(Debug, Clone)]
+pub struct FrequencyFit {
+    /// The FRD file.
+    pub source: String,
+    /// The measured response.
+    pub measured: Frd,
+    /// Predicted at the start.
+    pub before: Frd,
+    /// Predicted at the estimate.
+    pub after: Frd,
+    /// The DC bias of the predicted small-signal response (A).
+    pub bias_a: f64,
+}
+
+impl FrequencyFit {
+    /// RMS of the complex difference of `predicted` from the measured response (dimensionless).
+    pub fn rms(&self, predicted: &Frd) -> f64 {
+        let n = self.measured.len().max(1) as f64;
+        let sum: f64 = predicted
+            .responses()
+            .zip(self.measured.responses())
+            .map(|(p, m)| (p - m).norm_sqr())
+            .sum();
+        (sum / n).sqrt()
+    }
+}
+
 /// A metric predicted before and after the calibration.
 #[derive(Debug, Clone, Serialize)]
 pub struct Prediction {
@@ -172,10 +205,16 @@ pub struct Calibrated {
     pub predicted_before_nm: Vec<f64>,
     /// At the estimate.
     pub predicted_after_nm: Vec<f64>,
+    /// RMS of predicted − measured torque at the start (N·m).
+    pub torque_rms_before_nm: f64,
+    /// At the estimate (N·m).
+    pub torque_rms_after_nm: f64,
+    /// The frequency response compared, when `--frd` data were given.
+    pub frequency_response: Option<FrequencyFit>,
     /// The study metrics asked for, predicted at the start and at the estimate (`None` where
     /// the evaluation gave none).
     pub predictions: Vec<Prediction>,
-    /// `s / σ_point` at the estimate (module docs).
+    /// `s / σ_point` at the estimate, of the torque curve (module docs).
     pub lack_of_fit: f64,
     /// The spec's text with the fixed changes and the estimates, each with its provenance.
     pub calibrated_spec: String,
@@ -223,7 +262,11 @@ pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
     let options = analysis_options(request);
     let currents = compared_currents(start_spec.coil.max_current.a(), request.points);
     let measured = measure(&request.log, &currents)?;
-    let model = Model { space: &space, options, measured: &measured.torque_nm };
+    let frd = match &request.frd {
+        Some(path) => Some(frequency_target(request, path, &start_spec, &measured)?),
+        None => None,
+    };
+    let model = Model { space: &space, options, measured: &measured.torque_nm, frd: frd.as_ref() };
     let bounds: Vec<Parameter> = parameters
         .iter()
         .map(|p| Parameter { start: p.start, lower: p.lower, upper: p.upper })
@@ -234,9 +277,20 @@ pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
                 RunError::Uq(e) => ExploreError::Uq(e),
                 RunError::Model(e) => e,
             })?;
-    let before = model.predict(&start_values)?;
-    let (spec, analysis) = model.analyse(&fit.estimate)?;
-    let after: Vec<f64> = analysis.torque_current_curve.iter().map(|p| p.torque_nm).collect();
+    let (_, before_analysis, before_frd) = model.analyse(&start_values)?;
+    let before = torques(&before_analysis);
+    let (spec, analysis, after_frd) = model.analyse(&fit.estimate)?;
+    let after = torques(&analysis);
+    let frequency_response = match (frd, before_frd, after_frd) {
+        (Some(target), Some(before), Some(after)) => Some(FrequencyFit {
+            source: target.source,
+            measured: target.measured,
+            before,
+            after,
+            bias_a: target.bias_a,
+        }),
+        _ => None,
+    };
     let fitted = fitted_parameters(&parameters, &fit);
     let unidentifiable = fit
         .identifiability
@@ -244,11 +298,20 @@ pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
         .iter()
         .map(|group| group.iter().map(|&j| parameters[j].name.clone()).collect())
         .collect();
-    let s = fit.residual_rms_after * residual_scale(fit.residuals.len(), parameters.len());
+    let rms = |predicted: &[f64]| {
+        let sum: f64 =
+            predicted.iter().zip(&measured.torque_nm).map(|(p, m)| (p - m).powi(2)).sum();
+        (sum / predicted.len() as f64).sqrt()
+    };
+    let (torque_rms_before_nm, torque_rms_after_nm) = (rms(&before), rms(&after));
+    let s = torque_rms_after_nm * residual_scale(after.len(), parameters.len());
     let calibrated_spec = calibrated_text(request, &fitted, &measured, probe.is_drum())?;
     let predictions = predictions(&request.settings, &start_spec, &spec);
     Ok(Calibrated {
         predictions,
+        frequency_response,
+        torque_rms_before_nm,
+        torque_rms_after_nm,
         lack_of_fit: s / measured.point_noise_nm.max(f64::MIN_POSITIVE),
         parameters: fitted,
         fit,
@@ -344,37 +407,89 @@ fn with_threads<T: Send>(jobs: usize, f: impl FnOnce() -> T + Send) -> Result<T,
     Ok(pool.install(f))
 }
 
-/// The design model: a trial point's predicted curve.
+/// The frequency-response data a calibration fits: the measured response, the response options
+/// of the prediction (at the measured frequencies) and the block's weight in the residual.
+struct FrequencyTarget {
+    source: String,
+    measured: Frd,
+    options: ResponseOptions,
+    bias_a: f64,
+    /// Scale of the complex differences in the residual: the measured torque at the maximum
+    /// current (a 10 % error of the response weighs like a 10 % error of the full-scale torque)
+    /// times `√(n_torque / 2 n_frequency)` (both blocks weigh alike in the cost whatever their
+    /// sizes).
+    weight: f64,
+}
+
+/// The frequency-response target of `path` for a design like `start`.
+fn frequency_target(
+    request: &CalibrationRequest,
+    path: &Path,
+    start: &BrakeSpec,
+    measured: &MeasuredLoop,
+) -> Result<FrequencyTarget, ExploreError> {
+    let source = path.display().to_string();
+    let frd = mrbrake_sysid::frd::read_frd(path, None)?;
+    if frd.len() < 2 {
+        return Err(
+            ExploreError::input("--frd", "at least two frequencies are needed").in_file(&source)
+        );
+    }
+    let mut options = request.settings.study.response.options(&request.settings);
+    options.omegas_rad_s = frd.omegas().collect();
+    let bias_a = options.bias_a.unwrap_or(0.5 * start.coil.max_current.a());
+    let full_scale = measured.torque_nm.iter().copied().fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+    let weight = full_scale * (measured.torque_nm.len() as f64 / (2.0 * frd.len() as f64)).sqrt();
+    Ok(FrequencyTarget { source, measured: frd, options, bias_a, weight })
+}
+
+/// The torques of an analysis's curve.
+fn torques(analysis: &Analysis) -> Vec<f64> {
+    analysis.torque_current_curve.iter().map(|p| p.torque_nm).collect()
+}
+
+/// The design model: a trial point's predicted curve (and frequency response).
 struct Model<'a> {
     space: &'a DesignSpace,
     options: AnalysisOptions,
     measured: &'a [f64],
+    frd: Option<&'a FrequencyTarget>,
 }
 
 impl Model<'_> {
-    /// The spec and analysis at `x`.
-    fn analyse(&self, x: &[f64]) -> Result<(BrakeSpec, Analysis), ExploreError> {
+    /// The spec, analysis and (with frequency data) predicted response of a valid brake.
+    fn run(&self, spec: &BrakeSpec) -> Result<(Analysis, Option<Frd>), ExploreError> {
+        let analysis = AnalysisRequest::of(spec).options(self.options).run()?;
+        let frd = match self.frd {
+            Some(target) => {
+                let model = ResponseModel::new(spec, &target.options)?;
+                Some(model.frequency_response(target.bias_a)?.1)
+            }
+            None => None,
+        };
+        Ok((analysis, frd))
+    }
+
+    /// The spec, analysis and predicted response at `x`.
+    fn analyse(&self, x: &[f64]) -> Result<(BrakeSpec, Analysis, Option<Frd>), ExploreError> {
         let design = self.space.design(x)?;
         let spec = design.spec.map_err(|source| ExploreError::InvalidBase {
             what: "the calibrated design",
             source,
         })?;
-        let analysis = AnalysisRequest::of(&spec).options(self.options).run()?;
-        Ok((spec, analysis))
+        let (analysis, frd) = self.run(&spec)?;
+        Ok((spec, analysis, frd))
     }
 
-    fn predict(&self, x: &[f64]) -> Result<Vec<f64>, ExploreError> {
-        let (_, analysis) = self.analyse(x)?;
-        Ok(analysis.torque_current_curve.iter().map(|p| p.torque_nm).collect())
-    }
-
-    /// Predicted − measured; NaN at a point that is not a valid brake (the step is rejected).
+    /// Predicted − measured (the frequency block weighted, [`FrequencyTarget::weight`]); NaN at
+    /// a point that is not a valid brake (the step is rejected).
     fn residual(&self, x: &[f64]) -> Result<Vec<f64>, ExploreError> {
+        let n = self.measured.len() + self.frd.map_or(0, |t| 2 * t.measured.len());
         let design = self.space.design(x)?;
         let Ok(spec) = design.spec else {
-            return Ok(vec![f64::NAN; self.measured.len()]);
+            return Ok(vec![f64::NAN; n]);
         };
-        let analysis = AnalysisRequest::of(&spec).options(self.options).run()?;
+        let (analysis, frd) = self.run(&spec)?;
         let curve = &analysis.torque_current_curve;
         if curve.len() != self.measured.len() {
             return Err(ExploreError::Internal(format!(
@@ -383,7 +498,15 @@ impl Model<'_> {
                 self.measured.len()
             )));
         }
-        Ok(curve.iter().zip(self.measured).map(|(p, m)| p.torque_nm - m).collect())
+        let mut r: Vec<f64> =
+            curve.iter().zip(self.measured).map(|(p, m)| p.torque_nm - m).collect();
+        if let (Some(target), Some(predicted)) = (self.frd, frd) {
+            for (p, m) in predicted.responses().zip(target.measured.responses()) {
+                let d = p - m;
+                r.extend([target.weight * d.re, target.weight * d.im]);
+            }
+        }
+        Ok(r)
     }
 }
 
@@ -444,16 +567,16 @@ fn field_bounds(variable: &Variable) -> mrbrake_design::spec::Bounds {
 
 /// The value of `variable`'s field in a spec's TOML (a number in SI or a quantity with its unit),
 /// or the default of a factor table's field the spec leaves out (1 for the factors, 0 for a drag
-/// torque not given); `None` when neither is known.
+/// torque not given, the library's for a conductivity); `None` when neither is known.
 fn nominal_value(spec_toml: &str, variable: &Variable) -> Result<Option<f64>, ExploreError> {
     let path = variable.path();
     let table: toml::Table = toml::from_str(spec_toml)
         .map_err(|e| ExploreError::Internal(format!("a design's TOML does not parse: {e}")))?;
-    let mut value = toml::Value::Table(table);
+    let mut value = toml::Value::Table(table.clone());
     for part in path.split('.') {
         match value.get(part) {
             Some(v) => value = v.clone(),
-            None => return Ok(default_value(path)),
+            None => return Ok(default_value(path, &table)),
         }
     }
     Ok(match value {
@@ -464,7 +587,18 @@ fn nominal_value(spec_toml: &str, variable: &Variable) -> Result<Option<f64>, Ex
     })
 }
 
-fn default_value(path: &str) -> Option<f64> {
+fn default_value(path: &str, spec: &toml::Table) -> Option<f64> {
+    // A conductivity the spec does not give is its material's in the library.
+    let material = match path {
+        "steel.conductivity_S_per_m" => Some("flux_path"),
+        "fluid.conductivity_S_per_m" => Some("fluid"),
+        _ => None,
+    };
+    if let Some(role) = material {
+        let name = spec.get("materials")?.get(role)?.as_str()?;
+        let material = mrbrake_materials::library::get(name).ok()?;
+        return material.conductivity_s_per_m.as_ref().map(|c| c.value);
+    }
     let (table, key) = path.split_once('.')?;
     let defaults = match table {
         "fluid" => serde_json::to_value(mrbrake_design::spec::FluidFactors::default()).ok()?,
@@ -663,6 +797,11 @@ mod tests {
         // The spec's own text (an invalid base is kept as written): a quantity with its unit.
         let written = parse_parameter("drum.gap=0.3mm..1.2mm", SPEC, true).unwrap();
         assert!((written.start - 0.5e-3).abs() < 1e-15, "{}", written.start);
+        // A conductivity the spec does not give starts at the library's value of its steel.
+        let sigma = parse_parameter("steel.conductivity_S_per_m", &spec, true).unwrap();
+        let library = mrbrake_materials::library::get("steel-1008").unwrap();
+        let expected = library.conductivity_s_per_m.as_ref().unwrap().value;
+        assert!((sigma.start - expected).abs() < 1e-6 * expected, "{}", sigma.start);
         assert!(parse_parameter("drum.gap=1mm..0.5mm", &spec, true).is_err());
         assert!(parse_parameter("coil.turns", &spec, true).is_err());
     }

@@ -7,7 +7,8 @@ use serde_json::{Value, json};
 
 use crate::chart::{Figure, Panel, Series, Shape};
 
-use mrbrake_explore::calibrate::Calibrated;
+use mrbrake_explore::calibrate::{Calibrated, FrequencyFit};
+use mrbrake_sysid::frd::{Frd, MINUS_3_DB};
 
 /// The JSON of a calibration.
 pub fn json(c: &Calibrated) -> Value {
@@ -53,8 +54,9 @@ pub fn json(c: &Calibrated) -> Value {
         "correlation": fit.correlation,
         "unidentifiable": c.unidentifiable,
         "weak_directions": weak,
-        "residual_rms_before_Nm": fit.residual_rms_before,
-        "residual_rms_after_Nm": fit.residual_rms_after,
+        "residual_rms_before_Nm": c.torque_rms_before_nm,
+        "residual_rms_after_Nm": c.torque_rms_after_nm,
+        "frequency_response": c.frequency_response.as_ref().map(frequency_json),
         "noise_Nm": m.sample_noise_nm,
         "point_noise_Nm": m.point_noise_nm,
         "lack_of_fit": finite(c.lack_of_fit),
@@ -134,8 +136,8 @@ pub fn text(c: &Calibrated, name: &str) -> String {
     out.push_str(&format!(
         "residual RMS {:.5} N·m → {:.5} N·m; noise {:.5} N·m per sample, {:.5} N·m per compared \
          point; lack of fit {:.1} (1: the model explains the loop to within the noise)\n",
-        fit.residual_rms_before,
-        fit.residual_rms_after,
+        c.torque_rms_before_nm,
+        c.torque_rms_after_nm,
         m.sample_noise_nm,
         m.point_noise_nm,
         c.lack_of_fit
@@ -145,6 +147,23 @@ pub fn text(c: &Calibrated, name: &str) -> String {
         out.push_str(&format!(
             "  {:>8.4}  {:>13.5}  {:>12.5}  {:>11.5}\n",
             m.current_a[k], m.torque_nm[k], c.predicted_before_nm[k], c.predicted_after_nm[k]
+        ));
+    }
+    if let Some(f) = &c.frequency_response {
+        let bw = |frd: &Frd| {
+            frd.bandwidth_rad_s(MINUS_3_DB)
+                .map_or("beyond the data".to_string(), |b| format!("{b:.1} rad/s"))
+        };
+        out.push_str(&format!(
+            "frequency response ({}, bias {} A): RMS difference {:.4} → {:.4}; −3 dB bandwidth \
+             measured {}, predicted {} → {}\n",
+            f.source,
+            f.bias_a,
+            f.rms(&f.before),
+            f.rms(&f.after),
+            bw(&f.measured),
+            bw(&f.before),
+            bw(&f.after)
         ));
     }
     for p in &c.predictions {
@@ -199,9 +218,53 @@ pub fn figure(c: &Calibrated) -> Figure {
     let residuals = Panel::new("current [A]", "predicted − measured [N·m]")
         .series(Series::line_points("start", residual(&c.predicted_before_nm)).color(3))
         .series(Series::line_points("calibrated", residual(&c.predicted_after_nm)).color(4));
-    Figure::new(format!("calibration to {}", m.source))
-        .panel(loop_panel)
-        .panel(residuals)
-        .row_weights(vec![2.0, 1.0])
-        .size(900, 800)
+    let figure =
+        Figure::new(format!("calibration to {}", m.source)).panel(loop_panel).panel(residuals);
+    match &c.frequency_response {
+        None => figure.row_weights(vec![2.0, 1.0]).size(900, 800),
+        Some(f) => {
+            let magnitude = |frd: &Frd| -> Vec<(f64, f64)> {
+                frd.points.iter().map(|p| (p.omega_rad_s, p.magnitude_db())).collect()
+            };
+            let bode = Panel::new("angular frequency [rad/s]", "magnitude [dB]")
+                .log_x()
+                .series(
+                    Series::points(format!("measured ({})", f.source), magnitude(&f.measured))
+                        .color(2)
+                        .shape(Shape::Ring)
+                        .marker_size(4),
+                )
+                .series(Series::line("predicted, start", magnitude(&f.before)).color(3))
+                .series(
+                    Series::line("predicted, calibrated", magnitude(&f.after))
+                        .color(4)
+                        .line_width(2),
+                )
+                .legend(SeriesLabelPosition::LowerLeft);
+            figure.panel(bode).row_weights(vec![2.0, 1.0, 1.5]).size(900, 1100)
+        }
+    }
+}
+
+/// The frequency-response block of the JSON: measured and predicted points and bandwidths.
+fn frequency_json(f: &FrequencyFit) -> Value {
+    let points = |frd: &Frd| -> Vec<Value> {
+        frd.points
+            .iter()
+            .map(|p| json!({"omega_rad_s": p.omega_rad_s, "magnitude_dB": p.magnitude_db(), "phase_deg": p.phase_deg()}))
+            .collect()
+    };
+    let bandwidth = |frd: &Frd| frd.bandwidth_rad_s(MINUS_3_DB).map_or(Value::Null, |b| json!(b));
+    json!({
+        "frd": f.source,
+        "bias_A": f.bias_a,
+        "rms_before": f.rms(&f.before),
+        "rms_after": f.rms(&f.after),
+        "bandwidth_measured_rad_s": bandwidth(&f.measured),
+        "bandwidth_before_rad_s": bandwidth(&f.before),
+        "bandwidth_after_rad_s": bandwidth(&f.after),
+        "measured": points(&f.measured),
+        "predicted_before": points(&f.before),
+        "predicted_after": points(&f.after),
+    })
 }

@@ -24,6 +24,11 @@ pub struct CalibrateArgs {
     /// `mrbrake rig characterize` writes it. Its currents must reach the spec's maximum current.
     #[arg(long, value_name = "LOG.csv")]
     log: PathBuf,
+    /// Frequency-response data of the same brake (FRD CSV from `mrbrake freqresp`): the
+    /// predicted small-signal response (normalised, about `[response]`'s bias: half the maximum
+    /// current) is fitted to it as well, each block weighing alike.
+    #[arg(long, value_name = "FRD.csv")]
+    frd: Option<PathBuf>,
     /// A spec field to fit: PATH (bounds ½ to 1½ times its value) or PATH=LOW..HIGH with units
     /// (drum.gap=0.5mm..0.8mm, fluid.yield_stress_scale=0.5..1.2, drag.seal_torque=0..0.2Nm).
     /// Repeatable.
@@ -77,6 +82,7 @@ pub fn run(a: CalibrateArgs) -> CommandResult {
         overrides: parse_sets(&a.set).map_err(field_flags::study)?,
         parameters: a.parameter.clone(),
         log: a.log.clone(),
+        frd: a.frd.clone(),
         points: a.points,
         settings: mrbrake::explore::EvaluationSettings {
             study: recorded_metrics(&a.record)?,
