@@ -129,9 +129,8 @@ fn the_studio_edits_solves_and_matches_the_cli() {
          r[1].querySelector('th').textContent === 'current (default)'; }})()"
     );
     b.wait_until(&tab, &current_default, 600, "the pinned design and the current one");
-    let torque_cells = format!(
-        "[...{rows}].map(r => Number(JSON.parse(r.querySelector('td').dataset.value)))"
-    );
+    let torque_cells =
+        format!("[...{rows}].map(r => Number(JSON.parse(r.querySelector('td').dataset.value)))");
     let torques = b.eval(&tab, &torque_cells);
     let torques: Vec<f64> = torques.as_array().unwrap().iter().filter_map(|t| t.as_f64()).collect();
     assert_eq!(torques.len(), 2, "the pinned design and the current one: {torques:?}");
