@@ -206,6 +206,9 @@ pub fn propagate(
     })
 }
 
+/// Per metric with a spread: its Sobol' indices.
+type Sensitivities = Vec<(String, OutputSensitivity)>;
+
 /// Per metric that every kept record has: its statistics and, when it varies, its Sobol' indices.
 fn summaries(
     metrics: &[String],
@@ -213,7 +216,7 @@ fn summaries(
     names: &[String],
     unit: &[Vec<f64>],
     request: &UncertaintyRequest<'_>,
-) -> Result<(Vec<(String, Summary)>, Vec<(String, OutputSensitivity)>), ExploreError> {
+) -> Result<(Vec<(String, Summary)>, Sensitivities), ExploreError> {
     let mut outputs = Vec::new();
     let mut sobol = Vec::new();
     for metric in metrics {
