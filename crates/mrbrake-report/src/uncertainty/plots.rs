@@ -10,7 +10,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor;
 
-use super::document::UncertaintyDocument;
+use super::document::{IndexEntry, UncertaintyDocument};
 use crate::ReportError;
 use crate::chart::{Figure, Panel, Picture, Series, SeriesLabelPosition, Shape, palette};
 
@@ -74,7 +74,7 @@ pub fn band_figure(
 pub struct Tornado {
     title: String,
     /// Per input, ranked by the total index (largest first): name, first, total and intervals.
-    bars: Vec<(String, super::document::IndexEntry)>,
+    bars: Vec<(String, IndexEntry)>,
 }
 
 impl Tornado {
@@ -184,24 +184,21 @@ impl Tornado {
             PathElement::new(vec![(clamp(ci[0]), y), (clamp(ci[1]), y)], BLACK.stroke_width(2))
         };
         let y_of = |k: usize| row_y(rows, k);
-        let totals = self
-            .bars
-            .iter()
-            .enumerate()
-            .map(|(k, (_, ix))| bar(y_of(k), TOTAL_HALF, ix.total, light));
-        chart
-            .draw_series(totals)?
-            .label("total index")
-            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], light.filled()));
-        let firsts = self
-            .bars
-            .iter()
-            .enumerate()
-            .map(|(k, (_, ix))| bar(y_of(k), FIRST_HALF, ix.first, dark));
-        chart
-            .draw_series(firsts)?
-            .label("first-order index")
-            .legend(move |(x, y)| Rectangle::new([(x, y - 3), (x + 14, y + 3)], dark.filled()));
+        type Index = fn(&IndexEntry) -> f64;
+        let kinds: [(&str, f64, Index, RGBColor); 2] = [
+            ("total index", TOTAL_HALF, |ix| ix.total, light),
+            ("first-order index", FIRST_HALF, |ix| ix.first, dark),
+        ];
+        for (label, half, index, color) in kinds {
+            let bars = self.bars.iter().enumerate();
+            let key = (half * 18.0).round() as i32;
+            chart
+                .draw_series(bars.map(|(k, (_, ix))| bar(y_of(k), half, index(ix), color)))?
+                .label(label)
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - key), (x + 14, y + key)], color.filled())
+                });
+        }
         let whiskers = self.bars.iter().enumerate().flat_map(|(k, (_, ix))| {
             let y = y_of(k);
             [whisker(y + FIRST_HALF + 0.06, ix.total_ci), whisker(y, ix.first_ci)]
