@@ -67,7 +67,7 @@ pub struct UncertaintyArgs {
     /// Currents of each sample's torque–current curve, evenly from 0 A to the maximum current
     /// (2 to 41): the torque band's currents. Each is a field solve per sample; part of the
     /// design keys, so a resumed run needs the same count.
-    #[arg(long, default_value_t = DEFAULT_CURVE_POINTS)]
+    #[arg(long, default_value_t = uncertainty::DEFAULT_CURVE_POINTS)]
     curve_points: usize,
     /// Write plots here: the torque–current band (torque_band.svg) and the tornado chart of the
     /// Sobol' indices (tornado.svg).
@@ -83,10 +83,6 @@ pub struct UncertaintyArgs {
     #[arg(long)]
     json: bool,
 }
-
-/// Currents of each sample's torque–current curve by default: 0 to 2 A in 0.25 A steps on the
-/// thesis brake.
-pub const DEFAULT_CURVE_POINTS: usize = 9;
 
 /// Runs `mrbrake uncertainty`.
 pub fn run(a: UncertaintyArgs) -> CommandResult {

@@ -87,6 +87,9 @@ impl Tornado {
                 if known.is_empty() { "none".to_string() } else { known.join(", ") }
             )));
         };
+        if indices.is_empty() {
+            return Err(ReportError::Data(format!("no declared input has indices of {metric}")));
+        }
         let mut bars: Vec<_> = indices.into_iter().map(|(n, ix)| (n.to_string(), ix)).collect();
         bars.sort_by(|a, b| b.1.total.total_cmp(&a.1.total));
         let surrogate = doc.surrogates.get(metric).map_or(String::new(), |s| {
@@ -279,6 +282,8 @@ mod tests {
         let e = Tornado::new(&doc(), "volume_m3").unwrap_err().to_string();
         assert!(e.contains("volume_m3") && e.contains("torque_max_Nm"), "{e}");
         let mut empty = doc();
+        empty.inputs.clear();
+        assert!(matches!(Tornado::new(&empty, "torque_max_Nm"), Err(ReportError::Data(_))));
         empty.torque_band.clear();
         assert!(matches!(band_figure(&empty, "t", None), Err(ReportError::Data(_))));
     }
