@@ -172,6 +172,9 @@ fn store_metric_names_follow_the_convention() {
     for metric in mrbrake::explore::evaluate::METRICS {
         assert_eq!(check_key(metric.name), Ok(()), "metric {}", metric.name);
     }
+    // A study keeping curves stores each point as a metric of its own.
+    let curve_point = mrbrake::explore::evaluate::torque_curve_metric(3);
+    assert_eq!(check_key(&curve_point), Ok(()), "metric {curve_point}");
     for (old, new) in mrbrake::explore::evaluate::LEGACY_METRIC_NAMES {
         assert!(check_key(old).is_err(), "legacy name {old} follows the rule: why renamed?");
         assert!(mrbrake::explore::evaluate::metric_info(new).is_some(), "{old} → {new}: no metric");

@@ -38,7 +38,17 @@ pub struct EvaluationSettings {
     /// The dynamics and heat metrics the study asks for, with their settings (default: none, a
     /// static-only study); see [`crate::metrics`].
     pub study: crate::metrics::StudyMetrics,
+    /// Currents of each analysis's torque–current sweep, evenly from 0 A to the maximum current
+    /// (2 to [`MAX_CURVE_POINTS`]; default 2: the off state and the maximum current, what every
+    /// static metric needs). Above 2 every point is also stored as a metric
+    /// ([`torque_curve_metric`]), so a study keeps each design's curve (`mrbrake uncertainty`'s
+    /// torque band); the count is part of the design key, as before (`points`).
+    pub curve_points: usize,
 }
+
+/// Most currents of a study's torque–current sweep ([`EvaluationSettings::curve_points`]): each is
+/// a Newton solve of every design.
+pub const MAX_CURVE_POINTS: usize = 41;
 
 impl Default for EvaluationSettings {
     fn default() -> Self {
@@ -51,6 +61,7 @@ impl Default for EvaluationSettings {
             convection_w_m2k: 10.0,
             order: analysis.order,
             study: crate::metrics::StudyMetrics::default(),
+            curve_points: 2,
         }
     }
 }
@@ -65,7 +76,7 @@ impl EvaluationSettings {
             "temperature_c": self.temperature_c,
             "convection_w_m2k": self.convection_w_m2k,
             "order": self.order.degree(),
-            "points": 2,
+            "points": self.curve_points,
         });
         // Only a study asking for more than the static metrics adds its own part, so the keys
         // of static-only studies stay those of before.
@@ -89,6 +100,8 @@ impl EvaluationSettings {
         ]
         .into_iter()
         .map(|(name, value)| (name.to_string(), value))
+        // Only a study keeping curves says so: the records of the others stay as before.
+        .chain((self.curve_points != 2).then(|| ("curve_points".into(), json!(self.curve_points))))
         .chain(self.study.recorded())
         .collect()
     }
@@ -98,6 +111,14 @@ impl EvaluationSettings {
     /// design instead of storing every design as infeasible.
     pub fn check(&self) -> Result<(), ExploreError> {
         self.analysis_options().check()?;
+        if self.curve_points > MAX_CURVE_POINTS {
+            let e = mrbrake_error::FieldError::out_of_range(
+                "points",
+                self.curve_points,
+                format!("2..={MAX_CURVE_POINTS}"),
+            );
+            return Err(e.into());
+        }
         let h = self.convection_w_m2k;
         if !(h.is_finite() && h > 0.0) {
             let e = mrbrake_error::FieldError::out_of_range(
@@ -113,7 +134,7 @@ impl EvaluationSettings {
     fn analysis_options(&self) -> AnalysisOptions {
         AnalysisOptions {
             mesh: self.mesh,
-            points: 2,
+            points: self.curve_points,
             speed_rad_s: self.speed_rad_s,
             seal_friction_nm: self.seal_friction_nm,
             temperature_c: self.temperature_c,
@@ -420,7 +441,37 @@ fn metrics_of(spec: &BrakeSpec, a: &Analysis, settings: &EvaluationSettings) -> 
     m.push(("nodes", a.mesh.nodes as f64));
     let iterations = a.torque_current_curve.last().map_or(0, |p| p.newton_iterations);
     m.push(("newton_iterations", iterations as f64));
-    m.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
+    let mut metrics: Vec<(String, f64)> = m.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
+    if a.torque_current_curve.len() > 2 {
+        let curve = a.torque_current_curve.iter().enumerate();
+        metrics.extend(curve.map(|(k, p)| (torque_curve_metric(k + 1), p.torque_nm)));
+    }
+    metrics
+}
+
+/// The stored name of the `point`-th torque of a design's torque–current curve (counted from 1
+/// at 0 A; point `n` of `n` is at the maximum current): `torque_curve_3_Nm`. Stored only when a
+/// study keeps curves ([`EvaluationSettings::curve_points`] above 2).
+pub fn torque_curve_metric(point: usize) -> String {
+    format!("torque_curve_{point}_Nm")
+}
+
+/// A stored design's torque–current curve as `(current A, torque N·m)` from its metrics: the
+/// [`torque_curve_metric`]s at evenly spaced currents up to `max_current_A`, or without them the
+/// two points every record has (`torque_off_Nm` at 0 A, `torque_max_Nm` at the maximum current).
+/// `None` when a metric it needs is missing or not finite.
+pub fn torque_curve(metrics: &[(String, f64)]) -> Option<Vec<(f64, f64)>> {
+    let find = |name: &str| {
+        metrics.iter().find(|(n, _)| n == name).map(|(_, v)| *v).filter(|v| v.is_finite())
+    };
+    let max_current = find("max_current_A")?;
+    let mut torques: Vec<f64> =
+        (1..).map_while(|k| find(&torque_curve_metric(k))).take(MAX_CURVE_POINTS).collect();
+    if torques.len() < 2 {
+        torques = vec![find("torque_off_Nm")?, find("torque_max_Nm")?];
+    }
+    let last = (torques.len() - 1) as f64;
+    Some(torques.iter().enumerate().map(|(k, &t)| (max_current * k as f64 / last, t)).collect())
 }
 
 /// The thinnest structural wall of the spec (m): case shell, end plate, inner case, the drum
@@ -441,4 +492,50 @@ fn min_wall_m(spec: &BrakeSpec) -> f64 {
 /// Looks up a metric's documentation.
 pub fn metric_info(name: &str) -> Option<&'static MetricInfo> {
     METRICS.iter().find(|m| m.name == name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn named(pairs: &[(&str, f64)]) -> Vec<(String, f64)> {
+        pairs.iter().map(|(n, v)| (n.to_string(), *v)).collect()
+    }
+
+    #[test]
+    fn a_stored_curve_reads_back_at_its_currents() {
+        let mut metrics = named(&[("max_current_A", 2.0), ("torque_off_Nm", 0.1)]);
+        metrics.extend((1..=5).map(|k| (torque_curve_metric(k), k as f64)));
+        let curve = torque_curve(&metrics).unwrap();
+        assert_eq!(curve, [(0.0, 1.0), (0.5, 2.0), (1.0, 3.0), (1.5, 4.0), (2.0, 5.0)]);
+        assert_eq!(torque_curve_metric(3), "torque_curve_3_Nm");
+    }
+
+    #[test]
+    fn without_a_stored_curve_the_two_points_of_every_record() {
+        let metrics =
+            named(&[("torque_max_Nm", 5.0), ("torque_off_Nm", 0.1), ("max_current_A", 2.0)]);
+        assert_eq!(torque_curve(&metrics).unwrap(), [(0.0, 0.1), (2.0, 5.0)]);
+        assert_eq!(torque_curve(&named(&[("torque_max_Nm", 5.0)])), None);
+        let nan =
+            named(&[("torque_max_Nm", f64::NAN), ("torque_off_Nm", 0.1), ("max_current_A", 2.0)]);
+        assert_eq!(torque_curve(&nan), None);
+    }
+
+    #[test]
+    fn curve_points_are_bounded_and_keyed_only_above_two() {
+        let plain = EvaluationSettings::default();
+        assert_eq!(plain.canonical()["points"], 2);
+        assert!(!plain.recorded().contains_key("curve_points"));
+        let curves = EvaluationSettings { curve_points: 9, ..EvaluationSettings::default() };
+        assert_eq!(curves.canonical()["points"], 9);
+        assert_eq!(curves.recorded()["curve_points"], 9);
+        assert!(curves.check().is_ok());
+        for bad in [1, MAX_CURVE_POINTS + 1] {
+            let settings =
+                EvaluationSettings { curve_points: bad, ..EvaluationSettings::default() };
+            let e = settings.check().unwrap_err();
+            assert!(e.is_input_error() && e.to_string().contains("points"), "{bad}: {e}");
+        }
+    }
 }

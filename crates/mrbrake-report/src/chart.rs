@@ -48,6 +48,9 @@ pub enum Mark {
     Points,
     /// A polyline with a circle at each point.
     LinePoints,
+    /// A translucent filled polygon through the points, closed back to the first (a band: its
+    /// upper edge left to right, then its lower edge right to left).
+    Area,
 }
 
 /// A named set of (x, y) points.
@@ -96,6 +99,10 @@ impl Series {
     /// Markers only.
     pub fn points(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
         Self::with_mark(label.into(), points, Mark::Points)
+    }
+    /// A translucent filled polygon (see [`Mark::Area`]).
+    pub fn area(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self::with_mark(label.into(), points, Mark::Area)
     }
     /// A line with markers.
     pub fn line_points(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
@@ -508,6 +515,9 @@ pub(crate) fn save_picture(picture: &impl Picture, path: &Path) -> Result<(), Re
     }
 }
 
+/// Opacity of a [`Mark::Area`] fill: the lines and grid under a band stay visible.
+const AREA_ALPHA: f64 = 0.25;
+
 /// The palette index of a neutral grey (context data drawn under the series that matter).
 pub const GREY: usize = 8;
 
@@ -672,6 +682,12 @@ fn draw_series<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)
                 .draw_series(DashedLineSeries::new(pts.iter().copied(), 6, 4, style))
                 .map_err(be)?,
             Mark::Points => draw_markers(chart, &pts, shape, size, color).map_err(be)?,
+            Mark::Area => chart
+                .draw_series(std::iter::once(Polygon::new(
+                    pts.clone(),
+                    color.mix(AREA_ALPHA).filled(),
+                )))
+                .map_err(be)?,
         };
         if !s.label.is_empty() {
             any_label = true;
@@ -750,6 +766,8 @@ fn legend_key<DB: DrawingBackend>(
     let none = ShapeStyle::from(&TRANSPARENT);
     let stroke = color.stroke_width(2);
     let (first, second) = match mark {
+        // A band's key: a thick stroke of its translucent fill.
+        Mark::Area => ((9, color.mix(AREA_ALPHA).stroke_width(8)), none),
         Mark::Line | Mark::LinePoints => ((9, stroke), none),
         Mark::Dashed => ((-3, stroke), stroke),
         Mark::Points => ((9, none), none),

@@ -18,6 +18,9 @@
 //! * [`heat`]: heat solves (`fem solve` with `physics = "heat"`);
 //! * [`response`]: a brake's predicted step and frequency response (`mrbrake response`);
 //! * [`thermal`]: a brake's temperatures, warm-up and current rating (`mrbrake thermal`);
+//! * [`uncertainty`]: an uncertainty propagation's bands and sensitivities (`mrbrake
+//!   uncertainty`: JSON, text, the torque band and tornado plots, the document `mrbrake report`
+//!   reads back);
 //! * [`html`]: self-contained HTML reports of a design, a study and a characterisation.
 //!
 //! The command-line program only parses, calls and prints or writes what these compose (as
@@ -97,6 +100,18 @@ pub enum ReportError {
     /// A model drawn beside the data (a transfer function) could not be built.
     #[error(transparent)]
     Model(#[from] mrbrake_sysid::SysidError),
+    /// An input document (an `uncertainty --json` file given to `mrbrake report`) cannot be read
+    /// or is not such a document.
+    #[error("'{}': {detail}", path.display())]
+    Document {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What is wrong.
+        detail: String,
+        /// The read error, when reading failed.
+        #[source]
+        source: Option<std::io::Error>,
+    },
 }
 
 impl mrbrake_error::Kind for ReportError {
@@ -108,6 +123,7 @@ impl mrbrake_error::Kind for ReportError {
         match self {
             Self::Io { source, .. } | Self::Folder { source, .. } => Kind::kind(source),
             Self::Data(_) | Self::PlotFormat { .. } => ErrorKind::Input,
+            Self::Document { source, .. } => source.as_ref().map_or(ErrorKind::Input, Kind::kind),
             Self::Backend(_) | Self::Json(_) => ErrorKind::Internal,
             Self::Store(e) => e.kind(),
             Self::Model(e) => e.kind(),

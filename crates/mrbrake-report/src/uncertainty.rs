@@ -1,5 +1,10 @@
 //! The report of `mrbrake uncertainty`: its JSON (the contract of issue 29: `samples`, `inputs`,
-//! `outputs.<metric>`, `sobol.<metric>.<input>`, `surrogate`, `timings_s`) and its text.
+//! `outputs.<metric>`, `torque_band`, `sobol.<metric>.<input>`, `surrogate`, `timings_s`) and its
+//! text; [`document`] reads that JSON back (for `mrbrake report`), [`plots`] draws the torque band
+//! and the tornado chart of the Sobol' indices from it.
+
+pub mod document;
+pub mod plots;
 
 use serde_json::{Map, Value, json};
 
@@ -69,6 +74,17 @@ pub fn json(u: &Uncertainty) -> Value {
             (metric.clone(), v)
         })
         .collect();
+    let band: Vec<Value> = u
+        .torque_band
+        .iter()
+        .map(|p| {
+            let t = &p.torque;
+            json!({
+                "current_A": p.current_a, "p5_Nm": t.p5, "p50_Nm": t.p50, "p95_Nm": t.p95,
+                "mean_Nm": t.mean, "std_Nm": t.std, "nominal_Nm": p.nominal_nm, "samples": t.count,
+            })
+        })
+        .collect();
     let main = u.sobol.iter().find(|(m, _)| m == "torque_max_Nm").or(u.sobol.first());
     json!({
         "samples": u.samples,
@@ -77,6 +93,7 @@ pub fn json(u: &Uncertainty) -> Value {
         "left_out_reason": u.left_out_reason,
         "inputs": inputs,
         "outputs": outputs,
+        "torque_band": band,
         "sobol": sobol,
         "surrogate": main.map(|(_, s)| json!({
             "kind": s.surrogate.kind, "loo_error": s.surrogate.loo_error,
@@ -114,6 +131,17 @@ pub fn text(u: &Uncertainty, name: &str) -> String {
         out.push_str(&format!(
             "  {metric:<28} {nominal:>10}  {:.5} ± {:.5}  [{:.5} / {:.5} / {:.5}]\n",
             s.mean, s.std, s.p5, s.p50, s.p95
+        ));
+    }
+    if !u.torque_band.is_empty() {
+        out.push_str("torque band (current A: nominal, mean ± std, 5 % / 50 % / 95 %, N·m):\n");
+    }
+    for p in &u.torque_band {
+        let t = &p.torque;
+        let nominal = p.nominal_nm.map_or("-".into(), |v| format!("{v:.4}"));
+        out.push_str(&format!(
+            "  {:>8.4}  {nominal:>8}  {:.4} ± {:.4}  [{:.4} / {:.4} / {:.4}]\n",
+            p.current_a, t.mean, t.std, t.p5, t.p50, t.p95
         ));
     }
     for (metric, s) in &u.sobol {

@@ -11,6 +11,7 @@ use mrbrake::design::geometry;
 use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::design::spec::{BrakeSpec, DEFAULT_SPEC_TOML, default_spec};
 use mrbrake::report::html::design::DesignReport;
+use mrbrake::report::uncertainty::{document::UncertaintyDocument, plots};
 use mrbrake::units::{Dimension, parse};
 
 use super::field_flags;
@@ -73,6 +74,10 @@ pub struct ReportArgs {
     /// behaviour: `mrbrake thermal` with its defaults).
     #[arg(long, conflicts_with_all = ["store", "log"])]
     thermal: bool,
+    /// Add the uncertainty section (bands, torque–current band, tornado chart, Sobol' indices) of
+    /// a propagation saved with `mrbrake uncertainty --json > FILE.json`.
+    #[arg(long, value_name = "FILE.json", conflicts_with_all = ["store", "log"])]
+    uncertainty: Option<PathBuf>,
 }
 
 /// Runs `mrbrake report`.
@@ -100,6 +105,8 @@ fn design_page(a: &ReportArgs) -> CommandResult<String> {
         }
         None => (default_spec(), DEFAULT_SPEC_TOML.to_string()),
     };
+    // Read before the analysis, so a bad file costs nothing.
+    let uncertainty = a.uncertainty.as_deref().map(UncertaintyDocument::read).transpose()?;
     let options = AnalysisOptions {
         mesh: MeshLevel::parse(&a.mesh).map_err(field_flags::design)?,
         points: a.points,
@@ -127,7 +134,7 @@ fn design_page(a: &ReportArgs) -> CommandResult<String> {
         spec_text: &text,
         source: &source,
         thesis_comparison: a.spec.is_none(),
-        extra_sections: extra_sections(a, &spec)?,
+        extra_sections: extra_sections(a, &spec, uncertainty.as_ref())?,
     };
     Ok(report.html()?)
 }
@@ -236,10 +243,12 @@ mod characterization {
     }
 }
 
-/// The sections of the analyses asked for beside the static one (`--response`).
+/// The sections of the analyses asked for beside the static one (`--response`, `--thermal`,
+/// `--uncertainty`).
 fn extra_sections(
     a: &ReportArgs,
     spec: &mrbrake::design::spec::BrakeSpec,
+    uncertainty: Option<&UncertaintyDocument>,
 ) -> CommandResult<Vec<mrbrake::report::html::Section>> {
     let mut sections = Vec::new();
     if a.response {
@@ -261,6 +270,12 @@ fn extra_sections(
         };
         let (r, field) = mrbrake::design::thermal::analyze_thermal_with_field(spec, &options)?;
         sections.push(mrbrake::report::html::thermal::section(&r, &field)?);
+    }
+    if let (Some(path), Some(doc)) = (&a.uncertainty, uncertainty) {
+        let measured = a.spec.is_none().then(plots::thesis_prototype);
+        let source = format!("{} (mrbrake uncertainty --json)", path.display());
+        let section = mrbrake::report::html::uncertainty::section(doc, &source, measured.as_ref());
+        sections.push(section?);
     }
     Ok(sections)
 }

@@ -1,6 +1,8 @@
 //! `mrbrake uncertainty`: propagates declared uncertain inputs (a `--inputs` TOML file) through
 //! the FEA by scrambled Sobol' samples, each stored in a resumable results store, and prints the
-//! band of every output with its Sobol' sensitivities (`mrbrake_explore::uncertainty`).
+//! band of every output and the torque–current band with its Sobol' sensitivities
+//! (`mrbrake_explore::uncertainty`); `--plots DIR` writes the band plot and the tornado chart
+//! (`mrbrake_report::uncertainty::plots`).
 
 use std::path::PathBuf;
 
@@ -9,6 +11,9 @@ use mrbrake::design::spec::BrakeSpec;
 use mrbrake::explore::uncertainty::{self, Declarations, UncertaintyRequest};
 use mrbrake::explore::{Progress, runner};
 use mrbrake::observe::Flow;
+use mrbrake::report::atomic::StagedDir;
+use mrbrake::report::uncertainty::document::UncertaintyDocument;
+use mrbrake::report::uncertainty::plots;
 
 use super::sweep::{base_spec, recorded_metrics, settings_from};
 use crate::error::CommandResult;
@@ -59,6 +64,21 @@ pub struct UncertaintyArgs {
     /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
     #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
     speed: String,
+    /// Currents of each sample's torque–current curve, evenly from 0 A to the maximum current
+    /// (2 to 41): the torque band's currents. Each is a field solve per sample; part of the
+    /// design keys, so a resumed run needs the same count.
+    #[arg(long, default_value_t = uncertainty::DEFAULT_CURVE_POINTS)]
+    curve_points: usize,
+    /// Write plots here: the torque–current band (torque_band.svg) and the tornado chart of the
+    /// Sobol' indices (tornado.svg).
+    #[arg(long, value_name = "DIR")]
+    plots: Option<PathBuf>,
+    /// Also write PNG versions of the plots.
+    #[arg(long, requires = "plots")]
+    png: bool,
+    /// The metric of the tornado chart (default: torque_max_Nm).
+    #[arg(long, value_name = "METRIC", requires = "plots")]
+    tornado: Option<String>,
     /// Print a JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -71,6 +91,7 @@ pub fn run(a: UncertaintyArgs) -> CommandResult {
     let declarations = Declarations::from_path(&a.inputs, spec.configuration.is_drum())?;
     let settings = mrbrake::explore::EvaluationSettings {
         study: recorded_metrics(&a.record)?,
+        curve_points: a.curve_points,
         ..settings_from(&a.mesh, &a.speed, a.order)?
     };
     let request = UncertaintyRequest {
@@ -91,8 +112,19 @@ pub fn run(a: UncertaintyArgs) -> CommandResult {
     let result = uncertainty::propagate(&mut store, &request, &mut |p: &Progress| {
         display.update(p);
         Flow::Continue
-    })?;
+    })
+    .map_err(|e| e.with_field_names(&[("points", "--curve-points"), ("samples", "--samples")]))?;
     display.finish();
+    if let Some(dir) = &a.plots {
+        let doc = UncertaintyDocument::of(&result)?;
+        let metric = a.tornado.as_deref().or(doc.main_metric());
+        let title = format!("{}: torque–current band", spec.name);
+        let measured = a.spec.is_none().then(plots::thesis_prototype);
+        StagedDir::write(dir, |staging| {
+            plots::write_plots(&doc, staging, &title, measured.as_ref(), metric, a.png)
+        })?
+        .commit()?;
+    }
     if a.json {
         return print_json(&mrbrake::report::uncertainty::json(&result));
     }

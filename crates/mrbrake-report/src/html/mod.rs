@@ -14,6 +14,8 @@
 //!   default, the spec's assumptions, the provenance of every material curve);
 //! * [`study`]: a results store (variables and objectives, Pareto front and constraint plots, the
 //!   front's designs with a section each);
+//! * [`uncertainty`]: the section of an uncertainty propagation (bands, tornado chart, Sobol'
+//!   indices) added to a design report;
 //! * [`characterization`]: a test-rig characterisation (hysteresis loop, branch fits, inverse model,
 //!   and with frequency-response data the Bode diagram with the fitted transfer function).
 //!
@@ -35,6 +37,7 @@ pub mod response;
 pub mod spec_notes;
 pub mod study;
 pub mod thermal;
+pub mod uncertainty;
 pub mod writer;
 
 mod style;
