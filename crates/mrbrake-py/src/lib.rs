@@ -16,6 +16,7 @@
 use pyo3::prelude::*;
 
 mod analyze;
+mod calibrate;
 mod convert;
 mod error;
 mod fem;
@@ -40,6 +41,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fem::register(m)?;
     formula::register(m)?;
     study::register(m)?;
+    calibrate::register(m)?;
     haptic::register(m)?;
     rig::register(m)?;
     Ok(())

@@ -25,7 +25,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 }
 
 /// The evaluation settings of every analysis of a sweep (their ranges are the library's rules).
-fn settings(
+pub(crate) fn settings(
     mesh: &str,
     order: u8,
     speed: Option<&Bound<'_, PyAny>>,

@@ -14,6 +14,7 @@ Main entry points:
 - :mod:`mrbrake.fem`: general problem files (magnetostatics, heat), as ``mrbrake fem solve``.
 - :func:`sweep`, :func:`optimize`: design studies into a results store (``mrbrake sweep``,
   ``mrbrake optimize``).
+- :func:`calibrate`: spec fields fitted to a rig log's loop (``mrbrake calibrate``).
 - :mod:`mrbrake.store`: the results store of design studies (``load``: a table).
 - :mod:`mrbrake.sysid`: hysteresis characterisation, frequency response, transfer-function fits.
 
@@ -25,7 +26,7 @@ Long computations release the GIL, so threads run analyses in parallel.
 from . import _native
 from ._native import Analysis, SolverError, __version__
 
-__all__ = ["Analysis", "SolverError", "analyze", "fem", "formula", "haptic", "materials", "optimize",
+__all__ = ["Analysis", "SolverError", "analyze", "calibrate", "fem", "formula", "haptic", "materials", "optimize",
            "rig", "store", "sweep", "sysid", "__version__"]
 
 
@@ -172,3 +173,54 @@ def optimize(problem, store=None, *, resume=False, jobs=0, out=None):
 
 
 from . import fem, formula, haptic, materials, rig, store, sysid  # noqa: E402  (submodules use the names above)
+
+
+def calibrate(spec=None, *, log, parameters, set=None, frd=None, points=11, max_evaluations=120,
+              jobs=0, mesh="default", order=1, speed=None, record=None):
+    """Fit spec fields so the design's predicted torque-current curve (the FEA at every trial
+    point) matches a rig log's loop (``mrbrake calibrate``), with standard errors, correlations
+    and the parameter groups the data cannot separate.
+
+    Parameters
+    ----------
+    spec : None, str, os.PathLike or dict
+        The spec to calibrate, as for :func:`analyze` (``None``: the embedded thesis brake).
+    log : str or os.PathLike
+        A repeated-ramp characterisation log (``time_s, current_A, torque_Nm``), as
+        ``mrbrake rig characterize`` writes it; its currents must reach the maximum current.
+    parameters : list of str
+        The fields to fit: ``"PATH"`` (bounds 0.5x to 1.5x its value) or ``"PATH=LOW..HIGH"``
+        with units (``"drum.gap=0.4mm..0.8mm"``, ``"fluid.yield_stress_scale=0.5..1.2"``).
+    set : dict or list of str, optional
+        Fixed changes before fitting (``{"drag.seals_per_rotor": 2}``), the CLI's ``--set``.
+    frd : str or os.PathLike, optional
+        Frequency-response data of the same brake (``mrbrake freqresp``), fitted as well.
+    points : int
+        Currents compared, evenly from 0 to the maximum current.
+    max_evaluations : int
+        Most residual evaluations (each an FEA of the curve).
+    jobs : int
+        Analyses run at the same time (0: one per core).
+    mesh, order, speed
+        As for :func:`sweep`.
+    record : list of str, optional
+        Study metrics (e.g. ``"bandwidth_rad_s"``) predicted before and after.
+
+    Returns
+    -------
+    dict
+        The document of ``mrbrake calibrate --json`` (``parameters`` with ``estimate`` and
+        ``standard_error`` in SI, ``correlation``, ``unidentifiable``, residuals, ``curve``), plus
+        ``calibrated_spec``: the spec's text with the estimates (what ``-o`` writes).
+
+    Raises ``ValueError`` for bad input (the CLI's message), ``OSError`` for an unreadable log,
+    :class:`SolverError` when an analysis fails. Runs without the GIL.
+    """
+    overrides = [tuple(p.split("=", 1)) for p in _pairs(set, "set")]
+    overrides = [(k.strip(), v.strip()) for k, v in overrides]
+    if isinstance(parameters, str):
+        parameters = [parameters]
+    return _native.calibrate(spec, str(log), list(parameters), overrides,
+                             frd=None if frd is None else str(frd), points=points,
+                             max_evaluations=max_evaluations, jobs=jobs, mesh=mesh, order=order,
+                             speed=speed, record=list(record or []))

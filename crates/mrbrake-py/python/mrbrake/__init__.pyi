@@ -120,3 +120,20 @@ def optimize(
     out: Optional[PathLike] = ...,
 ) -> Dict[str, Any]:
     """An optimisation study from a problem file (``mrbrake optimize --json``)."""
+
+def calibrate(
+    spec: Spec = ...,
+    *,
+    log: PathLike,
+    parameters: Union[List[str], str],
+    set: Union[Dict[str, Any], List[str], None] = ...,
+    frd: Optional[PathLike] = ...,
+    points: int = ...,
+    max_evaluations: int = ...,
+    jobs: int = ...,
+    mesh: str = ...,
+    order: int = ...,
+    speed: Optional[Quantity] = ...,
+    record: Optional[List[str]] = ...,
+) -> Dict[str, Any]:
+    """Spec fields fitted to a rig log's loop (``mrbrake calibrate --json`` + ``calibrated_spec``)."""
