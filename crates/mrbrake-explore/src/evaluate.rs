@@ -13,7 +13,7 @@ use mrbrake_design::analysis::{Analysis, AnalysisOptions, AnalysisRequest, Eleme
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::{BrakeSpec, WorkingSurfaces};
 use mrbrake_error::Kind as _;
-use mrbrake_store::Status;
+use mrbrake_store::{MetricValue, Status};
 use serde_json::{Value, json};
 
 use crate::ExploreError;
@@ -295,7 +295,7 @@ pub(crate) fn upgrade_metric_names(record: &mut mrbrake_store::Record) {
 
 /// Renames the legacy metric names of a `(name, value)` list to the current ones (see
 /// [`upgrade_metric_names`]); the form `mrbrake_store::Store::merge_from_upgrading` takes.
-pub(crate) fn upgrade_metric_list(metrics: &mut [(String, f64)]) {
+pub(crate) fn upgrade_metric_list(metrics: &mut [(String, MetricValue)]) {
     for (name, _) in metrics {
         if let (new, true) = current_metric_name(name) {
             *name = new.to_string();
@@ -310,8 +310,10 @@ pub struct Outcome {
     pub status: Status,
     /// Why it is infeasible or failed.
     pub reason: Option<String>,
-    /// The metrics (empty unless ok), in [`METRICS`] order.
-    pub metrics: Vec<(String, f64)>,
+    /// The metrics (empty unless ok, or the metrics known when an expensive analysis failed or a
+    /// constraint stopped the cascade), in [`METRICS`] order; a dynamics, heat or haptic figure
+    /// beyond the analysed range is a bound ([`MetricValue`], see [`crate::metrics`]).
+    pub metrics: Vec<(String, MetricValue)>,
 }
 
 impl Outcome {
@@ -326,22 +328,49 @@ impl Outcome {
 /// as such) — is its outcome with the reason, so one bad design never stops a study.
 pub fn evaluate(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
     let run = std::panic::AssertUnwindSafe(|| evaluate_unguarded(spec, settings));
-    std::panic::catch_unwind(run).unwrap_or_else(|payload| {
-        let message = payload
-            .downcast_ref::<String>()
-            .cloned()
-            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
-            .unwrap_or_default();
-        let reason = format!("internal error (a panic, please report this design): {message}");
-        Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] }
-    })
+    std::panic::catch_unwind(run).unwrap_or_else(panic_outcome)
+}
+
+/// How many static analyses [`evaluate`] has run in this process (a test counts them to show
+/// that completing a stored design with more metrics does not analyse it again).
+static STATIC_RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// How many static analyses [`evaluate`] has run in this process.
+pub fn static_analysis_count() -> usize {
+    STATIC_RUNS.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// Completes a stored evaluation of `spec` with the expensive metrics the study asks for and
+/// `stored` lacks, without analysing the design statically again: the cascade from the stored
+/// metrics (see [`crate::metrics`]). Guarded as [`evaluate`].
+pub fn complete(
+    spec: &BrakeSpec,
+    settings: &EvaluationSettings,
+    stored: &[(String, MetricValue)],
+) -> Outcome {
+    let run =
+        std::panic::AssertUnwindSafe(|| crate::metrics::cascade(spec, settings, stored.to_vec()));
+    std::panic::catch_unwind(run).unwrap_or_else(panic_outcome)
+}
+
+fn panic_outcome(payload: Box<dyn std::any::Any + Send>) -> Outcome {
+    let message = payload
+        .downcast_ref::<String>()
+        .cloned()
+        .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+        .unwrap_or_default();
+    let reason = format!("internal error (a panic, please report this design): {message}");
+    Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] }
 }
 
 fn evaluate_unguarded(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
+    STATIC_RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     match AnalysisRequest::of(spec).options(settings.analysis_options()).run() {
         Ok(analysis) => {
             let metrics = metrics_of(spec, &analysis, settings);
-            if let Some((name, value)) = metrics.iter().find(|(_, v)| v.is_nan()) {
+            if let Some((name, value)) =
+                metrics.iter().find(|(_, v)| v.number().is_some_and(f64::is_nan))
+            {
                 let reason = format!("the analysis gave {name} = {value}: not a result");
                 return Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] };
             }
@@ -372,7 +401,11 @@ pub(crate) fn with_causes(error: &dyn std::error::Error) -> String {
     text
 }
 
-fn metrics_of(spec: &BrakeSpec, a: &Analysis, settings: &EvaluationSettings) -> Vec<(String, f64)> {
+fn metrics_of(
+    spec: &BrakeSpec,
+    a: &Analysis,
+    settings: &EvaluationSettings,
+) -> Vec<(String, MetricValue)> {
     let mut m: Vec<(&'static str, f64)> = Vec::with_capacity(METRICS.len());
     let t = &a.torque;
     m.push(("torque_max_Nm", t.at_max_current_nm));
@@ -420,7 +453,7 @@ fn metrics_of(spec: &BrakeSpec, a: &Analysis, settings: &EvaluationSettings) -> 
     m.push(("nodes", a.mesh.nodes as f64));
     let iterations = a.torque_current_curve.last().map_or(0, |p| p.newton_iterations);
     m.push(("newton_iterations", iterations as f64));
-    m.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
+    m.into_iter().map(|(k, v)| (k.to_string(), MetricValue::Value(v))).collect()
 }
 
 /// The thinnest structural wall of the spec (m): case shell, end plate, inner case, the drum

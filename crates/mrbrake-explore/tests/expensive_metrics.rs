@@ -9,7 +9,7 @@ use mrbrake_design::spec::default_spec;
 use mrbrake_design::thermal::{ThermalOptions, analyze_thermal};
 use mrbrake_explore::evaluate::evaluate;
 use mrbrake_explore::problem::OptimizationProblem;
-use mrbrake_store::Status;
+use mrbrake_store::{MetricValue, Status};
 use serde_json::Value;
 
 /// A problem file on the embedded thesis brake, coarse mesh, asking for `record` with `extra`
@@ -36,8 +36,13 @@ generations = 0
     OptimizationProblem::from_toml_str(&text, Path::new("study.toml")).unwrap()
 }
 
-fn metric(metrics: &[(String, f64)], name: &str) -> f64 {
-    metrics.iter().find(|(n, _)| n == name).map_or(f64::NAN, |(_, v)| *v)
+/// The metric's value; a bound beyond the analysed range (where the command's JSON has `null`)
+/// reads as `inf`, as `json_number` reads that `null`.
+fn metric(metrics: &[(String, MetricValue)], name: &str) -> f64 {
+    metrics
+        .iter()
+        .find(|(n, _)| n == name)
+        .map_or(f64::NAN, |(_, v)| v.value().unwrap_or(f64::INFINITY))
 }
 
 /// The command's JSON number, `null` read as the metric's `inf`.

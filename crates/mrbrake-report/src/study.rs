@@ -835,7 +835,7 @@ fn broken_constraints(problem: &OptimizationProblem, record: &Record) -> String 
     let broken: Vec<String> = problem
         .constraints
         .iter()
-        .filter(|c| record.metric(&c.metric).is_none_or(|v| c.violation(v) > 0.0))
+        .filter(|c| record.metric_value(&c.metric).is_none_or(|v| c.violation_of(v) > 0.0))
         .map(|c| {
             let (scale, _) = metric_axis(&c.metric);
             let value = record.metric(&c.metric).map_or(f64::NAN, |v| v * scale);
@@ -897,7 +897,7 @@ mod tests {
             status,
             reason: reason.map(str::to_string),
             variables: Vec::new(),
-            metrics: metrics.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
+            metrics: metrics.iter().map(|(k, v)| (k.to_string(), (*v).into())).collect(),
             spec_toml: String::new(),
             eval_seconds: 0.5,
             solver_version: "test".into(),

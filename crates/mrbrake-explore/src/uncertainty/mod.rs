@@ -155,7 +155,9 @@ pub fn propagate(
     }
     let mut runner = Runner::new(store, request.settings.clone(), request.jobs);
     let (records, summary) = runner.run(&designs, observer)?;
-    let nominal = records[0].metrics.clone();
+    // The nominal design's values (a bound beyond the analysed range is no value to show).
+    let nominal =
+        records[0].metrics.iter().filter_map(|(n, v)| Some((n.clone(), v.value()?))).collect();
     let metrics = metric_names(request, &records[0]);
     let kept: Vec<usize> =
         (1..records.len()).filter(|&k| records[k].status == Status::Ok).collect();
@@ -239,7 +241,7 @@ fn metric_names(request: &UncertaintyRequest<'_>, nominal: &Record) -> Vec<Strin
 }
 
 fn metric_of(record: &Record, name: &str) -> Option<f64> {
-    record.metrics.iter().find(|(n, _)| n == name).map(|(_, v)| *v).filter(|v| v.is_finite())
+    record.metric(name).filter(|v| v.is_finite())
 }
 
 /// The sample with whole-number fields (turns, cylinders) rounded, as a spec holds them.
