@@ -212,7 +212,7 @@ pub const METRICS: &[MetricInfo] = &[
     metric(
         "coil_max_T_C",
         "°C",
-        "steady coil hot spot at the thermal current and duty (inf: thermal runaway)",
+        "steady coil hot spot at the thermal current and duty (runaway: at least the limit)",
     ),
     metric(
         "continuous_current_A",
@@ -227,7 +227,7 @@ pub const METRICS: &[MetricInfo] = &[
     metric(
         "time_to_limit_s",
         "s",
-        "warm-up time of the coil hot spot to the insulation limit (inf: not within the run)",
+        "warm-up time of the coil hot spot to the insulation limit (else: at least the run)",
     ),
     metric("max_duty_at_max_current", "1", "largest duty cycle at the maximum current"),
     // Haptics (the design's brake model in `haptic wall`; settings in [haptic]).
@@ -239,7 +239,7 @@ pub const METRICS: &[MetricInfo] = &[
     metric(
         "release_time_s",
         "s",
-        "haptic wall: from the start of the withdrawal to leaving the wall (inf: never left)",
+        "haptic wall: from the start of the withdrawal to leaving the wall (else: at least the rest)",
     ),
     metric(
         "displayed_stiffness_Nm_per_rad",

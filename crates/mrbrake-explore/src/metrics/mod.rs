@@ -447,9 +447,9 @@ mod tests {
         let strict = Constraint { metric: "torque_max_Nm".into(), min: Some(3.0), max: None };
         let loose = Constraint { min: Some(1.0), ..strict.clone() };
         assert!(!study(&["coil_max_T_C"], &[strict]).needs_completion(&stopped));
-        assert!(study(&["coil_max_T_C"], &[loose.clone()]).needs_completion(&stopped));
-        // Nothing missing but stopped by a constraint this study does not have: completed (to ok).
+        // Stopped by a constraint this study does not have: completed.
         assert!(study(&["coil_max_T_C"], &[loose]).needs_completion(&stopped));
+        assert!(!study(&[], &[]).needs_completion(&stopped), "static: nothing to do");
         let missing = study(&["coil_max_T_C", "t63_s"], &[]);
         let known: Vec<(String, MetricValue)> = with.metrics.clone();
         assert_eq!(
