@@ -40,11 +40,12 @@ struct Job<'d> {
 /// Where a run stands, reported after every stored evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
-    /// Evaluations to compute in this run (designs not yet in the store).
+    /// Evaluations to compute in this run (designs not yet in the store, and stored designs to
+    /// complete with the metrics they lack).
     pub to_compute: usize,
     /// Evaluations computed and stored so far.
     pub computed: usize,
-    /// Designs of the batch found in the store (not recomputed).
+    /// Designs of the batch found in the store with every metric asked for (not recomputed).
     pub reused: usize,
     /// Of the computed: infeasible designs.
     pub infeasible: usize,
@@ -264,7 +265,8 @@ impl<'a> Runner<'a> {
     ) -> Result<(), ExploreError> {
         let t0 = Instant::now();
         if completes {
-            self.store.complete(record)?;
+            let upgrade = crate::evaluate::upgrade_metric_list;
+            self.store.complete_upgrading(record, &|metrics| upgrade(metrics))?;
         } else {
             self.store.insert(record)?;
         }

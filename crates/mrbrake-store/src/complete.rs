@@ -10,7 +10,7 @@
 use rusqlite::{OptionalExtension, TransactionBehavior};
 
 use crate::row::{insert_new, read_row, rewrite_outcome};
-use crate::{Record, Store, StoreError, values_agree};
+use crate::{MetricUpgrade, Record, Store, StoreError, values_agree};
 
 impl Store {
     /// Stores `record` as the completion of the record stored under its key (module docs), or
@@ -18,6 +18,17 @@ impl Store {
     /// [`StoreError::InvalidRecord`] when `record` drops or changes a stored metric, or breaks the
     /// record contract; nothing is stored then.
     pub fn complete(&mut self, record: &Record) -> Result<bool, StoreError> {
+        self.complete_upgrading(record, &|_| {})
+    }
+
+    /// [`Self::complete`] with the stored metrics renamed by `upgrade` before they are compared
+    /// (as [`Self::merge_from_upgrading`]): a record stored under legacy metric names is completed
+    /// by one under the current names, and is then stored under them.
+    pub fn complete_upgrading(
+        &mut self,
+        record: &Record,
+        upgrade: &MetricUpgrade<'_>,
+    ) -> Result<bool, StoreError> {
         self.refuse_if_read_only()?;
         record.validate()?;
         let select = format!("{} WHERE key = ?1", self.select_records_sql());
@@ -39,11 +50,12 @@ impl Store {
                 insert_new(&transaction, record, Some(now), true).map_err(sqlite)?
             }
             Some(row) => {
-                let stored = row.decode().map_err(|(key, detail)| StoreError::Decode {
+                let mut stored = row.decode().map_err(|(key, detail)| StoreError::Decode {
                     path: path.clone(),
                     key,
                     detail,
                 })?;
+                upgrade(&mut stored.record.metrics);
                 check_completes(&stored.record, record)?;
                 let completed = Record {
                     key: stored.record.key,
@@ -131,5 +143,25 @@ mod tests {
         assert_eq!(records[0].variables[0].0, "g", "the stored variables are kept");
         assert!((records[0].eval_seconds - 3.0).abs() < 1e-12);
         assert_eq!(store.unverified_len().unwrap(), 0);
+    }
+
+    /// A record stored under a legacy metric name is completed through the renaming.
+    #[test]
+    fn completion_through_a_renaming_keeps_the_renamed_metric() {
+        let directory = tempfile::tempdir().unwrap();
+        let mut store = Store::create(&directory.path().join("s.mrbrake")).unwrap();
+        store.insert(&record('a', vec![("torque_nm", 2.0.into())])).unwrap();
+        let rename = |metrics: &mut [(String, MetricValue)]| {
+            for (name, _) in metrics {
+                if name == "torque_nm" {
+                    *name = "torque_Nm".into();
+                }
+            }
+        };
+        let more = record('a', vec![("torque_Nm", 2.0.into()), ("t63", 1e-3.into())]);
+        assert!(store.complete(&more).is_err(), "without the renaming a metric is dropped");
+        assert!(store.complete_upgrading(&more, &rename).unwrap());
+        let back = store.get(&more.key).unwrap().unwrap();
+        assert_eq!((back.metric("torque_Nm"), back.metric("torque_nm")), (Some(2.0), None));
     }
 }
