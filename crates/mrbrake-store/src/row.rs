@@ -237,6 +237,23 @@ fn checksum_of(
     record_checksum(&columns)
 }
 
+/// The text columns of `record` and its checksum (when `checksummed`), as a row stores them.
+struct Encoded {
+    variables: String,
+    metrics: String,
+    settings: Option<String>,
+    checksum: Option<i64>,
+}
+
+fn encode(record: &Record, created_unix_s: Option<f64>, checksummed: bool) -> Encoded {
+    let variables = named_values::encode_variables(&record.variables);
+    let metrics = named_values::encode(&record.metrics);
+    let settings = settings_text(record);
+    let checksum = checksummed
+        .then(|| checksum_of(record, created_unix_s, &variables, &metrics, settings.as_deref()));
+    Encoded { variables, metrics, settings, checksum }
+}
+
 /// Rewrites the outcome of the stored row of `record.key` (status, reason, metrics, settings, run
 /// time, solver version) inside an open write transaction, keeping its place (`seq`), creation
 /// time, variables and design; the checksum is recomputed when `checksummed`. The caller has
@@ -247,11 +264,7 @@ pub(crate) fn rewrite_outcome(
     created_unix_s: Option<f64>,
     checksummed: bool,
 ) -> rusqlite::Result<bool> {
-    let variables = named_values::encode_variables(&record.variables);
-    let metrics = named_values::encode(&record.metrics);
-    let settings = settings_text(record);
-    let checksum = checksummed
-        .then(|| checksum_of(record, created_unix_s, &variables, &metrics, settings.as_deref()));
+    let Encoded { metrics, settings, checksum, .. } = encode(record, created_unix_s, checksummed);
     let changed = transaction
         .prepare_cached(
             "UPDATE evaluations SET status = ?2, reason = ?3, metrics = ?4, eval_seconds = ?5, \
@@ -287,11 +300,8 @@ pub(crate) fn insert_new(
     if present {
         return Ok(false);
     }
-    let variables = named_values::encode_variables(&record.variables);
-    let metrics = named_values::encode(&record.metrics);
-    let settings = settings_text(record);
-    let checksum = checksummed
-        .then(|| checksum_of(record, created_unix_s, &variables, &metrics, settings.as_deref()));
+    let Encoded { variables, metrics, settings, checksum } =
+        encode(record, created_unix_s, checksummed);
     let changed = transaction
         .prepare_cached(
             "INSERT INTO evaluations (key, status, reason, variables, metrics, spec_toml, \
