@@ -350,7 +350,9 @@ pub fn complete(
 ) -> Outcome {
     let run =
         std::panic::AssertUnwindSafe(|| crate::metrics::cascade(spec, settings, stored.to_vec()));
-    std::panic::catch_unwind(run).unwrap_or_else(panic_outcome)
+    // A panic keeps the stored metrics: a completion never drops one.
+    std::panic::catch_unwind(run)
+        .unwrap_or_else(|payload| Outcome { metrics: stored.to_vec(), ..panic_outcome(payload) })
 }
 
 fn panic_outcome(payload: Box<dyn std::any::Any + Send>) -> Outcome {

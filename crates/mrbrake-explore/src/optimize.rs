@@ -283,8 +283,11 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             let x: Option<Vec<f64>> =
                 self.space.variables().iter().map(|v| record.variable(&v.name)).collect();
             let Some(x) = x.filter(|x| !x.is_empty()) else { continue };
+            // A stored design lacking metrics this problem asks for is no data yet: the runner
+            // completes it when the optimiser proposes it.
             if validate_design(&self.bounds, &x, "stored design").is_err()
                 || self.seen.contains_key(&record.key)
+                || self.space.settings().study.needs_completion(&record)
                 || self.space.design(&x)?.key != record.key
             {
                 continue;
