@@ -18,7 +18,8 @@
 //!   samples the curves rather than hashing the data files, so it also changes when the
 //!   interpolation code changes the curve;
 //! * the [`EvaluationSettings`] (mesh level, speed, friction, temperature, convection) and the
-//!   settings of the dynamics, heat and haptic analyses that differ from their defaults — not the
+//!   settings of the dynamics, heat and haptic analyses the study runs that differ from their
+//!   defaults — not the
 //!   metrics a study asks for nor its constraints, so a study asking for more metrics finds the
 //!   stored designs and completes them ([`crate::metrics`]). (Before, a study asking for such
 //!   metrics keyed its designs with its metric list and constraints too: those records are not

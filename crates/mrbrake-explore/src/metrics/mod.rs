@@ -6,15 +6,17 @@
 //! (its name, unit and meaning are in [`crate::evaluate::METRICS`] with the static ones);
 //! [`StudyMetrics`] is what a study asks for — the metrics, its constraints (the gates of the
 //! cascade) and the [`settings`] of the analyses — and is part of the
-//! [`crate::EvaluationSettings`]. Its settings (those that differ from their defaults) are part of
-//! every design key, so a changed setting never reads back a stale metric; the metrics asked for
-//! and the constraints are not: a record holds the metrics computed so far, and a study asking for
-//! more (`--resume` with a longer list) completes the stored designs with the missing metrics
-//! only ([`crate::evaluate::complete`]: no static analysis again, only the analyses whose metrics
-//! are missing, and those they need — the small-signal response again for a haptic wall with
-//! predicted dynamics). A static-only study has an empty [`StudyMetrics`] and keys, records and
-//! cost exactly as before; a study with default settings has the same keys as the static-only
-//! study of the same designs.
+//! [`crate::EvaluationSettings`]. The settings of the analyses it runs that differ from their
+//! defaults are part of every design key, so a changed setting never reads back a stale metric;
+//! the metrics asked for and the constraints are not: a record holds the metrics computed so far,
+//! and a study asking for more (`--resume` with a longer list) completes the stored designs with
+//! the missing metrics only ([`crate::evaluate::complete`]: no static analysis again, only the
+//! analyses whose metrics are missing, and those they need — the small-signal response again for
+//! a haptic wall with predicted dynamics). A static-only study has an empty [`StudyMetrics`] and
+//! keys, records and cost exactly as before; a study whose analyses run at their default settings
+//! has the same keys as the static-only study of the same designs. (A metric that brings in an
+//! analysis whose settings are not at their defaults changes the keys: its designs are evaluated
+//! again, the static analysis included.)
 //!
 //! A figure beyond the range an analysis covers is stored as a bound
 //! ([`mrbrake_store::MetricValue`]), never as an infinity: a bandwidth above the highest frequency
@@ -278,22 +280,28 @@ impl StudyMetrics {
         self.analyses().iter().any(|a| a.is_thermal())
     }
 
-    /// The part of the design key (module docs): the settings tables of the expensive analyses
-    /// that differ from their defaults, `None` when all are at their defaults (then the keys are
-    /// those of a static-only study of the same designs). Neither the metrics asked for nor the
-    /// constraints are part of it.
+    /// The part of the design key (module docs): the settings tables of the analyses that run
+    /// and that differ from their defaults; `None` when there are none (then the keys are those
+    /// of a static-only study of the same designs). Neither the metrics asked for nor the
+    /// constraints are part of it, so asking for one more metric keeps the keys — unless it
+    /// brings in an analysis whose settings are not at their defaults: then the key holds them
+    /// and the designs are evaluated again.
     pub fn canonical(&self) -> Option<Value> {
-        let mut value = serde_json::Map::new();
-        if self.response != ResponseSettings::default() {
-            value.insert("response".into(), self.response.canonical());
-        }
-        if self.thermal != ThermalSettings::default() {
-            value.insert("thermal".into(), self.thermal.canonical());
-        }
-        if self.haptic != HapticSettings::default() {
-            value.insert("haptic".into(), self.haptic.canonical());
-        }
-        (!value.is_empty()).then_some(Value::Object(value))
+        let defaults = Self::default();
+        let changed: serde_json::Map<String, Value> = self
+            .settings_tables()
+            .into_iter()
+            .filter(|(table, settings)| {
+                let default = match *table {
+                    "response" => defaults.response.canonical(),
+                    "thermal" => defaults.thermal.canonical(),
+                    _ => defaults.haptic.canonical(),
+                };
+                *settings != default
+            })
+            .map(|(table, settings)| (table.to_string(), settings))
+            .collect();
+        (!changed.is_empty()).then_some(Value::Object(changed))
     }
 
     /// The settings of the analyses that run, by table.
