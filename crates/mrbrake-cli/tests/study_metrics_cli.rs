@@ -83,3 +83,39 @@ fn a_recorded_fall_time_equals_the_response_command() {
     }
     assert_eq!(exported[0]["settings"]["metrics_asked"], "t63_fall_s t90_fall_dir2_s");
 }
+
+/// `sweep --resume` asking for one more metric completes the stored designs: the same keys,
+/// one evaluation each (the missing metric), the stored metrics kept; once complete, nothing runs.
+#[test]
+fn a_resumed_sweep_with_one_more_metric_completes_the_stored_designs() {
+    let dir = tempfile::tempdir().unwrap();
+    let store = dir.path().join("s.sqlite");
+    let store = path_str(&store);
+    let base = ["sweep", THESIS, "--vary", "g=0.45mm,0.55mm", "--mesh", "coarse", "--store", store];
+    let first = json(&[&base[..], &["--json"]].concat());
+    assert_eq!(first["summary"]["computed"], 2, "{first}");
+    let more = [&base[..], &["--resume", "--record", "coil_max_T_C", "--json"]].concat();
+    let second = json(&more);
+    assert_eq!(
+        (&second["summary"]["computed"], &second["summary"]["reused"]),
+        (&2.into(), &0.into())
+    );
+    let third = json(&more);
+    assert_eq!(
+        (&third["summary"]["computed"], &third["summary"]["reused"]),
+        (&0.into(), &2.into())
+    );
+    let exported = json(&["export", store, "--json"]);
+    let records = exported.as_array().unwrap();
+    assert_eq!(records.len(), 2, "completed in place, not added: {exported}");
+    let keys = |v: &serde_json::Value| -> Vec<String> {
+        v["designs"].as_array().unwrap().iter().map(|d| d["key"].to_string()).collect()
+    };
+    assert_eq!(keys(&first), keys(&second), "the metric list is not part of the key");
+    for r in records {
+        assert!(
+            r["metrics"]["torque_max_Nm"].is_number() && r["metrics"]["coil_max_T_C"].is_number(),
+            "{r}"
+        );
+    }
+}

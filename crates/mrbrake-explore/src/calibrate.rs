@@ -343,8 +343,11 @@ fn predictions(
         .requested()
         .iter()
         .map(|&metric| {
-            let find = |m: &[(String, f64)]| {
-                m.iter().find(|(n, _)| n == metric).map(|(_, v)| *v).filter(|v| v.is_finite())
+            let find = |m: &[(String, mrbrake_store::MetricValue)]| {
+                m.iter()
+                    .find(|(n, _)| n == metric)
+                    .and_then(|(_, v)| v.value())
+                    .filter(|v| v.is_finite())
             };
             Prediction { metric: metric.to_string(), before: find(&before), after: find(&after) }
         })

@@ -17,7 +17,13 @@
 //!   density, and for the fluid τ_y(B) at the same flux densities and the viscosity. The signature
 //!   samples the curves rather than hashing the data files, so it also changes when the
 //!   interpolation code changes the curve;
-//! * the [`EvaluationSettings`] (mesh level, speed, friction, temperature, convection);
+//! * the [`EvaluationSettings`] (mesh level, speed, friction, temperature, convection) and the
+//!   settings of the dynamics, heat and haptic analyses the study runs that differ from their
+//!   defaults — not the
+//!   metrics a study asks for nor its constraints, so a study asking for more metrics finds the
+//!   stored designs and completes them ([`crate::metrics`]). (Before, a study asking for such
+//!   metrics keyed its designs with its metric list and constraints too: those records are not
+//!   found by the current keys and are evaluated again; static-only keys are unchanged.)
 //! * [`MODEL_REVISION`] and this crate's version.
 //!
 //! JSON objects are written with sorted keys and floats in Rust's shortest round-trip form, so the

@@ -13,7 +13,7 @@ use mrbrake_design::analysis::{Analysis, AnalysisOptions, AnalysisRequest, Eleme
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::{BrakeSpec, WorkingSurfaces};
 use mrbrake_error::Kind as _;
-use mrbrake_store::Status;
+use mrbrake_store::{MetricValue, Status};
 use serde_json::{Value, json};
 
 use crate::ExploreError;
@@ -233,7 +233,7 @@ pub const METRICS: &[MetricInfo] = &[
     metric(
         "coil_max_T_C",
         "°C",
-        "steady coil hot spot at the thermal current and duty (inf: thermal runaway)",
+        "steady coil hot spot at the thermal current and duty (runaway: at least the limit)",
     ),
     metric(
         "continuous_current_A",
@@ -248,7 +248,7 @@ pub const METRICS: &[MetricInfo] = &[
     metric(
         "time_to_limit_s",
         "s",
-        "warm-up time of the coil hot spot to the insulation limit (inf: not within the run)",
+        "warm-up time of the coil hot spot to the insulation limit (else: at least the run)",
     ),
     metric("max_duty_at_max_current", "1", "largest duty cycle at the maximum current"),
     // Haptics (the design's brake model in `haptic wall`; settings in [haptic]).
@@ -260,7 +260,7 @@ pub const METRICS: &[MetricInfo] = &[
     metric(
         "release_time_s",
         "s",
-        "haptic wall: from the start of the withdrawal to leaving the wall (inf: never left)",
+        "haptic wall: from the start of the withdrawal to leaving the wall (else: at least the rest)",
     ),
     metric(
         "displayed_stiffness_Nm_per_rad",
@@ -316,7 +316,7 @@ pub(crate) fn upgrade_metric_names(record: &mut mrbrake_store::Record) {
 
 /// Renames the legacy metric names of a `(name, value)` list to the current ones (see
 /// [`upgrade_metric_names`]); the form `mrbrake_store::Store::merge_from_upgrading` takes.
-pub(crate) fn upgrade_metric_list(metrics: &mut [(String, f64)]) {
+pub(crate) fn upgrade_metric_list(metrics: &mut [(String, MetricValue)]) {
     for (name, _) in metrics {
         if let (new, true) = current_metric_name(name) {
             *name = new.to_string();
@@ -331,8 +331,10 @@ pub struct Outcome {
     pub status: Status,
     /// Why it is infeasible or failed.
     pub reason: Option<String>,
-    /// The metrics (empty unless ok), in [`METRICS`] order.
-    pub metrics: Vec<(String, f64)>,
+    /// The metrics (empty unless ok, or the metrics known when an expensive analysis failed or a
+    /// constraint stopped the cascade), in [`METRICS`] order; a dynamics, heat or haptic figure
+    /// beyond the analysed range is a bound ([`MetricValue`], see [`crate::metrics`]).
+    pub metrics: Vec<(String, MetricValue)>,
 }
 
 impl Outcome {
@@ -347,22 +349,51 @@ impl Outcome {
 /// as such) — is its outcome with the reason, so one bad design never stops a study.
 pub fn evaluate(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
     let run = std::panic::AssertUnwindSafe(|| evaluate_unguarded(spec, settings));
-    std::panic::catch_unwind(run).unwrap_or_else(|payload| {
-        let message = payload
-            .downcast_ref::<String>()
-            .cloned()
-            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
-            .unwrap_or_default();
-        let reason = format!("internal error (a panic, please report this design): {message}");
-        Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] }
-    })
+    std::panic::catch_unwind(run).unwrap_or_else(panic_outcome)
+}
+
+/// How many static analyses [`evaluate`] has run in this process (a test counts them to show
+/// that completing a stored design with more metrics does not analyse it again).
+static STATIC_RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// How many static analyses [`evaluate`] has run in this process.
+pub fn static_analysis_count() -> usize {
+    STATIC_RUNS.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// Completes a stored evaluation of `spec` with the expensive metrics the study asks for and
+/// `stored` lacks, without analysing the design statically again: the cascade from the stored
+/// metrics (see [`crate::metrics`]). Guarded as [`evaluate`].
+pub fn complete(
+    spec: &BrakeSpec,
+    settings: &EvaluationSettings,
+    stored: &[(String, MetricValue)],
+) -> Outcome {
+    let run =
+        std::panic::AssertUnwindSafe(|| crate::metrics::cascade(spec, settings, stored.to_vec()));
+    // A panic keeps the stored metrics: a completion never drops one.
+    std::panic::catch_unwind(run)
+        .unwrap_or_else(|payload| Outcome { metrics: stored.to_vec(), ..panic_outcome(payload) })
+}
+
+fn panic_outcome(payload: Box<dyn std::any::Any + Send>) -> Outcome {
+    let message = payload
+        .downcast_ref::<String>()
+        .cloned()
+        .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+        .unwrap_or_default();
+    let reason = format!("internal error (a panic, please report this design): {message}");
+    Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] }
 }
 
 fn evaluate_unguarded(spec: &BrakeSpec, settings: &EvaluationSettings) -> Outcome {
+    STATIC_RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     match AnalysisRequest::of(spec).options(settings.analysis_options()).run() {
         Ok(analysis) => {
             let metrics = metrics_of(spec, &analysis, settings);
-            if let Some((name, value)) = metrics.iter().find(|(_, v)| v.is_nan()) {
+            if let Some((name, value)) =
+                metrics.iter().find(|(_, v)| v.number().is_some_and(f64::is_nan))
+            {
                 let reason = format!("the analysis gave {name} = {value}: not a result");
                 return Outcome { status: Status::Failed, reason: Some(reason), metrics: vec![] };
             }
@@ -393,7 +424,11 @@ pub(crate) fn with_causes(error: &dyn std::error::Error) -> String {
     text
 }
 
-fn metrics_of(spec: &BrakeSpec, a: &Analysis, settings: &EvaluationSettings) -> Vec<(String, f64)> {
+fn metrics_of(
+    spec: &BrakeSpec,
+    a: &Analysis,
+    settings: &EvaluationSettings,
+) -> Vec<(String, MetricValue)> {
     let mut m: Vec<(&'static str, f64)> = Vec::with_capacity(METRICS.len());
     let t = &a.torque;
     m.push(("torque_max_Nm", t.at_max_current_nm));
@@ -441,10 +476,13 @@ fn metrics_of(spec: &BrakeSpec, a: &Analysis, settings: &EvaluationSettings) -> 
     m.push(("nodes", a.mesh.nodes as f64));
     let iterations = a.torque_current_curve.last().map_or(0, |p| p.newton_iterations);
     m.push(("newton_iterations", iterations as f64));
-    let mut metrics: Vec<(String, f64)> = m.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
+    let mut metrics: Vec<(String, MetricValue)> =
+        m.into_iter().map(|(k, v)| (k.to_string(), MetricValue::Value(v))).collect();
     if a.torque_current_curve.len() > 2 {
         let curve = a.torque_current_curve.iter().enumerate();
-        metrics.extend(curve.map(|(k, p)| (torque_curve_metric(k + 1), p.torque_nm)));
+        metrics.extend(
+            curve.map(|(k, p)| (torque_curve_metric(k + 1), MetricValue::Value(p.torque_nm))),
+        );
     }
     metrics
 }
@@ -459,10 +497,14 @@ pub fn torque_curve_metric(point: usize) -> String {
 /// A stored design's torque–current curve as `(current A, torque N·m)` from its metrics: the
 /// [`torque_curve_metric`]s at evenly spaced currents up to `max_current_A`, or without them the
 /// two points every record has (`torque_off_Nm` at 0 A, `torque_max_Nm` at the maximum current).
-/// `None` when a metric it needs is missing or not finite.
-pub fn torque_curve(metrics: &[(String, f64)]) -> Option<Vec<(f64, f64)>> {
+/// `None` when a metric it needs is missing, not a value or not finite.
+pub fn torque_curve(metrics: &[(String, MetricValue)]) -> Option<Vec<(f64, f64)>> {
     let find = |name: &str| {
-        metrics.iter().find(|(n, _)| n == name).map(|(_, v)| *v).filter(|v| v.is_finite())
+        metrics
+            .iter()
+            .find(|(n, _)| n == name)
+            .and_then(|(_, v)| v.value())
+            .filter(|v| v.is_finite())
     };
     let max_current = find("max_current_A")?;
     let mut torques: Vec<f64> =
@@ -498,14 +540,14 @@ pub fn metric_info(name: &str) -> Option<&'static MetricInfo> {
 mod tests {
     use super::*;
 
-    fn named(pairs: &[(&str, f64)]) -> Vec<(String, f64)> {
-        pairs.iter().map(|(n, v)| (n.to_string(), *v)).collect()
+    fn named(pairs: &[(&str, f64)]) -> Vec<(String, MetricValue)> {
+        pairs.iter().map(|(n, v)| (n.to_string(), MetricValue::Value(*v))).collect()
     }
 
     #[test]
     fn a_stored_curve_reads_back_at_its_currents() {
         let mut metrics = named(&[("max_current_A", 2.0), ("torque_off_Nm", 0.1)]);
-        metrics.extend((1..=5).map(|k| (torque_curve_metric(k), k as f64)));
+        metrics.extend((1..=5).map(|k| (torque_curve_metric(k), MetricValue::Value(k as f64))));
         let curve = torque_curve(&metrics).unwrap();
         assert_eq!(curve, [(0.0, 1.0), (0.5, 2.0), (1.0, 3.0), (1.5, 4.0), (2.0, 5.0)]);
         assert_eq!(torque_curve_metric(3), "torque_curve_3_Nm");

@@ -30,7 +30,7 @@ use mrbrake_optim::pareto::{Evaluation, pareto_front};
 use mrbrake_optim::space::{Bounds, validate_design};
 use mrbrake_optim::surrogate::EvaluatedDesign;
 use mrbrake_optim::{Problem, RunError, nsga2, pattern_search};
-use mrbrake_store::{Record, Status, Store};
+use mrbrake_store::{MetricValue, Record, Status, Store};
 
 use crate::design::DesignSpace;
 use crate::front::FrontDesign;
@@ -283,8 +283,11 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             let x: Option<Vec<f64>> =
                 self.space.variables().iter().map(|v| record.variable(&v.name)).collect();
             let Some(x) = x.filter(|x| !x.is_empty()) else { continue };
+            // A stored design lacking metrics this problem asks for is no data yet: the runner
+            // completes it when the optimiser proposes it.
             if validate_design(&self.bounds, &x, "stored design").is_err()
                 || self.seen.contains_key(&record.key)
+                || self.space.settings().study.needs_completion(&record)
                 || self.space.design(&x)?.key != record.key
             {
                 continue;
@@ -743,6 +746,13 @@ fn run_algorithm(
 /// What the optimiser sees of a record of `problem`: the objectives (maximised ones negated), the
 /// total violation and each constraint's signed value `−margin` (satisfied when `≤ 0`); a record
 /// that is not `ok`, or lacks a metric, is a failed evaluation.
+///
+/// A metric beyond the analysed range (`mrbrake_store::MetricValue`) counts as follows. In a
+/// constraint: [`crate::problem::Constraint::violation_of`] (a bound that already satisfies it
+/// satisfies it, one that cannot decide it counts as not computed). As an objective: a bound on
+/// the good side is ranked by its bound — `AtLeast(b)` of a maximised objective as `b`,
+/// `AtMost(b)` of a minimised one as `b` (the design is at least that good); a bound on the bad
+/// side, or a metric that does not apply, cannot be ranked and the design counts as failed.
 pub fn evaluation_for(problem: &OptimizationProblem, record: &Record) -> Evaluation {
     let n = problem.objectives.len();
     if record.status != Status::Ok {
@@ -751,27 +761,33 @@ pub fn evaluation_for(problem: &OptimizationProblem, record: &Record) -> Evaluat
         return crate::metrics::stopped_evaluation(record, &problem.constraints, n)
             .unwrap_or_else(|| Evaluation::failed(n));
     }
-    let metric =
-        |name: &str| record.metrics.iter().find(|(k, _)| k == name).map_or(f64::NAN, |(_, v)| *v);
-    let objectives: Vec<f64> = problem
-        .objectives
-        .iter()
-        .map(|o| {
-            let v = metric(&o.metric);
-            let v = if v.is_finite() { v } else { f64::INFINITY };
-            match o.goal {
-                Goal::Minimize => v,
-                Goal::Maximize => -v,
-            }
-        })
-        .collect();
-    let violation: f64 = problem.constraints.iter().map(|c| c.violation(metric(&c.metric))).sum();
+    let metric = |name: &str| record.metric_value(name).unwrap_or(MetricValue::Value(f64::NAN));
+    let objectives: Vec<f64> =
+        problem.objectives.iter().map(|o| objective_value(o.goal, metric(&o.metric))).collect();
+    let violation: f64 =
+        problem.constraints.iter().map(|c| c.violation_of(metric(&c.metric))).sum();
     if objectives.iter().any(|v| !v.is_finite()) || !violation.is_finite() {
         return Evaluation::failed(n);
     }
     let signed: Vec<f64> =
-        problem.constraints.iter().map(|c| -c.margin(metric(&c.metric))).collect();
+        problem.constraints.iter().map(|c| -c.margin_of(metric(&c.metric))).collect();
     Evaluation::new(objectives, violation).with_constraints(signed)
+}
+
+/// An objective as the optimiser minimises it (maximised ones negated), by the rules of
+/// [`evaluation_for`]; infinite when it cannot be ranked.
+pub fn objective_value(goal: Goal, value: MetricValue) -> f64 {
+    let ranked = match (goal, value) {
+        (_, MetricValue::Value(v))
+        | (Goal::Maximize, MetricValue::AtLeast(v))
+        | (Goal::Minimize, MetricValue::AtMost(v)) => v,
+        _ => f64::NAN,
+    };
+    let ranked = if ranked.is_finite() { ranked } else { f64::INFINITY };
+    match goal {
+        Goal::Minimize => ranked,
+        Goal::Maximize => -ranked,
+    }
 }
 
 /// The front of `evaluations` (indices): the feasible non-dominated set, or for one objective the

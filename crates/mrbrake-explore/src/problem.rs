@@ -60,6 +60,7 @@ use std::path::{Path, PathBuf};
 use mrbrake_design::analysis::ElementOrder;
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_error::FieldError;
+use mrbrake_store::MetricValue;
 use mrbrake_units::{Dimension, parse};
 use schemars::JsonSchema;
 use serde::Deserialize;
@@ -402,6 +403,71 @@ impl Constraint {
         let hi = self.max.map_or(f64::INFINITY, |hi| (hi - value) / scale(hi));
         lo.min(hi)
     }
+
+    /// The normalised violation of a stored metric, which may be a bound beyond the analysed
+    /// range (`mrbrake_store::MetricValue`). The rules:
+    /// * a value: [`Self::violation`];
+    /// * a bound that already satisfies the constraint satisfies it (0): `AtLeast(b)` with
+    ///   `b ≥ min` and no `max`, `AtMost(b)` with `b ≤ max` and no `min`;
+    /// * a bound that already violates it violates it at least as far as the bound does
+    ///   (`AtLeast(b)` with `b > max`): the violation of `b`, a lower bound on the true one;
+    /// * a bound that cannot decide (`AtLeast(b)` with `b < min`, or with a `max` above `b`):
+    ///   infinite, as for a metric that could not be computed — widen the analysed range (the
+    ///   `[response]` duration, the `[haptic]` duration, …) to decide it;
+    /// * a metric that does not apply (a second direction of a one-way brake): satisfied (0).
+    pub fn violation_of(&self, value: MetricValue) -> f64 {
+        match self.bound_decides(value) {
+            Decided::Value(v) => self.violation(v),
+            Decided::Satisfied => 0.0,
+            Decided::Undecided => f64::INFINITY,
+        }
+    }
+
+    /// The signed margin of a stored metric (see [`Self::violation_of`]): of the value, or of the
+    /// bound when the bound decides the constraint (then a bound on the margin); infinite for a
+    /// metric that does not apply, `−∞` when the bound cannot decide.
+    pub fn margin_of(&self, value: MetricValue) -> f64 {
+        match (value, self.bound_decides(value)) {
+            (MetricValue::NotApplicable, _) => f64::INFINITY,
+            (_, Decided::Undecided) => f64::NEG_INFINITY,
+            (v, _) => v.number().map_or(f64::INFINITY, |x| self.margin(x)),
+        }
+    }
+
+    fn bound_decides(&self, value: MetricValue) -> Decided {
+        match value {
+            MetricValue::Value(v) => Decided::Value(v),
+            MetricValue::NotApplicable => Decided::Satisfied,
+            MetricValue::AtLeast(b) => {
+                if self.max.is_some_and(|hi| b > hi) {
+                    Decided::Value(b)
+                } else if self.max.is_none() && self.min.is_none_or(|lo| b >= lo) {
+                    Decided::Satisfied
+                } else {
+                    Decided::Undecided
+                }
+            }
+            MetricValue::AtMost(b) => {
+                if self.min.is_some_and(|lo| b < lo) {
+                    Decided::Value(b)
+                } else if self.min.is_none() && self.max.is_none_or(|hi| b <= hi) {
+                    Decided::Satisfied
+                } else {
+                    Decided::Undecided
+                }
+            }
+        }
+    }
+}
+
+/// What a stored metric says about a constraint ([`Constraint::violation_of`]).
+enum Decided {
+    /// Judge this number (a value, or a bound already beyond a limit).
+    Value(f64),
+    /// The bound satisfies the constraint, or the metric does not apply.
+    Satisfied,
+    /// The bound cannot decide.
+    Undecided,
 }
 
 /// Minimise or maximise.
@@ -1607,6 +1673,33 @@ generations = 2
         assert!((c.violation(1.5) - 0.5).abs() < 1e-12);
         assert!((c.margin(3.3) - 0.1).abs() < 1e-12);
         assert!(c.violation(f64::NAN).is_infinite());
+    }
+
+    /// The rules of `violation_of` for bounds beyond the analysed range, one case each.
+    #[test]
+    fn bounds_satisfy_violate_or_cannot_decide_a_constraint() {
+        use MetricValue::{AtLeast, AtMost, NotApplicable, Value};
+        let min = Constraint { metric: "bandwidth_rad_s".into(), min: Some(100.0), max: None };
+        let max = Constraint { metric: "release_time_s".into(), min: None, max: Some(0.5) };
+        let both = Constraint { metric: "t63_s".into(), min: Some(0.1), max: Some(0.5) };
+        // A bound that already satisfies the constraint satisfies it.
+        assert!(min.violation_of(AtLeast(6283.0)) <= 0.0);
+        assert!(max.violation_of(AtMost(0.2)) <= 0.0);
+        assert!(min.margin_of(AtLeast(6283.0)) > 0.0);
+        // A bound already beyond a limit violates it at least that far (finite, so Deb's rules
+        // still rank the design).
+        assert!((max.violation_of(AtLeast(1.0)) - 1.0).abs() < 1e-12);
+        assert!((min.violation_of(AtMost(50.0)) - 0.5).abs() < 1e-12);
+        assert!((both.violation_of(AtLeast(1.0)) - 1.0).abs() < 1e-12);
+        // A bound that cannot decide counts as not computed.
+        assert!(min.violation_of(AtLeast(50.0)).is_infinite());
+        assert!(max.violation_of(AtLeast(0.2)).is_infinite());
+        assert!(both.violation_of(AtLeast(0.2)).is_infinite());
+        assert!(max.margin_of(AtLeast(0.2)) < 0.0);
+        // Not applicable satisfies every constraint; a value is judged as before.
+        assert!(max.violation_of(NotApplicable) <= 0.0);
+        assert!(max.margin_of(NotApplicable).is_infinite());
+        assert!((max.violation_of(Value(1.0)) - 1.0).abs() < 1e-12);
     }
 }
 

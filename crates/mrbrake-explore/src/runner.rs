@@ -10,6 +10,11 @@
 //! order. An observer's [`Flow::Stop`] stops the workers from taking new designs; the designs in
 //! flight finish and are stored, and the run ends with [`ExploreError::Stopped`].
 //!
+//! A stored design that lacks metrics the study asks for (a study resumed with a longer metric
+//! list, see [`crate::metrics::StudyMetrics::needs_completion`]) is *completed*: only its missing
+//! metrics are computed ([`crate::evaluate::complete`], no static analysis) and the record is
+//! extended in place ([`Store::complete`]); it counts as computed, not reused.
+//!
 //! [`Flow::Stop`]: mrbrake_observe::Flow::Stop
 
 use std::collections::HashSet;
@@ -23,16 +28,24 @@ use rayon::prelude::*;
 
 use crate::ExploreError;
 use crate::design::{Design, solver_version};
-use crate::evaluate::{EvaluationSettings, Outcome, evaluate};
+use crate::evaluate::{EvaluationSettings, Outcome, complete, evaluate};
+
+/// One evaluation to compute: a new design, or a stored record to complete with the metrics it
+/// lacks.
+struct Job<'d> {
+    design: &'d Design,
+    stored: Option<Record>,
+}
 
 /// Where a run stands, reported after every stored evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
-    /// Evaluations to compute in this run (designs not yet in the store).
+    /// Evaluations to compute in this run (designs not yet in the store, and stored designs to
+    /// complete with the metrics they lack).
     pub to_compute: usize,
     /// Evaluations computed and stored so far.
     pub computed: usize,
-    /// Designs of the batch found in the store (not recomputed).
+    /// Designs of the batch found in the store with every metric asked for (not recomputed).
     pub reused: usize,
     /// Of the computed: infeasible designs.
     pub infeasible: usize,
@@ -144,21 +157,33 @@ impl<'a> Runner<'a> {
         Ok((records, summary))
     }
 
-    /// The designs of the batch to compute (not stored, first of their key) and how many are
-    /// stored already.
-    fn to_compute<'d>(
-        &self,
-        designs: &'d [Design],
-    ) -> Result<(Vec<&'d Design>, usize), ExploreError> {
+    /// The evaluations of the batch to compute (designs not stored, and stored ones lacking
+    /// asked-for metrics; first of their key) and how many designs are stored already, complete.
+    fn to_compute<'d>(&self, designs: &'d [Design]) -> Result<(Vec<Job<'d>>, usize), ExploreError> {
         let stored = self.store.keys()?;
+        let study = &self.settings.study;
         let mut seen = HashSet::new();
-        let mut todo: Vec<&Design> = Vec::new();
+        let mut todo: Vec<Job<'d>> = Vec::new();
         let mut reused = 0;
         for design in designs {
-            if stored.contains(&design.key) {
-                reused += 1;
-            } else if seen.insert(design.key.as_str()) {
-                todo.push(design);
+            if !seen.insert(design.key.as_str()) {
+                if stored.contains(&design.key) {
+                    reused += 1;
+                }
+                continue;
+            }
+            if !stored.contains(&design.key) {
+                todo.push(Job { design, stored: None });
+                continue;
+            }
+            let record = if study.is_static() {
+                None
+            } else {
+                crate::stored::read_record(self.store, &design.key)?
+            };
+            match record.filter(|r| design.spec.is_ok() && study.needs_completion(r)) {
+                Some(record) => todo.push(Job { design, stored: Some(record) }),
+                None => reused += 1,
             }
         }
         Ok((todo, reused))
@@ -170,7 +195,7 @@ impl<'a> Runner<'a> {
     /// still stored.
     fn evaluate_into_store(
         &mut self,
-        todo: &[&Design],
+        todo: &[Job<'_>],
         timing: &mut Timing,
         progress: &mut Progress,
         observer: &mut impl Observer<Progress>,
@@ -189,14 +214,15 @@ impl<'a> Runner<'a> {
             let stop = &stop;
             scope.spawn(move || {
                 pool.install(|| {
-                    todo.par_iter().enumerate().for_each_with(sender, |sender, (i, design)| {
+                    todo.par_iter().enumerate().for_each_with(sender, |sender, (i, job)| {
                         if stop.load(Ordering::Relaxed) {
                             return;
                         }
                         let t0 = Instant::now();
-                        let outcome = match &design.spec {
-                            Ok(spec) => evaluate(spec, settings),
-                            Err(reason) => Outcome::infeasible(reason.to_string()),
+                        let outcome = match (&job.design.spec, &job.stored) {
+                            (Ok(spec), Some(stored)) => complete(spec, settings, &stored.metrics),
+                            (Ok(spec), None) => evaluate(spec, settings),
+                            (Err(reason), _) => Outcome::infeasible(reason.to_string()),
                         };
                         // The receiver only hangs up after an error; then the result is moot.
                         let _ = sender.send((i, outcome, t0.elapsed().as_secs_f64()));
@@ -208,8 +234,13 @@ impl<'a> Runner<'a> {
                 if first_error.is_some() {
                     continue;
                 }
-                let record = record_of(todo[i], outcome, seconds, settings);
-                if let Err(e) = self.store_record(&record, seconds, timing, progress) {
+                let job = &todo[i];
+                let mut record = record_of(job.design, outcome, seconds, settings);
+                if let Some(stored) = &job.stored {
+                    record.eval_seconds += stored.eval_seconds;
+                }
+                let completes = job.stored.is_some();
+                if let Err(e) = self.store_record(&record, completes, seconds, timing, progress) {
                     stop.store(true, Ordering::Relaxed);
                     first_error = Some(e);
                     continue;
@@ -222,16 +253,23 @@ impl<'a> Runner<'a> {
         first_error.map_or(Ok(()), Err)
     }
 
-    /// Inserts one record (its own durable transaction) and counts it.
+    /// Inserts one record, or completes the stored one (its own durable transaction), and
+    /// counts it.
     fn store_record(
         &mut self,
         record: &Record,
+        completes: bool,
         evaluation_s: f64,
         timing: &mut Timing,
         progress: &mut Progress,
     ) -> Result<(), ExploreError> {
         let t0 = Instant::now();
-        self.store.insert(record)?;
+        if completes {
+            let upgrade = crate::evaluate::upgrade_metric_list;
+            self.store.complete_upgrading(record, &|metrics| upgrade(metrics))?;
+        } else {
+            self.store.insert(record)?;
+        }
         timing.store_s += t0.elapsed().as_secs_f64();
         timing.evaluation_s += evaluation_s;
         progress.computed += 1;

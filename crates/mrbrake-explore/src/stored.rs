@@ -47,7 +47,7 @@ mod tests {
             status: Status::Ok,
             reason: None,
             variables: vec![("g".into(), 1.0.into())],
-            metrics: metrics.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
+            metrics: metrics.iter().map(|(n, v)| (n.to_string(), (*v).into())).collect(),
             spec_toml: String::new(),
             eval_seconds: 0.0,
             solver_version: "test".into(),

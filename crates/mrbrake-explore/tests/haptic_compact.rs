@@ -53,7 +53,7 @@ fn the_quick_example_runs_through_the_cascade() {
         match r.status {
             Status::Ok => {
                 for m in ["continuous_torque_Nm", "bandwidth_rad_s", "release_time_s"] {
-                    assert!(r.metric(m).is_some(), "{m} missing: {:?}", r.metrics);
+                    assert!(r.metric_value(m).is_some(), "{m} missing: {:?}", r.metrics);
                 }
                 let felt = r.metric("free_motion_torque_Nm").unwrap();
                 assert!(felt > 0.0 && felt.is_finite(), "{felt}");

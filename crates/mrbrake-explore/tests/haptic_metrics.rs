@@ -16,7 +16,7 @@ use mrbrake_explore::problem::OptimizationProblem;
 use mrbrake_sim::brake_model::BrakeModel;
 use mrbrake_sim::brake_model::apply::apply_to_haptic;
 use mrbrake_sim::haptic::{DeviceKind, HapticConfig, Scenario, simulate};
-use mrbrake_store::Status;
+use mrbrake_store::{MetricValue, Status};
 use serde_json::Value;
 
 const HAPTIC: &str = r#""withdraw_excess_torque_Nm", "release_time_s",
@@ -48,8 +48,13 @@ generations = 0
     )
 }
 
-fn metric(metrics: &[(String, f64)], name: &str) -> f64 {
-    metrics.iter().find(|(n, _)| n == name).map_or(f64::NAN, |(_, v)| *v)
+/// The metric's value; a bound beyond the analysed range (where the command's JSON has `null`)
+/// reads as `inf`, as the wall's `null`.
+fn metric(metrics: &[(String, MetricValue)], name: &str) -> f64 {
+    metrics
+        .iter()
+        .find(|(n, _)| n == name)
+        .map_or(f64::NAN, |(_, v)| v.value().unwrap_or(f64::INFINITY))
 }
 
 /// `haptic wall --device D --scenario S --stiffness K --brake-model <model> --json`.
@@ -61,7 +66,7 @@ fn wall_json(model: &BrakeModel, device: DeviceKind, scenario: Scenario, k: f64)
     serde_json::to_value(simulate(&config, false).unwrap().metrics).unwrap()
 }
 
-fn assert_equal_to_wall(metrics: &[(String, f64)], wall: &Value) {
+fn assert_equal_to_wall(metrics: &[(String, MetricValue)], wall: &Value) {
     let pairs = [
         ("withdraw_excess_torque_Nm", &wall["withdraw_excess_torque_Nm"]["peak"]),
         ("release_time_s", &wall["release_time_s"]),

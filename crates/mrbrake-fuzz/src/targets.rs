@@ -299,7 +299,7 @@ fn store_seed() -> Vec<u8> {
             reason: (status != Status::Ok).then(|| "a reason".to_string()),
             variables: vec![("drum.gap".into(), (5e-4 + k as f64 * 1e-4).into())],
             metrics: if status == Status::Ok {
-                vec![("torque_max_Nm".into(), 3.5)]
+                vec![("torque_max_Nm".into(), 3.5.into())]
             } else {
                 vec![]
             },

@@ -209,10 +209,8 @@ impl SweepReport<'_> {
             let _ = write!(line, "{:>11} ", r.status.as_str());
             if r.status == Status::Ok {
                 for (name, _, scale) in &SWEEP_COLUMNS {
-                    match r.metric(name) {
-                        Some(v) => _ = write!(line, "{:>13.4} ", v * scale),
-                        None => _ = write!(line, "{:>13} ", "—"),
-                    }
+                    let cell = metric_text(r, name, *scale).unwrap_or_else(|| "—".into());
+                    let _ = write!(line, "{cell:>13} ");
                 }
             } else if let Some(reason) = &r.reason {
                 let last = reason.lines().map(str::trim).rfind(|l| !l.is_empty());
@@ -472,9 +470,9 @@ impl OptimizationReport<'_> {
                     value.map_or_else(|| "base".to_string(), |x| v.display_value(x))
                 })
                 .collect();
-            cells.extend(metrics.iter().map(|name| match e.record.metric(name) {
-                Some(v) => format!("{:.4}", v * metric_axis(name).0),
-                None => e.record.status.as_str().to_string(),
+            cells.extend(metrics.iter().map(|name| {
+                metric_text(&e.record, name, metric_axis(name).0)
+                    .unwrap_or_else(|| e.record.status.as_str().to_string())
             }));
             let mut line = format!("  {:<first$}", format!("#{}", k + 1));
             for (cell, w) in cells.iter().zip(&widths) {
@@ -835,7 +833,7 @@ fn broken_constraints(problem: &OptimizationProblem, record: &Record) -> String 
     let broken: Vec<String> = problem
         .constraints
         .iter()
-        .filter(|c| record.metric(&c.metric).is_none_or(|v| c.violation(v) > 0.0))
+        .filter(|c| record.metric_value(&c.metric).is_none_or(|v| c.violation_of(v) > 0.0))
         .map(|c| {
             let (scale, _) = metric_axis(&c.metric);
             let value = record.metric(&c.metric).map_or(f64::NAN, |v| v * scale);
@@ -887,6 +885,19 @@ pub fn thesis_tables_text(tables: &[StudyTable]) -> String {
     out
 }
 
+/// A metric of `record` as a table shows it, times `scale`: the value with 4 decimals, a bound
+/// beyond the analysed range as `≥x` / `≤x`, `n/a` for a metric that does not apply; `None` when
+/// the record lacks it.
+fn metric_text(record: &Record, name: &str, scale: f64) -> Option<String> {
+    use mrbrake_store::MetricValue;
+    Some(match record.metric_value(name)? {
+        MetricValue::Value(v) => format!("{:.4}", v * scale),
+        MetricValue::AtLeast(b) => format!("≥{:.4}", b * scale),
+        MetricValue::AtMost(b) => format!("≤{:.4}", b * scale),
+        MetricValue::NotApplicable => "n/a".into(),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -897,7 +908,7 @@ mod tests {
             status,
             reason: reason.map(str::to_string),
             variables: Vec::new(),
-            metrics: metrics.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
+            metrics: metrics.iter().map(|(k, v)| (k.to_string(), (*v).into())).collect(),
             spec_toml: String::new(),
             eval_seconds: 0.5,
             solver_version: "test".into(),

@@ -29,7 +29,7 @@ fn realistic_record(index: u64) -> Record {
             })
             .collect(),
         metrics: (0..15)
-            .map(|metric| (format!("metric_{metric}"), x / (1.0 + f64::from(metric))))
+            .map(|metric| (format!("metric_{metric}"), (x / (1.0 + f64::from(metric))).into()))
             .collect(),
         spec_toml: "[geometry]\nouter_radius = \"40 mm\"\ngap = \"0.75 mm\"\n".repeat(40),
         eval_seconds: 0.3,

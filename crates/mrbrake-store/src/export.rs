@@ -9,11 +9,18 @@
 //! formatting, the shortest decimal text that parses back to the same `f64` (NaN is `NaN`,
 //! infinities `inf` / `-inf`). A name used both as a variable and as a metric gives two columns
 //! with the same heading, variable first.
+//!
+//! A metric that is not a value ([`crate::MetricValue`]) has an empty cell in its column (as JSON
+//! has `null`, docs/CONVENTIONS.md) and its bound in a column `<metric>_beyond`, right after the
+//! metric columns, present only for metrics with such a record: `>=x` (beyond the analysed
+//! range, at least x), `<=x` (at most x) or `n/a` (does not apply). The JSON export has the
+//! metric `null` and the bound in `metric_bounds`: `{"at_least": x}`, `{"at_most": x}` or
+//! `{"not_applicable": true}`.
 
 use std::collections::HashSet;
 
-use crate::named_values::{value_to_json, variable_to_json};
-use crate::{Record, StoreError};
+use crate::named_values::{metric_to_json, value_to_json, variable_to_json};
+use crate::{MetricValue, Record, StoreError};
 
 /// Names in first-seen order over all records.
 fn union_of_names<'a, I>(records: &'a [Record], list: impl Fn(&'a Record) -> I) -> Vec<&'a str>
@@ -53,12 +60,19 @@ fn setting_cell(record: &Record, name: &str) -> String {
     }
 }
 
-fn cell(values: &[(String, f64)], name: &str) -> String {
-    values
-        .iter()
-        .find(|(candidate, _)| candidate == name)
-        .map(|(_, value)| format!("{value}"))
-        .unwrap_or_default()
+/// A metric's cell: its value, empty when absent or not a value.
+fn cell(record: &Record, name: &str) -> String {
+    record.metric(name).map(|value| format!("{value}")).unwrap_or_default()
+}
+
+/// A metric's `_beyond` cell: its bound (module docs), empty for a value or when absent.
+fn beyond_cell(record: &Record, name: &str) -> String {
+    match record.metric_value(name) {
+        Some(
+            value @ (MetricValue::AtLeast(_) | MetricValue::AtMost(_) | MetricValue::NotApplicable),
+        ) => value.to_string(),
+        _ => String::new(),
+    }
 }
 
 /// The records as CSV bytes (UTF-8, header row first, `\n` line ends); see the module docs for
@@ -68,6 +82,15 @@ pub fn to_csv(records: &[Record]) -> Result<Vec<u8>, StoreError> {
         union_of_names(records, |record| record.variables.iter().map(|(n, _)| n.as_str()));
     let metric_names =
         union_of_names(records, |record| record.metrics.iter().map(|(n, _)| n.as_str()));
+    let bounded_names: Vec<&str> = metric_names
+        .iter()
+        .copied()
+        .filter(|name| {
+            records.iter().any(|r| r.metric_value(name).is_some_and(|v| v.value().is_none()))
+        })
+        .collect();
+    let beyond_headers: Vec<String> =
+        bounded_names.iter().map(|name| format!("{name}_beyond")).collect();
     let setting_names = setting_names(records);
     let mut writer =
         csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
@@ -75,6 +98,7 @@ pub fn to_csv(records: &[Record]) -> Result<Vec<u8>, StoreError> {
     let mut header = vec!["key", "status", "reason"];
     header.extend(&variable_names);
     header.extend(&metric_names);
+    header.extend(beyond_headers.iter().map(String::as_str));
     header.extend(&setting_names);
     header.extend(["eval_seconds", "solver_version"]);
     writer.write_record(&header)?;
@@ -90,7 +114,8 @@ pub fn to_csv(records: &[Record]) -> Result<Vec<u8>, StoreError> {
                 record.variable_value(name).map(ToString::to_string).unwrap_or_default()
             }),
         );
-        row.extend(metric_names.iter().map(|name| cell(&record.metrics, name)));
+        row.extend(metric_names.iter().map(|name| cell(record, name)));
+        row.extend(bounded_names.iter().map(|name| beyond_cell(record, name)));
         row.extend(setting_names.iter().map(|name| setting_cell(record, name)));
         row.push(format!("{}", record.eval_seconds));
         row.push(record.solver_version.clone());
@@ -99,15 +124,33 @@ pub fn to_csv(records: &[Record]) -> Result<Vec<u8>, StoreError> {
     writer.into_inner().map_err(|error| StoreError::Csv(error.into_error().into()))
 }
 
-fn named_object(values: &[(String, f64)]) -> serde_json::Value {
+/// The metrics' values, `null` for a metric that is not a value.
+fn named_object(values: &[(String, MetricValue)]) -> serde_json::Value {
     serde_json::Value::Object(
-        values.iter().map(|(name, value)| (name.clone(), value_to_json(*value))).collect(),
+        values
+            .iter()
+            .map(|(name, value)| {
+                (name.clone(), value.value().map_or(serde_json::Value::Null, value_to_json))
+            })
+            .collect(),
+    )
+}
+
+/// The bounds of the metrics that are not values (module docs).
+fn bounds_object(values: &[(String, MetricValue)]) -> serde_json::Value {
+    serde_json::Value::Object(
+        values
+            .iter()
+            .filter(|(_, value)| value.value().is_none())
+            .map(|(name, value)| (name.clone(), metric_to_json(*value)))
+            .collect(),
     )
 }
 
 /// The records as a JSON array of objects
-/// `{key, status, reason, variables: {name: value}, metrics: {name: value}, settings: {name: value},
-/// eval_seconds, solver_version}` (the design TOML is left out; it is in the store). Non-finite values are the
+/// `{key, status, reason, variables: {name: value}, metrics: {name: value}, metric_bounds: {name:
+/// bound}, settings: {name: value}, eval_seconds, solver_version}` (the design TOML is left out;
+/// it is in the store; `metric_bounds` and a metric's `null`: module docs). Non-finite values are the
 /// strings `"NaN"`, `"inf"`, `"-inf"`; `reason` is `null` when absent. Object keys come out
 /// sorted (serde_json's map), the array keeps the order of `records`.
 pub fn to_json(records: &[Record]) -> serde_json::Value {
@@ -127,6 +170,7 @@ pub fn to_json(records: &[Record]) -> serde_json::Value {
                             .collect(),
                     ),
                     "metrics": named_object(&record.metrics),
+                    "metric_bounds": bounds_object(&record.metrics),
                     "settings": record.settings,
                     "eval_seconds": value_to_json(record.eval_seconds),
                     "solver_version": record.solver_version,
@@ -143,7 +187,7 @@ mod tests {
 
     fn record(key_digit: char, variables: &[(&str, f64)], metrics: &[(&str, f64)]) -> Record {
         let named = |values: &[(&str, f64)]| {
-            values.iter().map(|&(name, value)| (name.to_owned(), value)).collect()
+            values.iter().map(|&(name, value)| (name.to_owned(), value.into())).collect()
         };
         let variables =
             variables.iter().map(|&(name, value)| (name.to_owned(), value.into())).collect();
@@ -191,6 +235,31 @@ mod tests {
         assert!(lines[0].starts_with("key,status,reason,g,materials.bobbin,torque"), "{text}");
         assert!(lines[1].contains(",0.001,pom,3.5,"), "{text}");
         assert_eq!(to_json(&[r])[0]["variables"]["materials.bobbin"], "pom");
+    }
+
+    #[test]
+    fn bounds_export_as_null_or_empty_with_the_bound_beside() {
+        let mut a = record('a', &[("g", 0.001)], &[("torque", 3.5)]);
+        a.metrics.push(("bandwidth".into(), MetricValue::AtLeast(6283.0)));
+        a.metrics.push(("t63_dir2".into(), MetricValue::NotApplicable));
+        let mut b = record('b', &[("g", 0.002)], &[("torque", 3.0), ("bandwidth", 900.0)]);
+        b.metrics.push(("release".into(), MetricValue::AtMost(0.25)));
+        let records = [a, b];
+        let text = String::from_utf8(to_csv(&records).expect("csv")).expect("utf-8");
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(
+            lines[0],
+            "key,status,reason,g,torque,bandwidth,t63_dir2,release,bandwidth_beyond,\
+             t63_dir2_beyond,release_beyond,eval_seconds,solver_version"
+        );
+        assert!(lines[1].contains(",0.001,3.5,,,,>=6283,n/a,,0.25,"), "{text}");
+        assert!(lines[2].contains(",0.002,3,900,,,,,<=0.25,0.25,"), "{text}");
+        let json = to_json(&records);
+        assert!(json[0]["metrics"]["bandwidth"].is_null());
+        assert_eq!(json[0]["metric_bounds"]["bandwidth"]["at_least"], 6283.0);
+        assert_eq!(json[0]["metric_bounds"]["t63_dir2"]["not_applicable"], true);
+        assert_eq!(json[1]["metrics"]["bandwidth"], 900.0);
+        assert_eq!(json[1]["metric_bounds"], serde_json::json!({"release": {"at_most": 0.25}}));
     }
 
     #[test]

@@ -9,6 +9,8 @@
 //!   the caller), [`Status`], reason, varied variables, metrics, the full design TOML, run time
 //!   and solver version. [`Store::insert`] stores it durably and never overwrites a stored key,
 //!   so a resumed or repeated run never recomputes or duplicates a design.
+//! - [`Store::complete`] extends a stored record with metrics computed later (a resumed study
+//!   asking for more metrics), keeping every stored metric as it was.
 //! - [`Store::merge_from`] combines stores (shards of one study) into a [`MergeSummary`].
 //! - [`to_csv`] and [`to_json`] export records; the caller writes the bytes.
 //! - [`StoreError`] is the crate's one error type.
@@ -24,7 +26,7 @@
 //!     status: Status::Ok,
 //!     reason: None,
 //!     variables: vec![("gap_m".into(), 0.75e-3.into())],
-//!     metrics: vec![("torque_on_nm".into(), 3.2), ("torque_off_nm".into(), 0.04)],
+//!     metrics: vec![("torque_on_nm".into(), 3.2.into()), ("torque_off_nm".into(), 0.04.into())],
 //!     spec_toml: "[geometry]\ngap = \"0.75 mm\"\n".into(),
 //!     eval_seconds: 0.31,
 //!     solver_version: "mrbrake 0.1.0".into(),
@@ -39,7 +41,7 @@
 //! # }
 //! ```
 //!
-//! # Schema (version 3)
+//! # Schema (version 4)
 //!
 //! Researchers may query a store directly with the `sqlite3` shell (read-only is safest while a
 //! run is writing: `sqlite3 -readonly study.mrbrake`).
@@ -51,7 +53,7 @@
 //!     status         TEXT NOT NULL CHECK (status IN ('ok', 'infeasible', 'failed')),
 //!     reason         TEXT,                  -- why infeasible / failed, NULL when ok
 //!     variables      TEXT NOT NULL,         -- JSON array of [name, SI value or level] pairs, caller's order
-//!     metrics        TEXT NOT NULL,         -- JSON array of [name, value] pairs, caller's order
+//!     metrics        TEXT NOT NULL,         -- JSON array of [name, value] pairs, caller's order (value: see below)
 //!     spec_toml      TEXT NOT NULL,         -- the full design, ready for `mrbrake analyze`
 //!     eval_seconds   REAL,                  -- wall-clock time of the evaluation
 //!     solver_version TEXT,
@@ -68,9 +70,13 @@
 //!
 //! Values are JSON numbers, except non-finite ones, stored as the strings `"NaN"`, `"inf"`,
 //! `"-inf"` (JSON has no such numbers), and the levels of categorical variables (a material by
-//! name), stored as any other string. Pairs rather than a JSON object keep the caller's order.
+//! name), stored as any other string. A metric the analysis did not resolve (version 4,
+//! [`MetricValue`]) is an object: `{"at_least": x}` / `{"at_most": x}` (beyond the analysed range:
+//! a release not reached within the simulated window is at least the window), or
+//! `{"not_applicable": true}`; the view `metric_values` shows that object's text as the value.
+//! Pairs rather than a JSON object keep the caller's order.
 //! The file is marked with `PRAGMA application_id = 0x4D524252` ("MRBR") and
-//! `PRAGMA user_version = 3`. Sample queries:
+//! `PRAGMA user_version = 4`. Sample queries:
 //!
 //! ```sql
 //! -- The ten designs with the highest torque, with their gap:
@@ -117,6 +123,7 @@
 //! version 1) are read unverified; [`Store::unverified_len`] counts them.
 
 pub mod checksum;
+mod complete;
 mod error;
 mod export;
 mod merge;
@@ -131,5 +138,7 @@ pub use export::{to_csv, to_json};
 pub use merge::{
     MERGE_RELATIVE_TOLERANCE, MergeSummary, MetricUpgrade, metrics_agree, values_agree,
 };
-pub use record::{KEY_HEX_DIGITS, Record, Status, UnknownStatus, VariableValue, is_design_key};
+pub use record::{
+    KEY_HEX_DIGITS, MetricValue, Record, Status, UnknownStatus, VariableValue, is_design_key,
+};
 pub use store::Store;

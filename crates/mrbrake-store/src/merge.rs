@@ -16,7 +16,7 @@ use rusqlite::{OptionalExtension, TransactionBehavior};
 
 use crate::named_values;
 use crate::row::{insert_new, read_row};
-use crate::{Status, Store, StoreError};
+use crate::{MetricValue, Status, Store, StoreError};
 
 /// Relative tolerance under which two values of the same metric count as equal in a merge:
 /// `|a - b| <= 1e-9 * max(|a|, |b|)`. NaN equals NaN and an infinity equals the same infinity.
@@ -118,10 +118,10 @@ impl Store {
 
 /// A renaming of metrics applied in place to a record's `(name, value)` list (see
 /// [`Store::merge_from_upgrading`]).
-pub type MetricUpgrade<'a> = dyn Fn(&mut [(String, f64)]) + 'a;
+pub type MetricUpgrade<'a> = dyn Fn(&mut [(String, MetricValue)]) + 'a;
 
 /// Status and metrics of a stored record.
-type StoredOutcome = (Status, Vec<(String, f64)>);
+type StoredOutcome = (Status, Vec<(String, MetricValue)>);
 
 /// Status and metrics of the record stored under `key`, if any. A stored row that cannot be
 /// decoded counts as a conflict (status `Failed`, no metrics would rarely match).
@@ -142,12 +142,12 @@ fn existing_outcome(
 }
 
 /// True when both lists hold the same metric names (in any order) with agreeing values.
-pub fn metrics_agree(a: &[(String, f64)], b: &[(String, f64)]) -> bool {
+pub fn metrics_agree(a: &[(String, MetricValue)], b: &[(String, MetricValue)]) -> bool {
     a.len() == b.len()
         && a.iter().all(|(name, value)| {
             b.iter()
                 .find(|(other_name, _)| other_name == name)
-                .is_some_and(|(_, other)| values_agree(*value, *other))
+                .is_some_and(|(_, other)| value.agrees_with(*other, values_agree))
         })
 }
 
@@ -203,13 +203,20 @@ mod tests {
 
     #[test]
     fn metrics_agree_ignores_order_but_not_names() {
-        let a = vec![("t".to_owned(), 1.0), ("v".to_owned(), 2.0)];
-        let reordered = vec![("v".to_owned(), 2.0), ("t".to_owned(), 1.0)];
-        let renamed = vec![("t".to_owned(), 1.0), ("w".to_owned(), 2.0)];
-        let shorter = vec![("t".to_owned(), 1.0)];
+        let m = |pairs: &[(&str, f64)]| -> Vec<(String, MetricValue)> {
+            pairs.iter().map(|&(n, v)| (n.to_owned(), v.into())).collect()
+        };
+        let a = m(&[("t", 1.0), ("v", 2.0)]);
+        let reordered = m(&[("v", 2.0), ("t", 1.0)]);
+        let renamed = m(&[("t", 1.0), ("w", 2.0)]);
+        let shorter = m(&[("t", 1.0)]);
+        let mut bounded = a.clone();
+        bounded[1].1 = MetricValue::AtLeast(2.0);
         assert!(metrics_agree(&a, &reordered));
         assert!(!metrics_agree(&a, &renamed));
         assert!(!metrics_agree(&a, &shorter));
         assert!(!metrics_agree(&shorter, &a));
+        assert!(!metrics_agree(&a, &bounded), "a bound is not the value");
+        assert!(metrics_agree(&bounded, &bounded));
     }
 }

@@ -7,10 +7,13 @@
 //! finite values are written with the shortest digits that round-trip (serde_json uses `ryu`)
 //! and read back with Rust's correctly rounded `f64::from_str`, so every value, including `-0.0`,
 //! comes back bit for bit.
+//!
+//! A metric that is not a value ([`MetricValue`]) is a JSON object: `{"at_least": x}`,
+//! `{"at_most": x}` (beyond the analysed range) or `{"not_applicable": true}` (schema version 4).
 
 use serde_json::value::RawValue;
 
-use crate::VariableValue;
+use crate::{MetricValue, VariableValue};
 
 /// The JSON text of a non-finite value, or `None` when the value is finite.
 pub(crate) fn non_finite_text(value: f64) -> Option<&'static str> {
@@ -31,10 +34,20 @@ pub(crate) fn value_to_json(value: f64) -> serde_json::Value {
     }
 }
 
-/// Encodes `(name, value)` pairs as `[["name", value], ...]`.
-pub(crate) fn encode(values: &[(String, f64)]) -> String {
+/// A metric as stored: a value as [`value_to_json`], a bound or "not applicable" as an object.
+pub(crate) fn metric_to_json(value: MetricValue) -> serde_json::Value {
+    match value {
+        MetricValue::Value(x) => value_to_json(x),
+        MetricValue::AtLeast(x) => serde_json::json!({ "at_least": value_to_json(x) }),
+        MetricValue::AtMost(x) => serde_json::json!({ "at_most": value_to_json(x) }),
+        MetricValue::NotApplicable => serde_json::json!({ "not_applicable": true }),
+    }
+}
+
+/// Encodes `(name, metric)` pairs as `[["name", value], ...]` (see the module docs).
+pub(crate) fn encode(values: &[(String, MetricValue)]) -> String {
     let pairs: Vec<(&str, serde_json::Value)> =
-        values.iter().map(|(name, value)| (name.as_str(), value_to_json(*value))).collect();
+        values.iter().map(|(name, value)| (name.as_str(), metric_to_json(*value))).collect();
     // Serialising strings and numbers into a String cannot fail.
     serde_json::to_string(&pairs).expect("a list of (string, number) pairs always serialises")
 }
@@ -61,15 +74,33 @@ fn pairs(text: &str) -> Result<Vec<(String, Box<RawValue>)>, String> {
 }
 
 /// Decodes the text written by [`encode`]; the error says what is wrong.
-pub(crate) fn decode(text: &str) -> Result<Vec<(String, f64)>, String> {
+pub(crate) fn decode(text: &str) -> Result<Vec<(String, MetricValue)>, String> {
     pairs(text)?
         .into_iter()
         .map(|(name, raw)| {
-            let value = decode_value(raw.get())
-                .ok_or_else(|| format!("value of {name:?} is not a number: {}", raw.get()))?;
+            let value = decode_metric(raw.get()).ok_or_else(|| {
+                format!("value of {name:?} is neither a number nor a bound: {}", raw.get())
+            })?;
             Ok((name, value))
         })
         .collect()
+}
+
+/// A metric's stored JSON: a number (or a non-finite one's text), or one of the objects of the
+/// module docs, with exactly one entry.
+fn decode_metric(raw: &str) -> Option<MetricValue> {
+    if !raw.trim_start().starts_with('{') {
+        return decode_value(raw).map(MetricValue::Value);
+    }
+    let object: std::collections::BTreeMap<String, Box<RawValue>> =
+        serde_json::from_str(raw).ok()?;
+    let [(kind, inner)] = <[_; 1]>::try_from(object.into_iter().collect::<Vec<_>>()).ok()?;
+    match kind.as_str() {
+        "at_least" => decode_value(inner.get()).map(MetricValue::AtLeast),
+        "at_most" => decode_value(inner.get()).map(MetricValue::AtMost),
+        "not_applicable" if inner.get().trim() == "true" => Some(MetricValue::NotApplicable),
+        _ => None,
+    }
 }
 
 /// Decodes the text written by [`encode_variables`]: a number (or a non-finite one's text) is a
@@ -114,9 +145,40 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    fn same_bits(a: &[(String, f64)], b: &[(String, f64)]) -> bool {
+    fn same_bits(a: &[(String, f64)], b: &[(String, MetricValue)]) -> bool {
         a.len() == b.len()
-            && a.iter().zip(b).all(|((na, va), (nb, vb))| na == nb && va.to_bits() == vb.to_bits())
+            && a.iter().zip(b).all(|((na, va), (nb, vb))| {
+                na == nb && vb.value().is_some_and(|vb| va.to_bits() == vb.to_bits())
+            })
+    }
+
+    fn as_metrics(values: &[(String, f64)]) -> Vec<(String, MetricValue)> {
+        values.iter().map(|(n, v)| (n.clone(), MetricValue::Value(*v))).collect()
+    }
+
+    #[test]
+    fn bounds_and_not_applicable_are_objects() {
+        let values = vec![
+            ("bw".to_owned(), MetricValue::AtLeast(6283.0)),
+            ("t".to_owned(), MetricValue::AtMost(1e-3)),
+            ("dir2".to_owned(), MetricValue::NotApplicable),
+            ("x".to_owned(), MetricValue::Value(2.0)),
+        ];
+        let text = encode(&values);
+        assert_eq!(
+            text,
+            r#"[["bw",{"at_least":6283.0}],["t",{"at_most":0.001}],["dir2",{"not_applicable":true}],["x",2.0]]"#
+        );
+        assert_eq!(decode(&text).expect("decodes"), values);
+        for bad in [
+            r#"[["a", {}]]"#,
+            r#"[["a", {"at_least": 1, "at_most": 2}]]"#,
+            r#"[["a", {"at_least": "x"}]]"#,
+            r#"[["a", {"not_applicable": false}]]"#,
+            r#"[["a", {"above": 1}]]"#,
+        ] {
+            assert!(decode(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]
@@ -128,14 +190,14 @@ mod tests {
             ("neg_zero".to_owned(), -0.0),
             ("tiny".to_owned(), 5e-324),
         ];
-        let text = encode(&values);
+        let text = encode(&as_metrics(&values));
         assert_eq!(
             text,
             r#"[["nan","NaN"],["inf","inf"],["ninf","-inf"],["neg_zero",-0.0],["tiny",5e-324]]"#
         );
         let back = decode(&text).expect("decodes");
-        assert!(back[0].1.is_nan());
-        assert!(same_bits(&back[1..], &values[1..]));
+        assert!(back[0].1.value().unwrap().is_nan());
+        assert!(same_bits(&values[1..], &back[1..]));
     }
 
     #[test]
@@ -177,7 +239,7 @@ mod tests {
                 .map(|(&bits, name)| (name.clone(), f64::from_bits(bits)))
                 .filter(|(_, value)| value.is_finite())
                 .collect();
-            let back = decode(&encode(&values)).expect("decodes");
+            let back = decode(&encode(&as_metrics(&values))).expect("decodes");
             prop_assert!(same_bits(&values, &back), "{values:?} != {back:?}");
         }
     }

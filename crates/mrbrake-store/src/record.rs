@@ -114,6 +114,83 @@ impl fmt::Display for VariableValue {
     }
 }
 
+/// A stored metric: a value, or what is known of a value the analysis did not resolve. Analyses
+/// cover a finite range (a simulated window, a frequency grid): a release not reached within the
+/// window is *at least* the window's length, a bandwidth above the highest frequency analysed is
+/// *at least* that frequency. Such a bound is kept as a bound, never as an infinity, so a
+/// constraint or an objective can use what it says (see `mrbrake_explore::problem`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MetricValue {
+    /// The metric's value (NaN and ±inf only in records written before bounds were typed).
+    Value(f64),
+    /// Beyond the analysed range: at least this bound.
+    AtLeast(f64),
+    /// Beyond the analysed range: at most this bound.
+    AtMost(f64),
+    /// The metric does not apply to this design (e.g. a second direction of a one-way brake);
+    /// stored so that a resumed study knows it was computed.
+    NotApplicable,
+}
+
+impl MetricValue {
+    /// The value, when it is one (`None` for a bound or a metric that does not apply).
+    pub fn value(self) -> Option<f64> {
+        match self {
+            Self::Value(x) => Some(x),
+            _ => None,
+        }
+    }
+
+    /// The value or the bound (`None` for a metric that does not apply).
+    pub fn number(self) -> Option<f64> {
+        match self {
+            Self::Value(x) | Self::AtLeast(x) | Self::AtMost(x) => Some(x),
+            Self::NotApplicable => None,
+        }
+    }
+
+    /// The kind of a non-value as the exports name it: `at_least`, `at_most`, `not_applicable`
+    /// (`None` for a value).
+    pub fn bound_kind(self) -> Option<&'static str> {
+        match self {
+            Self::Value(_) => None,
+            Self::AtLeast(_) => Some("at_least"),
+            Self::AtMost(_) => Some("at_most"),
+            Self::NotApplicable => Some("not_applicable"),
+        }
+    }
+
+    /// True when `self` and `other` say the same thing, numbers compared with `agree`.
+    pub fn agrees_with(self, other: Self, agree: impl Fn(f64, f64) -> bool) -> bool {
+        match (self, other) {
+            (Self::Value(a), Self::Value(b))
+            | (Self::AtLeast(a), Self::AtLeast(b))
+            | (Self::AtMost(a), Self::AtMost(b)) => agree(a, b),
+            (Self::NotApplicable, Self::NotApplicable) => true,
+            _ => false,
+        }
+    }
+}
+
+impl From<f64> for MetricValue {
+    fn from(value: f64) -> Self {
+        Self::Value(value)
+    }
+}
+
+impl fmt::Display for MetricValue {
+    /// A value as the CSV export writes it (`{}`), a bound as `>=x` / `<=x`, `n/a` for a metric
+    /// that does not apply.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Value(x) => write!(f, "{x}"),
+            Self::AtLeast(x) => write!(f, ">={x}"),
+            Self::AtMost(x) => write!(f, "<={x}"),
+            Self::NotApplicable => f.write_str("n/a"),
+        }
+    }
+}
+
 /// The texts a level may not take: the store writes non-finite numbers as these strings.
 pub(crate) const RESERVED_LEVELS: [&str; 3] = ["NaN", "inf", "-inf"];
 
@@ -131,8 +208,10 @@ pub struct Record {
     /// level, in the caller's order (kept on read).
     pub variables: Vec<(String, VariableValue)>,
     /// The results as `(name, value)`, in the caller's order (kept on read); normally empty unless
-    /// the status is [`Status::Ok`]. Non-finite values (NaN, ±inf) are stored faithfully.
-    pub metrics: Vec<(String, f64)>,
+    /// the status is [`Status::Ok`]. A value may be a bound beyond the analysed range or mark a
+    /// metric that does not apply ([`MetricValue`]). Non-finite values (NaN, ±inf) are stored
+    /// faithfully.
+    pub metrics: Vec<(String, MetricValue)>,
     /// The full design as TOML, ready to analyse again.
     pub spec_toml: String,
     /// Wall-clock time of the evaluation in seconds. Kept in a SQLite `REAL` column, which stores
@@ -148,9 +227,15 @@ pub struct Record {
 }
 
 impl Record {
-    /// Looks up a metric by name.
+    /// Looks up a metric's value by name (`None` when absent, a bound or not applicable: see
+    /// [`Self::metric_value`]).
     pub fn metric(&self, name: &str) -> Option<f64> {
-        find_named(&self.metrics, name)
+        self.metric_value(name).and_then(MetricValue::value)
+    }
+
+    /// Looks up a metric by name: its value, bound or "not applicable".
+    pub fn metric_value(&self, name: &str) -> Option<MetricValue> {
+        self.metrics.iter().find(|(candidate, _)| candidate == name).map(|&(_, value)| value)
     }
 
     /// Looks up a numeric design variable by name (`None` for a categorical one: see
@@ -207,10 +292,6 @@ pub fn is_design_key(key: &str) -> bool {
     key.len() == KEY_HEX_DIGITS && key.bytes().all(|b| matches!(b, b'0'..=b'9' | b'a'..=b'f'))
 }
 
-fn find_named(values: &[(String, f64)], name: &str) -> Option<f64> {
-    values.iter().find(|(candidate, _)| candidate == name).map(|&(_, value)| value)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -221,7 +302,7 @@ mod tests {
             status: Status::Ok,
             reason: None,
             variables: vec![("gap".into(), 1e-3.into()), ("bobbin".into(), level("pom"))],
-            metrics: vec![("torque".into(), 3.1)],
+            metrics: vec![("torque".into(), 3.1.into()), ("t63".into(), MetricValue::AtLeast(0.2))],
             spec_toml: String::new(),
             eval_seconds: 0.3,
             solver_version: "test".into(),
@@ -254,7 +335,7 @@ mod tests {
     #[test]
     fn repeated_or_empty_names_are_refused() {
         let mut repeated = record(&"0".repeat(64));
-        repeated.metrics.push(("torque".into(), 2.0));
+        repeated.metrics.push(("torque".into(), 2.0.into()));
         assert!(repeated.validate().is_err());
         let mut empty = record(&"0".repeat(64));
         empty.variables.push((String::new(), 2.0.into()));
@@ -276,6 +357,9 @@ mod tests {
         assert_eq!(record.metric("torque"), Some(3.1));
         assert_eq!(record.variable("gap"), Some(1e-3));
         assert_eq!(record.metric("gap"), None);
+        assert_eq!(record.metric("t63"), None, "a bound is not a value");
+        assert_eq!(record.metric_value("t63"), Some(MetricValue::AtLeast(0.2)));
+        assert_eq!(record.metric_value("t63").unwrap().to_string(), ">=0.2");
         assert_eq!(record.variable("bobbin"), None, "a level is not a number");
         assert_eq!(record.variable_value("bobbin").and_then(VariableValue::as_level), Some("pom"));
         assert_eq!(record.variable_value("bobbin").unwrap().to_string(), "pom");

@@ -208,6 +208,81 @@ fn number(raw: Raw, name: &str) -> Result<Option<f64>, String> {
     }
 }
 
+/// The `settings` column of `record`: `None` (NULL) when it has none.
+fn settings_text(record: &Record) -> Option<String> {
+    (!record.settings.is_empty())
+        .then(|| serde_json::Value::Object(record.settings.clone()).to_string())
+}
+
+/// The checksum of the row `record` is written as (the encoded columns given).
+fn checksum_of(
+    record: &Record,
+    created_unix_s: Option<f64>,
+    variables: &str,
+    metrics: &str,
+    settings: Option<&str>,
+) -> i64 {
+    let mut columns = vec![
+        Column::Text(record.key.as_bytes()),
+        Column::Text(record.status.as_str().as_bytes()),
+        record.reason.as_ref().map_or(Column::Null, |reason| Column::Text(reason.as_bytes())),
+        Column::Text(variables.as_bytes()),
+        Column::Text(metrics.as_bytes()),
+        Column::Text(record.spec_toml.as_bytes()),
+        Column::Number(record.eval_seconds),
+        Column::Text(record.solver_version.as_bytes()),
+        created_unix_s.map_or(Column::Null, Column::Number),
+    ];
+    columns.extend(settings.map(|text| Column::Text(text.as_bytes())));
+    record_checksum(&columns)
+}
+
+/// The text columns of `record` and its checksum (when `checksummed`), as a row stores them.
+struct Encoded {
+    variables: String,
+    metrics: String,
+    settings: Option<String>,
+    checksum: Option<i64>,
+}
+
+fn encode(record: &Record, created_unix_s: Option<f64>, checksummed: bool) -> Encoded {
+    let variables = named_values::encode_variables(&record.variables);
+    let metrics = named_values::encode(&record.metrics);
+    let settings = settings_text(record);
+    let checksum = checksummed
+        .then(|| checksum_of(record, created_unix_s, &variables, &metrics, settings.as_deref()));
+    Encoded { variables, metrics, settings, checksum }
+}
+
+/// Rewrites the outcome of the stored row of `record.key` (status, reason, metrics, settings, run
+/// time, solver version) inside an open write transaction, keeping its place (`seq`), creation
+/// time, variables and design; the checksum is recomputed when `checksummed`. The caller has
+/// checked that the new record completes the stored one ([`crate::Store::complete`]).
+pub(crate) fn rewrite_outcome(
+    transaction: &rusqlite::Transaction<'_>,
+    record: &Record,
+    created_unix_s: Option<f64>,
+    checksummed: bool,
+) -> rusqlite::Result<bool> {
+    let Encoded { metrics, settings, checksum, .. } = encode(record, created_unix_s, checksummed);
+    let changed = transaction
+        .prepare_cached(
+            "UPDATE evaluations SET status = ?2, reason = ?3, metrics = ?4, eval_seconds = ?5, \
+             solver_version = ?6, checksum = ?7, settings = ?8 WHERE key = ?1",
+        )?
+        .execute(params![
+            record.key,
+            record.status.as_str(),
+            record.reason,
+            metrics,
+            record.eval_seconds,
+            record.solver_version,
+            checksum,
+            settings,
+        ])?;
+    Ok(changed == 1)
+}
+
 /// Inserts `record` unless its key is present, inside an open write transaction, with its checksum
 /// when `checksummed` (a record copied from a store without checksums stays unverified: a checksum
 /// computed now would vouch for data nobody checked). The explicit look-up (rather than relying on
@@ -225,24 +300,8 @@ pub(crate) fn insert_new(
     if present {
         return Ok(false);
     }
-    let variables = named_values::encode_variables(&record.variables);
-    let metrics = named_values::encode(&record.metrics);
-    let columns = [
-        Column::Text(record.key.as_bytes()),
-        Column::Text(record.status.as_str().as_bytes()),
-        record.reason.as_ref().map_or(Column::Null, |reason| Column::Text(reason.as_bytes())),
-        Column::Text(variables.as_bytes()),
-        Column::Text(metrics.as_bytes()),
-        Column::Text(record.spec_toml.as_bytes()),
-        Column::Number(record.eval_seconds),
-        Column::Text(record.solver_version.as_bytes()),
-        created_unix_s.map_or(Column::Null, Column::Number),
-    ];
-    let settings = (!record.settings.is_empty())
-        .then(|| serde_json::Value::Object(record.settings.clone()).to_string());
-    let mut columns = columns.to_vec();
-    columns.extend(settings.as_ref().map(|text| Column::Text(text.as_bytes())));
-    let checksum = checksummed.then(|| record_checksum(&columns));
+    let Encoded { variables, metrics, settings, checksum } =
+        encode(record, created_unix_s, checksummed);
     let changed = transaction
         .prepare_cached(
             "INSERT INTO evaluations (key, status, reason, variables, metrics, spec_toml, \

@@ -25,8 +25,11 @@ pub const APPLICATION_ID: i32 = 0x4d52_4252;
 /// Version 2 added the per-record `checksum` column (see [`crate::checksum`]); a version-1 store is
 /// read with its records unverified and migrated (the column added) when opened for writing.
 /// Version 3 added the per-record `settings` column (the evaluation settings, JSON); older records
-/// read with no settings.
-pub const SCHEMA_VERSION: i64 = 3;
+/// read with no settings. Version 4 lets a metric be a bound beyond the analysed range or "not
+/// applicable" (a JSON object in the `metrics` column, see [`crate::MetricValue`]); no column
+/// changes, so an older store is read as it is and only its version mark is raised when opened for
+/// writing (an older mrbrake then refuses it rather than misread a bound).
+pub const SCHEMA_VERSION: i64 = 4;
 
 /// How long a writer waits for another process's write transaction before giving up.
 pub const BUSY_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(10);
@@ -318,7 +321,7 @@ pub(crate) fn has_checksum_column(connection: &Connection) -> rusqlite::Result<b
 
 /// Brings a store opened for writing to [`SCHEMA_VERSION`]: version 1 gains the `checksum` column
 /// (its existing records keep `NULL`, "unverified"), versions 1 and 2 the `settings` column
-/// (existing records keep `NULL`, no settings). One write transaction, so concurrent writers
+/// (existing records keep `NULL`, no settings); version 4 changes no column. One write transaction, so concurrent writers
 /// migrate once; adding a column does not rewrite the table.
 pub(crate) fn migrate(connection: &Connection) -> rusqlite::Result<()> {
     let read_version = |connection: &Connection| -> rusqlite::Result<i64> {

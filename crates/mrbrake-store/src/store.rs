@@ -544,7 +544,7 @@ impl Drop for StagingFile {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Status;
+    use crate::{MetricValue, Status};
     use mrbrake_error::Kind as _;
 
     fn record(index: u32, status: Status) -> Record {
@@ -561,11 +561,13 @@ mod tests {
             ],
             metrics: if ok {
                 vec![
-                    ("torque_on_nm".into(), 3.0 + f64::from(index) / 7.0),
-                    ("ratio".into(), f64::INFINITY),
-                    ("unknown".into(), f64::NAN),
-                    ("negative_inf".into(), f64::NEG_INFINITY),
-                    ("negative_zero".into(), -0.0),
+                    ("torque_on_nm".into(), (3.0 + f64::from(index) / 7.0).into()),
+                    ("ratio".into(), f64::INFINITY.into()),
+                    ("unknown".into(), f64::NAN.into()),
+                    ("negative_inf".into(), f64::NEG_INFINITY.into()),
+                    ("negative_zero".into(), (-0.0).into()),
+                    ("bandwidth_rad_s".into(), MetricValue::AtLeast(6283.0)),
+                    ("t63_dir2_s".into(), MetricValue::NotApplicable),
                 ]
             } else {
                 vec![]
@@ -579,8 +581,12 @@ mod tests {
 
     /// Bitwise equality, so NaN metrics compare equal to themselves.
     fn assert_same(a: &Record, b: &Record) {
-        let bits = |values: &[(String, f64)]| {
-            values.iter().map(|(name, value)| (name.clone(), value.to_bits())).collect::<Vec<_>>()
+        let bits = |values: &[(String, MetricValue)]| {
+            let bits = |x: Option<f64>| x.map(f64::to_bits);
+            values
+                .iter()
+                .map(|(name, v)| (name.clone(), v.bound_kind(), bits(v.number())))
+                .collect::<Vec<_>>()
         };
         assert_eq!(a.key, b.key);
         assert_eq!(a.status, b.status);
@@ -791,7 +797,18 @@ mod tests {
             .collect::<rusqlite::Result<_>>()
             .expect("rows");
         let names: Vec<&str> = metric_rows.iter().map(|(name, _)| name.as_str()).collect();
-        assert_eq!(names, ["torque_on_nm", "ratio", "unknown", "negative_inf", "negative_zero"]);
+        assert_eq!(
+            names,
+            [
+                "torque_on_nm",
+                "ratio",
+                "unknown",
+                "negative_inf",
+                "negative_zero",
+                "bandwidth_rad_s",
+                "t63_dir2_s"
+            ]
+        );
         assert_eq!(metric_rows[0].1, Some(3.0 + 1.0 / 7.0));
         assert_eq!(metric_rows[1].1, None);
 
@@ -855,7 +872,7 @@ mod tests {
                 status: Status::ALL[status_index],
                 reason,
                 variables: named.iter().map(|(n, v)| (n.clone(), (*v).into())).collect(),
-                metrics: named.into_iter().rev().collect(),
+                metrics: named.into_iter().rev().map(|(n, v)| (n, v.into())).collect(),
                 spec_toml,
                 eval_seconds,
                 solver_version,
@@ -880,7 +897,13 @@ mod tests {
                 canonical(&numbers(&back.variables)),
                 canonical(&numbers(&original.variables))
             );
-            proptest::prop_assert_eq!(canonical(&back.metrics), canonical(&original.metrics));
+            let values = |values: &[(String, MetricValue)]| -> Vec<(String, f64)> {
+                values.iter().map(|(n, v)| (n.clone(), v.value().unwrap_or(0.5))).collect()
+            };
+            proptest::prop_assert_eq!(
+                canonical(&values(&back.metrics)),
+                canonical(&values(&original.metrics))
+            );
             proptest::prop_assert_eq!(&back.reason, &original.reason);
             proptest::prop_assert_eq!(&back.spec_toml, &original.spec_toml);
             proptest::prop_assert_eq!(&back.solver_version, &original.solver_version);

@@ -18,9 +18,9 @@ fn record(index: u32) -> Record {
             ("turns".into(), 120.0.into()),
         ],
         metrics: vec![
-            ("torque_on_nm".into(), 3.0 + f64::from(index) / 7.0),
-            ("ratio".into(), f64::INFINITY),
-            ("mass_kg".into(), 0.25 + f64::from(index) * 1e-3),
+            ("torque_on_nm".into(), (3.0 + f64::from(index) / 7.0).into()),
+            ("ratio".into(), f64::INFINITY.into()),
+            ("mass_kg".into(), (0.25 + f64::from(index) * 1e-3).into()),
         ],
         spec_toml: format!("[geometry]\n# design {index}\ngap = \"{} mm\"\n", index + 1),
         eval_seconds: 0.1 + f64::from(index) * 1e-3,
@@ -46,8 +46,8 @@ fn fingerprint(records: &[Record]) -> Vec<String> {
     records
         .iter()
         .map(|r| {
-            let bits = |values: &[(String, f64)]| {
-                values.iter().map(|(n, v)| format!("{n}={:x}", v.to_bits())).collect::<Vec<_>>()
+            let bits = |values: &[(String, mrbrake_store::MetricValue)]| {
+                values.iter().map(|(n, v)| format!("{n}={v:?}")).collect::<Vec<_>>()
             };
             format!(
                 "{}|{}|{:?}|{:?}|{:?}|{:?}|{:x}|{}",
@@ -185,6 +185,37 @@ fn a_version_1_store_reads_unverified_and_migrates_on_write() {
         .pragma_query_value(None, "user_version", |row| row.get(0))
         .expect("version");
     assert_eq!(version, mrbrake_store::schema::SCHEMA_VERSION);
+}
+
+/// A store as schema version 3 wrote it (the same columns, metrics all numbers) opens, reads
+/// verified and takes bounds once opened for writing, which raises its version mark to 4.
+#[test]
+fn a_version_3_store_reads_verified_and_takes_bounds_after_opening_for_writing() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let path = store_with(directory.path(), "v3.mrbrake", 3);
+    rusqlite::Connection::open(&path)
+        .expect("raw")
+        .execute_batch("PRAGMA user_version = 3;")
+        .expect("downgrade");
+    let expected = fingerprint(&(0..3).map(record).collect::<Vec<_>>());
+    let reader = Store::open_read_only(&path).expect("a version-3 store opens");
+    assert_eq!(fingerprint(&reader.records().expect("records")), expected);
+    assert_eq!(reader.unverified_len().expect("count"), 0);
+    reader.close().expect("close");
+    let mut writer = Store::open(&path).expect("open for writing");
+    let mut bounded = record(7);
+    bounded.metrics.push(("bandwidth_rad_s".into(), mrbrake_store::MetricValue::AtLeast(6283.0)));
+    writer.insert(&bounded).expect("insert a bound");
+    let back = writer.get(&bounded.key).expect("get").expect("stored");
+    assert_eq!(
+        back.metric_value("bandwidth_rad_s"),
+        Some(mrbrake_store::MetricValue::AtLeast(6283.0))
+    );
+    let version: i64 = rusqlite::Connection::open(&path)
+        .expect("raw")
+        .pragma_query_value(None, "user_version", |row| row.get(0))
+        .expect("version");
+    assert_eq!(version, 4);
 }
 
 /// Without a checksum to catch it first, a text that is no longer UTF-8 is named once, with the

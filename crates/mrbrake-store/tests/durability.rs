@@ -14,7 +14,7 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
-use mrbrake_store::{Record, Status, Store};
+use mrbrake_store::{MetricValue, Record, Status, Store};
 
 /// Path of the store the child writes to; unset in normal test runs.
 const CHILD_ENV: &str = "MRBRAKE_STORE_CHILD";
@@ -43,9 +43,9 @@ fn expected_record(index: u32) -> Record {
         ],
         metrics: if ok {
             vec![
-                ("torque_on_nm".into(), 1.0 / (3.0 + x)),
-                ("dynamic_range".into(), if index % 13 == 0 { f64::INFINITY } else { x }),
-                ("b_max_t".into(), if index % 17 == 0 { f64::NAN } else { 1.5 }),
+                ("torque_on_nm".into(), (1.0 / (3.0 + x)).into()),
+                ("dynamic_range".into(), (if index % 13 == 0 { f64::INFINITY } else { x }).into()),
+                ("b_max_t".into(), (if index % 17 == 0 { f64::NAN } else { 1.5 }).into()),
             ]
         } else {
             vec![]
@@ -123,9 +123,10 @@ impl Random {
     }
 }
 
-fn same_bits(a: &[(String, f64)], b: &[(String, f64)]) -> bool {
+fn same_bits(a: &[(String, MetricValue)], b: &[(String, MetricValue)]) -> bool {
+    let bits = |v: &MetricValue| v.value().map(f64::to_bits);
     a.len() == b.len()
-        && a.iter().zip(b).all(|((na, va), (nb, vb))| na == nb && va.to_bits() == vb.to_bits())
+        && a.iter().zip(b).all(|((na, va), (nb, vb))| na == nb && bits(va) == bits(vb))
 }
 
 /// Reopens the store with all checks and verifies its invariants; returns the stored indices

@@ -13,9 +13,9 @@ fn record(index: u32, torque_nm: f64) -> Record {
         reason: None,
         variables: vec![("gap_m".into(), (1e-4 * f64::from(index + 1)).into())],
         metrics: vec![
-            ("torque_on_nm".into(), torque_nm),
-            ("ratio".into(), f64::INFINITY),
-            ("unknown".into(), f64::NAN),
+            ("torque_on_nm".into(), torque_nm.into()),
+            ("ratio".into(), f64::INFINITY.into()),
+            ("unknown".into(), f64::NAN.into()),
         ],
         spec_toml: format!("# design {index}\n"),
         eval_seconds: 0.3,
@@ -160,7 +160,7 @@ fn a_merged_source_is_unchanged_and_its_side_files_go_with_the_next_writer() {
 #[test]
 fn a_renaming_applies_to_both_sides_before_comparing() {
     let directory = tempfile::tempdir().expect("temporary directory");
-    let rename = |metrics: &mut [(String, f64)]| {
+    let rename = |metrics: &mut [(String, mrbrake_store::MetricValue)]| {
         for (name, _) in metrics {
             if name == "torque_on_nm" {
                 *name = "torque_on_Nm".into();

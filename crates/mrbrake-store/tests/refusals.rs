@@ -13,7 +13,7 @@ fn record(index: u32) -> Record {
         status: Status::Ok,
         reason: None,
         variables: vec![("gap_m".into(), 1e-3.into())],
-        metrics: vec![("torque_on_nm".into(), f64::from(index))],
+        metrics: vec![("torque_on_nm".into(), f64::from(index).into())],
         spec_toml: "[geometry]\nouter_radius = \"40 mm\"\n".repeat(20),
         eval_seconds: 0.3,
         solver_version: "test".into(),

@@ -81,7 +81,8 @@ fn document(
         .enumerate()
         .map(|(k, r)| {
             let metrics: serde_json::Map<String, Value> =
-                r.metrics.iter().map(|(n, v)| (n.clone(), json!(v))).collect();
+                // A bound beyond the analysed range is no value to plot: `null`.
+                r.metrics.iter().map(|(n, v)| (n.clone(), json!(v.value()))).collect();
             let variables: serde_json::Map<String, Value> =
                 r.variables.iter().map(|(n, v)| (n.clone(), v.to_json())).collect();
             json!({

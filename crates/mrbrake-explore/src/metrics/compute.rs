@@ -10,8 +10,9 @@
 //! `behaviour.torque_hot_current_drive_Nm` (current drive) or
 //! `behaviour.voltage_drive.torque_hot_Nm` (voltage drive) of `mrbrake thermal --current
 //! <continuous_current_A> --duty 1`. A figure the command gives as `null` — a time not reached
-//! within the run, a bandwidth above the highest frequency, a coil without a steady state
-//! (thermal runaway) — is stored as `inf`, so a lower bound on it holds and an upper bound fails.
+//! within the run or not resolved by its steps, a bandwidth above the highest frequency, a coil
+//! without a steady state (thermal runaway) — is stored as the bound the analysis does give
+//! (module docs of [`super`]).
 
 use std::sync::Arc;
 
@@ -22,7 +23,7 @@ use mrbrake_design::spec::BrakeSpec;
 use mrbrake_design::thermal::ThermalOptions;
 use mrbrake_design::thermal::session::{ThermalSession, check_thermal_data};
 use mrbrake_fem::mesh::Mesh;
-use mrbrake_store::Status;
+use mrbrake_store::{MetricValue, Status};
 
 use mrbrake_sysid::frd::Frd;
 
@@ -30,14 +31,37 @@ use super::{Analysis, HapticDynamics, StudyMetrics, count_run};
 use crate::ExploreError;
 use crate::evaluate::{EvaluationSettings, Outcome, with_causes};
 
-/// A figure that may be absent (`None`: not reached, not within the range) as a metric.
-fn or_inf(value: Option<f64>) -> f64 {
-    value.unwrap_or(f64::INFINITY)
+/// A figure that may be beyond the analysed range (`None`) as a metric: its value, or `beyond`.
+fn or_bound(value: Option<f64>, beyond: MetricValue) -> MetricValue {
+    value.map_or(beyond, MetricValue::Value)
+}
+
+/// A step response's rise time to `fraction` (`t63_s`, `t90_s`), or its bound when the response
+/// gives none: `AtMost` the end of the time step holding the crossing when the steps do not
+/// resolve it, `AtLeast` the run when it is not reached
+/// ([`mrbrake_design::response::resolved_rise_time`]).
+fn rise_time_metric(
+    resolved: Option<f64>,
+    time: &[f64],
+    torque: &[f64],
+    fraction: f64,
+) -> MetricValue {
+    if let Some(t) = resolved {
+        return MetricValue::Value(t);
+    }
+    let end = time.last().copied().unwrap_or(0.0);
+    match mrbrake_design::response::rise_time(time, torque, fraction) {
+        Some(t) => {
+            let k = time.partition_point(|&s| s < t).min(time.len().saturating_sub(1));
+            MetricValue::AtMost(time.get(k).copied().unwrap_or(end))
+        }
+        None => MetricValue::AtLeast(end),
+    }
 }
 
 /// What one analysis gives, or why it could not: the error text and whether it was the design's
 /// (input: infeasible) or numerical (failed).
-type Figures = Result<Vec<(&'static str, f64)>, (String, bool)>;
+type Figures = Result<Vec<(&'static str, MetricValue)>, (String, bool)>;
 
 fn failure<E: std::error::Error + mrbrake_error::Kind>(e: E) -> (String, bool) {
     (with_causes(&e), e.is_input_error())
@@ -128,22 +152,28 @@ impl<'s> Models<'s> {
                 let bias = self.response_options.bias_a.unwrap_or(0.5 * max);
                 let (_, frd, bandwidth) =
                     self.response()?.frequency_response(bias).map_err(failure)?;
+                let highest = frd.points.last().map_or(0.0, |p| p.omega_rad_s);
                 self.frequency_response = Some((frd, bias));
-                Ok(vec![("bandwidth_rad_s", or_inf(bandwidth))])
+                Ok(vec![("bandwidth_rad_s", or_bound(bandwidth, MetricValue::AtLeast(highest)))])
             }
             Analysis::ThermalSteady => {
+                let limit = self.thermal_options.limit_c;
                 let steady = self.thermal()?.steady().map(|s| s.coil_max_t_c);
-                Ok(vec![("coil_max_T_C", or_inf(steady))])
+                Ok(vec![("coil_max_T_C", or_bound(steady, MetricValue::AtLeast(limit)))])
             }
             Analysis::ThermalRating => {
                 let session = self.thermal()?;
                 let current = session.continuous_current_a().map_err(failure)?;
                 let duty = session.max_duty_at_max_current().map_err(failure)?;
-                Ok(vec![("continuous_current_A", current), ("max_duty_at_max_current", duty)])
+                Ok(vec![
+                    ("continuous_current_A", current.into()),
+                    ("max_duty_at_max_current", duty.into()),
+                ])
             }
             Analysis::Warmup => {
+                let run = self.thermal_options.time_s;
                 let time = self.thermal()?.time_to_limit_s().map_err(failure)?;
-                Ok(vec![("time_to_limit_s", or_inf(time))])
+                Ok(vec![("time_to_limit_s", or_bound(time, MetricValue::AtLeast(run)))])
             }
             Analysis::HotTorque => self.hot_torque(),
             _ => {
@@ -172,11 +202,16 @@ impl<'s> Models<'s> {
     ) -> Figures {
         let model = self.response()?;
         if unit >= model.units() {
-            return Ok(Vec::new());
+            let none = MetricValue::NotApplicable;
+            return Ok(vec![(names[0], none), (names[1], none)]);
         }
         count_run(analysis);
         let step = model.step(unit, from, to).map_err(failure)?;
-        Ok(vec![(names[0], or_inf(step.t63_s)), (names[1], or_inf(step.t90_s))])
+        let (time, torque) = (&step.time_s, &step.torque_nm);
+        Ok(vec![
+            (names[0], rise_time_metric(step.t63_s, time, torque, 0.63)),
+            (names[1], rise_time_metric(step.t90_s, time, torque, 0.9)),
+        ])
     }
 
     /// The torque held for ever: at the continuous current, hot coil and fluid (module docs).
@@ -197,7 +232,7 @@ impl<'s> Models<'s> {
             ResponseDrive::Current => behaviour.torque_hot_current_drive_nm,
             ResponseDrive::Voltage => behaviour.voltage_drive.torque_hot_nm,
         };
-        Ok(vec![("continuous_torque_Nm", torque)])
+        Ok(vec![("continuous_torque_Nm", torque.into())])
     }
 }
 
@@ -206,10 +241,11 @@ impl<'s> Models<'s> {
 pub(crate) fn cascade(
     spec: &BrakeSpec,
     settings: &EvaluationSettings,
-    mut metrics: Vec<(String, f64)>,
+    mut metrics: Vec<(String, MetricValue)>,
 ) -> Outcome {
     let study = &settings.study;
-    let analyses = study.analyses();
+    // Only what the known metrics lack (all of the asked-for ones for a new design).
+    let analyses = study.analyses_missing(&metrics);
     let response_options = study.response.options(settings);
     let mut models = Models {
         spec,
@@ -231,13 +267,19 @@ pub(crate) fn cascade(
         if let Some(reason) = study.violated_gate(&metrics) {
             let skipped: Vec<&str> =
                 analyses.iter().filter(|a| a.level() >= level).map(|a| a.name()).collect();
-            let reason = format!("{reason}; skipped: {}", skipped.join(", "));
+            let reason = format!("{reason}{}{}", super::SKIPPED, skipped.join(", "));
             return Outcome { status: Status::Infeasible, reason: Some(reason), metrics };
         }
         for analysis in at_level {
             match models.run(analysis) {
                 Ok(figures) => {
-                    metrics.extend(figures.into_iter().map(|(n, v)| (n.to_string(), v)));
+                    // An analysis run again for another's sake (the small-signal response for
+                    // the haptic wall) keeps the stored figures.
+                    for (name, value) in figures {
+                        if !metrics.iter().any(|(known, _)| known == name) {
+                            metrics.push((name.to_string(), value));
+                        }
+                    }
                 }
                 Err((error, input)) => {
                     let status = if input { Status::Infeasible } else { Status::Failed };
@@ -247,7 +289,7 @@ pub(crate) fn cascade(
             }
         }
     }
-    if let Some((name, value)) = metrics.iter().find(|(_, v)| v.is_nan()) {
+    if let Some((name, value)) = metrics.iter().find(|(_, v)| v.number().is_some_and(f64::is_nan)) {
         let reason = format!("the analysis gave {name} = {value}: not a result");
         return Outcome { status: Status::Failed, reason: Some(reason), metrics };
     }
@@ -316,4 +358,22 @@ pub(super) fn check(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rise time the steps resolve is the value; one they do not is at most the end of the step
+    /// holding the crossing (a first-order lag with τ = 1 ms sampled every 5 ms).
+    #[test]
+    fn an_unresolved_rise_time_is_an_upper_bound() {
+        let time: Vec<f64> = (0..20).map(|k| 5e-3 * k as f64).collect();
+        let torque: Vec<f64> = time.iter().map(|t| 1.0 - (-t / 1e-3).exp()).collect();
+        let resolved = mrbrake_design::response::resolved_rise_time(&time, &torque, 0.63);
+        assert_eq!(resolved, None, "a 5 ms step does not resolve a 1 ms crossing");
+        let metric = rise_time_metric(resolved, &time, &torque, 0.63);
+        assert_eq!(metric, MetricValue::AtMost(5e-3));
+        assert_eq!(rise_time_metric(Some(2e-3), &time, &torque, 0.63), MetricValue::Value(2e-3));
+    }
 }

@@ -35,6 +35,7 @@ use mrbrake_design::response::ResponseDrive;
 use mrbrake_design::spec::BrakeSpec;
 use mrbrake_sim::brake_model::apply::apply_to_haptic;
 use mrbrake_sim::haptic::{DeviceKind, HapticConfig, Scenario, simulate};
+use mrbrake_store::MetricValue;
 use mrbrake_sysid::frd::Frd;
 use mrbrake_units::{Dimension, parse};
 use schemars::JsonSchema;
@@ -135,7 +136,7 @@ pub(super) fn haptic_metrics(
     evaluation: &EvaluationSettings,
     settings: &HapticSettings,
     frequency_response: Option<(&Frd, f64, ResponseDrive)>,
-) -> Result<Vec<(&'static str, f64)>, (String, bool)> {
+) -> Result<Vec<(&'static str, MetricValue)>, (String, bool)> {
     let options = AnalysisOptions {
         mesh: evaluation.mesh,
         points: settings.points,
@@ -155,15 +156,22 @@ pub(super) fn haptic_metrics(
     let mut config = settings.config().map_err(|e| (e, true))?;
     apply_to_haptic(&model, &mut config).map_err(fail)?;
     let wall = simulate(&config, false).map_err(fail)?.metrics;
+    // A hand that never left the wall released at least the rest of the run after the withdrawal
+    // began; a scenario without withdrawal has no release.
+    let release = match (wall.release_time_s, config.scenario.withdraw_start_s()) {
+        (Some(t), _) => MetricValue::Value(t),
+        (None, Some(start)) => MetricValue::AtLeast((config.duration_s - start).max(0.0)),
+        (None, None) => MetricValue::NotApplicable,
+    };
     let stiffness = wall.displayed_stiffness_nm_per_rad.ok_or_else(|| {
         let why = "the hand did not press into the wall long enough to measure a stiffness";
         (format!("haptic wall ({}): {why}", settings.scenario.name()), true)
     })?;
     Ok(vec![
-        ("withdraw_excess_torque_Nm", wall.withdraw_excess_torque_nm.peak),
-        ("release_time_s", wall.release_time_s.unwrap_or(f64::INFINITY)),
-        ("displayed_stiffness_Nm_per_rad", stiffness),
-        ("free_motion_torque_Nm", wall.free_motion_torque_nm),
+        ("withdraw_excess_torque_Nm", wall.withdraw_excess_torque_nm.peak.into()),
+        ("release_time_s", release),
+        ("displayed_stiffness_Nm_per_rad", stiffness.into()),
+        ("free_motion_torque_Nm", wall.free_motion_torque_nm.into()),
     ])
 }
 

@@ -6,9 +6,27 @@
 //! (its name, unit and meaning are in [`crate::evaluate::METRICS`] with the static ones);
 //! [`StudyMetrics`] is what a study asks for — the metrics, its constraints (the gates of the
 //! cascade) and the [`settings`] of the analyses — and is part of the
-//! [`crate::EvaluationSettings`], so of every design key: a changed setting never reads back a
-//! stale metric. A static-only study has an empty [`StudyMetrics`] and keys, records and cost
-//! exactly as before.
+//! [`crate::EvaluationSettings`]. The settings of the analyses it runs that differ from their
+//! defaults are part of every design key, so a changed setting never reads back a stale metric;
+//! the metrics asked for and the constraints are not: a record holds the metrics computed so far,
+//! and a study asking for more (`--resume` with a longer list) completes the stored designs with
+//! the missing metrics only ([`crate::evaluate::complete`]: no static analysis again, only the
+//! analyses whose metrics are missing, and those they need — the small-signal response again for
+//! a haptic wall with predicted dynamics). A static-only study has an empty [`StudyMetrics`] and
+//! keys, records and cost exactly as before; a study whose analyses run at their default settings
+//! has the same keys as the static-only study of the same designs. (A metric that brings in an
+//! analysis whose settings are not at their defaults changes the keys: its designs are evaluated
+//! again, the static analysis included.)
+//!
+//! A figure beyond the range an analysis covers is stored as a bound
+//! ([`mrbrake_store::MetricValue`]), never as an infinity: a bandwidth above the highest frequency
+//! analysed is `AtLeast` that frequency, a step-response time the time steps do not resolve is
+//! `AtMost` the end of the step holding the crossing, a warm-up that does not reach the limit
+//! within the run is `AtLeast` the run, a coil without a steady state (thermal runaway) is
+//! `AtLeast` the insulation limit, a hand that never leaves the wall releases `AtLeast` the time
+//! from the withdrawal to the end of the run. A step of a direction the brake does not have, and
+//! a release in a scenario without withdrawal, are `NotApplicable`. How constraints and objectives
+//! use them: [`crate::problem::Constraint::violation_of`], [`crate::optimize::evaluation_for`].
 //!
 //! The cascade (`cascade`, run by [`crate::evaluate::evaluate`]): the static analysis first
 //! (always); then level 1 (steady temperatures, the small-signal response: one linear solve per frequency), level 2 (the
@@ -31,6 +49,7 @@ use std::collections::BTreeSet;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use mrbrake_design::spec::BrakeSpec;
+use mrbrake_store::MetricValue;
 use serde_json::{Value, json};
 
 pub(crate) use compute::cascade;
@@ -216,6 +235,43 @@ impl StudyMetrics {
         set
     }
 
+    /// The analyses needed to give the asked-for metrics that `known` lacks (a step direction the
+    /// brake does not have is known: stored as not applicable), with the analyses they depend on
+    /// (as [`Self::analyses`]), in cascade order.
+    pub fn analyses_missing(&self, known: &[(String, MetricValue)]) -> BTreeSet<Analysis> {
+        let has = |metric: &str| known.iter().any(|(name, _)| name == metric);
+        let mut set: BTreeSet<Analysis> =
+            self.requested.iter().filter(|m| !has(m)).filter_map(|m| analysis_of(m)).collect();
+        let rating_known = EXPENSIVE_METRICS
+            .iter()
+            .filter(|(_, a)| *a == Analysis::ThermalRating)
+            .all(|(name, _)| has(name));
+        if set.contains(&Analysis::HotTorque) && !rating_known {
+            set.insert(Analysis::ThermalRating);
+        }
+        if set.contains(&Analysis::Haptic) && self.haptic.dynamics == HapticDynamics::Predicted {
+            set.insert(Analysis::Frequency);
+        }
+        set
+    }
+
+    /// True when a stored `record` of a design lacks metrics this study asks for, or was stopped
+    /// by a constraint of another study that this study's constraints do not violate: then
+    /// [`crate::evaluate::complete`] completes it. Static failures and infeasible designs, and
+    /// numerical failures of an expensive analysis, are final.
+    pub fn needs_completion(&self, record: &mrbrake_store::Record) -> bool {
+        use mrbrake_store::Status;
+        let stopped = record.status == Status::Infeasible && stopped_at_gate(record);
+        if self.is_static() || !(record.status == Status::Ok || stopped) {
+            return false;
+        }
+        if stopped {
+            // Still stopped under this study's constraints: nothing to compute.
+            return self.violated_gate(&record.metrics).is_none();
+        }
+        self.requested.iter().any(|m| record.metric_value(m).is_none())
+    }
+
     fn needs_dynamics(&self) -> bool {
         self.analyses().iter().any(|a| !a.is_thermal())
     }
@@ -224,41 +280,55 @@ impl StudyMetrics {
         self.analyses().iter().any(|a| a.is_thermal())
     }
 
-    /// The part of the design key (and of every record's settings): `None` for a static-only
-    /// study, so its keys are those of before; else the metrics, the gates, and the settings of
-    /// the analyses that run.
+    /// The part of the design key (module docs): the settings tables of the analyses that run
+    /// and that differ from their defaults; `None` when there are none (then the keys are those
+    /// of a static-only study of the same designs). Neither the metrics asked for nor the
+    /// constraints are part of it, so asking for one more metric keeps the keys — unless it
+    /// brings in an analysis whose settings are not at their defaults: then the key holds them
+    /// and the designs are evaluated again.
     pub fn canonical(&self) -> Option<Value> {
-        if self.is_static() {
-            return None;
-        }
-        let gates: Vec<Value> = self
-            .gates
-            .iter()
-            .map(|c| json!({ "metric": c.metric, "min": c.min, "max": c.max }))
+        let defaults = Self::default();
+        let changed: serde_json::Map<String, Value> = self
+            .settings_tables()
+            .into_iter()
+            .filter(|(table, settings)| {
+                let default = match *table {
+                    "response" => defaults.response.canonical(),
+                    "thermal" => defaults.thermal.canonical(),
+                    _ => defaults.haptic.canonical(),
+                };
+                *settings != default
+            })
+            .map(|(table, settings)| (table.to_string(), settings))
             .collect();
-        let mut value = json!({ "metrics": self.requested, "gates": gates });
+        (!changed.is_empty()).then_some(Value::Object(changed))
+    }
+
+    /// The settings of the analyses that run, by table.
+    fn settings_tables(&self) -> Vec<(&'static str, Value)> {
+        let mut tables = Vec::new();
         if self.needs_dynamics() || self.requested.contains(&"continuous_torque_Nm") {
-            value["response"] = self.response.canonical();
+            tables.push(("response", self.response.canonical()));
         }
         if self.needs_heat() {
-            value["thermal"] = self.thermal.canonical();
+            tables.push(("thermal", self.thermal.canonical()));
         }
         if self.analyses().contains(&Analysis::Haptic) {
-            value["haptic"] = self.haptic.canonical();
+            tables.push(("haptic", self.haptic.canonical()));
         }
-        Some(value)
+        tables
     }
 
     /// What every record of the study keeps beside the static settings (nothing for a
     /// static-only study): the metrics asked for and the settings of the analyses that run, as
     /// flat `response_…` / `thermal_…` entries (one CSV column each in `mrbrake export`).
     pub fn recorded(&self) -> Vec<(String, Value)> {
-        let Some(canonical) = self.canonical() else {
+        if self.is_static() {
             return Vec::new();
-        };
+        }
         let mut out = vec![("metrics_asked".to_string(), json!(self.requested.join(" ")))];
-        for table in ["response", "thermal", "haptic"] {
-            if let Some(Value::Object(settings)) = canonical.get(table) {
+        for (table, settings) in self.settings_tables() {
+            if let Value::Object(settings) = settings {
                 out.extend(settings.iter().map(|(k, v)| (format!("{table}_{k}"), v.clone())));
             }
         }
@@ -266,11 +336,12 @@ impl StudyMetrics {
     }
 
     /// The first gate the known `metrics` violate, as a reason (`None`: none violated). Gates on
-    /// metrics not known yet wait for their level.
-    fn violated_gate(&self, metrics: &[(String, f64)]) -> Option<String> {
+    /// metrics not known yet wait for their level; a bound that cannot decide a gate stops the
+    /// cascade as a violation ([`Constraint::violation_of`]).
+    fn violated_gate(&self, metrics: &[(String, MetricValue)]) -> Option<String> {
         self.gates.iter().find_map(|gate| {
             let (_, value) = metrics.iter().find(|(name, _)| *name == gate.metric)?;
-            (gate.violation(*value) > 0.0).then(|| {
+            (gate.violation_of(*value) > 0.0).then(|| {
                 let bound = |b: Option<f64>, word: &str| b.map(|v| format!(" {word} {v}"));
                 let bounds: String = [bound(gate.min, "min"), bound(gate.max, "max")]
                     .into_iter()
@@ -292,6 +363,16 @@ impl StudyMetrics {
     ) -> Result<(), ExploreError> {
         compute::check(self, spec, evaluation)
     }
+}
+
+/// What separates the reason of a design the cascade stopped at a constraint from the analyses
+/// it skipped.
+pub(crate) const SKIPPED: &str = "; skipped: ";
+
+/// True when `record` is a design the cascade stopped at a violated constraint (its reason names
+/// the analyses skipped).
+fn stopped_at_gate(record: &mrbrake_store::Record) -> bool {
+    record.reason.as_deref().is_some_and(|reason| reason.contains(SKIPPED))
 }
 
 /// Checks a study's metrics against its base design before anything is evaluated ([`StudyMetrics::check`]
@@ -321,11 +402,67 @@ pub fn stopped_evaluation(
     }
     let violation: f64 = constraints
         .iter()
-        .filter_map(|c| {
-            let (_, value) = record.metrics.iter().find(|(name, _)| *name == c.metric)?;
-            Some(c.violation(*value))
-        })
+        .filter_map(|c| Some(c.violation_of(record.metric_value(&c.metric)?)))
         .sum();
     (violation > 0.0 && violation.is_finite())
         .then(|| mrbrake_optim::pareto::Evaluation::new(vec![f64::INFINITY; objectives], violation))
+}
+
+#[cfg(test)]
+mod tests {
+    use mrbrake_store::{Record, Status};
+
+    use super::*;
+    use crate::problem::Constraint;
+
+    fn record(status: Status, reason: Option<&str>, metrics: &[(&str, f64)]) -> Record {
+        Record {
+            key: "a".repeat(64),
+            status,
+            reason: reason.map(str::to_owned),
+            variables: Vec::new(),
+            metrics: metrics.iter().map(|(n, v)| (n.to_string(), (*v).into())).collect(),
+            spec_toml: String::new(),
+            eval_seconds: 1.0,
+            solver_version: "test".into(),
+            settings: Default::default(),
+        }
+    }
+
+    fn study(metrics: &[&str], constraints: &[Constraint]) -> StudyMetrics {
+        StudyMetrics::new(
+            metrics.iter().copied(),
+            constraints,
+            Default::default(),
+            Default::default(),
+        )
+    }
+
+    /// Which stored records a study completes: those lacking an asked-for metric, and those
+    /// another study's constraint stopped when this study's constraints let them pass.
+    #[test]
+    fn a_stored_record_is_completed_only_when_it_lacks_what_the_study_asks() {
+        let torque = [("torque_max_Nm", 2.0)];
+        let ok = record(Status::Ok, None, &torque);
+        assert!(study(&["coil_max_T_C"], &[]).needs_completion(&ok));
+        assert!(!study(&[], &[]).needs_completion(&ok), "a static study completes nothing");
+        let with = record(Status::Ok, None, &[("torque_max_Nm", 2.0), ("coil_max_T_C", 60.0)]);
+        assert!(!study(&["coil_max_T_C"], &[]).needs_completion(&with));
+        let failed = record(Status::Failed, Some("steady temperatures: diverged"), &torque);
+        assert!(!study(&["coil_max_T_C"], &[]).needs_completion(&failed), "failures are final");
+        let reason = format!("torque_max_Nm = 2 violates the constraint min 3{SKIPPED}steady");
+        let stopped = record(Status::Infeasible, Some(&reason), &torque);
+        let strict = Constraint { metric: "torque_max_Nm".into(), min: Some(3.0), max: None };
+        let loose = Constraint { min: Some(1.0), ..strict.clone() };
+        assert!(!study(&["coil_max_T_C"], &[strict]).needs_completion(&stopped));
+        // Stopped by a constraint this study does not have: completed.
+        assert!(study(&["coil_max_T_C"], &[loose]).needs_completion(&stopped));
+        assert!(!study(&[], &[]).needs_completion(&stopped), "static: nothing to do");
+        let missing = study(&["coil_max_T_C", "t63_s"], &[]);
+        let known: Vec<(String, MetricValue)> = with.metrics.clone();
+        assert_eq!(
+            missing.analyses_missing(&known).into_iter().collect::<Vec<_>>(),
+            [Analysis::StepUp1]
+        );
+    }
 }

@@ -169,7 +169,9 @@ pub fn propagate(
     }
     let mut runner = Runner::new(store, request.settings.clone(), request.jobs);
     let (records, summary) = runner.run(&designs, observer)?;
-    let nominal = records[0].metrics.clone();
+    // The nominal design's values (a bound beyond the analysed range is no value to show).
+    let nominal: Vec<(String, f64)> =
+        records[0].metrics.iter().filter_map(|(n, v)| Some((n.clone(), v.value()?))).collect();
     let metrics = metric_names(request, &records[0]);
     let kept: Vec<usize> =
         (1..records.len()).filter(|&k| records[k].status == Status::Ok).collect();
@@ -192,7 +194,7 @@ pub fn propagate(
     let kept_records: Vec<&Record> = kept.iter().map(|&k| &records[k]).collect();
     let (outputs, sobol) = summaries(&metrics, &kept_records, &names, &unit, request)?;
     let curves: Vec<_> = kept_records.iter().filter_map(|r| torque_curve(&r.metrics)).collect();
-    let nominal_curve = torque_curve(&nominal);
+    let nominal_curve = torque_curve(&records[0].metrics);
     let torque_band = torque_band(nominal_curve.as_deref(), &curves).map_err(uq)?;
     Ok(Uncertainty {
         samples: request.samples,
@@ -273,7 +275,7 @@ fn metric_names(request: &UncertaintyRequest<'_>, nominal: &Record) -> Vec<Strin
 }
 
 fn metric_of(record: &Record, name: &str) -> Option<f64> {
-    record.metrics.iter().find(|(n, _)| n == name).map(|(_, v)| *v).filter(|v| v.is_finite())
+    record.metric(name).filter(|v| v.is_finite())
 }
 
 /// The sample with whole-number fields (turns, cylinders) rounded, as a spec holds them.

@@ -79,14 +79,17 @@ impl StudyReport<'_> {
             .objectives
             .iter()
             .map(|o| {
-                let v = r.metric(&o.metric).unwrap_or(f64::NAN);
-                if o.goal == Goal::Maximize { -v } else { v }
+                // Ranked as `mrbrake optimize` ranks it (a bound on the good side by its bound).
+                let v = r
+                    .metric_value(&o.metric)
+                    .unwrap_or(mrbrake_store::MetricValue::Value(f64::NAN));
+                mrbrake_explore::optimize::objective_value(o.goal, v)
             })
             .collect();
         let violation = self
             .constraints
             .iter()
-            .map(|c| r.metric(&c.metric).map_or(f64::INFINITY, |v| c.violation(v)))
+            .map(|c| r.metric_value(&c.metric).map_or(f64::INFINITY, |v| c.violation_of(v)))
             .sum();
         Evaluation::new(objectives, violation)
     }
