@@ -66,23 +66,18 @@ fn known_parameters_come_back_and_an_unidentifiable_pair_is_named() {
     let dir = tempfile::tempdir().unwrap();
     let log = rig_log(&perturbed_spec(dir.path()), dir.path());
     let calibrated = dir.path().join("calibrated.toml");
-    let v = json(&[
-        "calibrate",
-        SPEC,
-        "--mesh",
-        "coarse",
-        "--log",
-        path_str(&log),
-        "--set",
+    let fit = |set: &str, parameters: [&str; 2], extra: &[&str]| {
+        let mut args = vec!["calibrate", SPEC, "--mesh", "coarse", "--log", path_str(&log)];
+        args.extend(["--set", set, "--parameter", parameters[0], "--parameter", parameters[1]]);
+        args.extend(extra);
+        args.push("--json");
+        json(&args)
+    };
+    let v = fit(
         "fluid.fill_fraction=0.8",
-        "--parameter",
-        "fluid.yield_stress_scale=0.5..1.2",
-        "--parameter",
-        "drum.gap=0.4mm..0.7mm",
-        "-o",
-        path_str(&calibrated),
-        "--json",
-    ]);
+        ["fluid.yield_stress_scale=0.5..1.2", "drum.gap=0.4mm..0.7mm"],
+        &["-o", path_str(&calibrated)],
+    );
     for (k, truth) in [(0, 0.85), (1, 0.54e-3)] {
         let p = &v["parameters"][k];
         let (estimate, se) =
@@ -107,21 +102,11 @@ fn known_parameters_come_back_and_an_unidentifiable_pair_is_named() {
     assert!((torque - fitted).abs() < 1e-9 * fitted, "{torque} vs {fitted}");
 
     // The yield stress and the wetted share scale the static torque alike.
-    let v = json(&[
-        "calibrate",
-        SPEC,
-        "--mesh",
-        "coarse",
-        "--log",
-        path_str(&log),
-        "--set",
+    let v = fit(
         "drum.gap=0.54mm",
-        "--parameter",
-        "fluid.yield_stress_scale=0.5..1.2",
-        "--parameter",
-        "fluid.fill_fraction=0.5..1",
-        "--json",
-    ]);
+        ["fluid.yield_stress_scale=0.5..1.2", "fluid.fill_fraction=0.5..1"],
+        &[],
+    );
     let groups = v["unidentifiable"].as_array().unwrap();
     let named = |name: &str| groups.iter().flat_map(|g| g.as_array().unwrap()).any(|n| n == name);
     assert!(named("fluid.yield_stress_scale") && named("fluid.fill_fraction"), "{groups:?}");

@@ -5,7 +5,7 @@ mod common;
 
 use common::mrbrake;
 
-const SUBCOMMANDS: [&str; 19] = [
+const SUBCOMMANDS: [&str; 20] = [
     "analyze",
     "formula",
     "materials",
@@ -25,6 +25,7 @@ const SUBCOMMANDS: [&str; 19] = [
     "export",
     "report",
     "uncertainty",
+    "calibrate",
 ];
 
 /// The `Commands:` section of a clap help text: the first word of each entry line.

@@ -11,7 +11,7 @@ use mrbrake::explore::variable::parse_sets;
 use mrbrake::uq::calibration::CalibrationOptions;
 
 use super::field_flags;
-use super::sweep::{base_spec, recorded_metrics, settings_from};
+use super::sweep::{AnalysisSettingsArgs, base_spec, recorded_metrics};
 use crate::error::CommandResult;
 use crate::output::{print_json, print_text};
 
@@ -46,15 +46,8 @@ pub struct CalibrateArgs {
     /// Analyses run at the same time (0: one per core).
     #[arg(long, default_value_t = 0)]
     jobs: usize,
-    /// Mesh density of every analysis: coarse, default or fine.
-    #[arg(long, default_value = "default")]
-    mesh: String,
-    /// Element order of every analysis: 1 or 2.
-    #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
-    order: u8,
-    /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
-    #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
-    speed: String,
+    #[command(flatten)]
+    analysis: AnalysisSettingsArgs,
     /// Also predict a dynamics or heat metric (e.g. bandwidth_rad_s) of the start and the
     /// calibrated design, to compare with a measurement the fit did not use. Repeatable.
     #[arg(long = "record", value_name = "METRIC")]
@@ -86,7 +79,7 @@ pub fn run(a: CalibrateArgs) -> CommandResult {
         points: a.points,
         settings: mrbrake::explore::EvaluationSettings {
             study: recorded_metrics(&a.record)?,
-            ..settings_from(&a.mesh, &a.speed, a.order)?
+            ..a.analysis.settings()?
         },
         jobs: a.jobs,
         options: CalibrationOptions {

@@ -56,15 +56,8 @@ pub struct SweepArgs {
     /// fills its own store, `mrbrake merge` combines them.
     #[arg(long, value_name = "K/N")]
     shard: Option<String>,
-    /// Mesh density of every analysis: coarse, default or fine.
-    #[arg(long, default_value = "default")]
-    mesh: String,
-    /// Element order of every analysis: 1 (linear) or 2 (quadratic triangles).
-    #[arg(long, value_name = "1|2", default_value_t = 1)]
-    order: u8,
-    /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
-    #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
-    speed: String,
+    #[command(flatten)]
+    analysis: AnalysisSettingsArgs,
     /// Also compute and store a dynamics or heat metric (e.g. t63_s, continuous_current_A; the
     /// list: `mrbrake optimize --list-metrics`), with `mrbrake response`'s and `mrbrake
     /// thermal`'s default settings (a problem file's [response]/[thermal] set them). Repeatable.
@@ -111,6 +104,27 @@ pub fn settings_from(mesh: &str, speed: &str, order: u8) -> CommandResult<Evalua
     })
 }
 
+/// The settings every analysis of a study shares (`sweep`, `uncertainty`, `calibrate`).
+#[derive(Debug, clap::Args)]
+pub(crate) struct AnalysisSettingsArgs {
+    /// Mesh density of every analysis: coarse, default or fine.
+    #[arg(long, default_value = "default")]
+    mesh: String,
+    /// Element order of every analysis: 1 (linear) or 2 (quadratic triangles).
+    #[arg(long, value_name = "1|2", default_value_t = 1)]
+    order: u8,
+    /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
+    #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
+    speed: String,
+}
+
+impl AnalysisSettingsArgs {
+    /// The evaluation settings they give (static: no study metrics).
+    pub(crate) fn settings(&self) -> CommandResult<EvaluationSettings> {
+        settings_from(&self.mesh, &self.speed, self.order)
+    }
+}
+
 /// The base spec's text and where it came from.
 pub(crate) fn base_spec(spec: Option<&PathBuf>) -> CommandResult<(String, String)> {
     Ok(match spec {
@@ -144,7 +158,7 @@ fn plan_from(a: &SweepArgs) -> CommandResult<(SweepPlan, Shard)> {
         shard,
         settings: EvaluationSettings {
             study: recorded_metrics(&a.record)?,
-            ..settings_from(&a.mesh, &a.speed, a.order)?
+            ..a.analysis.settings()?
         },
     };
     let plan = plan::sweep_plan(&request).map_err(field_flags::study)?;

@@ -15,7 +15,7 @@ use mrbrake::report::atomic::StagedDir;
 use mrbrake::report::uncertainty::document::UncertaintyDocument;
 use mrbrake::report::uncertainty::plots;
 
-use super::sweep::{base_spec, recorded_metrics, settings_from};
+use super::sweep::{AnalysisSettingsArgs, base_spec, recorded_metrics};
 use crate::error::CommandResult;
 use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
@@ -55,15 +55,8 @@ pub struct UncertaintyArgs {
     /// Analyses run at the same time (0: one per core).
     #[arg(long, default_value_t = 0)]
     jobs: usize,
-    /// Mesh density of every analysis: coarse, default or fine.
-    #[arg(long, default_value = "default")]
-    mesh: String,
-    /// Element order of every analysis: 1 or 2.
-    #[arg(long, value_name = "1|2", default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
-    order: u8,
-    /// Relative speed for the viscous (off-state) torque (e.g. 1rad/s, 60rpm).
-    #[arg(long, default_value = "1rad/s", allow_hyphen_values = true)]
-    speed: String,
+    #[command(flatten)]
+    analysis: AnalysisSettingsArgs,
     /// Currents of each sample's torque–current curve, evenly from 0 A to the maximum current
     /// (2 to 41): the torque band's currents. Each is a field solve per sample; part of the
     /// design keys, so a resumed run needs the same count.
@@ -92,7 +85,7 @@ pub fn run(a: UncertaintyArgs) -> CommandResult {
     let settings = mrbrake::explore::EvaluationSettings {
         study: recorded_metrics(&a.record)?,
         curve_points: a.curve_points,
-        ..settings_from(&a.mesh, &a.speed, a.order)?
+        ..a.analysis.settings()?
     };
     let request = UncertaintyRequest {
         spec_toml: &spec_text,
