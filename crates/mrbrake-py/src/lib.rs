@@ -23,6 +23,7 @@ mod fem;
 mod formula;
 mod haptic;
 mod materials;
+mod response;
 mod rig;
 mod store;
 mod study;
@@ -44,5 +45,6 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     calibrate::register(m)?;
     haptic::register(m)?;
     rig::register(m)?;
+    response::register(m)?;
     Ok(())
 }

@@ -14,6 +14,8 @@ Main entry points:
 - :mod:`mrbrake.fem`: general problem files (magnetostatics, heat), as ``mrbrake fem solve``.
 - :func:`sweep`, :func:`optimize`: design studies into a results store (``mrbrake sweep``,
   ``mrbrake optimize``).
+- :func:`response`: the predicted dynamics (step responses, frequency response; ``mrbrake
+  response``).
 - :func:`calibrate`: spec fields fitted to a rig log's loop (``mrbrake calibrate``).
 - :mod:`mrbrake.store`: the results store of design studies (``load``: a table).
 - :mod:`mrbrake.sysid`: hysteresis characterisation, frequency response, transfer-function fits.
@@ -27,7 +29,7 @@ from . import _native
 from ._native import Analysis, SolverError, __version__
 
 __all__ = ["Analysis", "SolverError", "analyze", "calibrate", "fem", "formula", "haptic", "materials", "optimize",
-           "rig", "store", "sweep", "sysid", "__version__"]
+           "response", "rig", "store", "sweep", "sysid", "__version__"]
 
 
 def analyze(spec=None, mesh="default", order=1, currents=None, *, speed=None,
@@ -224,3 +226,41 @@ def calibrate(spec=None, *, log, parameters, set=None, frd=None, points=11, max_
                              frd=None if frd is None else str(frd), points=points,
                              max_evaluations=max_evaluations, jobs=jobs, mesh=mesh, order=order,
                              speed=speed, record=list(record or []))
+
+
+def response(spec=None, mesh="default", *, drive="current", duration=None, step=None, bias=None,
+             fluid_lag=None, conductivity=None):
+    """The predicted dynamics of a brake design (``mrbrake response``): the torque's step response
+    per direction (eddy currents in the flux path, the coil circuit, the fluid's lag) and the
+    small-signal frequency response with its -3 dB bandwidth.
+
+    Parameters
+    ----------
+    spec : None, str, os.PathLike or dict
+        As for :func:`analyze` (``None``: the embedded thesis brake).
+    mesh : str
+        Mesh density.
+    drive : str
+        ``"current"`` (an ideal current source) or ``"voltage"`` (a voltage step on the coil).
+    duration : float (s) or str, optional
+        Length of the step responses; default ``"100ms"``.
+    step : str, optional
+        The current step ``"FROM..TO"`` (``"0A..2A"``); default 0 A to the maximum current.
+    bias : float (A) or str, optional
+        DC bias of the frequency response; default half the maximum current.
+    fluid_lag : float (s) or str, optional
+        First-order lag of the fluid's yield stress; default the library's.
+    conductivity : float (S/m) or str, optional
+        The flux-path steel's conductivity instead of the spec's or the library's.
+
+    Returns
+    -------
+    dict
+        The document of ``mrbrake response --json`` (``step`` per direction with ``t63_s``,
+        ``t90_s`` and the time histories, ``frequency_response`` points, ``bandwidth_rad_s``), SI.
+
+    Raises ``ValueError`` for bad input (the CLI's message), ``OSError`` for an unreadable spec,
+    :class:`SolverError` when a solve fails. Runs without the GIL.
+    """
+    return _native.response(spec, mesh, drive=drive, duration=duration, step=step, bias=bias,
+                            fluid_lag=fluid_lag, conductivity=conductivity)

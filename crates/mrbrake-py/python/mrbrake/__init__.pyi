@@ -137,3 +137,16 @@ def calibrate(
     record: Optional[List[str]] = ...,
 ) -> Dict[str, Any]:
     """Spec fields fitted to a rig log's loop (``mrbrake calibrate --json`` + ``calibrated_spec``)."""
+
+def response(
+    spec: Spec = ...,
+    mesh: str = ...,
+    *,
+    drive: str = ...,
+    duration: Optional[Quantity] = ...,
+    step: Optional[str] = ...,
+    bias: Optional[Quantity] = ...,
+    fluid_lag: Optional[Quantity] = ...,
+    conductivity: Optional[Quantity] = ...,
+) -> Dict[str, Any]:
+    """The predicted dynamics (``mrbrake response --json``); SI units."""
