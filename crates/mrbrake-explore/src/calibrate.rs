@@ -533,6 +533,8 @@ pub fn parse_parameter(
         Some(_) => field_bounds(&variable),
     };
     let nominal = nominal_value(spec_toml, &variable)?;
+    // Given bounds must lie in the field's range; the default ones are cut to it (a fill
+    // fraction of 1 gets [0.5, 1]).
     let (lower, upper) = match range {
         Some(range) => {
             let (lo, hi) = range
@@ -541,7 +543,10 @@ pub fn parse_parameter(
             (variable.parse_value(lo)?, variable.parse_value(hi)?)
         }
         None => match nominal {
-            Some(v) if v > 0.0 => (v * (1.0 - DEFAULT_SPAN), v * (1.0 + DEFAULT_SPAN)),
+            Some(v) if v > 0.0 => (
+                (v * (1.0 - DEFAULT_SPAN)).max(field.min),
+                (v * (1.0 + DEFAULT_SPAN)).min(field.max),
+            ),
             _ => {
                 return Err(bad(
                     "its value is zero or not given: give bounds, PATH=LOW..HIGH".into()
@@ -549,9 +554,8 @@ pub fn parse_parameter(
             }
         },
     };
-    let lower = if field.contains(lower) { lower } else { lower.max(field.min) };
-    let upper = upper.min(field.max);
-    if !(lower.is_finite() && upper.is_finite() && lower < upper && field.contains(lower)) {
+    let inside = field.contains(lower) && field.contains(upper);
+    if !(lower.is_finite() && upper.is_finite() && lower < upper && inside) {
         return Err(bad(format!(
             "the bounds must satisfy LOW < HIGH inside the field's range {}",
             field.describe(variable.quantity().map_or("", Quantity::unit))
@@ -806,6 +810,8 @@ mod tests {
         let expected = library.conductivity_s_per_m.as_ref().unwrap().value;
         assert!((sigma.start - expected).abs() < 1e-6 * expected, "{}", sigma.start);
         assert!(parse_parameter("drum.gap=1mm..0.5mm", &spec, true).is_err());
+        assert!(parse_parameter("fluid.fill_fraction=0.5..2", &spec, true).is_err());
+        assert!(parse_parameter("fluid.yield_stress_scale=0..1", &spec, true).is_err());
         assert!(parse_parameter("coil.turns", &spec, true).is_err());
     }
 
