@@ -232,33 +232,8 @@ pub struct Calibrated {
 pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
     let start = Instant::now();
     check_request(request)?;
-    let probe = DesignSpace::new(
-        &request.spec_toml,
-        &request.spec_origin,
-        &request.overrides,
-        &[],
-        request.settings.clone(),
-    )?;
-    // The base may be invalid until the parameters have their start values (a seal count set
-    // by `--set` whose torque is a parameter): only the start design must be a brake.
-    let base = probe.base_design()?;
-    let parameters = request
-        .parameters
-        .iter()
-        .map(|text| parse_parameter(text, &base.spec_toml, probe.is_drum()))
-        .collect::<Result<Vec<_>, _>>()?;
-    let names: Vec<String> = parameters.iter().map(|p| p.variable.path().to_string()).collect();
-    let space = DesignSpace::new(
-        &request.spec_toml,
-        &request.spec_origin,
-        &request.overrides,
-        &names,
-        request.settings.clone(),
-    )?;
+    let (parameters, space, start_spec) = parameter_space(request)?;
     let start_values: Vec<f64> = parameters.iter().map(|p| p.start).collect();
-    let start_spec = space.design(&start_values)?.spec.map_err(|source| {
-        ExploreError::InvalidBase { what: "mrbrake calibrate (at the parameters' start)", source }
-    })?;
     let options = analysis_options(request);
     let currents = compared_currents(start_spec.coil.max_current.a(), request.points);
     let measured = measure(&request.log, &currents)?;
@@ -267,16 +242,7 @@ pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
         None => None,
     };
     let model = Model { space: &space, options, measured: &measured.torque_nm, frd: frd.as_ref() };
-    let bounds: Vec<Parameter> = parameters
-        .iter()
-        .map(|p| Parameter { start: p.start, lower: p.lower, upper: p.upper })
-        .collect();
-    let fit =
-        with_threads(request.jobs, || calibrate(|x| model.residual(x), &bounds, &request.options))?
-            .map_err(|e| match e {
-                RunError::Uq(e) => ExploreError::Uq(e),
-                RunError::Model(e) => e,
-            })?;
+    let fit = fit(&model, &parameters, request)?;
     let (_, before_analysis, before_frd) = model.analyse(&start_values)?;
     let before = torques(&before_analysis);
     let (spec, analysis, after_frd) = model.analyse(&fit.estimate)?;
@@ -305,7 +271,7 @@ pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
     };
     let (torque_rms_before_nm, torque_rms_after_nm) = (rms(&before), rms(&after));
     let s = torque_rms_after_nm * residual_scale(after.len(), parameters.len());
-    let calibrated_spec = calibrated_text(request, &fitted, &measured, probe.is_drum())?;
+    let calibrated_spec = calibrated_text(request, &fitted, &measured, space.is_drum())?;
     let predictions = predictions(&request.settings, &start_spec, &spec);
     Ok(Calibrated {
         predictions,
@@ -325,6 +291,55 @@ pub fn run(request: &CalibrationRequest) -> Result<Calibrated, ExploreError> {
         spec,
         total_s: start.elapsed().as_secs_f64(),
     })
+}
+
+/// The parameters of `request`, the design space over them and the design at their start values.
+/// The base spec may be invalid until the parameters have their start values (a seal count set by
+/// `--set` whose torque is a parameter): only the start design must be a brake.
+fn parameter_space(
+    request: &CalibrationRequest,
+) -> Result<(Vec<ParameterRequest>, DesignSpace, BrakeSpec), ExploreError> {
+    let space_of = |names: &[String]| {
+        DesignSpace::new(
+            &request.spec_toml,
+            &request.spec_origin,
+            &request.overrides,
+            names,
+            request.settings.clone(),
+        )
+    };
+    let probe = space_of(&[])?;
+    let base = probe.base_design()?;
+    let parameters = request
+        .parameters
+        .iter()
+        .map(|text| parse_parameter(text, &base.spec_toml, probe.is_drum()))
+        .collect::<Result<Vec<_>, _>>()?;
+    let names: Vec<String> = parameters.iter().map(|p| p.variable.path().to_string()).collect();
+    let space = space_of(&names)?;
+    let start: Vec<f64> = parameters.iter().map(|p| p.start).collect();
+    let start_spec = space.design(&start)?.spec.map_err(|source| ExploreError::InvalidBase {
+        what: "mrbrake calibrate (at the parameters' start)",
+        source,
+    })?;
+    Ok((parameters, space, start_spec))
+}
+
+/// The least-squares fit of `model` over `parameters` on `request.jobs` threads.
+fn fit(
+    model: &Model<'_>,
+    parameters: &[ParameterRequest],
+    request: &CalibrationRequest,
+) -> Result<Calibration, ExploreError> {
+    let bounds: Vec<Parameter> = parameters
+        .iter()
+        .map(|p| Parameter { start: p.start, lower: p.lower, upper: p.upper })
+        .collect();
+    with_threads(request.jobs, || calibrate(|x| model.residual(x), &bounds, &request.options))?
+        .map_err(|e| match e {
+            RunError::Uq(e) => ExploreError::Uq(e),
+            RunError::Model(e) => e,
+        })
 }
 
 /// The study's recorded metrics of the start and the calibrated design (module docs).
@@ -381,16 +396,9 @@ fn check_request(request: &CalibrationRequest) -> Result<(), ExploreError> {
     Ok(())
 }
 
+/// The study's analysis options with the compared currents.
 fn analysis_options(request: &CalibrationRequest) -> AnalysisOptions {
-    let s = &request.settings;
-    AnalysisOptions {
-        mesh: s.mesh,
-        points: request.points,
-        speed_rad_s: s.speed_rad_s,
-        seal_friction_nm: s.seal_friction_nm,
-        temperature_c: s.temperature_c,
-        order: s.order,
-    }
+    AnalysisOptions { points: request.points, ..request.settings.analysis_options() }
 }
 
 /// The analysis's currents: `points` from 0 to `max_current` evenly.
@@ -670,34 +678,18 @@ fn averaged_samples(c: &Characterization) -> f64 {
 
 /// `MAD(ΔT) / (0.6745 √2)` (module docs).
 fn sample_noise(torque: &[f64]) -> f64 {
-    let mut differences: Vec<f64> = torque.windows(2).map(|w| w[1] - w[0]).collect();
-    if differences.is_empty() {
-        return 0.0;
-    }
-    let median = |v: &mut Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        let n = v.len();
-        if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
-    };
-    let centre = median(&mut differences);
-    let mut deviations: Vec<f64> = differences.iter().map(|d| (d - centre).abs()).collect();
-    median(&mut deviations) / (0.674_489_750_196_081_7 * std::f64::consts::SQRT_2)
+    // A log's samples are finite (the reader's rule); no differences (one sample) is no noise.
+    let median = |v: &[f64]| mrbrake_uq::statistics::percentile(v, 0.5).unwrap_or(0.0);
+    let differences: Vec<f64> = torque.windows(2).map(|w| w[1] - w[0]).collect();
+    let centre = median(&differences);
+    let deviations: Vec<f64> = differences.iter().map(|d| (d - centre).abs()).collect();
+    median(&deviations) / (0.674_489_750_196_081_7 * std::f64::consts::SQRT_2)
 }
 
 /// Linear interpolation in a branch's binned means (sorted by current), held at the ends.
 fn interpolate(points: &[(f64, f64)], x: f64) -> f64 {
-    let Some(first) = points.first() else { return f64::NAN };
-    if x <= first.0 {
-        return first.1;
-    }
-    for w in points.windows(2) {
-        let ((x0, y0), (x1, y1)) = (w[0], w[1]);
-        if x <= x1 {
-            let t = if x1 > x0 { (x - x0) / (x1 - x0) } else { 1.0 };
-            return y0 + t * (y1 - y0);
-        }
-    }
-    points[points.len() - 1].1
+    let (Some(first), Some(last)) = (points.first(), points.last()) else { return f64::NAN };
+    crate::uncertainty::band::torque_at(points, x.clamp(first.0, last.0)).unwrap_or(f64::NAN)
 }
 
 fn fitted_parameters(parameters: &[ParameterRequest], fit: &Calibration) -> Vec<FittedParameter> {

@@ -131,7 +131,8 @@ impl EvaluationSettings {
         Ok(())
     }
 
-    fn analysis_options(&self) -> AnalysisOptions {
+    /// The options of the static analysis of every evaluation (`curve_points` currents).
+    pub(crate) fn analysis_options(&self) -> AnalysisOptions {
         AnalysisOptions {
             mesh: self.mesh,
             points: self.curve_points,

@@ -2,8 +2,11 @@
 //! thermal` (the JSON the commands print: the serialised results of the same library calls) for
 //! the same design and settings; bad input stops a study before any analysis.
 
+mod common;
+
 use std::path::Path;
 
+use common::problem;
 use mrbrake_design::response::{ResponseOptions, response};
 use mrbrake_design::spec::default_spec;
 use mrbrake_design::thermal::{ThermalOptions, analyze_thermal};
@@ -11,30 +14,6 @@ use mrbrake_explore::evaluate::evaluate;
 use mrbrake_explore::problem::OptimizationProblem;
 use mrbrake_store::{MetricValue, Status};
 use serde_json::Value;
-
-/// A problem file on the embedded thesis brake, coarse mesh, asking for `record` with `extra`
-/// tables.
-fn problem(record: &str, extra: &str) -> OptimizationProblem {
-    let text = format!(
-        r#"
-spec = "thesis.toml"
-mesh = "coarse"
-record = [{record}]
-{extra}
-[[variable]]
-name = "g"
-min = "0.4mm"
-max = "0.6mm"
-[[objective]]
-metric = "rotor_inertia_kg_m2"
-[algorithm]
-kind = "nsga2"
-population = 4
-generations = 0
-"#
-    );
-    OptimizationProblem::from_toml_str(&text, Path::new("study.toml")).unwrap()
-}
 
 /// The metric's value; a bound beyond the analysed range (where the command's JSON has `null`)
 /// reads as `inf`, as `json_number` reads that `null`.

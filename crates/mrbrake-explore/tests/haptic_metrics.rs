@@ -4,8 +4,11 @@
 //! the model through its JSON text as through the file. A `[haptic]` table without a haptic
 //! metric leaves the design keys of a static study as they were.
 
+mod common;
+
 use std::path::Path;
 
+use common::{problem, problem_text};
 use mrbrake_design::analysis::{AnalysisOptions, AnalysisRequest};
 use mrbrake_design::response::{ResponseOptions, response};
 use mrbrake_design::spec::default_spec;
@@ -21,32 +24,6 @@ use serde_json::Value;
 
 const HAPTIC: &str = r#""withdraw_excess_torque_Nm", "release_time_s",
     "displayed_stiffness_Nm_per_rad", "free_motion_torque_Nm""#;
-
-fn problem(record: &str, extra: &str) -> OptimizationProblem {
-    OptimizationProblem::from_toml_str(&problem_text(record, extra), Path::new("study.toml"))
-        .unwrap()
-}
-
-fn problem_text(record: &str, extra: &str) -> String {
-    format!(
-        r#"
-spec = "thesis.toml"
-mesh = "coarse"
-record = [{record}]
-{extra}
-[[variable]]
-name = "g"
-min = "0.4mm"
-max = "0.6mm"
-[[objective]]
-metric = "rotor_inertia_kg_m2"
-[algorithm]
-kind = "nsga2"
-population = 4
-generations = 0
-"#
-    )
-}
 
 /// The metric's value; a bound beyond the analysed range (where the command's JSON has `null`)
 /// reads as `inf`, as the wall's `null`.

@@ -125,6 +125,18 @@ pub fn quantity(
     parse(&text, dimension).map_err(|e| error::input(format!("{name}: {e}")))
 }
 
+/// An optional [`quantity`]: absent or `None` stays `None`.
+pub fn optional(
+    value: Option<&Bound<'_, PyAny>>,
+    dimension: Dimension,
+    name: &str,
+) -> PyResult<Option<f64>> {
+    match value {
+        Some(v) if !v.is_none() => quantity(Some(v), "", dimension, name).map(Some),
+        _ => Ok(None),
+    }
+}
+
 /// `(nodes (N, 2) float64, triangles (M, 3) int64, values)`: a mesh for matplotlib's `tripcolor`
 /// with the values drawn on it.
 pub fn mesh_arrays<'py>(

@@ -10,7 +10,7 @@ use mrbrake::report::formula::{BrakeFormulaReport, CoilReport};
 use mrbrake::units::Dimension;
 use pyo3::prelude::*;
 
-use crate::convert::{json_to_py, quantity};
+use crate::convert::{json_to_py, optional, quantity};
 use crate::error;
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -19,18 +19,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(formula_multi_drum, m)?)?;
     m.add_function(wrap_pyfunction!(formula_coil, m)?)?;
     Ok(())
-}
-
-/// An optional quantity: `None` stays `None`.
-fn optional(
-    value: Option<&Bound<'_, PyAny>>,
-    dimension: Dimension,
-    name: &str,
-) -> PyResult<Option<f64>> {
-    match value {
-        Some(v) if !v.is_none() => quantity(Some(v), "", dimension, name).map(Some),
-        _ => Ok(None),
-    }
 }
 
 /// A required length.

@@ -8,24 +8,12 @@ use mrbrake::units::Dimension;
 use pyo3::prelude::*;
 use serde_json::Value;
 
-use crate::convert::{SpecInput, json_to_py, quantity};
+use crate::convert::{SpecInput, json_to_py, optional, quantity};
 use crate::error;
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(response_of, m)?)?;
     Ok(())
-}
-
-/// The optional quantity `value` (a number in SI or a string with a unit), `None` when absent.
-fn optional(
-    value: Option<&Bound<'_, PyAny>>,
-    dimension: Dimension,
-    name: &str,
-) -> PyResult<Option<f64>> {
-    match value {
-        Some(v) if !v.is_none() => quantity(Some(v), "", dimension, name).map(Some),
-        _ => Ok(None),
-    }
 }
 
 /// A response prediction; see `python/mrbrake/__init__.py` (`response`).

@@ -100,7 +100,37 @@ pub fn text(c: &Calibrated, name: &str) -> String {
         fit.termination,
         c.total_s
     );
-    out.push_str("parameters (start → estimate ± standard error, bounds):\n");
+    out.push_str(&parameters_text(c));
+    out.push_str(&format!(
+        "residual RMS {:.5} N·m → {:.5} N·m; noise {:.5} N·m per sample, {:.5} N·m per compared \
+         point; lack of fit {:.1} (1: the model explains the loop to within the noise)\n",
+        c.torque_rms_before_nm,
+        c.torque_rms_after_nm,
+        m.sample_noise_nm,
+        m.point_noise_nm,
+        c.lack_of_fit
+    ));
+    out.push_str("current [A]  measured [N·m]  before [N·m]  after [N·m]\n");
+    for k in 0..m.current_a.len() {
+        out.push_str(&format!(
+            "  {:>8.4}  {:>13.5}  {:>12.5}  {:>11.5}\n",
+            m.current_a[k], m.torque_nm[k], c.predicted_before_nm[k], c.predicted_after_nm[k]
+        ));
+    }
+    out.push_str(&predictions_text(c));
+    out.push_str(&format!(
+        "calibrated design: {:.4} N·m at the maximum current, {:.4} N·m off, coil time constant \
+         {:.2} ms",
+        c.analysis.torque.at_max_current_nm,
+        c.analysis.torque.off_state_nm,
+        c.analysis.coil.time_constant_s * 1e3
+    ));
+    out
+}
+
+/// The parameters with their errors, the correlations and the groups the data cannot separate.
+fn parameters_text(c: &Calibrated) -> String {
+    let mut out = String::from("parameters (start → estimate ± standard error, bounds):\n");
     for p in &c.parameters {
         let se = if p.standard_error.is_finite() {
             format!("{:.4e}", p.standard_error)
@@ -120,7 +150,7 @@ pub fn text(c: &Calibrated, name: &str) -> String {
     }
     if c.parameters.len() > 1 {
         out.push_str("correlation:\n");
-        for (p, row) in c.parameters.iter().zip(&fit.correlation) {
+        for (p, row) in c.parameters.iter().zip(&c.fit.correlation) {
             let cells: Vec<String> = row.iter().map(|r| format!("{r:>7.3}")).collect();
             out.push_str(&format!("  {:<28} {}\n", p.path, cells.join(" ")));
         }
@@ -133,26 +163,15 @@ pub fn text(c: &Calibrated, name: &str) -> String {
             group.join(", ")
         ));
     }
-    out.push_str(&format!(
-        "residual RMS {:.5} N·m → {:.5} N·m; noise {:.5} N·m per sample, {:.5} N·m per compared \
-         point; lack of fit {:.1} (1: the model explains the loop to within the noise)\n",
-        c.torque_rms_before_nm,
-        c.torque_rms_after_nm,
-        m.sample_noise_nm,
-        m.point_noise_nm,
-        c.lack_of_fit
-    ));
-    out.push_str("current [A]  measured [N·m]  before [N·m]  after [N·m]\n");
-    for k in 0..m.current_a.len() {
-        out.push_str(&format!(
-            "  {:>8.4}  {:>13.5}  {:>12.5}  {:>11.5}\n",
-            m.current_a[k], m.torque_nm[k], c.predicted_before_nm[k], c.predicted_after_nm[k]
-        ));
-    }
+    out
+}
+
+/// The frequency response's misfit and bandwidths, and the study metrics before and after.
+fn predictions_text(c: &Calibrated) -> String {
+    let mut out = String::new();
     if let Some(f) = &c.frequency_response {
         let bw = |frd: &Frd| {
-            frd.bandwidth_rad_s(MINUS_3_DB)
-                .map_or("beyond the data".to_string(), |b| format!("{b:.1} rad/s"))
+            bandwidth(frd).map_or("beyond the data".to_string(), |b| format!("{b:.1} rad/s"))
         };
         out.push_str(&format!(
             "frequency response ({}, bias {} A): RMS difference {:.4} → {:.4}; −3 dB bandwidth \
@@ -175,13 +194,6 @@ pub fn text(c: &Calibrated, name: &str) -> String {
             show(p.after)
         ));
     }
-    out.push_str(&format!(
-        "calibrated design: {:.4} N·m at the maximum current, {:.4} N·m off, coil time constant \
-         {:.2} ms",
-        c.analysis.torque.at_max_current_nm,
-        c.analysis.torque.off_state_nm,
-        c.analysis.coil.time_constant_s * 1e3
-    ));
     out
 }
 
@@ -247,14 +259,11 @@ pub fn figure(c: &Calibrated) -> Figure {
 }
 
 /// The frequency-response block of the JSON: measured and predicted points and bandwidths.
+/// The points are sysid's one serialisation of an `Frd` (`omega_rad_s`, `magnitude_dB`,
+/// `phase_deg`, `re`, `im`).
 fn frequency_json(f: &FrequencyFit) -> Value {
-    let points = |frd: &Frd| -> Vec<Value> {
-        frd.points
-            .iter()
-            .map(|p| json!({"omega_rad_s": p.omega_rad_s, "magnitude_dB": p.magnitude_db(), "phase_deg": p.phase_deg()}))
-            .collect()
-    };
-    let bandwidth = |frd: &Frd| frd.bandwidth_rad_s(MINUS_3_DB).map_or(Value::Null, |b| json!(b));
+    let points = |frd: &Frd| serde_json::to_value(frd).unwrap_or(Value::Null);
+    let bandwidth = |frd: &Frd| bandwidth(frd).map_or(Value::Null, |b| json!(b));
     json!({
         "frd": f.source,
         "bias_A": f.bias_a,
@@ -267,4 +276,9 @@ fn frequency_json(f: &FrequencyFit) -> Value {
         "predicted_before": points(&f.before),
         "predicted_after": points(&f.after),
     })
+}
+
+/// The −3 dB bandwidth of a response normalised to unit DC gain (the design crate's convention).
+fn bandwidth(frd: &Frd) -> Option<f64> {
+    frd.bandwidth_rad_s(MINUS_3_DB)
 }

@@ -8,31 +8,58 @@ pub mod plots;
 
 use serde_json::{Map, Value, json};
 
-use mrbrake_explore::uncertainty::Uncertainty;
+use mrbrake_explore::uncertainty::{InputReport, Uncertainty};
+
+/// One declared input: its name, law (parameters in SI, in the field's unit), truncation and
+/// moments.
+fn input_json(i: &InputReport) -> Value {
+    // The law's parameters, without its own tag.
+    let mut entry = serde_json::to_value(i.law.law()).unwrap_or(Value::Null);
+    let law = entry.as_object_mut().map(std::mem::take).unwrap_or_default();
+    let mut object = Map::new();
+    object.insert("name".into(), json!(i.name));
+    object.insert("distribution".into(), json!(i.distribution));
+    object.insert("unit".into(), json!(i.unit));
+    for (key, value) in law {
+        object.entry(key).or_insert(value);
+    }
+    let truncation = i.law.truncation().map(|t| json!([t.lower, t.upper]));
+    object.insert("truncation".into(), truncation.unwrap_or(Value::Null));
+    // The moments after truncation (the law's own `mean`/`std_dev` are before it).
+    object.insert("moments".into(), json!({ "mean": i.mean, "std": i.std }));
+    Value::Object(object)
+}
+
+/// Per metric: the Sobol' indices per input, and the surrogate behind them.
+fn sobol_json(u: &Uncertainty) -> (Map<String, Value>, Map<String, Value>) {
+    let mut sobol = Map::new();
+    let mut surrogates = Map::new();
+    for (metric, s) in &u.sobol {
+        let per_input: Map<String, Value> = s
+            .inputs
+            .iter()
+            .map(|(input, ix)| {
+                let v = json!({
+                    "first": ix.first, "total": ix.total,
+                    "first_ci": ix.first_ci, "total_ci": ix.total_ci,
+                });
+                (input.clone(), v)
+            })
+            .collect();
+        sobol.insert(metric.clone(), Value::Object(per_input));
+        let g = &s.surrogate;
+        let v = json!({
+            "kind": g.kind, "loo_error": g.loo_error, "degree": g.degree, "terms": g.terms,
+            "samples": g.samples,
+        });
+        surrogates.insert(metric.clone(), v);
+    }
+    (sobol, surrogates)
+}
 
 /// The JSON of a propagation.
 pub fn json(u: &Uncertainty) -> Value {
-    let inputs: Vec<Value> = u
-        .inputs
-        .iter()
-        .map(|i| {
-            // The law's parameters (SI, in the field's unit), without its own tag.
-            let mut entry = serde_json::to_value(i.law.law()).unwrap_or(Value::Null);
-            let law = entry.as_object_mut().map(std::mem::take).unwrap_or_default();
-            let mut object = Map::new();
-            object.insert("name".into(), json!(i.name));
-            object.insert("distribution".into(), json!(i.distribution));
-            object.insert("unit".into(), json!(i.unit));
-            for (key, value) in law {
-                object.entry(key).or_insert(value);
-            }
-            let truncation = i.law.truncation().map(|t| json!([t.lower, t.upper]));
-            object.insert("truncation".into(), truncation.unwrap_or(Value::Null));
-            // The moments after truncation (the law's own `mean`/`std_dev` are before it).
-            object.insert("moments".into(), json!({ "mean": i.mean, "std": i.std }));
-            Value::Object(object)
-        })
-        .collect();
+    let inputs: Vec<Value> = u.inputs.iter().map(input_json).collect();
     let outputs: Map<String, Value> = u
         .outputs
         .iter()
@@ -44,36 +71,7 @@ pub fn json(u: &Uncertainty) -> Value {
             (name.clone(), summary)
         })
         .collect();
-    let sobol: Map<String, Value> = u
-        .sobol
-        .iter()
-        .map(|(metric, s)| {
-            let per_input: Map<String, Value> = s
-                .inputs
-                .iter()
-                .map(|(input, ix)| {
-                    let v = json!({
-                        "first": ix.first, "total": ix.total,
-                        "first_ci": ix.first_ci, "total_ci": ix.total_ci,
-                    });
-                    (input.clone(), v)
-                })
-                .collect();
-            (metric.clone(), Value::Object(per_input))
-        })
-        .collect();
-    let surrogates: Map<String, Value> = u
-        .sobol
-        .iter()
-        .map(|(metric, s)| {
-            let g = &s.surrogate;
-            let v = json!({
-                "kind": g.kind, "loo_error": g.loo_error, "degree": g.degree, "terms": g.terms,
-                "samples": g.samples,
-            });
-            (metric.clone(), v)
-        })
-        .collect();
+    let (sobol, surrogates) = sobol_json(u);
     let band: Vec<Value> = u
         .torque_band
         .iter()
