@@ -241,3 +241,37 @@ proptest::proptest! {
         }
     }
 }
+
+/// CI's proptest found a 23.6° triangle at a 90° corner of a rectangle grid: spade skips a skinny
+/// triangle whose shortest edge joins two of its own splits of segments that meet at a corner, as
+/// if the input angle there were small. The mesher now refines such triangles in a further pass.
+#[test]
+fn skinny_triangles_at_right_angled_corners_are_refined() {
+    let widths = [1.6566443529105148, 0.321099820139515, 1.8578536176427234];
+    let heights = [0.857606100962271, 0.20414773544985657, 2.6503750629638314];
+    let edges = |sizes: &[f64]| -> Vec<f64> {
+        std::iter::once(0.0)
+            .chain(sizes.iter().scan(0.0, |s, w| {
+                *s += w;
+                Some(*s)
+            }))
+            .collect()
+    };
+    let (rs, zs) = (edges(&widths), edges(&heights));
+    let mut g = Pslg::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            g.add_rectangle(rs[i], rs[i + 1], zs[j], zs[j + 1]).unwrap();
+            g.add_seed(
+                [0.5 * (rs[i] + rs[i + 1]), 0.5 * (zs[j] + zs[j + 1])],
+                (3 * i + j + 1) as u32,
+            );
+        }
+    }
+    let size = SizeField::uniform(0.5).with_region(5, 0.0625);
+    let mesh = triangulate(&g, &size, &MeshOptions::default()).unwrap();
+    let worst = (0..mesh.triangles.len())
+        .map(|t| super::quality::min_angle_deg(super::quality::triangle_points(&mesh, t)))
+        .fold(f64::INFINITY, f64::min);
+    assert!(worst >= 28.0 - 1e-6, "smallest angle {worst}");
+}

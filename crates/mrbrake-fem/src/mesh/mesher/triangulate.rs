@@ -99,6 +99,7 @@ fn refine(
     let angle = AngleLimit::from_deg(options.min_angle_deg);
     let max_area = 3f64.sqrt() / 4.0 * resolved.field.max_edge_m * resolved.field.max_edge_m;
     let mut passes = 0;
+    let mut last_skinny = usize::MAX;
     loop {
         passes += 1;
         let params = RefinementParameters::<f64>::new()
@@ -118,7 +119,17 @@ fn refine(
         let tags = flood_fill(cdt, graph, options.default_tag)?;
         let centroids = oversized_centroids(cdt, &tags, resolved);
         if centroids.is_empty() {
-            return Ok(tags);
+            // spade skips a skinny triangle whose shortest edge joins two of its own segment
+            // splits that share an input vertex, as if the input angle there were small — also
+            // at a 90° corner. Its record of those splits lives for one `refine` call only, so
+            // another pass refines them; stop when a pass no longer reduces their number (what
+            // is left sits at truly small input angles, where no refinement can help).
+            let skinny = skinny_count(cdt, &tags, options.min_angle_deg);
+            if skinny == 0 || skinny >= last_skinny || passes >= options.max_passes {
+                return Ok(tags);
+            }
+            last_skinny = skinny;
+            continue;
         }
         if cdt.num_vertices() + centroids.len() > options.max_vertices {
             return Err(over_budget(options.max_vertices, "refining to the size field"));
@@ -136,6 +147,17 @@ fn refine(
                 .map_err(|e| FemError::Numerical(format!("inserting a refinement point: {e:?}")))?;
         }
     }
+}
+
+/// The number of region triangles whose smallest angle is below the limit (degrees).
+fn skinny_count(cdt: &Cdt, tags: &[FaceRegion], min_angle_deg: f64) -> usize {
+    cdt.inner_faces()
+        .filter(|face| tags[face.fix().index()].region().is_some())
+        .filter(|face| {
+            let p = face.positions().map(|q| [q.x, q.y]);
+            super::quality::min_angle_deg(p) < min_angle_deg - 1e-6
+        })
+        .count()
 }
 
 /// The centroids of the region triangles whose area exceeds that of the equilateral triangle of
