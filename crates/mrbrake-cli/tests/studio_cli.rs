@@ -175,6 +175,79 @@ fn the_studio_edits_solves_and_matches_the_cli() {
     }
 }
 
+/// Waits until the page's analysis on request `name` is done and returns the exact value of its
+/// key figure at `pointer` (`data-value`).
+fn requested_value(b: &mut Browser, tab: &Tab, name: &str, pointer: &str) -> serde_json::Value {
+    let done = format!(
+        "(() => {{ const c = document.querySelector('.chip[data-request={name}]'); \
+         if (c && c.dataset.status === 'failed') throw new Error(c.textContent); \
+         return c && c.dataset.status === 'done'; }})()"
+    );
+    b.wait_until(tab, &done, 900, &format!("the {name} analysis"));
+    let cell = format!(
+        "document.querySelector('section.request[data-request={name}] td[data-pointer=\"{pointer}\"]').dataset.value"
+    );
+    let text = b.eval(tab, &cell);
+    serde_json::from_str(text.as_str().expect("a value on the page")).unwrap()
+}
+
+/// The analyses on request (step/frequency response, haptic wall with the design's brake model)
+/// show the numbers of the CLI commands they name, with their figures; an edit drops a running
+/// one.
+#[test]
+fn the_studio_runs_response_and_haptic_wall_on_request_as_the_cli() {
+    let Some(chromium) = browser::find() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(&[]);
+    let mut b = Browser::start(&chromium);
+    let tab = b.open(&server.url, 1500, 1000);
+    b.wait_until(&tab, "document.body.dataset.ready === '1'", 60, "the page to be ready");
+    solved_torque(&mut b, &tab, "default");
+    b.eval(&tab, "document.querySelector('[data-analysis=haptic]').click(), true");
+    b.eval(&tab, "document.querySelector('[data-analysis=response]').click(), true");
+    let stiffness = requested_value(&mut b, &tab, "haptic", "/displayed_stiffness_Nm_per_rad");
+    let free = requested_value(&mut b, &tab, "haptic", "/free_motion_torque_Nm");
+    let model = dir.path().join("model.json");
+    json(&["analyze", "--save-model", path_str(&model), "--json"]);
+    let wall = json(&[
+        "haptic",
+        "wall",
+        "--device",
+        "bidirectional",
+        "--brake-model",
+        path_str(&model),
+        "--json",
+    ]);
+    // Equal to round-off (a parallel sum's order may differ between two processes).
+    let same = |shown: &serde_json::Value, cli: &serde_json::Value, what: &str| {
+        let (a, b) = (shown.as_f64().unwrap(), cli.as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-9 * b.abs(), "{what}: {a} on the page, {b} from the CLI");
+    };
+    same(&stiffness, &wall["displayed_stiffness_Nm_per_rad"], "displayed stiffness");
+    same(&free, &wall["free_motion_torque_Nm"], "free-motion torque");
+    let bandwidth = requested_value(&mut b, &tab, "response", "/bandwidth_rad_s");
+    same(&bandwidth, &json(&["response", "--json"])["bandwidth_rad_s"], "bandwidth");
+    let figures =
+        b.eval(&tab, "[...document.querySelectorAll('section.request figure .svg svg')].length");
+    assert_eq!(figures, 3, "step, Bode and wall figures");
+
+    // An edit drops the analysis that is running and marks the shown ones as of an earlier edit.
+    b.eval(&tab, "document.querySelector('[data-analysis=response]').click(), true");
+    set_field(&mut b, &tab, "drum.gap", "0.6mm");
+    let chip = "document.querySelector('.chip[data-request=response]')";
+    b.wait_until(
+        &tab,
+        &format!("{chip}.dataset.status === 'cancelled'"),
+        60,
+        "the dropped analysis",
+    );
+    let haptic = b.eval(&tab, "document.querySelector('.chip[data-request=haptic]').textContent");
+    assert!(haptic.as_str().unwrap().contains("of an earlier edit"), "{haptic}");
+    let (errors, requests) = b.tab_problems(&tab, &server.origin());
+    assert!(errors.is_empty(), "console errors: {errors:?}");
+    assert!(requests.is_empty(), "requests leaving the server: {requests:?}");
+}
+
 /// Every control has an accessible name, figures are labelled, and Tab moves through the form.
 fn check_accessibility(b: &mut Browser, tab: &Tab) {
     let unnamed = b.eval(

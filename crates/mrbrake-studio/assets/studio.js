@@ -191,6 +191,7 @@ function render(state) {
   renderFigures(state);
   renderDownloads(state);
   renderCompare(state);
+  renderRequests(state);
   const solved = state.stages.filter((s) => s.status === 'done').length;
   document.getElementById('pin').disabled = solved === 0;
 }
@@ -325,6 +326,84 @@ function renderDownloads(state) {
   link('dl-model', 'model.json', solved);
   link('dl-curve', 'curve.csv', solved);
   link('dl-analysis', 'analysis.json', solved);
+}
+
+// --- analyses on request: the CLI's JSON of response, thermal and haptic wall -----------------
+const REQUESTS = {
+  response: {
+    title: 'Step and frequency response',
+    figures: [['step', 'Torque after a current step'], ['bode', 'Small-signal frequency response']],
+    rows: [
+      ['−3 dB bandwidth', '/bandwidth_rad_s', 1, 'rad/s', 4],
+      ['small-signal gain dT/dI', '/dc_gain_Nm_per_A', 1, 'N·m/A', 4],
+      ['t63 after the step up', '/step/0/t63_s', 1e3, 'ms', 3],
+      ['t90 after the step up', '/step/0/t90_s', 1e3, 'ms', 3],
+      ['t63, direction 2', '/step/1/t63_s', 1e3, 'ms', 3],
+    ],
+  },
+  thermal: {
+    title: 'Warm-up and continuous rating',
+    figures: [['warmup', 'Coil warm-up']],
+    rows: [
+      ['continuous current', '/continuous_current_A', 1, 'A', 4],
+      ['coil hottest, steady', '/steady/coil_max_T_C', 1, '°C', 4],
+      ['time to the insulation limit', '/time_to_limit_s', 1, 's', 4],
+      ['largest duty at the maximum current', '/max_duty_at_max_current', 1, '–', 3],
+      ['torque, hot coil (current drive)', '/behaviour/torque_hot_current_drive_Nm', 1, 'N·m', 4],
+      ['off-state torque, hot', '/behaviour/off_state_torque_hot_Nm', 1, 'N·m', 3],
+    ],
+  },
+  haptic: {
+    title: 'Haptic wall with this design',
+    figures: [['wall', 'Press and withdraw']],
+    rows: [
+      ['displayed stiffness', '/displayed_stiffness_Nm_per_rad', 1, 'N·m/rad', 4],
+      ['excess torque on withdrawal (peak)', '/withdraw_excess_torque_Nm/peak', 1, 'N·m', 3],
+      ['release time', '/release_time_s', 1, 's', 4],
+      ['free-motion torque', '/free_motion_torque_Nm', 1, 'N·m', 3],
+    ],
+  },
+};
+
+function renderRequests(state) {
+  const requests = state.requests || [];
+  const busy = requests.some((r) => r.status === 'queued' || r.status === 'running');
+  document.getElementById('analyses-cancel').disabled = !busy;
+  for (const button of document.querySelectorAll('[data-analysis]')) {
+    const r = requests.find((q) => q.name === button.dataset.analysis);
+    button.disabled = !(state.instant && state.instant.valid) || (r && (r.status === 'queued' || r.status === 'running'));
+  }
+  const box = document.getElementById('analysis-results');
+  const shown = requests.filter((r) => r.status !== 'idle');
+  box.replaceChildren(...shown.map((r) => requestBlock(r, state.version)));
+}
+
+function requestBlock(r, version) {
+  const what = REQUESTS[r.name];
+  const result = r.result || {};
+  const stale = result.version !== undefined && result.version !== version ? ' (of an earlier edit)' : '';
+  const time = r.status === 'done' ? ` in ${result.elapsed_s.toFixed(2)} s` : '';
+  const chip = el('span', { class: `chip ${r.status}`, 'data-request': r.name, 'data-status': r.status }, `${what.title}: ${r.status}${time}${stale}`);
+  const block = el('section', { class: 'request', 'data-request': r.name, 'aria-label': what.title }, chip);
+  if (r.status === 'failed') block.append(el('p', { class: 'error' }, `${what.title} failed: ${result.error}`));
+  if (r.status !== 'done') return block;
+  const rows = what.rows
+    .map(([label, path, scale, unit, digits]) => [label, pointer(result.result, path), scale, unit, digits, path])
+    .filter(([, value]) => value !== undefined)
+    .map(([label, value, scale, unit, digits, path]) => figureRow(label, value, scale, unit, digits, 'on request', path));
+  const table = el('table', { class: 'figures' }, el('caption', {}, `${what.title}: key figures (null: not reached or not resolved)`), el('tbody', {}, ...rows));
+  const figures = what.figures.map(([key, caption]) => {
+    const holder = el('div', { class: 'svg' });
+    setMarkup(holder, result.figures[key], '');
+    return el('figure', { 'data-figure': key }, el('figcaption', {}, caption), holder);
+  });
+  const notes = (result.notes || []).map((n) => el('p', { class: 'warning' }, n));
+  block.append(table, el('div', { class: 'grid' }, ...figures), ...notes, el('p', { class: 'cli' }, 'The same numbers: ', el('code', {}, result.cli)));
+  return block;
+}
+
+async function ask(path) {
+  try { render(await api('POST', sessionPath(path))); } catch (e) { say(e.message); }
 }
 
 // --- compare: pinned designs ----------------------------------------------------------------
@@ -492,6 +571,10 @@ function wire() {
     clearTimeout(timer);
     timer = setTimeout(() => { studio.sentText = area.value; send({ text: area.value }); }, 350);
   });
+  for (const button of document.querySelectorAll('[data-analysis]')) {
+    button.addEventListener('click', () => ask(`/analyses/${button.dataset.analysis}`));
+  }
+  document.getElementById('analyses-cancel').addEventListener('click', () => ask('/analyses/cancel'));
   document.getElementById('undo').addEventListener('click', () => send({ action: 'undo' }));
   document.getElementById('redo').addEventListener('click', () => send({ action: 'redo' }));
   document.getElementById('pin').addEventListener('click', async () => {

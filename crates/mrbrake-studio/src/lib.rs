@@ -1,15 +1,17 @@
 //! `mrbrake studio`: design a brake in the browser. A local web application served by the
 //! `mrbrake` binary: a form built from the spec's schema beside its TOML text, the cross-section
 //! and the parts at once, a coarse-mesh solve then the default-mesh solve of every edit (a newer
-//! edit cancels the older solve), pinned designs to compare, undo and redo, a results store's
-//! Pareto front, and downloads (spec, HTML report, brake model, curves).
+//! edit cancels the older solve), the response, thermal and haptic-wall analyses on request,
+//! pinned designs to compare, undo and redo, a results store's Pareto front, and downloads (spec,
+//! HTML report, brake model, curves).
 //!
 //! Brief overview: [`Studio::start`] binds the server ([`Config`]: address, port, the spec or
 //! store the user opened, [`Limits`]) and returns at once with its [`Studio::url`] (token
 //! included); [`Studio::wait`] serves until the process ends, [`Studio::shut_down`] stops it.
 //! Modules: `security` (token, Host and Origin checks), `server` (HTTP on `tiny_http`, body
 //! limits, routes), `session` (a tab's spec, history, results), `solve` (the bounded queue and
-//! its workers), `study` (the store's records and front), `downloads`, `assets` (the page:
+//! its workers), `on_request` (the response, thermal and haptic analyses the page asks for),
+//! `study` (the store's records and front), `downloads`, `assets` (the page:
 //! plain HTML, CSS and JavaScript embedded with `include_str!`, no build step).
 //!
 //! # No numerics here
@@ -25,7 +27,8 @@
 //!   printed URL; the page sends it in a header), a `Host` naming this server (DNS rebinding) and,
 //!   when present, an `Origin` of this server (cross-site requests); otherwise 403.
 //! - Request bodies are bounded ([`Limits::body_bytes`], 413), specs too ([`Limits::spec_bytes`]).
-//! - The solve queue holds at most one entry per session and sessions are bounded
+//! - The solve queue holds at most one entry per session and job (the static solves, each
+//!   analysis on request) and sessions are bounded
 //!   ([`Limits::sessions`], the least recently used is closed); [`Config::workers`] solves run at
 //!   once, at most one per core.
 //! - No request names a file: the server reads only the spec and the store given on its command
@@ -45,6 +48,7 @@
 
 mod assets;
 mod downloads;
+mod on_request;
 mod security;
 mod server;
 mod session;

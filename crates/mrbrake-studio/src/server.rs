@@ -9,9 +9,10 @@ use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
 
+use crate::on_request::Kind;
 use crate::security::{Guard, TOKEN_HEADER, Token, query_value};
 use crate::session::{Edit, Session};
-use crate::solve::{Queue, QueueStats, STAGES};
+use crate::solve::{Job, Queue, QueueStats, STAGES};
 use crate::study::Study;
 use crate::{Config, Limits, StudioError, assets, downloads};
 
@@ -338,6 +339,11 @@ fn session_route(
             }
             Reply::json(&state_json(app, session))
         }
+        ("POST", ["analyses", "cancel"]) => {
+            session.cancel_requests();
+            Reply::json(&state_json(app, session))
+        }
+        ("POST", ["analyses", name]) => request(app, session, name),
         ("POST", ["pin"]) => pin(app, session, body),
         ("GET", ["download", name]) => downloads::download(session, name),
         ("DELETE", []) => {
@@ -403,6 +409,20 @@ fn edit(app: &App, session: &Arc<Session>, body: &[u8]) -> Reply {
     Reply::json(&state_json(app, session))
 }
 
+/// Asks for the analysis `name` (`response`, `thermal`, `haptic`) of the latest edit.
+fn request(app: &App, session: &Arc<Session>, name: &str) -> Reply {
+    let Some(kind) = Kind::from_name(name) else {
+        return Reply::error(404, "no such analysis: response, thermal or haptic");
+    };
+    if session.lock().spec.is_none() {
+        return Reply::error(409, "the spec has errors: fix them to analyse the design");
+    }
+    if session.request(kind) {
+        app.queue.submit_job(session, Job::Request(kind));
+    }
+    Reply::json(&state_json(app, session))
+}
+
 /// Pins the latest finished solve (`{"stage": "default"}`), or removes pin `{"remove": k}`.
 fn pin(app: &App, session: &Session, body: &[u8]) -> Reply {
     let request: Value = serde_json::from_slice(body).unwrap_or(Value::Null);
@@ -447,6 +467,11 @@ pub(crate) fn state_json(app: &App, session: &Session) -> Value {
             })
         })
         .collect();
+    let requests: Vec<Value> = Kind::ALL
+        .iter()
+        .zip(&state.requests)
+        .map(|(kind, r)| json!({ "name": kind.name(), "status": r.status, "result": r.result }))
+        .collect();
     let stats = app.queue.stats();
     json!({
         "id": session.id,
@@ -457,6 +482,7 @@ pub(crate) fn state_json(app: &App, session: &Session) -> Value {
         "instant": state.instant,
         "stages": stages,
         "pins": state.pins,
+        "requests": requests,
         "undo": undo,
         "redo": redo,
         "queue": { "waiting": stats.waiting, "running": stats.running },

@@ -16,6 +16,7 @@ use mrbrake_report::html::{Html, cross_section};
 use serde_json::{Value, json};
 
 use crate::Limits;
+use crate::on_request::Kind;
 
 /// What a client asks of the spec.
 #[derive(Debug, Clone)]
@@ -86,6 +87,9 @@ pub struct State {
     pub pins: Vec<Value>,
     /// The latest default-mesh solve, for the downloads.
     pub solved: Option<Arc<Solved>>,
+    /// The analyses run on request (response, thermal, haptic: [`Kind::ALL`]'s order); a result
+    /// names the version of the spec it is of.
+    pub requests: [Stage; 3],
     history_limit: usize,
 }
 
@@ -98,6 +102,7 @@ pub struct Session {
     state: Mutex<State>,
     changed: Condvar,
     generation: AtomicU64,
+    request_generation: AtomicU64,
 }
 
 impl Session {
@@ -115,6 +120,7 @@ impl Session {
             stages: Default::default(),
             pins: Vec::new(),
             solved: None,
+            requests: Kind::ALL.map(|_| Stage { status: "idle", ..Stage::default() }),
             history_limit: limits.history,
         };
         state.set_text_only(text);
@@ -123,6 +129,7 @@ impl Session {
             state: Mutex::new(state),
             changed: Condvar::new(),
             generation: AtomicU64::new(1),
+            request_generation: AtomicU64::new(1),
         })
     }
 
@@ -147,6 +154,41 @@ impl Session {
             }
         }
         self.notify(&mut state);
+    }
+
+    /// The generation of the analyses on request: one started at another is obsolete.
+    pub fn request_generation(&self) -> u64 {
+        self.request_generation.load(Ordering::SeqCst)
+    }
+
+    /// Queues the analysis `kind` of the latest edit; false when the spec has errors (nothing
+    /// to analyse) or `kind` is already waiting or running.
+    pub fn request(&self, kind: Kind) -> bool {
+        let mut state = self.lock();
+        let valid = state.spec.is_some();
+        let request = &mut state.requests[kind as usize];
+        if !valid || matches!(request.status, "queued" | "running") {
+            return false;
+        }
+        *request = Stage { status: "queued", ..Stage::default() };
+        self.notify(&mut state);
+        true
+    }
+
+    /// Cancels the waiting and running analyses on request (their results are dropped).
+    pub fn cancel_requests(&self) {
+        let mut state = self.lock();
+        self.drop_requests(&mut state);
+        self.notify(&mut state);
+    }
+
+    fn drop_requests(&self, state: &mut State) {
+        self.request_generation.fetch_add(1, Ordering::SeqCst);
+        for request in &mut state.requests {
+            if matches!(request.status, "queued" | "running") {
+                request.status = "cancelled";
+            }
+        }
     }
 
     /// Asks for the solves of the latest edit again (after a cancel or a failure); true when the
@@ -198,6 +240,8 @@ impl Session {
 
     fn changed_version(&self, state: &mut State) -> u64 {
         self.generation.fetch_add(1, Ordering::SeqCst);
+        // The analyses on request describe the design they started on: an edit drops them.
+        self.drop_requests(state);
         self.notify(state);
         state.version
     }

@@ -25,6 +25,7 @@ use mrbrake_report::field_map::field_map_svg;
 use mrbrake_report::html::inline_svg;
 use serde_json::{Value, json};
 
+use crate::on_request::{self, Kind};
 use crate::session::{Session, Solved, chain};
 
 /// A solve stage: the coarse mesh answers first, the default mesh replaces it.
@@ -70,10 +71,20 @@ impl Cancel<'_> {
     }
 }
 
-/// The queue of sessions waiting for a solve, and its workers' counters.
+/// What a worker does for a session: the static solves of its latest edit, or an analysis on
+/// request.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Job {
+    /// The coarse then the default-mesh solve.
+    Solve,
+    /// One analysis on request.
+    Request(Kind),
+}
+
+/// The queue of sessions waiting for a solve or an analysis, and its workers' counters.
 #[derive(Debug, Default)]
 pub struct Queue {
-    waiting: Mutex<VecDeque<Arc<Session>>>,
+    waiting: Mutex<VecDeque<(Arc<Session>, Job)>>,
     ready: Condvar,
     running: AtomicUsize,
     most_running: AtomicUsize,
@@ -97,9 +108,15 @@ pub struct QueueStats {
 impl Queue {
     /// Asks for a solve of `session`'s latest edit; a session already waiting keeps its place.
     pub fn submit(&self, session: &Arc<Session>) {
+        self.submit_job(session, Job::Solve);
+    }
+
+    /// Asks for `job` of `session`; a job already waiting keeps its place (so the queue holds at
+    /// most one entry per session and job: four).
+    pub fn submit_job(&self, session: &Arc<Session>, job: Job) {
         let mut waiting = self.waiting.lock().unwrap_or_else(|p| p.into_inner());
-        if !waiting.iter().any(|s| s.id == session.id) {
-            waiting.push_back(Arc::clone(session));
+        if !waiting.iter().any(|(s, j)| s.id == session.id && *j == job) {
+            waiting.push_back((Arc::clone(session), job));
             self.most_waiting.fetch_max(waiting.len(), Ordering::SeqCst);
         }
         self.ready.notify_one();
@@ -107,7 +124,7 @@ impl Queue {
 
     /// Forgets a closed session.
     pub fn remove(&self, id: &str) {
-        self.waiting.lock().unwrap_or_else(|p| p.into_inner()).retain(|s| s.id != id);
+        self.waiting.lock().unwrap_or_else(|p| p.into_inner()).retain(|(s, _)| s.id != id);
     }
 
     /// The counters.
@@ -126,15 +143,15 @@ impl Queue {
         self.ready.notify_all();
     }
 
-    /// The next session to solve, or `None` when shutting down.
-    fn next(&self) -> Option<Arc<Session>> {
+    /// The next session and job, or `None` when shutting down.
+    fn next(&self) -> Option<(Arc<Session>, Job)> {
         let mut waiting = self.waiting.lock().unwrap_or_else(|p| p.into_inner());
         loop {
             if self.stop.load(Ordering::SeqCst) {
                 return None;
             }
-            if let Some(session) = waiting.pop_front() {
-                return Some(session);
+            if let Some(entry) = waiting.pop_front() {
+                return Some(entry);
             }
             waiting = self.ready.wait(waiting).unwrap_or_else(|p| p.into_inner());
         }
@@ -142,10 +159,13 @@ impl Queue {
 
     /// A worker's loop: solve sessions until shut down.
     pub fn work(&self) {
-        while let Some(session) = self.next() {
+        while let Some((session, job)) = self.next() {
             let now = self.running.fetch_add(1, Ordering::SeqCst) + 1;
             self.most_running.fetch_max(now, Ordering::SeqCst);
-            solve_latest(&session);
+            match job {
+                Job::Solve => solve_latest(&session),
+                Job::Request(kind) => run_request(&session, kind),
+            }
             self.running.fetch_sub(1, Ordering::SeqCst);
         }
     }
@@ -190,6 +210,44 @@ fn solve_latest(session: &Session) {
         }
         session.notify(&mut state);
     }
+}
+
+/// Runs the analysis `kind` of the latest edit, unless a cancel or an edit makes it obsolete
+/// (its result is then dropped: see [`crate::on_request`]).
+fn run_request(session: &Session, kind: Kind) {
+    let k = kind as usize;
+    let (generation, version, spec, solved) = {
+        let mut state = session.lock();
+        let generation = session.request_generation();
+        if state.requests[k].status != "queued" {
+            return;
+        }
+        state.requests[k].status = "running";
+        session.notify(&mut state);
+        let solved = state.solved.clone().filter(|s| s.text == state.text);
+        (generation, state.version, state.spec.clone(), solved)
+    };
+    let outcome = match &spec {
+        Some(spec) => on_request::run(kind, spec, solved.as_deref()),
+        None => Err("the spec has errors: nothing to analyse".to_string()),
+    };
+    let mut state = session.lock();
+    if session.request_generation() != generation {
+        return;
+    }
+    let request = &mut state.requests[k];
+    match outcome {
+        Ok(mut result) => {
+            result["version"] = json!(version);
+            request.status = "done";
+            request.result = result;
+        }
+        Err(message) => {
+            request.status = "failed";
+            request.result = json!({ "error": message, "version": version });
+        }
+    }
+    session.notify(&mut state);
 }
 
 /// Changes stage `k` of a session that is still at `cancel`'s generation.

@@ -248,3 +248,96 @@ fn a_newer_edit_cancels_the_older_solve() {
     assert_eq!(s["stages"][1]["status"], "cancelled");
     r.studio.shut_down();
 }
+
+/// The analyses on request: an unknown one is refused; a cancel drops a waiting one at once and
+/// it never publishes a result; an edit drops them too; a spec with errors has nothing to analyse.
+#[test]
+fn analyses_on_request_are_cancelled_by_a_cancel_or_an_edit() {
+    let r = start(config(1));
+    let state = r.new_session();
+    let id = state["id"].as_str().unwrap().to_string();
+    let session = format!("/api/sessions/{id}");
+    let status_of = |s: &Value, k: usize| s["requests"][k]["status"].as_str().unwrap().to_string();
+    assert_eq!(status_of(&state, 1), "idle");
+    let (status, _) = r.api("POST", &format!("{session}/analyses/stress"), None);
+    assert_eq!(status, 404);
+    // The one worker is busy with the static solve: the thermal analysis waits, then is dropped.
+    let (_, s) = r.api("POST", &format!("{session}/analyses/thermal"), None);
+    assert_eq!(status_of(&s, 1), "queued");
+    let (_, s) = r.api("POST", &format!("{session}/analyses/cancel"), None);
+    assert_eq!(status_of(&s, 1), "cancelled");
+    let (_, s) = r.api("POST", &format!("{session}/analyses/response"), None);
+    assert_eq!(status_of(&s, 0), "queued");
+    let edit = format!("{session}/edit");
+    let (_, s) = r.api("POST", &edit, Some(json!({ "path": "drum.gap", "value": "0.6mm" })));
+    assert_eq!(status_of(&s, 0), "cancelled", "an edit drops the analysis of the older design");
+    r.api("POST", &format!("{session}/cancel"), None);
+    let deadline = Instant::now() + Duration::from_secs(300);
+    loop {
+        let (_, s) = r.api("GET", &session, None);
+        if s["queue"]["waiting"] == 0 && s["queue"]["running"] == 0 {
+            for k in [0, 1] {
+                assert_eq!(status_of(&s, k), "cancelled");
+                assert!(s["requests"][k]["result"].is_null(), "no result of a dropped analysis");
+            }
+            break;
+        }
+        assert!(Instant::now() < deadline, "the queue did not drain");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let (_, s) = r.api("POST", &edit, Some(json!({ "text": "name = [" })));
+    assert!(s["instant"]["valid"] == false, "{}", s["instant"]);
+    let (status, body) = r.api("POST", &format!("{session}/analyses/haptic"), None);
+    assert_eq!(status, 409, "{body}");
+    assert!(body["error"].as_str().unwrap().contains("the spec has errors"), "{body}");
+    r.studio.shut_down();
+}
+
+/// The thermal analysis on request answers `mrbrake thermal --json`'s numbers (the library call
+/// with the command's defaults: the spec's maximum current, what heat does to the brake).
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release only: a two-hour warm-up on the default mesh")]
+fn the_thermal_analysis_on_request_is_the_commands() {
+    use mrbrake_design::thermal::{ThermalOptions, analyze_thermal};
+    let r = start(config(1));
+    let id = r.new_session()["id"].as_str().unwrap().to_string();
+    let session = format!("/api/sessions/{id}");
+    r.api("POST", &format!("{session}/analyses/thermal"), None);
+    let deadline = Instant::now() + Duration::from_secs(600);
+    let answer = loop {
+        let (_, s) = r.api("GET", &session, None);
+        match s["requests"][1]["status"].as_str().unwrap() {
+            "done" => break s["requests"][1]["result"].clone(),
+            "failed" => panic!("{}", s["requests"][1]),
+            _ => {}
+        }
+        assert!(Instant::now() < deadline, "no thermal result");
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    let spec = mrbrake_design::spec::default_spec();
+    let options = ThermalOptions {
+        current_a: spec.coil.max_current.a(),
+        behaviour: true,
+        ..ThermalOptions::default()
+    };
+    let expected = serde_json::to_value(analyze_thermal(&spec, &options).unwrap()).unwrap();
+    // The heat solve's sums are not bit-reproducible across threads (parallel assembly): equal
+    // to round-off.
+    for pointer in [
+        "/continuous_current_A",
+        "/max_duty_at_max_current",
+        "/time_to_limit_s",
+        "/steady/coil_max_T_C",
+        "/steady/fluid_mean_T_C",
+        "/behaviour/torque_hot_current_drive_Nm",
+    ] {
+        let (got, want) = (&answer["result"].pointer(pointer), &expected.pointer(pointer));
+        match (got.and_then(Value::as_f64), want.and_then(Value::as_f64)) {
+            (Some(a), Some(b)) => assert!((a - b).abs() <= 1e-9 * b.abs(), "{pointer}: {a} vs {b}"),
+            _ => assert_eq!(got, want, "{pointer}"),
+        }
+    }
+    assert_eq!(answer["cli"], "mrbrake thermal SPEC --json");
+    assert!(answer["figures"]["warmup"].as_str().unwrap().contains("<svg"));
+    r.studio.shut_down();
+}
