@@ -303,3 +303,28 @@ fn a_saved_model_is_checked_as_the_simulators_use_it() {
         assert!(!model.exists());
     }
 }
+
+/// Class 6: a bare `gap = 0.5` (read in metres) is named at the gap, with the SI rule and the
+/// fix, before any geometric rule blames the envelope or the housing it overflows.
+#[test]
+fn a_bare_gap_in_metres_is_named_at_the_gap() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(SPEC).unwrap();
+    assert!(text.contains("gap = \"0.5mm\""), "the example's gap line moved");
+    let path = dir.path().join("bare-gap.toml");
+    std::fs::write(&path, text.replace("gap = \"0.5mm\"", "gap = 0.5")).unwrap();
+    let args = ["analyze", path_str(&path), "--mesh", "coarse"];
+    expect_input_error(
+        &args,
+        &[
+            "bare-gap.toml:26: disc.gap: 500 mm must be a fluid gap",
+            "a bare 0.5, read in metres (SI): write \"0.5mm\"",
+        ],
+    );
+    let err = String::from_utf8_lossy(&mrbrake(&args).stderr).to_string();
+    assert!(!err.contains("envelope") && !err.contains("housing"), "{err}");
+    // A gap with a unit, or a bare number that is a plausible gap, has no such note.
+    std::fs::write(&path, text.replace("gap = \"0.5mm\"", "gap = \"50mm\"")).unwrap();
+    expect_input_error(&args, &["disc.gap: 50 mm must be a fluid gap"]);
+    assert!(!String::from_utf8_lossy(&mrbrake(&args).stderr).contains("a bare"));
+}

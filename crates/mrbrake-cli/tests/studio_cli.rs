@@ -144,7 +144,7 @@ fn the_studio_edits_solves_and_matches_the_cli() {
         30,
         "the field error",
     );
-    assert!(error.as_str().unwrap().contains("must be a length in (0, 10 m)"), "{error}");
+    assert!(error.as_str().unwrap().contains("must be a fluid gap in (0, 10 mm]"), "{error}");
     let invalid =
         b.eval(&tab, "document.getElementById('f-drum-gap').getAttribute('aria-invalid')");
     assert_eq!(invalid, "true");

@@ -147,6 +147,11 @@ pub use mrbrake_schema::Bounds;
 
 /// Every length of a spec: positive, below a sanity bound of 10 m.
 pub const LENGTH_BOUNDS: Bounds = Bounds::open(0.0, 10.0);
+/// A fluid gap (m): positive, at most 10 mm. This tool's plausibility limit, not a law: the field
+/// a coil drives across the fluid falls with the gap's width, and the thesis's gaps are 0.5–1 mm
+/// (4.2.3, "depending on the manufacturing facility's capability"). Checked with the field itself,
+/// so a gap written as a bare `0.5` (metres) is named before the envelope it overflows.
+pub const GAP_BOUNDS: Bounds = Bounds::open_closed(0.0, 0.01);
 /// The maximum current (A): positive, at most 100 A.
 pub const MAX_CURRENT_BOUNDS: Bounds = Bounds::open_closed(0.0, 100.0);
 /// The wire's American wire gauge: 18 to 40 (the gauges `mrbrake_materials::wire` tabulates).
@@ -184,6 +189,10 @@ impl Eq for SpecField {}
 impl SpecField {
     const fn length(path: &'static str) -> Self {
         Self { path, quantity: Quantity::Length, bounds: LENGTH_BOUNDS }
+    }
+
+    const fn gap(path: &'static str) -> Self {
+        Self { path, quantity: Quantity::Length, bounds: GAP_BOUNDS }
     }
 
     const fn current(path: &'static str, bounds: Bounds) -> Self {
@@ -673,7 +682,7 @@ impl Drum {
         SpecField::length("drum.r0"),
         SpecField::length("drum.height"),
         SpecField::length("drum.cylinder_thickness"),
-        SpecField::length("drum.gap"),
+        SpecField::gap("drum.gap"),
         SpecField::integer("drum.rotating_cylinders", ROTOR_BOUNDS),
     ];
 
@@ -710,7 +719,7 @@ impl Disc {
         SpecField::length("disc.inner_radius"),
         SpecField::length("disc.outer_radius"),
         SpecField::length("disc.thickness"),
-        SpecField::length("disc.gap"),
+        SpecField::gap("disc.gap"),
         SpecField::integer("disc.count", ROTOR_BOUNDS),
     ];
 }

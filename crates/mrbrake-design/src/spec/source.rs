@@ -12,17 +12,19 @@ use toml::de::{DeTable, DeValue};
 pub struct SpecSource {
     origin: Option<String>,
     lines: BTreeMap<String, usize>,
+    /// The keys whose values are bare numbers, as written (`drum.gap` → `0.5`).
+    bare: BTreeMap<String, String>,
 }
 
 impl SpecSource {
     /// The lines of every key of `text`, read from `origin`. Text the TOML parser refuses has no
     /// lines (the spec parser then reports the error itself).
     pub(crate) fn read(origin: &str, text: &str) -> Self {
-        let mut lines = BTreeMap::new();
+        let mut source = Self { origin: Some(origin.to_string()), ..Self::default() };
         if let Ok(table) = DeTable::parse(text) {
-            collect_lines(table.get_ref(), "", &LineIndex::new(text), &mut lines);
+            source.collect(table.get_ref(), "", &LineIndex::new(text));
         }
-        Self { origin: Some(origin.to_string()), lines }
+        source
     }
 
     /// The file (or in-memory origin) the spec was read from.
@@ -46,29 +48,48 @@ impl SpecSource {
     pub(crate) fn locate(&self, errors: FieldErrors) -> FieldErrors {
         let Some(origin) = &self.origin else { return errors };
         let mut located = FieldErrors::new();
-        for error in errors {
+        for mut error in errors {
             let line = error.line.or_else(|| self.line_of(&error.field));
+            if let Some(hint) = self.bare_length_hint(&error.field) {
+                error.message.push_str(&hint);
+            }
             located.push(FieldError { file: Some(origin.clone()), line, ..error });
         }
         located
     }
-}
 
-fn collect_lines(
-    table: &DeTable<'_>,
-    prefix: &str,
-    index: &LineIndex,
-    lines: &mut BTreeMap<String, usize>,
-) {
-    for (key, value) in table {
-        let path = if prefix.is_empty() {
-            key.get_ref().to_string()
-        } else {
-            format!("{prefix}.{}", key.get_ref())
-        };
-        lines.entry(path.clone()).or_insert_with(|| index.line(key.span().start));
-        if let DeValue::Table(inner) = value.get_ref() {
-            collect_lines(inner, &path, index, lines);
+    /// For a length field the file gives as a bare number: that it is read in metres (SI), the
+    /// commonest slip being millimetres meant.
+    fn bare_length_hint(&self, field: &str) -> Option<String> {
+        let written = self.bare.get(field)?;
+        let is_length = super::numeric_fields()
+            .any(|f| f.path == field && f.quantity == super::Quantity::Length);
+        is_length.then(|| {
+            format!(
+                "; the file writes a bare {written}, read in metres (SI): write \"{written}mm\" if \
+                 millimetres were meant"
+            )
+        })
+    }
+
+    fn collect(&mut self, table: &DeTable<'_>, prefix: &str, index: &LineIndex) {
+        for (key, value) in table {
+            let path = if prefix.is_empty() {
+                key.get_ref().to_string()
+            } else {
+                format!("{prefix}.{}", key.get_ref())
+            };
+            self.lines.entry(path.clone()).or_insert_with(|| index.line(key.span().start));
+            match value.get_ref() {
+                DeValue::Table(inner) => self.collect(inner, &path, index),
+                DeValue::Integer(n) => {
+                    self.bare.insert(path, n.as_str().to_string());
+                }
+                DeValue::Float(x) => {
+                    self.bare.insert(path, x.as_str().to_string());
+                }
+                _ => {}
+            }
         }
     }
 }
@@ -104,7 +125,17 @@ mod tests {
         // A field the file does not have points at its table.
         assert_eq!(source.line_of("drum.height"), Some(3));
         assert_eq!(source.line_of("spacer.thickness"), None);
-        let located = source.locate(FieldError::new("drum.gap", "must be > 0").into());
-        assert_eq!(located.to_string(), "a.toml:5: drum.gap: must be > 0");
+        let located = source.locate(FieldError::new("drum.height", "must be > 0").into());
+        assert_eq!(located.to_string(), "a.toml:3: drum.height: must be > 0");
+        // A length written as a bare number is read in metres: its errors say so.
+        let located = source.locate(FieldError::new("drum.gap", "is too wide").into());
+        assert_eq!(
+            located.to_string(),
+            "a.toml:5: drum.gap: is too wide; the file writes a bare 2, read in metres (SI): \
+             write \"2mm\" if millimetres were meant"
+        );
+        // A bare number that is not a length has no such note.
+        let located = source.locate(FieldError::new("coil.wire.awg", "is odd").into());
+        assert_eq!(located.to_string(), "a.toml:7: coil.wire.awg: is odd");
     }
 }

@@ -6,7 +6,7 @@ use mrbrake_error::FieldErrors;
 use mrbrake_materials::MaterialKind;
 
 use super::{
-    AWG_BOUNDS, BrakeSpec, CoilPlacement, Configuration, ConfigurationKind, Disc, Drum,
+    AWG_BOUNDS, BrakeSpec, CoilPlacement, Configuration, ConfigurationKind, Disc, Drum, GAP_BOUNDS,
     LENGTH_BOUNDS, Length, MATERIAL_FIELDS, MAX_CURRENT_BOUNDS, RATED_CURRENT_BOUNDS, TURNS_BOUNDS,
     Warning, WorkingSurfaces, fmt_mm, turns_in_window,
 };
@@ -50,6 +50,21 @@ impl Problems {
         if !LENGTH_BOUNDS.contains(v) {
             let max = LENGTH_BOUNDS.max;
             self.error(field, format!("{} must be a length in (0, {max} m)", fmt_mm(v)));
+        }
+    }
+
+    /// A fluid gap within [`GAP_BOUNDS`].
+    pub fn gap(&mut self, field: &str, value: Length) {
+        let v = value.m();
+        if !GAP_BOUNDS.contains(v) {
+            self.error(
+                field,
+                format!(
+                    "{} must be a fluid gap in (0, {}]; the thesis's gaps are 0.5–1 mm",
+                    fmt_mm(v),
+                    fmt_mm(GAP_BOUNDS.max)
+                ),
+            );
         }
     }
 }
@@ -209,7 +224,7 @@ fn check_drum(d: &Drum, kind: ConfigurationKind, p: &mut Problems) {
     p.positive("drum.r0", d.r0);
     p.positive("drum.height", d.height);
     p.positive("drum.cylinder_thickness", d.cylinder_thickness);
-    p.positive("drum.gap", d.gap);
+    p.gap("drum.gap", d.gap);
     check_rotor_count("drum.rotating_cylinders", d.rotating_cylinders, kind, p);
 }
 
@@ -217,7 +232,7 @@ fn check_disc(d: &Disc, kind: ConfigurationKind, p: &mut Problems) {
     p.positive("disc.inner_radius", d.inner_radius);
     p.positive("disc.outer_radius", d.outer_radius);
     p.positive("disc.thickness", d.thickness);
-    p.positive("disc.gap", d.gap);
+    p.gap("disc.gap", d.gap);
     if d.outer_radius.m() <= d.inner_radius.m() {
         p.error(
             "disc.outer_radius",
