@@ -73,8 +73,8 @@ pub(crate) fn analyse(
     let norms: Vec<f64> =
         (0..p).map(|c| (0..m).map(|i| j[(i, c)].powi(2)).sum::<f64>().sqrt()).collect();
     let scaled = Mat::from_fn(m, p, |i, c| if norms[c] > 0.0 { j[(i, c)] / norms[c] } else { 0.0 });
-    let svd = if m >= p { scaled.thin_svd() } else { scaled.svd() }.map_err(|e| {
-        UqError::numerical(format!("the SVD of the Jacobian failed: {e:?}"), vec![])
+    let svd = if m >= p { scaled.thin_svd() } else { scaled.svd() }.map_err(|_| {
+        UqError::numerical("the SVD of the Jacobian did not converge".to_string(), vec![])
     })?;
     let (s_diag, v) = (svd.S().column_vector(), svd.V());
     let s: Vec<f64> = (0..p).map(|k| if k < s_diag.nrows() { s_diag[k] } else { 0.0 }).collect();

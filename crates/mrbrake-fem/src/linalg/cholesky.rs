@@ -39,6 +39,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
+use super::failure::faer_words;
 use crate::FemError;
 use crate::linalg::pattern::SymmetricPattern;
 
@@ -114,7 +115,9 @@ impl SparseCholesky {
             SymmetricOrdering::Identity,
             symbolic_params(n),
         )
-        .map_err(|e| FemError::Numerical(format!("symbolic Cholesky analysis failed: {e:?}")))?;
+        .map_err(|e| {
+            FemError::Numerical(format!("symbolic Cholesky analysis failed: {}", faer_words(&e)))
+        })?;
         let parallelism = if threads == 1 { Par::Seq } else { Par::rayon(threads) };
         let factor_req =
             symbolic.factorize_numeric_llt_scratch::<f64>(parallelism, Default::default());
@@ -616,7 +619,7 @@ fn amd_order(pattern: &SymmetricPattern) -> Result<Vec<usize>, FemError> {
         Default::default(),
         MemStack::new(&mut memory),
     )
-    .map_err(|e| FemError::Numerical(format!("AMD ordering failed: {e:?}")))?;
+    .map_err(|e| FemError::Numerical(format!("AMD ordering failed: {}", faer_words(&e))))?;
     Ok(forward)
 }
 

@@ -18,6 +18,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::traits::ComplexField;
 use faer::{MatMut, c64};
 
+use super::failure::{faer_words, lu_words};
 use crate::FemError;
 use crate::linalg::pattern::SymmetricPattern;
 
@@ -89,8 +90,9 @@ impl<T: ComplexField + Copy> SparseLu<T> {
             }
         }
         let structure = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        let symbolic = SymbolicLu::try_new(structure.as_ref())
-            .map_err(|e| FemError::Numerical(format!("symbolic LU analysis failed: {e:?}")))?;
+        let symbolic = SymbolicLu::try_new(structure.as_ref()).map_err(|e| {
+            FemError::Numerical(format!("symbolic LU analysis failed: {}", faer_words(&e)))
+        })?;
         let nnz = structure.compute_nnz();
         Ok(Self {
             structure,
@@ -116,8 +118,9 @@ impl<T: ComplexField + Copy> SparseLu<T> {
             self.values[b] = value;
         }
         let matrix = SparseColMatRef::new(self.structure.as_ref(), &self.values);
-        let lu = Lu::try_new_with_symbolic(self.symbolic.clone(), matrix)
-            .map_err(|e| FemError::Numerical(format!("sparse LU factorisation failed: {e:?}")))?;
+        let lu = Lu::try_new_with_symbolic(self.symbolic.clone(), matrix).map_err(|e| {
+            FemError::Numerical(format!("sparse LU factorisation failed: {}", lu_words(&e)))
+        })?;
         self.lu = Some(lu);
         Ok(())
     }

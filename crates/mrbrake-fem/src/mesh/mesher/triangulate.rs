@@ -143,8 +143,12 @@ fn refine(
             )));
         }
         for c in centroids {
-            cdt.insert(c)
-                .map_err(|e| FemError::Numerical(format!("inserting a refinement point: {e:?}")))?;
+            cdt.insert(c).map_err(|e| {
+                FemError::Numerical(format!(
+                    "inserting a refinement point: {}",
+                    coordinate_words(e)
+                ))
+            })?;
         }
     }
 }
@@ -205,6 +209,20 @@ impl FaceRegion {
     }
 }
 
+/// spade's refusal of a coordinate, in words (it prints as `Debug`, e.g. `TooSmall`).
+fn coordinate_words(e: spade::InsertionError) -> String {
+    match e {
+        spade::InsertionError::TooSmall => format!(
+            "a coordinate is nonzero but below {:e} m in magnitude",
+            spade::MIN_ALLOWED_VALUE
+        ),
+        spade::InsertionError::TooLarge => {
+            format!("a coordinate exceeds {:e} m in magnitude", spade::MAX_ALLOWED_VALUE)
+        }
+        spade::InsertionError::NAN => "a coordinate is not a number (NaN)".to_string(),
+    }
+}
+
 fn load(vertices: &[[f64; 2]], edges: &[[usize; 2]]) -> Result<Cdt, FemError> {
     let points: Vec<Point2<f64>> = vertices.iter().map(|p| Point2::new(p[0], p[1])).collect();
     let mut conflicts = Vec::new();
@@ -212,7 +230,7 @@ fn load(vertices: &[[f64; 2]], edges: &[[usize; 2]]) -> Result<Cdt, FemError> {
         Cdt::try_bulk_load_cdt(points, edges.to_vec(), |e| conflicts.push(e)).map_err(|e| {
             FemError::field(
                 "segments",
-                format!("mesher: the triangulation rejected the input: {e:?}"),
+                format!("mesher: the triangulation rejected the input: {}", coordinate_words(e)),
             )
         })?;
     if cdt.num_vertices() != vertices.len() {
