@@ -6,7 +6,8 @@
 //!   files, MSH 2.2 and 4.1, optimisation problem, rig configuration, CSV logs (characterisation),
 //!   sine-test manifest, FRD, inverse-model JSON, results store, and (issue 33) magnetodynamic
 //!   problem files, brake-model files, Preisach rigs with their minor-loop programs and the
-//!   `response`/`thermal` options — each with its seed corpus (the
+//!   `response`/`thermal` options, and the studio's HTTP endpoints (`targets::studio`: raw
+//!   requests to a running studio) — each with its seed corpus (the
 //!   files of `examples/` and the test fixtures, plus files the library writes itself) and a
 //!   function that feeds one input through the loader and, where cheap, the next stage.
 //! - [`mutate`] derives a new input from a corpus entry: byte flips, deletions, duplications,

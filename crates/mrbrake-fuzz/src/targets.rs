@@ -18,6 +18,7 @@ use mrbrake_sysid::tfest::{TfestOptions, tfest};
 use crate::Outcome;
 
 mod hardening;
+mod studio;
 
 /// One input format: its name, seed inputs and the function that runs one input.
 pub struct Target {
@@ -131,6 +132,7 @@ pub fn targets() -> Vec<Target> {
     ]
     .into_iter()
     .chain(hardening::targets())
+    .chain(studio::targets())
     .collect()
 }
 
