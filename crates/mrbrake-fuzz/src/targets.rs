@@ -17,6 +17,7 @@ use mrbrake_sysid::tfest::{TfestOptions, tfest};
 
 use crate::Outcome;
 
+mod cli;
 mod hardening;
 mod studio;
 
@@ -133,6 +134,7 @@ pub fn targets() -> Vec<Target> {
     .into_iter()
     .chain(hardening::targets())
     .chain(studio::targets())
+    .chain(cli::targets())
     .collect()
 }
 

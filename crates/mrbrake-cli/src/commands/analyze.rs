@@ -12,8 +12,8 @@ use mrbrake::report::analysis as report;
 use mrbrake::units::{Dimension, parse};
 
 use super::field_flags;
-use crate::error::CommandResult;
 use crate::error::InputError;
+use crate::error::{CommandResult, Context};
 use crate::output::{print_json, print_text};
 use crate::progress::ProgressDisplay;
 
@@ -114,8 +114,11 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
             a.points
         );
         let identity = mrbrake::explore::design::analysis_identity(&spec, &options)?;
+        // The model is checked as the simulators will run it: a refusal names the output flag
+        // and the spec it came from.
         let model =
-            mrbrake::device::brake_model::from_analysis(&analysis, &options, Some(identity), &how)?;
+            mrbrake::device::brake_model::from_analysis(&analysis, &options, Some(identity), &how)
+                .context(format!("--save-model {} (from {source})", path.display()))?;
         mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if a.json {
