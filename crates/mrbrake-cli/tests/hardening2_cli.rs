@@ -328,3 +328,17 @@ fn a_bare_gap_in_metres_is_named_at_the_gap() {
     expect_input_error(&args, &["disc.gap: 50 mm must be a fluid gap"]);
     assert!(!String::from_utf8_lossy(&mrbrake(&args).stderr).contains("a bare"));
 }
+
+/// Found by the fuzzer's `cli-analyze` target: a brake model the simulators cannot run (three
+/// currents of the drum example) was refused without naming the output, the flag or the spec.
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release only: an analysis of a brake")]
+fn an_unrunnable_saved_model_names_the_flag_and_the_spec() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("m.json");
+    let spec = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/specs/drum.toml");
+    let args =
+        ["analyze", spec, "--mesh", "coarse", "--points", "3", "--save-model", path_str(&model)];
+    expect_input_error(&args, &["--save-model", "m.json", "drum.toml", "static_curve"]);
+    assert!(!model.exists(), "nothing written");
+}
