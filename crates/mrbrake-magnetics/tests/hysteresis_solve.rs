@@ -99,7 +99,7 @@ fn uniform_field_loop_equals_the_material_model() {
             worst_b = worst_b.max((b.b_z_t - expected).abs()).max(b.b_r_t.abs());
             let h_fea = followed.step(&params, b.b_z_t).h;
             worst_h = worst_h.max((h_fea - h).abs() / (8000.0f64).max(h.abs()));
-            assert!(commit.max_perpendicular_b_t < 1e-5, "{order:?}: the field turned: {commit:?}");
+            assert!(commit.max_perpendicular_b_t < 1e-4, "{order:?}: the field turned: {commit:?}");
         }
         match order {
             ElementOrder::P2 => assert!(worst_b < 1e-5, "P2: largest |B − B_model| = {worst_b} T"),
