@@ -665,18 +665,18 @@ fn run_analysis<F>(
 }
 
 /// The field solver of one brake, with the coils of each unit and the fluid of its gaps.
-struct Model {
-    geometry: BrakeGeometry,
+pub(crate) struct Model {
+    pub(crate) geometry: BrakeGeometry,
     fluid: GapMedium,
-    solver: Solver,
+    pub(crate) solver: Solver,
     /// Coil tags of unit 1 and unit 2 (empty for a single brake).
     unit_coils: [Vec<u32>; 2],
-    max_current: f64,
+    pub(crate) max_current: f64,
     turns: u32,
     order: ElementOrder,
     /// The off-state torque's breakdown; its terms besides the viscous one are the constant
     /// friction added to every torque.
-    off_state: OffStateTorque,
+    pub(crate) off_state: OffStateTorque,
 }
 
 /// The direction-1 sweep: the curve, unit 1's gaps and the solution at the maximum current.
@@ -698,7 +698,7 @@ struct Solved {
 
 impl Model {
     /// The magnetostatic problem of `geometry` on `mesh` and its solver.
-    fn new(
+    pub(crate) fn new(
         spec: &BrakeSpec,
         geometry: BrakeGeometry,
         mesh: Arc<Mesh>,
@@ -767,7 +767,7 @@ impl Model {
 
     /// Direction 1 (unit 1 energised) at `current`, Newton started from `previous`: the curve
     /// point, unit 1's gaps and the solution.
-    fn direction1_point(
+    pub(crate) fn direction1_point(
         &mut self,
         current: f64,
         previous: Option<&Solution>,

@@ -54,6 +54,17 @@ pub enum DesignError {
     /// error keeps the residual history).
     #[error("field solution")]
     FieldSolution(#[from] mrbrake_magnetics::MagneticsError),
+    /// A step of a quasi-static hysteresis loop ([`crate::hysteresis`]) failed: which step, at
+    /// what current (the wrapped error keeps Newton's residual history).
+    #[error("hysteresis loop: step {step} at {current_a} A")]
+    LoopStep {
+        /// The step (1-based) of the current history.
+        step: usize,
+        /// Its current, A.
+        current_a: f64,
+        /// The field solution's error.
+        source: Box<DesignError>,
+    },
     /// The mesher could not mesh the brake's geometry.
     #[error("meshing the brake")]
     Mesh(#[from] mrbrake_fem::FemError),
@@ -125,7 +136,7 @@ impl Kind for DesignError {
             Self::FieldSolution(e) => e.kind(),
             Self::Mesh(e) => e.kind(),
             Self::Material(e) | Self::PartMaterial { source: e, .. } => e.kind(),
-            Self::StudyRow { source, .. } => source.kind(),
+            Self::StudyRow { source, .. } | Self::LoopStep { source, .. } => source.kind(),
             Self::GeometryGraph { .. } | Self::WriteToml { .. } | Self::Internal(_) => {
                 ErrorKind::Internal
             }

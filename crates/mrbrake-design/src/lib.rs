@@ -16,6 +16,7 @@ mod error;
 pub mod formula;
 pub mod geo_export;
 pub mod geometry;
+pub mod hysteresis;
 pub mod material_factors;
 pub mod mesh_build;
 pub mod response;

@@ -77,6 +77,9 @@ pub(crate) struct AphiForm {
     pub geometric_stiffness: Vec<f64>,
     /// Load per unit current density `f` of every element.
     pub unit_load: Vec<f64>,
+    /// The hysteretic regions' law and per-point state, when a quasi-static hysteretic solve is
+    /// set up ([`crate::hysteresis`]); `None`: every element takes its region's `Magnetic`.
+    pub hysteresis: Option<Box<crate::hysteresis::HysteresisField>>,
 }
 
 impl AphiForm {
@@ -84,7 +87,14 @@ impl AphiForm {
     pub fn new(basis: &Basis, materials: Vec<Magnetic>, element_region: Vec<u32>) -> Self {
         let (geometric_stiffness, unit_load) = by_order!(basis.order(), linear_matrices(basis));
         let current_density = vec![0.0; basis.n_elements()];
-        Self { materials, element_region, current_density, geometric_stiffness, unit_load }
+        Self {
+            materials,
+            element_region,
+            current_density,
+            geometric_stiffness,
+            unit_load,
+            hysteresis: None,
+        }
     }
 
     /// The material of element `t`.
@@ -124,6 +134,13 @@ impl ElementForm for AphiForm {
         jacobian: Option<&mut [f64]>,
     ) {
         let t = element.index;
+        if let Some(field) = &self.hysteresis
+            && let Some(params) = field.law(t)
+        {
+            let current_density = self.current_density[t];
+            field.element_kernel(element, params, current_density, local, residual, jacobian);
+            return;
+        }
         let material = self.material(t);
         if let Magnetic::Linear { .. } = material {
             let nu = material.nu_and_dnu_db2(0.0).0;
@@ -137,7 +154,8 @@ impl ElementForm for AphiForm {
     }
 
     fn has_constant_jacobian(&self, index: usize) -> bool {
-        !self.material(index).is_nonlinear()
+        let hysteretic = self.hysteresis.as_ref().is_some_and(|h| h.law(index).is_some());
+        !hysteretic && !self.material(index).is_nonlinear()
     }
 
     fn constant_jacobian<E: TriangleBasis<N>, const N: usize>(

@@ -56,6 +56,7 @@ pub mod exact;
 pub mod field;
 pub mod force;
 pub mod form;
+pub mod hysteresis;
 pub mod material;
 pub mod open_boundary;
 pub mod problem;

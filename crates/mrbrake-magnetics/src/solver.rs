@@ -10,6 +10,10 @@
 //! source load vector plus that of the residual of the Dirichlet lifting `A_D` (interior zero)
 //! evaluated in the *linear* (initial-reluctivity) state — both independent of the iterate.
 //!
+//! With hysteretic regions ([`crate::hysteresis`]) `s` is the largest scale of the current history
+//! so far: at 0 A after a peak the remanent field has no source of its own, and its residual is
+//! measured against the excitation that made it.
+//!
 //! A failed solve gives [`MagneticsError::NotConverged`] with the whole residual history.
 
 use std::sync::Arc;
@@ -254,6 +258,8 @@ impl Solver {
             .map(|m| Magnetic::Linear { mu_r: 1.0 / (MU_0 * m.nu_and_dnu_db2(0.0).0) })
             .collect();
         let saved = std::mem::replace(&mut self.form.materials, linear);
+        // The scale is that of the linear problem: hysteretic points take their linear law too.
+        let hysteresis = self.form.hysteresis.take();
         let lifting = self.assembly.constraints().lifting();
         let mut residual = vec![0.0; self.assembly.n_free()];
         let n_elements = self.form.current_density.len();
@@ -265,6 +271,7 @@ impl Solver {
         self.assembly.evaluate(&self.form, &zero, &mut residual, None);
         let source_norm = norm2(&residual);
         self.form.materials = saved;
+        self.form.hysteresis = hysteresis;
         source_norm + dirichlet_norm
     }
 
@@ -290,7 +297,11 @@ impl Solver {
             None => vec![0.0; n_dofs],
         };
         let t = Instant::now();
-        let scale = self.residual_scale().max(f64::MIN_POSITIVE);
+        let mut scale = self.residual_scale().max(f64::MIN_POSITIVE);
+        if let Some(field) = &mut self.form.hysteresis {
+            // A remanent field has no source of its own (0 A): scale by the history's largest.
+            scale = field.history_scale(scale);
+        }
         let scale_s = t.elapsed().as_secs_f64();
         let mut system = AssembledSystem { assembly: &mut self.assembly, form: &self.form };
         let mut report = self.newton.solve(&mut system, &mut a, scale, &self.options.newton())?;

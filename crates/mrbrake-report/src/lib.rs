@@ -45,6 +45,7 @@ pub mod materials;
 pub mod operator;
 pub mod pareto;
 pub mod plot_format;
+pub mod predicted_loop;
 pub mod reference;
 pub mod response;
 pub mod rig;

@@ -57,6 +57,17 @@ pub struct AnalyzeArgs {
     /// maximum current, provenance) that `rig … --brake-model` and `haptic … --brake-model` run.
     #[arg(long, value_name = "FILE.json")]
     save_model: Option<PathBuf>,
+    /// Also predict the torque–current hysteresis loop from the magnetic hysteresis of the steel
+    /// (`0 → peak → 0 → peak → 0 → −peak → 0 → peak`): branches, remanent torque at 0 A (also the
+    /// remanent term of the off-state breakdown), loop width at mid current; JSON key `hysteresis`.
+    #[arg(long)]
+    hysteresis: bool,
+    /// Peak current of the hysteresis loop (e.g. 1.5A); default: the coil's maximum current.
+    #[arg(long, requires = "hysteresis", allow_hyphen_values = true)]
+    peak: Option<String>,
+    /// Currents per leg of the hysteresis loop's program.
+    #[arg(long, requires = "hysteresis", default_value_t = mrbrake::design::hysteresis::DEFAULT_POINTS_PER_LEG)]
+    loop_points: usize,
 }
 
 /// The spec as a word of a printed command: the path quoted for a shell (a path with spaces
@@ -97,12 +108,25 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
     for w in &analysis.warnings {
         eprintln!("warning: {w}");
     }
+    let predicted = if a.hysteresis { Some(predict_loop(&a, &spec, &options)?) } else { None };
     if let (Some(dir), Some(field)) = (&a.plot_dir, &field) {
         std::fs::create_dir_all(dir).map_err(|e| {
             InputError(format!("--plot-dir {}: cannot create it: {e}", dir.display()))
         })?;
         report::write_plots(&analysis, field, dir, a.png)?;
+        if let Some(predicted) = &predicted {
+            let svg = dir.join("hysteresis_loop.svg");
+            mrbrake::report::predicted_loop::save_figure(&svg, predicted)?;
+            if a.png {
+                let png = dir.join("hysteresis_loop.png");
+                mrbrake::report::predicted_loop::save_figure(&png, predicted)?;
+            }
+        }
     }
+    let analysis = match &predicted {
+        Some(p) => mrbrake::report::predicted_loop::with_remanence(&analysis, p),
+        None => analysis,
+    };
     let source =
         a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     if let Some(path) = &a.save_model {
@@ -122,7 +146,34 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
     }
     if a.json {
-        return print_json(&analysis);
+        return match &predicted {
+            Some(p) => print_json(&mrbrake::report::predicted_loop::json(&analysis, p)?),
+            None => print_json(&analysis),
+        };
     }
-    print_text(&report::text(&analysis, &source))
+    let mut text = report::text(&analysis, &source);
+    if let Some(p) = &predicted {
+        text.push_str(&mrbrake::report::predicted_loop::text(p));
+    }
+    print_text(&text)
+}
+
+/// The predicted hysteresis loop of `--hysteresis`.
+fn predict_loop(
+    a: &AnalyzeArgs,
+    spec: &BrakeSpec,
+    options: &AnalysisOptions,
+) -> Result<mrbrake::design::hysteresis::HysteresisLoop, crate::error::CommandError> {
+    let peak = match &a.peak {
+        Some(text) => {
+            Some(parse(text, Dimension::Current).map_err(|e| InputError(format!("--peak: {e}")))?)
+        }
+        None => None,
+    };
+    let loop_options = mrbrake::design::hysteresis::LoopOptions {
+        peak_current_a: peak,
+        points_per_leg: a.loop_points,
+    };
+    Ok(mrbrake::design::hysteresis::run(spec, options, &loop_options)
+        .map_err(field_flags::design)?)
 }

@@ -19,6 +19,9 @@ const FLAGS: &[(&str, &str)] = &[
     ("seal_friction", "--seal-friction"),
     ("temperature", "--temperature"),
     ("order", "--order"),
+    // Hysteresis-loop options.
+    ("peak", "--peak"),
+    ("loop_points", "--loop-points"),
     // Response options.
     ("duration", "--duration"),
     ("step", "--step"),
