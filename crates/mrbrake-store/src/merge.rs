@@ -174,7 +174,7 @@ enum Relation {
     /// The destination already holds every incoming metric with the same value.
     Holds,
     /// The union of both, to store in place (with the stored creation time and verification).
-    Completes(Record, Option<f64>, bool),
+    Completes(Box<Record>, Option<f64>, bool),
     /// A metric differs, or the statuses cannot be reconciled.
     Conflict,
 }
@@ -213,12 +213,12 @@ fn relate(stored: StoredRecord, incoming: &Record) -> Relation {
         (false, true) if extends(incoming, &stored.record) => Relation::Holds,
         // The incoming record completes the stored one (as `Store::complete`).
         (true, false) if extends(&stored.record, incoming) => Relation::Completes(
-            Record {
+            Box::new(Record {
                 key: stored.record.key,
                 variables: stored.record.variables,
                 spec_toml: stored.record.spec_toml,
                 ..incoming.clone()
-            },
+            }),
             stored.created_unix_s,
             stored.verified,
         ),

@@ -64,7 +64,7 @@ impl DesignPageRequest<'_> {
     /// Runs the analyses and composes the page.
     pub fn page(&self) -> Result<Page, ReportError> {
         let (analysis, field) =
-            AnalysisRequest::of(self.spec).options(self.options.clone()).run_with_field()?;
+            AnalysisRequest::of(self.spec).options(self.options).run_with_field()?;
         let geometry = mrbrake_design::geometry::build(self.spec)?;
         let report = DesignReport {
             analysis: &analysis,
