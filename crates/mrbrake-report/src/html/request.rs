@@ -5,7 +5,7 @@
 //! Brief overview: [`DesignPageRequest::page`] runs the static analysis (and, when asked, the
 //! response and thermal analyses with their commands' defaults) and composes the design page;
 //! [`study_page`] reads a results store and the problem whose objectives define its front (the
-//! given file, else the one the store records, else [`study::DEFAULT_OBJECTIVES`]);
+//! given file, else the one the store records, else [`DEFAULT_OBJECTIVES`]);
 //! [`characterization_page`] composes the page of a characterisation the caller ran (the caller
 //! runs it, so its option errors can be named by the caller's flags or keywords). A [`Page`]
 //! carries the warnings and notes a front end shows beside the file.
