@@ -262,7 +262,7 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
     // The frequency response first: a bias without small-signal gain is an input error, found
     // before the (longer) transients.
     let t0 = Instant::now();
-    let (dc_gain, frequency_response) = model.frequency_response(bias)?;
+    let (dc_gain, frequency_response) = model.frequency_response(0, bias)?;
     let frequency_s = t0.elapsed().as_secs_f64();
     let t0 = Instant::now();
     // The directions' transients are independent: one thread each (on two cores the step
@@ -378,21 +378,39 @@ impl<'a> ResponseModel<'a> {
     /// The torque step response of direction `unit + 1` from `from` to `to` amperes (`to` = 0: a
     /// release from `from`), as in [`Response::step`].
     pub fn step(&self, unit: usize, from: f64, to: f64) -> Result<StepResponse, DesignError> {
-        if unit >= self.units() {
-            let e = FieldError::new("direction", "a direction of the brake")
-                .with_value(unit + 1)
-                .with_allowed(format!("1 to {}", self.units()));
-            return Err(e.into());
-        }
+        self.check_unit(unit)?;
         self.model.step_response(unit, from, to, None).map(|(step, _)| step)
     }
 
     /// The small-signal response of direction 1 about `bias` amperes: the DC gain (N·m/A), the
     /// normalised frequency response and its −3 dB bandwidth (rad/s), as in [`Response`].
     pub fn frequency_response(&self, bias: f64) -> Result<(f64, Frd, Option<f64>), DesignError> {
-        let (gain, frd) = self.model.frequency_response(bias)?;
+        self.frequency_response_of(0, bias)
+    }
+
+    /// The small-signal response of direction `unit + 1` about `bias` amperes of that
+    /// direction's coils, computed as [`Self::frequency_response`] on that direction's magnetic
+    /// circuit: its coils driven, the torque of its gaps (for direction 1 the same numbers).
+    pub fn frequency_response_of(
+        &self,
+        unit: usize,
+        bias: f64,
+    ) -> Result<(f64, Frd, Option<f64>), DesignError> {
+        self.check_unit(unit)?;
+        let (gain, frd) = self.model.frequency_response(unit, bias)?;
         let bandwidth = frd.bandwidth_rad_s(MINUS_3_DB);
         Ok((gain, frd, bandwidth))
+    }
+
+    /// A direction (`unit + 1`) the brake has, else an input error naming `direction`.
+    fn check_unit(&self, unit: usize) -> Result<(), DesignError> {
+        if unit >= self.units() {
+            let e = FieldError::new("direction", "a direction of the brake")
+                .with_value(unit + 1)
+                .with_allowed(format!("1 to {}", self.units()));
+            return Err(e.into());
+        }
+        Ok(())
     }
 }
 
@@ -652,12 +670,11 @@ impl Model<'_> {
         }
     }
 
-    /// The small-signal torque per current of direction 1 about `bias` amperes: the DC gain and
-    /// the normalised response at the options' frequencies.
-    fn frequency_response(&self, bias: f64) -> Result<(f64, Frd), DesignError> {
+    /// The small-signal torque per current of direction `unit + 1` (its coils, its gaps) about
+    /// `bias` amperes: the DC gain and the normalised response at the options' frequencies.
+    fn frequency_response(&self, unit: usize, bias: f64) -> Result<(f64, Frd), DesignError> {
         let max_current = self.spec.coil.max_current.a();
         check_bias(bias, max_current)?;
-        let unit = 0;
         let drive = |sign: f64, _| Drive::Current { amplitude_a: sign };
         let mut dynamics = self.dynamics(unit, drive, Waveform::Step { initial: 0.0 })?;
         let signs: Vec<f64> =
@@ -672,13 +689,13 @@ impl Model<'_> {
         let mut gains = Vec::with_capacity(potentials.len());
         for p in &potentials {
             let torque = Complex64::new(
-                self.torque_derivative(&dynamics, &a0, &p.re)?,
-                self.torque_derivative(&dynamics, &a0, &p.im)?,
+                self.torque_derivative(&dynamics, unit, &a0, &p.re)?,
+                self.torque_derivative(&dynamics, unit, &a0, &p.im)?,
             );
             let lag = Complex64::new(1.0, two_pi * p.frequency_hz * self.options.fluid_lag_s);
             let mut gain = torque / lag;
             if self.options.drive == ResponseDrive::Voltage {
-                gain *= self.voltage_factor(&dynamics, p)?;
+                gain *= self.voltage_factor(&dynamics, unit, p)?;
             }
             gains.push(gain);
         }
@@ -706,10 +723,11 @@ impl Model<'_> {
         Ok((dc.re, Frd::new(points)))
     }
 
-    /// `dT/dA · x` by a central difference about `a0` (module docs).
+    /// `dT/dA · x` of `unit`'s gaps by a central difference about `a0` (module docs).
     fn torque_derivative(
         &self,
         dynamics: &Dynamics,
+        unit: usize,
         a0: &[f64],
         x: &[f64],
     ) -> Result<f64, DesignError> {
@@ -720,16 +738,16 @@ impl Model<'_> {
         }
         let eps = 1e-3 * scale.max(size) / size;
         let shifted = |s: f64| a0.iter().zip(x).map(|(a, x)| a + s * eps * x).collect::<Vec<f64>>();
-        let plus = self.torque(dynamics, 0, shifted(1.0))?;
-        let minus = self.torque(dynamics, 0, shifted(-1.0))?;
+        let plus = self.torque(dynamics, unit, shifted(1.0))?;
+        let minus = self.torque(dynamics, unit, shifted(-1.0))?;
         Ok((plus - minus) / (2.0 * eps))
     }
 
-    /// `R / (R + Z)`: the coil current per `V/R` of a voltage drive (direction 1's coils in
-    /// series).
+    /// `R / (R + Z)`: the coil current per `V/R` of a voltage drive (`unit`'s coils in series).
     fn voltage_factor(
         &self,
         dynamics: &Dynamics,
+        unit: usize,
         p: &mrbrake_magnetics::dynamics::harmonic::HarmonicPotential,
     ) -> Result<Complex64, DesignError> {
         let point = dynamics.harmonic_point(p, &[]).map_err(numerical)?;
@@ -739,7 +757,7 @@ impl Model<'_> {
             .map(|c| Complex64::new(c.impedance_ohm[0], c.impedance_ohm[1]))
             .sum();
         let mut resistance = 0.0;
-        for coil in self.geometry.coils.iter().filter(|c| c.unit == 0) {
+        for coil in self.geometry.coils.iter().filter(|c| c.unit == unit) {
             resistance += self.coil_resistance(coil)?;
         }
         Ok(Complex64::new(resistance, 0.0) / (resistance + impedance))

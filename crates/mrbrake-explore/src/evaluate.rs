@@ -219,6 +219,11 @@ pub const METRICS: &[MetricInfo] = &[
         "rad/s",
         "−3 dB bandwidth of the small-signal torque per current at the bias (response, dir. 1)",
     ),
+    metric(
+        "bandwidth_dir2_rad_s",
+        "rad/s",
+        "bidirectional: bandwidth_rad_s of direction 2 (its coils and gaps at the same bias)",
+    ),
     metric("t63_s", "s", "time to 63 % of the torque change after the current step up"),
     metric("t90_s", "s", "time to 90 % of the torque change after the current step up"),
     metric("t63_dir2_s", "s", "bidirectional: t63_s of direction 2"),

@@ -150,6 +150,9 @@ pub struct StudyProblem<'s, 'p> {
     algorithm_batches: usize,
     /// Designs of the store read as the data of a continued (surrogate) run.
     preloaded: usize,
+    /// Designs of the store left out of that data because they lack a metric the objectives or
+    /// constraints need ([`Self::stored_designs`]).
+    skipped_incomplete: usize,
     /// The hypervolume's reference point and where it comes from, once known.
     reference: Option<(Vec<f64>, ReferenceSource)>,
     /// Whether a reference point this study fixes is recorded in the store.
@@ -185,6 +188,7 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
             totals: None,
             algorithm_batches: 0,
             preloaded: 0,
+            skipped_incomplete: 0,
             reference,
             records_reference: true,
             observer,
@@ -273,30 +277,49 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         }
     }
 
-    /// Every record of the store that is a design of this problem (its variables inside the
-    /// bounds and its key the one this problem gives them), in the store's order, kept among the
-    /// evaluated designs: the data a surrogate run continues from.
+    /// The stored designs of this problem's space as evaluated designs (the data a continued
+    /// surrogate run starts from), each also counted as seen. A stored design that lacks a
+    /// metric the objectives or constraints need (evaluated by a study that asked for less, or
+    /// stopped at another study's gate) is no data: it is skipped and counted
+    /// ([`Self::skipped_incomplete`]); one that lacks only metrics the problem records is used.
     pub fn stored_designs(&mut self) -> Result<Vec<EvaluatedDesign>, ExploreError> {
         let records = crate::stored::read_records(self.runner.store())?;
+        let needed: Vec<&str> = self.needed_metrics();
         let mut designs = Vec::new();
         for record in records {
             let x: Option<Vec<f64>> =
                 self.space.variables().iter().map(|v| record.variable(&v.name)).collect();
             let Some(x) = x.filter(|x| !x.is_empty()) else { continue };
-            // A stored design lacking metrics this problem asks for is no data yet: the runner
-            // completes it when the optimiser proposes it.
             if validate_design(&self.bounds, &x, "stored design").is_err()
                 || self.seen.contains_key(&record.key)
-                || self.space.settings().study.needs_completion(&record)
                 || self.space.design(&x)?.key != record.key
             {
                 continue;
+            }
+            if self.space.settings().study.needs_completion(&record) {
+                let usable = record.status == mrbrake_store::Status::Ok
+                    && needed.iter().all(|m| record.metric_value(m).is_some());
+                if !usable {
+                    self.skipped_incomplete += 1;
+                    continue;
+                }
             }
             let evaluation = self.keep(record);
             designs.push(EvaluatedDesign { x, evaluation });
         }
         self.preloaded = designs.len();
         Ok(designs)
+    }
+
+    /// The metrics the objectives and constraints read.
+    fn needed_metrics(&self) -> Vec<&'p str> {
+        let objectives = self.problem.objectives.iter().map(|o| o.metric.as_str());
+        objectives.chain(self.problem.constraints.iter().map(|c| c.metric.as_str())).collect()
+    }
+
+    /// Stored designs [`Self::stored_designs`] left out for lacking a needed metric.
+    pub fn skipped_incomplete(&self) -> usize {
+        self.skipped_incomplete
     }
 
     /// The hypervolume's reference point, once known (given, recorded, or fixed by this run).
@@ -589,6 +612,7 @@ fn idle_progress(stage: Stage) -> OptimizeProgress {
     let run = Progress {
         to_compute: 0,
         computed: 0,
+        completed: 0,
         reused: 0,
         infeasible: 0,
         failed: 0,

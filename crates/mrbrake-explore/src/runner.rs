@@ -13,7 +13,8 @@
 //! A stored design that lacks metrics the study asks for (a study resumed with a longer metric
 //! list, see [`crate::metrics::StudyMetrics::needs_completion`]) is *completed*: only its missing
 //! metrics are computed ([`crate::evaluate::complete`], no static analysis) and the record is
-//! extended in place ([`Store::complete`]); it counts as computed, not reused.
+//! extended in place ([`Store::complete`]); it counts as computed, not reused, and as
+//! [`Progress::completed`] (the summaries say "completed" for it).
 //!
 //! [`Flow::Stop`]: mrbrake_observe::Flow::Stop
 
@@ -45,6 +46,9 @@ pub struct Progress {
     pub to_compute: usize,
     /// Evaluations computed and stored so far.
     pub computed: usize,
+    /// Of the computed: stored designs completed with the metrics they lacked (no static
+    /// analysis again).
+    pub completed: usize,
     /// Designs of the batch found in the store with every metric asked for (not recomputed).
     pub reused: usize,
     /// Of the computed: infeasible designs.
@@ -60,6 +64,7 @@ impl Progress {
     pub fn add(&mut self, other: &Progress) {
         self.to_compute += other.to_compute;
         self.computed += other.computed;
+        self.completed += other.completed;
         self.reused += other.reused;
         self.infeasible += other.infeasible;
         self.failed += other.failed;
@@ -130,6 +135,7 @@ impl<'a> Runner<'a> {
         let mut progress = Progress {
             to_compute: todo.len(),
             computed: 0,
+            completed: 0,
             reused,
             infeasible: 0,
             failed: 0,
@@ -273,6 +279,7 @@ impl<'a> Runner<'a> {
         timing.store_s += t0.elapsed().as_secs_f64();
         timing.evaluation_s += evaluation_s;
         progress.computed += 1;
+        progress.completed += usize::from(completes);
         match record.status {
             Status::Infeasible => progress.infeasible += 1,
             Status::Failed => progress.failed += 1,

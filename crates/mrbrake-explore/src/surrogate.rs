@@ -122,6 +122,9 @@ impl IterationStatus {
 pub struct SurrogateRun {
     /// Designs of the store this run continued from.
     pub resumed_from: usize,
+    /// Designs of the store left out of that data: they lack a metric the objectives or
+    /// constraints need (`StudyProblem::stored_designs`).
+    pub skipped_incomplete: usize,
     /// Designs per iteration.
     pub batch: usize,
     /// Designs of the initial plan (those of the store included).
@@ -194,6 +197,7 @@ pub fn run(
     };
     let record = SurrogateRun {
         resumed_from: previous.len(),
+        skipped_incomplete: study.skipped_incomplete(),
         batch: options.batch,
         initial_size: options.initial_design_size(study.bounds().len()),
         max_evaluations: options.max_evaluations,

@@ -53,6 +53,7 @@ fn resuming_with_one_more_metric_evaluates_only_that_metric() {
     let (records, summary) =
         Runner::new(&mut store, more.clone(), 1).run(&second, &mut Silent).unwrap();
     assert_eq!((summary.progress.computed, summary.progress.reused), (2, 0));
+    assert_eq!(summary.progress.completed, 2, "both stored designs completed, none new");
     assert_eq!(static_analysis_count(), 2, "no static analysis again");
     assert_eq!(runs(Analysis::ThermalSteady), 2, "{:?}", analysis_counts());
     assert_eq!(expensive_runs(), 2, "nothing but the missing metric: {:?}", analysis_counts());

@@ -4,7 +4,7 @@
 use std::error::Error;
 
 use mrbrake::{ErrorKind, Kind};
-use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::{PyErr, create_exception};
 
 create_exception!(
@@ -28,10 +28,28 @@ pub fn chain_message(error: &(dyn Error + 'static)) -> String {
     message
 }
 
-/// The Python exception of a library error: `ValueError` for input, `OSError` for I/O,
+/// True when `error` or one of its causes is an I/O error saying a file does not exist.
+fn is_missing_file(error: &(dyn Error + 'static)) -> bool {
+    let mut next: Option<&(dyn Error + 'static)> = Some(error);
+    while let Some(e) = next {
+        if e.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::NotFound)
+        {
+            return true;
+        }
+        next = e.source();
+    }
+    false
+}
+
+/// The Python exception of a library error: `FileNotFoundError` (an `OSError`) when an input
+/// file does not exist, else by its kind: `ValueError` for input, `OSError` for I/O,
 /// `SolverError` for numerical failures, `RuntimeError` for internal ones.
 pub fn to_py<E: Kind + Error + 'static>(error: E) -> PyErr {
     let message = chain_message(&error);
+    if is_missing_file(&error) {
+        return PyFileNotFoundError::new_err(message);
+    }
     match error.kind() {
         ErrorKind::Input => PyValueError::new_err(message),
         ErrorKind::Io => PyOSError::new_err(message),
@@ -48,4 +66,13 @@ pub fn input(message: impl Into<String>) -> PyErr {
 /// An internal error (a result that cannot be written as JSON is a bug).
 pub fn internal(error: impl std::fmt::Display) -> PyErr {
     PyRuntimeError::new_err(format!("internal error: {error} (please report it)"))
+}
+
+/// `FileNotFoundError` naming `path` when it does not exist (an input a library opens in a way
+/// that does not say so itself, such as a results store).
+pub fn exists(path: &std::path::Path) -> Result<(), PyErr> {
+    if path.exists() {
+        return Ok(());
+    }
+    Err(PyFileNotFoundError::new_err(format!("{}: no such file", path.display())))
 }

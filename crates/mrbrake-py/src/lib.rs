@@ -5,7 +5,8 @@
 //! with the GIL released (`Python::detach`), and returns what the library (or the report
 //! composition of `mrbrake-report`, for the JSON documents the CLI prints) produced: NumPy arrays
 //! for columns of numbers, dictionaries with the CLI's `--json` keys for the rest. There are no
-//! numerics here. Errors are mapped by their [`mrbrake::ErrorKind`] alone (module `error`): input →
+//! numerics here. Errors are mapped by their [`mrbrake::ErrorKind`] (module `error`; a missing input
+//! file is `FileNotFoundError` whatever the kind): input →
 //! `ValueError` with the CLI's message, I/O → `OSError`, numerical → `mrbrake.SolverError`,
 //! internal → `RuntimeError`.
 //!
@@ -23,11 +24,13 @@ mod fem;
 mod formula;
 mod haptic;
 mod materials;
+mod report;
 mod response;
 mod rig;
 mod store;
 mod study;
 mod sysid;
+mod thermal;
 
 /// The extension module `mrbrake._native`.
 #[pymodule]
@@ -46,5 +49,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     haptic::register(m)?;
     rig::register(m)?;
     response::register(m)?;
+    thermal::register(m)?;
+    report::register(m)?;
     Ok(())
 }

@@ -7,7 +7,8 @@ use std::path::PathBuf;
 use mrbrake::design::analysis::ElementOrder;
 use mrbrake::design::mesh_build::MeshLevel;
 use mrbrake::explore::plan::{self, Sampling, Shard, SweepRequest};
-use mrbrake::explore::problem::OptimizationProblem;
+use mrbrake::explore::problem::{BudgetOverride, OptimizationProblem};
+use mrbrake::explore::variable::parse_sets;
 use mrbrake::explore::{EvaluationSettings, ExploreError, Runner, optimize, runner};
 use mrbrake::observe::Silent;
 use mrbrake::report::study::{OptimizationReport, SweepReport};
@@ -119,9 +120,28 @@ fn sweep<'py>(
     json_to_py(py, &report)
 }
 
+/// The budget and fixed changes a Python caller gives beside the problem file (the CLI's
+/// `--generations`, `--max-evaluations`, `--seed` and `--set`).
+struct ProblemOverrides {
+    budget: BudgetOverride,
+    sets: Vec<String>,
+}
+
+impl ProblemOverrides {
+    /// `problem` with the fixed changes and the budget applied, as the CLI applies them (the
+    /// library's field names, `set`, `generations`, `max_evaluations`, are the keywords).
+    fn apply(&self, problem: &mut OptimizationProblem) -> Result<(), ExploreError> {
+        problem.apply_set(&parse_sets(&self.sets)?)?;
+        problem.algorithm = problem.algorithm.with_budget(self.budget)?;
+        Ok(())
+    }
+}
+
 /// An optimisation study; see `python/mrbrake/__init__.py` (`optimize`).
 #[pyfunction]
-#[pyo3(signature = (problem, store=None, *, resume=false, jobs=0, out=None))]
+#[pyo3(signature = (problem, store=None, *, resume=false, jobs=0, out=None, generations=None,
+                    max_evaluations=None, seed=None, set=Vec::new()))]
+#[allow(clippy::too_many_arguments)]
 fn optimize_problem(
     py: Python<'_>,
     problem: PathBuf,
@@ -129,9 +149,19 @@ fn optimize_problem(
     resume: bool,
     jobs: usize,
     out: Option<PathBuf>,
+    generations: Option<usize>,
+    max_evaluations: Option<usize>,
+    seed: Option<u64>,
+    set: Vec<String>,
 ) -> PyResult<Bound<'_, PyAny>> {
+    let overrides = ProblemOverrides {
+        budget: BudgetOverride { generations, max_evaluations, seed },
+        sets: set,
+    };
     let report = py.detach(|| -> PyResult<Value> {
-        let parsed = OptimizationProblem::from_path(&problem).map_err(error::to_py)?;
+        error::exists(&problem)?;
+        let mut parsed = OptimizationProblem::from_path(&problem).map_err(error::to_py)?;
+        overrides.apply(&mut parsed).map_err(error::to_py)?;
         let store_path = store.unwrap_or_else(|| optimize::default_store_path(&problem));
         let mut store =
             optimize::open_problem_store(&parsed, &store_path, resume).map_err(error::to_py)?;

@@ -48,7 +48,8 @@ def test_missing_spec_file_has_the_cli_message(cli, tmp_path):
     missing = tmp_path / "no-such-spec.toml"
     code, message = cli.fail("analyze", missing)
     assert code == 2
-    with pytest.raises(ValueError) as e:
+    # A missing file is FileNotFoundError (an OSError), with the CLI's message (issue 27).
+    with pytest.raises(FileNotFoundError) as e:
         mrbrake.analyze(str(missing))
     assert str(e.value) == message
 

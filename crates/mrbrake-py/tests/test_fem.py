@@ -31,7 +31,7 @@ def test_solve_equals_the_cli(cli, root, problem):
 def test_a_missing_problem_file_has_the_cli_message(cli, tmp_path):
     missing = tmp_path / "none.toml"
     code, message = cli.fail("fem", "solve", missing)
-    with pytest.raises(ValueError) as e:
+    with pytest.raises(FileNotFoundError) as e:
         mrbrake.fem.solve(missing)
     assert str(e.value) == message
     with pytest.raises(ValueError):

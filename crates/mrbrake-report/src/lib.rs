@@ -113,6 +113,33 @@ pub enum ReportError {
         #[source]
         source: Option<std::io::Error>,
     },
+    /// The analysis of a design page failed (`html::request`).
+    #[error(transparent)]
+    Design(#[from] Box<mrbrake_design::DesignError>),
+    /// The thermal analysis of a design page failed.
+    #[error(transparent)]
+    Thermal(#[from] Box<mrbrake_design::thermal::ThermalError>),
+    /// The store or problem of a study page cannot be read.
+    #[error(transparent)]
+    Study(#[from] Box<mrbrake_explore::ExploreError>),
+}
+
+impl From<mrbrake_design::DesignError> for ReportError {
+    fn from(e: mrbrake_design::DesignError) -> Self {
+        Self::Design(Box::new(e))
+    }
+}
+
+impl From<mrbrake_design::thermal::ThermalError> for ReportError {
+    fn from(e: mrbrake_design::thermal::ThermalError) -> Self {
+        Self::Thermal(Box::new(e))
+    }
+}
+
+impl From<mrbrake_explore::ExploreError> for ReportError {
+    fn from(e: mrbrake_explore::ExploreError) -> Self {
+        Self::Study(Box::new(e))
+    }
 }
 
 impl mrbrake_error::Kind for ReportError {
@@ -128,6 +155,9 @@ impl mrbrake_error::Kind for ReportError {
             Self::Backend(_) | Self::Json(_) => ErrorKind::Internal,
             Self::Store(e) => e.kind(),
             Self::Model(e) => e.kind(),
+            Self::Design(e) => e.kind(),
+            Self::Thermal(e) => e.kind(),
+            Self::Study(e) => e.kind(),
         }
     }
 }

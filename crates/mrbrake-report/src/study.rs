@@ -137,7 +137,8 @@ impl SweepReport<'_> {
             "shard": format!("{}/{}", self.shard.index, self.shard.count),
             "designs": mrbrake_store::to_json(self.records),
             "summary": {
-                "computed": p.computed, "reused": p.reused, "infeasible": p.infeasible,
+                "computed": p.computed, "completed": p.completed, "reused": p.reused,
+                "infeasible": p.infeasible,
                 "failed": p.failed, "elapsed_s": p.elapsed_s,
                 "evaluations_per_min": evaluations_per_min(p),
                 "evaluation_s": self.summary.evaluation_s,
@@ -176,9 +177,9 @@ impl SweepReport<'_> {
             // the analyses; the measured cost of the store is the evaluation-rate benchmark's.
             let _ = writeln!(
                 out,
-                "computed {} ({} infeasible, {} failed), reused {} from the store; {:.1} s wall, \
+                "{} ({} infeasible, {} failed), reused {} from the store; {:.1} s wall, \
                  {:.0} evaluations/min; store writes {:.3} s on the writer thread, alongside the analyses",
-                p.computed,
+                work_done(p),
                 p.infeasible,
                 p.failed,
                 p.reused,
@@ -221,6 +222,32 @@ impl SweepReport<'_> {
     }
 }
 
+/// What a sweep computed: `computed N`, or, when a resumed study completed stored designs with
+/// the metrics they lacked, `computed N, completed M stored designs with the metrics they lacked`
+/// (the completed are not counted as computed in the words).
+fn work_done(p: &Progress) -> String {
+    if p.completed == 0 {
+        return format!("computed {}", p.computed);
+    }
+    format!(
+        "computed {}, completed {} with the metrics they lacked",
+        p.computed - p.completed,
+        count(p.completed, "stored design", "stored designs")
+    )
+}
+
+/// What an optimisation evaluated now, in the words of [`work_done`].
+fn evaluated_now(p: &Progress) -> String {
+    if p.completed == 0 {
+        return format!("{} evaluated", p.computed);
+    }
+    format!(
+        "{} evaluated, {} completed with the metrics they lacked",
+        p.computed - p.completed,
+        count(p.completed, "stored design", "stored designs")
+    )
+}
+
 /// The line reporting the merge of the store at `input`.
 pub fn merge_text(input: &Path, summary: &MergeSummary) -> String {
     let conflicts = if summary.conflicts.is_empty() {
@@ -232,8 +259,13 @@ pub fn merge_text(input: &Path, summary: &MergeSummary) -> String {
             summary.conflicts.join(", ")
         )
     };
+    let completed = if summary.completed == 0 {
+        String::new()
+    } else {
+        format!(", {} completed with the metrics they lacked", summary.completed)
+    };
     format!(
-        "{}: {} added, {} already present{conflicts}\n",
+        "{}: {} added, {} already present{completed}{conflicts}\n",
         input.display(),
         summary.inserted,
         summary.duplicates
@@ -286,6 +318,7 @@ impl OptimizationReport<'_> {
             "converged": result.converged,
             "stopped": result.stopped,
             "computed": totals.computed,
+            "completed": totals.completed,
             "reused": totals.reused,
             "elapsed_s": totals.elapsed_s,
             "evaluations_per_min": evaluations_per_min(totals),
@@ -418,9 +451,9 @@ impl OptimizationReport<'_> {
             format!("all {} answers read from the store, nothing computed", totals.reused)
         } else {
             format!(
-                "{} evaluated now, {} answers read from the store (repeated designs and earlier \
+                "{} now, {} answers read from the store (repeated designs and earlier \
                  runs); {:.1} s, {:.0} evaluations/min",
-                totals.computed,
+                evaluated_now(totals),
                 totals.reused,
                 totals.elapsed_s,
                 evaluations_per_min(totals)
@@ -729,6 +762,7 @@ fn surrogate_json(s: &SurrogateRun) -> Value {
     json!({
         "stop": s.stop,
         "resumed_from": s.resumed_from,
+        "skipped_incomplete": s.skipped_incomplete,
         "batch": s.batch,
         "initial_size": s.initial_size,
         "max_evaluations": s.max_evaluations,
@@ -748,6 +782,24 @@ fn stop_words(s: &SurrogateRun) -> String {
     }
 }
 
+/// How a surrogate run continued from its store: the designs it read, and those it skipped for
+/// lacking a metric the problem needs (empty for a fresh run).
+fn resumed_words(s: &SurrogateRun) -> String {
+    let mut words = String::new();
+    if s.resumed_from > 0 {
+        words = format!(", continued from {} stored designs", s.resumed_from);
+    }
+    if s.skipped_incomplete > 0 {
+        let _ = write!(
+            words,
+            ", skipped {} lacking metrics the objectives or constraints need (a study asking for \
+             them completes them)",
+            count(s.skipped_incomplete, "stored design", "stored designs")
+        );
+    }
+    words
+}
+
 /// A surrogate run's models in one line: iterations, fallbacks, the last fit's worst
 /// leave-one-out error, and the models' share of the wall time.
 fn surrogate_text(s: &SurrogateRun, elapsed_s: f64) -> String {
@@ -765,11 +817,7 @@ fn surrogate_text(s: &SurrogateRun, elapsed_s: f64) -> String {
          models {:.1} s + acquisition {:.1} s ({share:.1} % of the run's wall time)",
         s.batch,
         s.initial_size,
-        if s.resumed_from > 0 {
-            format!(", continued from {} stored designs", s.resumed_from)
-        } else {
-            String::new()
-        },
+        resumed_words(s),
         count(fallbacks, "iteration", "iterations"),
         s.fit_s(),
         s.acquisition_s()
@@ -920,6 +968,7 @@ mod tests {
         let progress = Progress {
             to_compute: computed,
             computed,
+            completed: 0,
             reused,
             infeasible: 1,
             failed: 0,
@@ -1004,15 +1053,39 @@ mod tests {
         assert_eq!(metrics_text().lines().count(), METRICS.len());
     }
 
+    /// A resumed study that completed stored designs says so: "completed", not "computed".
+    #[test]
+    fn designs_completed_by_a_resume_are_called_completed() {
+        let mut progress = run_summary(3, 1).progress;
+        progress.completed = 2;
+        assert_eq!(
+            work_done(&progress),
+            "computed 1, completed 2 stored designs with the metrics they lacked"
+        );
+        assert_eq!(
+            evaluated_now(&progress),
+            "1 evaluated, 2 stored designs completed with the metrics they lacked"
+        );
+        progress.completed = 0;
+        assert_eq!(work_done(&progress), "computed 3");
+        let completed =
+            MergeSummary { inserted: 1, duplicates: 0, completed: 2, conflicts: vec![] };
+        assert_eq!(
+            merge_text(Path::new("a.sqlite"), &completed),
+            "a.sqlite: 1 added, 0 already present, 2 completed with the metrics they lacked\n"
+        );
+    }
+
     #[test]
     fn merges_report_their_conflicts() {
-        let clean = MergeSummary { inserted: 3, duplicates: 1, conflicts: Vec::new() };
+        let clean =
+            MergeSummary { inserted: 3, duplicates: 1, completed: 0, conflicts: Vec::new() };
         assert_eq!(
             merge_text(Path::new("a.sqlite"), &clean),
             "a.sqlite: 3 added, 1 already present\n"
         );
         let conflicting =
-            MergeSummary { inserted: 0, duplicates: 0, conflicts: vec!["k1".into(), "k2".into()] };
+            MergeSummary { conflicts: vec!["k1".into(), "k2".into()], ..MergeSummary::default() };
         let text = merge_text(Path::new("b.sqlite"), &conflicting);
         assert!(
             text.ends_with(

@@ -3,8 +3,16 @@
 //! Shards of one study (`--shard K/N`) each fill their own store; merging copies every record
 //! whose key is absent. A key present on both sides is a *duplicate* when the two evaluations
 //! agree (same status, same metric names, every metric within a relative
-//! [`MERGE_RELATIVE_TOLERANCE`]) and a *conflict* otherwise; either way the record already in the
-//! destination is kept. The whole merge is one transaction: it lands completely or not at all.
+//! [`MERGE_RELATIVE_TOLERANCE`]) or when the destination's record already holds every metric of
+//! the incoming one with the same value; it is *completed* when the incoming record holds every
+//! metric of the destination's with the same value, and more (the same design evaluated by a
+//! study that asked for more metrics): the destination's record then holds the union, as
+//! [`Store::complete`] would store it (its place, creation time, variables and design kept, the
+//! outcome of the record with more metrics). The record with fewer metrics must be `ok` or have
+//! the other's status. Any other key on both sides is a *conflict* — a value that differs, a
+//! static failure against a success, or each side holding metrics the other lacks (which is
+//! also how one metric under two names looks) — and the destination's record is kept. The whole merge is one transaction: it lands completely or not at
+//! all.
 //!
 //! Metric names may have changed between the versions that wrote two stores (see
 //! `mrbrake_explore::evaluate::LEGACY_METRIC_NAMES`); [`Store::merge_from_upgrading`] takes the
@@ -15,8 +23,8 @@ use std::path::Path;
 use rusqlite::{OptionalExtension, TransactionBehavior};
 
 use crate::named_values;
-use crate::row::{insert_new, read_row};
-use crate::{MetricValue, Status, Store, StoreError};
+use crate::row::{StoredRecord, insert_new, read_row, rewrite_outcome};
+use crate::{MetricValue, Record, Status, Store, StoreError};
 
 /// Relative tolerance under which two values of the same metric count as equal in a merge:
 /// `|a - b| <= 1e-9 * max(|a|, |b|)`. NaN equals NaN and an infinity equals the same infinity.
@@ -31,6 +39,9 @@ pub struct MergeSummary {
     pub inserted: usize,
     /// Records whose key was present with an agreeing evaluation (not copied).
     pub duplicates: usize,
+    /// Records whose key was present with fewer metrics, completed with the incoming ones
+    /// (module docs).
+    pub completed: usize,
     /// Keys present on both sides with a different status or different metrics (not copied; the
     /// destination's record is kept), in the source's insertion order.
     pub conflicts: Vec<String>,
@@ -67,6 +78,7 @@ impl Store {
             });
         }
         let source = Store::open_read_only(other)?;
+        let select_one = format!("{} WHERE key = ?1", self.select_records_sql());
         let self_path = self.path().to_owned();
         let write_error = |error| crate::schema::sqlite_error(&self_path, error);
 
@@ -104,8 +116,24 @@ impl Store {
                             && metrics_agree(&metrics, &incoming.record.metrics);
                         if agrees {
                             summary.duplicates += 1;
-                        } else {
-                            summary.conflicts.push(incoming.record.key.clone());
+                            continue;
+                        }
+                        let stored = stored_record(&transaction, &select_one, &incoming.record.key)
+                            .map_err(write_error)?;
+                        let relation = stored.map_or(Relation::Conflict, |mut stored| {
+                            upgrade(&mut stored.record.metrics);
+                            relate(stored, &incoming.record)
+                        });
+                        match relation {
+                            Relation::Holds => summary.duplicates += 1,
+                            Relation::Completes(record, created, verified) => {
+                                rewrite_outcome(&transaction, &record, created, verified)
+                                    .map_err(write_error)?;
+                                summary.completed += 1;
+                            }
+                            Relation::Conflict => {
+                                summary.conflicts.push(incoming.record.key.clone());
+                            }
                         }
                     }
                 }
@@ -139,6 +167,65 @@ fn existing_outcome(
             named_values::decode(&metrics).unwrap_or_default(),
         )
     }))
+}
+
+/// How an incoming record relates to the destination's record of the same key (module docs).
+enum Relation {
+    /// The destination already holds every incoming metric with the same value.
+    Holds,
+    /// The union of both, to store in place (with the stored creation time and verification).
+    Completes(Box<Record>, Option<f64>, bool),
+    /// A metric differs, or the statuses cannot be reconciled.
+    Conflict,
+}
+
+/// The destination's record of `key`, decoded; `None` when it cannot be decoded (a conflict: it
+/// cannot be extended).
+fn stored_record(
+    transaction: &rusqlite::Transaction<'_>,
+    select_one: &str,
+    key: &str,
+) -> rusqlite::Result<Option<StoredRecord>> {
+    let row = transaction
+        .prepare_cached(select_one)
+        .and_then(|mut statement| statement.query_row([key], read_row).optional())?;
+    Ok(row.and_then(|row| row.decode().ok()))
+}
+
+/// The relation of `incoming` to the `stored` record of its key (module docs), whose statuses or
+/// metric names differ (equal ones are duplicates before this is asked).
+fn relate(stored: StoredRecord, incoming: &Record) -> Relation {
+    let held = |record: &Record, name: &str| record.metric_value(name);
+    let shared_agree = incoming.metrics.iter().all(|(name, value)| {
+        held(&stored.record, name).is_none_or(|s| s.agrees_with(*value, values_agree))
+    });
+    if !shared_agree {
+        return Relation::Conflict;
+    }
+    let extra = incoming.metrics.iter().any(|(name, _)| held(&stored.record, name).is_none());
+    let stored_has_more =
+        stored.record.metrics.iter().any(|(name, _)| held(incoming, name).is_none());
+    // The record with fewer metrics must be `ok` (a study that asked for less) or have the
+    // outcome of the one with more: a static failure is not completed by a success.
+    let extends =
+        |fewer: &Record, more: &Record| fewer.status == Status::Ok || fewer.status == more.status;
+    match (extra, stored_has_more) {
+        (false, true) if extends(incoming, &stored.record) => Relation::Holds,
+        // The incoming record completes the stored one (as `Store::complete`).
+        (true, false) if extends(&stored.record, incoming) => Relation::Completes(
+            Box::new(Record {
+                key: stored.record.key,
+                variables: stored.record.variables,
+                spec_toml: stored.record.spec_toml,
+                ..incoming.clone()
+            }),
+            stored.created_unix_s,
+            stored.verified,
+        ),
+        // Each has metrics the other lacks (e.g. the same metric under two names), the same
+        // names with different statuses, or a failure against a success.
+        _ => Relation::Conflict,
+    }
 }
 
 /// True when both lists hold the same metric names (in any order) with agreeing values.

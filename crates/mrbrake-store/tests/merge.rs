@@ -53,7 +53,12 @@ fn overlapping_shards_merge_to_their_union() {
     let summary = merged.merge_from(&path_b).expect("merge");
     assert_eq!(
         summary,
-        MergeSummary { inserted: 3, duplicates: 2, conflicts: vec![format!("{:064x}", 3)] }
+        MergeSummary {
+            inserted: 3,
+            duplicates: 2,
+            completed: 0,
+            conflicts: vec![format!("{:064x}", 3)]
+        }
     );
     let expected: Vec<String> = (0..9).map(|index| format!("{index:064x}")).collect();
     assert_eq!(keys(&merged), expected, "a's order, then b's new records in b's order");
@@ -187,7 +192,10 @@ fn a_renaming_applies_to_both_sides_before_comparing() {
     let path_into = store_with(directory.path(), "into.mrbrake", &new);
     let mut merged = Store::open(&path_into).expect("open");
     let summary = merged.merge_from_upgrading(&path_old, &rename).expect("merge");
-    assert_eq!(summary, MergeSummary { inserted: 1, duplicates: 2, conflicts: vec![] });
+    assert_eq!(
+        summary,
+        MergeSummary { inserted: 1, duplicates: 2, completed: 0, conflicts: vec![] }
+    );
     let copied = merged.get(&format!("{:064x}", 0)).expect("get (checksum verified)");
     let copied = copied.expect("copied");
     assert_eq!(copied.metric("torque_on_Nm"), Some(2.0));
@@ -195,5 +203,8 @@ fn a_renaming_applies_to_both_sides_before_comparing() {
     // And the other way round: an old-name destination against a new-name source.
     let mut old_store = Store::open(&path_old).expect("open old");
     let summary = old_store.merge_from_upgrading(&path_new, &rename).expect("merge");
-    assert_eq!(summary, MergeSummary { inserted: 1, duplicates: 2, conflicts: vec![] });
+    assert_eq!(
+        summary,
+        MergeSummary { inserted: 1, duplicates: 2, completed: 0, conflicts: vec![] }
+    );
 }

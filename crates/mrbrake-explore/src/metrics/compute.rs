@@ -3,7 +3,8 @@
 //! metrics before its first design.
 //!
 //! Every metric is the value of the command's JSON for the same design and settings:
-//! `bandwidth_rad_s` of `mrbrake response --bias B`, `t63_s`/`t90_s` of `step[d]` of `mrbrake
+//! `bandwidth_rad_s` of `mrbrake response --bias B` (`bandwidth_dir2_rad_s` the same analysis of
+//! direction 2's coils and gaps: [`ResponseModel::frequency_response_of`]), `t63_s`/`t90_s` of `step[d]` of `mrbrake
 //! response --step FROM..TO`, the fall times of `--step TO..FROM`; `coil_max_T_C` is
 //! `steady.coil_max_T_C`, `continuous_current_A`, `max_duty_at_max_current` and
 //! `time_to_limit_s` those of `mrbrake thermal`, and `continuous_torque_Nm` is
@@ -127,6 +128,7 @@ impl<'s> Models<'s> {
                 let (from, to) = self.step_currents();
                 self.steps(analysis, from, to)
             }
+            Analysis::Frequency | Analysis::Frequency2 => self.bandwidth(analysis),
             _ => {
                 count_run(analysis);
                 self.run_counted(analysis)
@@ -147,15 +149,6 @@ impl<'s> Models<'s> {
     /// The analyses other than the step responses.
     fn run_counted(&mut self, analysis: Analysis) -> Figures {
         match analysis {
-            Analysis::Frequency => {
-                let max = self.spec.coil.max_current.a();
-                let bias = self.response_options.bias_a.unwrap_or(0.5 * max);
-                let (_, frd, bandwidth) =
-                    self.response()?.frequency_response(bias).map_err(failure)?;
-                let highest = frd.points.last().map_or(0.0, |p| p.omega_rad_s);
-                self.frequency_response = Some((frd, bias));
-                Ok(vec![("bandwidth_rad_s", or_bound(bandwidth, MetricValue::AtLeast(highest)))])
-            }
             Analysis::ThermalSteady => {
                 let limit = self.thermal_options.limit_c;
                 let steady = self.thermal()?.steady().map(|s| s.coil_max_t_c);
@@ -212,6 +205,30 @@ impl<'s> Models<'s> {
             (names[0], rise_time_metric(step.t63_s, time, torque, 0.63)),
             (names[1], rise_time_metric(step.t90_s, time, torque, 0.9)),
         ])
+    }
+
+    /// The −3 dB bandwidth of direction 1 (`bandwidth_rad_s`; its response is kept for the
+    /// haptic wall) or 2 (`bandwidth_dir2_rad_s`; not applicable to a brake with one direction),
+    /// each from the small-signal response of its own coils and gaps at the study's bias.
+    fn bandwidth(&mut self, analysis: Analysis) -> Figures {
+        let max = self.spec.coil.max_current.a();
+        let bias = self.response_options.bias_a.unwrap_or(0.5 * max);
+        let (unit, name) = match analysis {
+            Analysis::Frequency => (0, "bandwidth_rad_s"),
+            _ => (1, "bandwidth_dir2_rad_s"),
+        };
+        let model = self.response()?;
+        if unit >= model.units() {
+            return Ok(vec![(name, MetricValue::NotApplicable)]);
+        }
+        count_run(analysis);
+        let (_, frd, bandwidth) = model.frequency_response_of(unit, bias).map_err(failure)?;
+        let highest = frd.points.last().map_or(0.0, |p| p.omega_rad_s);
+        let metric = or_bound(bandwidth, MetricValue::AtLeast(highest));
+        if unit == 0 {
+            self.frequency_response = Some((frd, bias));
+        }
+        Ok(vec![(name, metric)])
     }
 
     /// The torque held for ever: at the continuous current, hot coil and fluid (module docs).

@@ -29,7 +29,8 @@
 //! use them: [`crate::problem::Constraint::violation_of`], [`crate::optimize::evaluation_for`].
 //!
 //! The cascade (`cascade`, run by [`crate::evaluate::evaluate`]): the static analysis first
-//! (always); then level 1 (steady temperatures, the small-signal response: one linear solve per frequency), level 2 (the
+//! (always); then level 1 (steady temperatures, the small-signal response of each direction asked
+//! for: one linear solve per frequency), level 2 (the
 //! continuous-current search, the step responses), level 3 (the warm-up transient, the hot
 //! torque, the haptic wall: the brake model's torque–current sweep and the simulation; with
 //! predicted dynamics it fits the level-1 small-signal response, which it then needs). Before each level the constraints on the metrics known so far are checked: a design
@@ -67,6 +68,8 @@ pub enum Analysis {
     ThermalSteady,
     /// Small-signal frequency response of direction 1 about the bias (level 1).
     Frequency,
+    /// Small-signal frequency response of direction 2 about the bias (level 1).
+    Frequency2,
     /// Continuous current: steady states searched for the insulation limit (level 2).
     ThermalRating,
     /// Step response up, direction 1 (level 2).
@@ -87,9 +90,10 @@ pub enum Analysis {
 }
 
 /// Every analysis, in cascade order.
-pub const ANALYSES: [Analysis; 10] = [
+pub const ANALYSES: [Analysis; 11] = [
     Analysis::ThermalSteady,
     Analysis::Frequency,
+    Analysis::Frequency2,
     Analysis::ThermalRating,
     Analysis::StepUp1,
     Analysis::StepUp2,
@@ -106,6 +110,7 @@ impl Analysis {
         match self {
             Self::ThermalSteady => "steady temperatures",
             Self::Frequency => "small-signal response",
+            Self::Frequency2 => "small-signal response (direction 2)",
             Self::ThermalRating => "continuous-current search",
             Self::StepUp1 => "step response (direction 1)",
             Self::StepUp2 => "step response (direction 2)",
@@ -120,7 +125,7 @@ impl Analysis {
     /// Its fidelity level: 1 (cheap), 2, 3 (most expensive); the static analysis is level 0.
     pub fn level(self) -> u8 {
         match self {
-            Self::ThermalSteady | Self::Frequency => 1,
+            Self::ThermalSteady | Self::Frequency | Self::Frequency2 => 1,
             Self::Warmup | Self::HotTorque | Self::Haptic => 3,
             _ => 2,
         }
@@ -139,6 +144,7 @@ impl Analysis {
 /// Every metric beyond the static analysis and the analysis that gives it.
 pub const EXPENSIVE_METRICS: &[(&str, Analysis)] = &[
     ("bandwidth_rad_s", Analysis::Frequency),
+    ("bandwidth_dir2_rad_s", Analysis::Frequency2),
     ("t63_s", Analysis::StepUp1),
     ("t90_s", Analysis::StepUp1),
     ("t63_dir2_s", Analysis::StepUp2),
@@ -165,7 +171,7 @@ pub fn analysis_of(metric: &str) -> Option<Analysis> {
 
 /// How many times each analysis has run in this process (the cascade's accounting: a test
 /// counts them to show what the cascade skips).
-static RUNS: [AtomicUsize; 10] = [const { AtomicUsize::new(0) }; 10];
+static RUNS: [AtomicUsize; ANALYSES.len()] = [const { AtomicUsize::new(0) }; ANALYSES.len()];
 
 /// How many times each analysis has run in this process, in [`ANALYSES`] order.
 pub fn analysis_counts() -> Vec<(Analysis, usize)> {

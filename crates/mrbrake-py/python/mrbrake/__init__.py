@@ -16,11 +16,16 @@ Main entry points:
   ``mrbrake optimize``).
 - :func:`response`: the predicted dynamics (step responses, frequency response; ``mrbrake
   response``).
+- :func:`thermal`: temperatures, warm-up, continuous rating and hot behaviour (``mrbrake
+  thermal``).
+- :func:`report`: the self-contained HTML report of a design, a store or a rig log (``mrbrake
+  report``).
 - :func:`calibrate`: spec fields fitted to a rig log's loop (``mrbrake calibrate``).
 - :mod:`mrbrake.store`: the results store of design studies (``load``: a table).
 - :mod:`mrbrake.sysid`: hysteresis characterisation, frequency response, transfer-function fits.
 
-Errors: ``ValueError`` for bad input (the CLI's message), ``OSError`` for I/O failures,
+Errors: ``ValueError`` for bad input (the CLI's message), ``FileNotFoundError`` for a missing
+input file, ``OSError`` for other I/O failures,
 :class:`SolverError` for numerical failures, ``RuntimeError`` for internal ones.
 Long computations release the GIL, so threads run analyses in parallel.
 """
@@ -29,7 +34,8 @@ from . import _native
 from ._native import Analysis, SolverError, __version__
 
 __all__ = ["Analysis", "SolverError", "analyze", "calibrate", "fem", "formula", "haptic", "materials", "optimize",
-           "response", "rig", "store", "sweep", "sysid", "__version__"]
+           "report", "response", "rig", "store", "sweep", "sysid", "thermal",
+           "__version__"]
 
 
 def analyze(spec=None, mesh="default", order=1, currents=None, *, speed=None,
@@ -144,7 +150,8 @@ def sweep(spec=None, vary=None, *, store, set=None, sample=None, seed=1, resume=
                          speed=speed)
 
 
-def optimize(problem, store=None, *, resume=False, jobs=0, out=None):
+def optimize(problem, store=None, *, resume=False, jobs=0, out=None, max_evaluations=None,
+             generations=None, seed=None, set=None):
     """A constrained single- or multi-objective optimisation of a brake design (``mrbrake
     optimize``): NSGA-II or pattern search as the problem file says, every evaluation a full
     analysis through the results store.
@@ -161,17 +168,31 @@ def optimize(problem, store=None, *, resume=False, jobs=0, out=None):
         Analyses run at the same time (0: one per core).
     out : str or os.PathLike, optional
         Also write the CLI's ``--out`` folder (evaluations.csv, pareto.csv, plots, front designs).
+    max_evaluations : int, optional
+        The most designs to evaluate, overriding the problem's budget (the CLI's
+        ``--max-evaluations``; for NSGA-II the generations that fit in it).
+    generations : int, optional
+        NSGA-II generations after the initial population (``--generations``).
+    seed : int, optional
+        The seed instead of the problem's ``algorithm.seed`` (``--seed``).
+    set : dict or list of str, optional
+        Fixed changes to the base spec after the problem's ``[set]`` (``{"materials.bobbin":
+        "pom"}`` or ``["coil.turns=fill"]``), the CLI's ``--set``; a variable on the same field
+        is then fixed at that value.
 
     Returns
     -------
     dict
         The document of ``mrbrake optimize --json`` (the front, the reference design, counts).
 
-    Raises ``ValueError`` for a bad problem file (the CLI's message). Runs without the GIL.
+    Raises ``ValueError`` for a bad problem file or keyword (the CLI's message),
+    ``FileNotFoundError`` for a missing problem file. Runs without the GIL.
     """
     return _native.optimize_problem(str(problem), None if store is None else str(store),
                                     resume=resume, jobs=jobs,
-                                    out=None if out is None else str(out))
+                                    out=None if out is None else str(out),
+                                    generations=generations, max_evaluations=max_evaluations,
+                                    seed=seed, set=_pairs(set, "set"))
 
 
 from . import fem, formula, haptic, materials, rig, store, sysid  # noqa: E402  (submodules use the names above)
@@ -264,3 +285,114 @@ def response(spec=None, mesh="default", *, drive="current", duration=None, step=
     """
     return _native.response(spec, mesh, drive=drive, duration=duration, step=step, bias=bias,
                             fluid_lag=fluid_lag, conductivity=conductivity)
+
+
+def thermal(spec=None, mesh="default", *, current=None, duty=1.0, period=None, ambient=None, h=None,
+            emissivity=0.0, insulation_class="155C", time=None, dt=None, speed=None,
+            behaviour=True):
+    """The brake's temperatures and heat ratings (``mrbrake thermal``): steady hot spot at a
+    current and duty cycle, warm-up, time to the insulation limit, continuous current, largest
+    duty at the maximum current, and (``behaviour``) what heat does to the brake.
+
+    Parameters
+    ----------
+    spec : None, str, os.PathLike or dict
+        As for :func:`analyze` (``None``: the embedded thesis brake).
+    mesh : str
+        Mesh density.
+    current : float (A) or str, optional
+        Coil current when on; default the spec's maximum current.
+    duty : float
+        Duty cycle in (0, 1].
+    period : float (s) or str, optional
+        Period of the duty cycle, checked against the thermal time constant.
+    ambient : float (degC) or str, optional
+        Ambient temperature; default ``"25C"``.
+    h : float (W/(m^2 K)), str or "natural", optional
+        Heat-transfer coefficient of the housing, or natural convection; default 10.
+    emissivity : float
+        Emissivity of the housing for radiation, in [0, 1].
+    insulation_class : str
+        Insulation limit: a temperature (``"155C"``) or an IEC 60085 class letter.
+    time, dt : float (s) or str, optional
+        Warm-up duration and step; default ``"2h"`` and ``"10s"``.
+    speed : float (rad/s) or str, optional
+        Shaft speed for the viscous heat; default ``"0rad/s"``.
+    behaviour : bool
+        Also compute the hot behaviour (viscosity, resistance, voltage drive: a magnetic
+        analysis); ``False`` is the CLI's ``--no-behaviour``.
+
+    Returns
+    -------
+    dict
+        The document of ``mrbrake thermal --json`` (``steady``, ``warmup``,
+        ``continuous_current_A``, ``max_duty_at_max_current``, ``behaviour``, ...), SI with
+        temperatures in degC.
+
+    Raises ``ValueError`` for bad input (the CLI's message), ``FileNotFoundError`` for a missing
+    spec, :class:`SolverError` when a solve fails. Runs without the GIL.
+    """
+    return _native.thermal(spec, mesh, current=current, duty=duty, period=period, ambient=ambient,
+                           h=h, emissivity=emissivity, insulation_class=insulation_class,
+                           time=time, dt=dt, speed=speed, behaviour=behaviour)
+
+
+def report(spec=None, output=None, *, store=None, problem=None, log=None, frd=None, poles=None,
+           zeros=None, fit_order=None, mesh="default", order=1, points=21, speed=None,
+           temperature=None, response=False, thermal=False, uncertainty=None):
+    """The self-contained HTML report (``mrbrake report``): of a design (``spec``, default the
+    embedded thesis brake with its published values), of a results store (``store``) or of a
+    rig characterisation (``log``). The page is the one the CLI writes, composed by the same
+    library code.
+
+    Parameters
+    ----------
+    spec : None, str, os.PathLike or dict
+        The design, as for :func:`analyze`.
+    output : str or os.PathLike, optional
+        Also write the page there (atomically).
+    store : str or os.PathLike, optional
+        A study report of this results store.
+    problem : str or os.PathLike, optional
+        The problem whose objectives define the study's front (default: the one the store
+        records).
+    log : str or os.PathLike, optional
+        A characterisation report of this repeated-ramp rig log (CSV).
+    frd : str or os.PathLike, optional
+        Frequency-response data (``mrbrake freqresp``) for the Bode diagram (with ``log``).
+    poles, zeros, fit_order : int, optional
+        The fitted transfer function and the branch polynomials (with ``log``); the CLI's
+        defaults.
+    mesh, order, points, speed, temperature
+        The design report's static analysis, as for :func:`analyze`.
+    response, thermal : bool
+        Add the predicted dynamics / the heat section (their commands' defaults).
+    uncertainty : str or os.PathLike, optional
+        Add the uncertainty section of ``mrbrake uncertainty --json`` saved to this file.
+
+    Returns
+    -------
+    str
+        The HTML page. The analyses' warnings and the problem's notes are issued as
+        ``UserWarning``.
+
+    Raises ``ValueError`` for bad input (the CLI's message), ``FileNotFoundError`` for a missing
+    spec, store, problem or log, :class:`SolverError` when an analysis fails. Runs without the
+    GIL.
+    """
+    import warnings
+
+    def path(p):
+        return None if p is None else str(p)
+
+    defaults = {}
+    for name, value in (("poles", poles), ("zeros", zeros), ("fit_order", fit_order)):
+        if value is not None:
+            defaults[name] = value
+    page = _native.report(spec, path(output), store=path(store), problem=path(problem),
+                          log=path(log), frd=path(frd), mesh=mesh, order=order, points=points,
+                          speed=speed, temperature=temperature, response=response,
+                          thermal=thermal, uncertainty=path(uncertainty), **defaults)
+    for w in page["warnings"]:
+        warnings.warn(w, UserWarning, stacklevel=2)
+    return page["html"]

@@ -118,6 +118,10 @@ def optimize(
     resume: bool = ...,
     jobs: int = ...,
     out: Optional[PathLike] = ...,
+    max_evaluations: Optional[int] = ...,
+    generations: Optional[int] = ...,
+    seed: Optional[int] = ...,
+    set: Union[Dict[str, Any], List[str], None] = ...,
 ) -> Dict[str, Any]:
     """An optimisation study from a problem file (``mrbrake optimize --json``)."""
 
@@ -150,3 +154,43 @@ def response(
     conductivity: Optional[Quantity] = ...,
 ) -> Dict[str, Any]:
     """The predicted dynamics (``mrbrake response --json``); SI units."""
+
+def thermal(
+    spec: Spec = ...,
+    mesh: str = ...,
+    *,
+    current: Optional[Quantity] = ...,
+    duty: float = ...,
+    period: Optional[Quantity] = ...,
+    ambient: Optional[Quantity] = ...,
+    h: Optional[Quantity] = ...,
+    emissivity: float = ...,
+    insulation_class: str = ...,
+    time: Optional[Quantity] = ...,
+    dt: Optional[Quantity] = ...,
+    speed: Optional[Quantity] = ...,
+    behaviour: bool = ...,
+) -> Dict[str, Any]:
+    """Temperatures, warm-up, ratings and hot behaviour (``mrbrake thermal --json``); SI, degC."""
+
+def report(
+    spec: Spec = ...,
+    output: Optional[PathLike] = ...,
+    *,
+    store: Optional[PathLike] = ...,
+    problem: Optional[PathLike] = ...,
+    log: Optional[PathLike] = ...,
+    frd: Optional[PathLike] = ...,
+    poles: Optional[int] = ...,
+    zeros: Optional[int] = ...,
+    fit_order: Optional[int] = ...,
+    mesh: str = ...,
+    order: int = ...,
+    points: int = ...,
+    speed: Optional[Quantity] = ...,
+    temperature: Optional[Quantity] = ...,
+    response: bool = ...,
+    thermal: bool = ...,
+    uncertainty: Optional[PathLike] = ...,
+) -> str:
+    """The HTML report ``mrbrake report`` writes (a design, a store or a rig log)."""

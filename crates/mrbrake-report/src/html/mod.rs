@@ -17,7 +17,9 @@
 //! * [`uncertainty`]: the section of an uncertainty propagation (bands, tornado chart, Sobol'
 //!   indices) added to a design report;
 //! * [`characterization`]: a test-rig characterisation (hysteresis loop, branch fits, inverse model,
-//!   and with frequency-response data the Bode diagram with the fitted transfer function).
+//!   and with frequency-response data the Bode diagram with the fitted transfer function);
+//! * [`request`]: each of those pages from what a front end parsed (the analyses a page needs run
+//!   there), the one composition of `mrbrake report` and Python's `mrbrake.report`.
 //!
 //! Each report type has a `json()` document (the same values as the corresponding `--json`
 //! output) and an `html()` page whose numeric cells point into it.
@@ -33,6 +35,7 @@ pub mod characterization;
 pub mod check;
 pub mod cross_section;
 pub mod design;
+pub mod request;
 pub mod response;
 pub mod spec_notes;
 pub mod study;
