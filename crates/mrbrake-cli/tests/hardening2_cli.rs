@@ -342,3 +342,21 @@ fn an_unrunnable_saved_model_names_the_flag_and_the_spec() {
     expect_input_error(&args, &["--save-model", "m.json", "drum.toml", "static_curve"]);
     assert!(!model.exists(), "nothing written");
 }
+
+/// Class 1: an unknown `--set` path made every design of a study infeasible and exited 0; it is
+/// now an input error naming `--set` and the path, in `sweep` and `optimize` alike.
+#[test]
+fn an_unknown_set_path_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let store = dir.path().join("s.sqlite");
+    let sweep = ["sweep", "--set", "nope=1", "--vary", "drum.gap=0.5mm,0.6mm", "--store"];
+    let mut args = sweep.to_vec();
+    args.push(path_str(&store));
+    expect_input_error(&args, &["--set", "'nope'", "names no field of a brake spec"]);
+    assert!(!store.exists(), "nothing stored");
+    let problem = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/optimize/thesis-requirement-quick.toml"
+    );
+    expect_input_error(&["optimize", problem, "--set", "drum.gapp=1mm"], &["'drum.gapp'"]);
+}

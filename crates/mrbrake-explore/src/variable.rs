@@ -365,7 +365,27 @@ pub fn parse_set(text: &str) -> Result<(String, String), ExploreError> {
             .with_value(format!("'{text}'"))
             .with_allowed("e.g. coil.turns=fill or materials.bobbin=pom")
     })?;
-    Ok((path.trim().to_string(), value.trim().to_string()))
+    let path = path.trim();
+    if !is_spec_path(path) {
+        return Err(FieldError::new("set", "names no field of a brake spec")
+            .with_value(format!("'{path}'"))
+            .with_allowed(
+                "a spec key (docs/reference/spec.md, e.g. drum.gap, coil.turns, \
+                 materials.bobbin) or a design-variable symbol (R0, h, g, …)",
+            )
+            .into());
+    }
+    Ok((path.to_string(), value.trim().to_string()))
+}
+
+/// True when `path` is a key of the spec's schema (any configuration) or a variable's name
+/// (an unknown `--set` path made every design of a study infeasible, with exit 0).
+fn is_spec_path(path: &str) -> bool {
+    if resolve(path, true).is_ok() || resolve(path, false).is_ok() {
+        return true;
+    }
+    let mut schema = mrbrake_design::spec::schema();
+    mrbrake_schema::node_mut(&mut schema, path).is_some()
 }
 
 /// [`parse_set`] of every argument, in order.
