@@ -507,7 +507,13 @@ mod tests {
     #[test]
     fn sets_split_at_the_first_equals_sign() {
         assert_eq!(parse_set(" coil.turns = fill ").unwrap(), ("coil.turns".into(), "fill".into()));
-        assert_eq!(parse_set("a=b=c").unwrap().1, "b=c");
+        assert_eq!(parse_set("name=b=c").unwrap().1, "b=c");
         assert!(parse_set("coil.turns").unwrap_err().to_string().contains("PATH=VALUE"));
+        // Any spec key or variable symbol; nothing else.
+        for known in ["R0=20mm", "coil.wire.awg=25", "materials.bobbin=pom", "drag.seal_torque=0.1"]
+        {
+            assert!(parse_set(known).is_ok(), "{known}");
+        }
+        assert!(parse_set("drum.gapp=1mm").unwrap_err().to_string().contains("'drum.gapp'"));
     }
 }
