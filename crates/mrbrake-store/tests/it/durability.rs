@@ -87,8 +87,12 @@ fn child_writer() {
 }
 
 fn spawn_writer(path: &Path, order_name: &str) -> Child {
+    // The test's full name in this binary: its module path without the crate's name.
+    let child_test =
+        module_path!().split_once("::").map_or(String::new(), |(_, m)| format!("{m}::"))
+            + "child_writer";
     Command::new(std::env::current_exe().expect("test binary path"))
-        .args(["child_writer", "--exact", "--ignored", "--nocapture", "--test-threads=1"])
+        .args([child_test.as_str(), "--exact", "--ignored", "--nocapture", "--test-threads=1"])
         .env(CHILD_ENV, path)
         .env(ORDER_ENV, order_name)
         // The child's test-harness chatter is noise; its panics (stderr) stay visible.
