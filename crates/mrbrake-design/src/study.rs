@@ -8,7 +8,7 @@
 //! (`examples/specs/study-single-disc.toml`, embedded) and changes only what the thesis varies, so the
 //! trends are comparable while the absolute values depend on the base (coil window, case, steel).
 //! The drum of Table 4.4 uses R0 = 25 mm and h = 9 mm, the sizes that reproduce its printed torque
-//! through (3.9) (see `tests/thesis_tables.rs`).
+//! through (3.9) (see `tests/it/thesis_tables.rs`).
 
 use serde::Serialize;
 

@@ -4,6 +4,7 @@
 //! one direction. On the thesis brake, whose units are mirror images, it equals direction 1's
 //! within the discretisation (the mesh is not mirrored).
 
+#[path = "it/common/mod.rs"]
 mod common;
 
 use std::sync::Arc;

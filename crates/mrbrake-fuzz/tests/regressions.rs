@@ -10,7 +10,7 @@ use mrbrake_fuzz::{Budget, Outcome, fuzz, targets};
 /// The targets that run in this process. The `cli-*` targets run the `mrbrake` binary, which a
 /// test of this crate alone may find missing or stale; CI's fuzz run exercises them with the
 /// fresh release binary, and their findings are regression tests of the CLI
-/// (`crates/mrbrake-cli/tests/hardening2_cli.rs`).
+/// (`crates/mrbrake-cli/tests/it/hardening2_cli.rs`).
 fn in_process(target: &mrbrake_fuzz::Target) -> bool {
     !target.name.starts_with("cli-")
 }

@@ -29,7 +29,7 @@
 //! Where the layer carries a source current (a body beside a coil), the stress is not
 //! divergence-free there (`∇·T = J × B`), and `−∫ T·∇g dV` would add the Lorentz force on those
 //! currents weighted by `g`; that term, `−∫ g (J × B)_z dV = ∫ g J_φ B_r dV`, is taken off
-//! (the force on the pot core and on its coil then cancel, `tests/problem_file.rs`).
+//! (the force on the pot core and on its coil then cancel, `tests/it/problem_file.rs`).
 //!
 //! Limits: the layer must lie in a medium whose law is a function of the local field (air, the
 //! MR fluid, steel): a body pressed against another body (no layer of a third medium between

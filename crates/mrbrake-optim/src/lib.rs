@@ -38,7 +38,7 @@
 //! same options therefore asks for the same batches in the same order: an evaluator backed by a
 //! results store serves the designs it already holds, so an interrupted optimisation resumes by
 //! simply being run again, recomputing nothing, provided stored objective values come back bit for
-//! bit (`tests/nsga2_validation.rs`, `an_interrupted_run_resumes_through_a_cache_without_recomputation`).
+//! bit (`tests/it/nsga2_validation.rs`, `an_interrupted_run_resumes_through_a_cache_without_recomputation`).
 //!
 //! ```
 //! use mrbrake_optim::{FnProblem, pareto::Evaluation, pattern_search, space::Bounds};

@@ -34,7 +34,7 @@
 //! adaptive direct search algorithms for constrained optimization", SIAM J. Optim. 17(1), 188–217).
 //! The descent cone narrows towards a constrained optimum, so the final approach is slow: on the
 //! 2-D test `x + y <= 2` it stops within 0.6 % of the optimal objective where compass search stops
-//! 6–25 % above it (`tests/pattern_search_validation.rs`). The poll has the same `2n` points;
+//! 6–25 % above it (`tests/it/pattern_search_validation.rs`). The poll has the same `2n` points;
 //! integer variables keep their coordinate moves. Random directions leave the rational lattice, so
 //! the convergence theory would call for a sufficient-decrease test (Kolda et al. 2003, Sec. 3.7.1);
 //! simple decrease is kept here, which is what the tests measure.

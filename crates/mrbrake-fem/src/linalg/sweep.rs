@@ -28,7 +28,7 @@
 //! pot core, 31 frequencies 1–1000 Hz, one session): 1.27 s against 5.67 s for one complex LU per
 //! frequency (load ≈ 7); 8 rounds, 5 distinct shifts, 32 basis vectors, energy bound 1.9e-7,
 //! potential within 4.8e-7 of the largest value and flux linkage within 2.3e-13 of the direct
-//! solves (`tests/dynamics.rs` in `mrbrake-magnetics`). The thesis brake's small-signal sweep
+//! solves (`tests/it/dynamics.rs` in `mrbrake-magnetics`). The thesis brake's small-signal sweep
 //! (32 frequencies) in `mrbrake response`: 1.0–1.1 s, outputs identical to the printed digits.
 
 use faer::{Mat, c64};

@@ -112,7 +112,7 @@
 //! its data and settings but for the hyper-parameter search, which a resumed run starts cold where
 //! the uninterrupted run starts from the previous iteration's optimum. A run resumed right after its
 //! initial design therefore repeats the uninterrupted run exactly
-//! (`tests/surrogate_driver.rs`); resumed later, it continues from the same data with slightly
+//! (`tests/it/surrogate_driver.rs`); resumed later, it continues from the same data with slightly
 //! different models. The explore layer resumes by passing the stored records; nothing else needs
 //! storing.
 //!

@@ -64,7 +64,7 @@
 //! [`Outcome::stopped`] set and [`Outcome::t`] the last level's time (before `t_end`); nothing
 //! finished is lost.
 //!
-//! A new physics implements [`TransientProblem`]; `crates/mrbrake-fem/tests/second_physics.rs`
+//! A new physics implements [`TransientProblem`]; `crates/mrbrake-fem/tests/it/second_physics.rs`
 //! is the template (diffusion in `(r, z)`), `mrbrake-magnetics`' dynamics (eddy currents with
 //! voltage-driven coils as auxiliary states) and `mrbrake-heat` (capacity, Joule feedback,
 //! radiation by Newton) the full examples.

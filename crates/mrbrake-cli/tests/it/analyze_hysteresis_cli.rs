@@ -1,0 +1,52 @@
+//! `mrbrake analyze --hysteresis`: the JSON's `hysteresis` object (the contract: `loop` with
+//! `current_A`, `rising_Nm`, `falling_Nm`; `remanent_torque_Nm`; `width_at_mid_current_Nm`;
+//! `material_model`; `timings_s`), the remanent torque in the off-state breakdown, the text, and bad
+//! loop options as input errors naming their flag.
+
+use crate::common;
+
+use common::{expect_input_error, json, mrbrake, number};
+
+const QUICK: [&str; 8] =
+    ["analyze", "--mesh", "coarse", "--points", "2", "--hysteresis", "--loop-points", "2"];
+
+#[test]
+fn the_loop_and_the_remanent_torque_are_reported() {
+    let mut args = QUICK.to_vec();
+    args.push("--json");
+    let value = json(&args);
+    let h = &value["hysteresis"];
+    let branches = &h["loop"];
+    let grid = branches["current_A"].as_array().expect("current_A");
+    assert_eq!(grid.len(), 3);
+    for key in ["rising_Nm", "falling_Nm", "initial_Nm", "bipolar_rising_Nm"] {
+        assert_eq!(branches[key].as_array().map(Vec::len), Some(3), "{key}");
+    }
+    assert!(h["material_model"].as_str().is_some_and(|m| m.contains("energy-based")));
+    assert!(number(&h["timings_s"], "total") > 0.0);
+    let remanent = number(h, "remanent_torque_Nm");
+    assert!(remanent > 0.0);
+    assert!(number(h, "width_at_mid_current_Nm").is_finite());
+    let off = &value["torque_off"];
+    assert!((number(off, "remanent_Nm") - remanent).abs() < 1e-15);
+    let terms: f64 = ["viscous_Nm", "seal_Nm", "bearing_Nm", "freewheel_Nm", "remanent_Nm"]
+        .iter()
+        .map(|k| number(off, k))
+        .sum();
+    assert!((number(off, "total_Nm") - terms).abs() <= 1e-12);
+    assert!(off["sources"]["remanent"].as_str().is_some_and(|s| s.contains("hysteretic")));
+
+    let text = mrbrake(&QUICK);
+    assert!(text.status.success());
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(text.contains("remanent torque at 0 A after the peak"), "{text}");
+}
+
+#[test]
+fn bad_loop_options_are_input_errors_naming_the_flag() {
+    expect_input_error(&["analyze", "--hysteresis", "--peak", "50A"], &["--peak"]);
+    expect_input_error(&["analyze", "--hysteresis", "--peak", "-1A"], &["--peak"]);
+    expect_input_error(&["analyze", "--hysteresis", "--peak", "1V"], &["--peak"]);
+    expect_input_error(&["analyze", "--hysteresis", "--loop-points", "1"], &["--loop-points"]);
+    expect_input_error(&["analyze", "--peak", "1A"], &["--hysteresis"]);
+}
