@@ -347,7 +347,7 @@ mod tests {
             assert!(spec.contains(heading), "{heading}");
         }
         let gap = spec.lines().find(|l| l.starts_with("| `gap` |")).expect("drum.gap's row");
-        assert!(gap.contains("| m |") && gap.contains("(0, 10)"), "{gap}");
+        assert!(gap.contains("| m |") && gap.contains("(0, 0.01]"), "{gap}");
         let turns = spec.lines().find(|l| l.starts_with("| `turns` |")).expect("coil.turns' row");
         assert!(turns.contains("if absent"), "{turns}");
         let magnetics = Format::Magnetics.markdown();
