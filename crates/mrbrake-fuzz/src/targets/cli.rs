@@ -57,6 +57,9 @@ fn run_analyze(input: &[u8]) -> Outcome {
         .arg(&spec)
         .args(["--mesh", "coarse", "--points", "3", "--json", "--save-model"])
         .arg(&model)
+        // A mesh budget well above the examples' coarse meshes (~20 k triangles) and far below
+        // the default, so a mutated size stays a quick refusal, not minutes of meshing.
+        .env(mrbrake_design::mesh_build::MAX_ELEMENTS_ENV, "200000")
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
