@@ -109,27 +109,16 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         eprintln!("warning: {w}");
     }
     let predicted = if a.hysteresis { Some(predict_loop(&a, &spec, &options)?) } else { None };
-    if let (Some(dir), Some(field)) = (&a.plot_dir, &field) {
-        std::fs::create_dir_all(dir).map_err(|e| {
-            InputError(format!("--plot-dir {}: cannot create it: {e}", dir.display()))
-        })?;
-        report::write_plots(&analysis, field, dir, a.png)?;
-        if let Some(predicted) = &predicted {
-            let svg = dir.join("hysteresis_loop.svg");
-            mrbrake::report::predicted_loop::save_figure(&svg, predicted)?;
-            if a.png {
-                let png = dir.join("hysteresis_loop.png");
-                mrbrake::report::predicted_loop::save_figure(&png, predicted)?;
-            }
-        }
-    }
-    let analysis = match &predicted {
-        Some(p) => mrbrake::report::predicted_loop::with_remanence(&analysis, p),
-        None => analysis,
-    };
+    // What is shown and saved: with the loop's remanent torque when it ran (the plots are the
+    // analysis's own).
+    let with_loop =
+        predicted.as_ref().map(|p| mrbrake::report::predicted_loop::with_remanence(&analysis, p));
+    let (plotted, analysis) = (&analysis, with_loop.as_ref().unwrap_or(&analysis));
     let source =
         a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
-    if let Some(path) = &a.save_model {
+    // The brake model is made and checked before anything is written (all or nothing: a refused
+    // model leaves no plots behind either).
+    let model = if let Some(path) = &a.save_model {
         let how = format!(
             "mrbrake analyze {} (--mesh {} --order {} --points {})",
             command_word(a.spec.as_deref(), &source),
@@ -141,17 +130,36 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         // The model is checked as the simulators will run it: a refusal names the output flag
         // and the spec it came from.
         let model =
-            mrbrake::device::brake_model::from_analysis(&analysis, &options, Some(identity), &how)
+            mrbrake::device::brake_model::from_analysis(analysis, &options, Some(identity), &how)
                 .context(format!("--save-model {} (from {source})", path.display()))?;
-        mrbrake::report::write_atomic(path, model.to_json().as_bytes())?;
+        Some((path, model.to_json()))
+    } else {
+        None
+    };
+    if let (Some(dir), Some(field)) = (&a.plot_dir, &field) {
+        std::fs::create_dir_all(dir).map_err(|e| {
+            InputError(format!("--plot-dir {}: cannot create it: {e}", dir.display()))
+        })?;
+        report::write_plots(plotted, field, dir, a.png)?;
+        if let Some(predicted) = &predicted {
+            let svg = dir.join("hysteresis_loop.svg");
+            mrbrake::report::predicted_loop::save_figure(&svg, predicted)?;
+            if a.png {
+                let png = dir.join("hysteresis_loop.png");
+                mrbrake::report::predicted_loop::save_figure(&png, predicted)?;
+            }
+        }
+    }
+    if let Some((path, json)) = &model {
+        mrbrake::report::write_atomic(path, json.as_bytes())?;
     }
     if a.json {
         return match &predicted {
-            Some(p) => print_json(&mrbrake::report::predicted_loop::json(&analysis, p)?),
-            None => print_json(&analysis),
+            Some(p) => print_json(&mrbrake::report::predicted_loop::json(analysis, p)?),
+            None => print_json(analysis),
         };
     }
-    let mut text = report::text(&analysis, &source);
+    let mut text = report::text(analysis, &source);
     if let Some(p) = &predicted {
         text.push_str(&mrbrake::report::predicted_loop::text(p));
     }

@@ -337,10 +337,22 @@ fn an_unrunnable_saved_model_names_the_flag_and_the_spec() {
     let dir = tempfile::tempdir().unwrap();
     let model = dir.path().join("m.json");
     let spec = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/specs/drum.toml");
-    let args =
-        ["analyze", spec, "--mesh", "coarse", "--points", "3", "--save-model", path_str(&model)];
+    let plots = dir.path().join("plots");
+    let (model_arg, plots_arg) = (path_str(&model), path_str(&plots));
+    let args = [
+        "analyze",
+        spec,
+        "--mesh",
+        "coarse",
+        "--points",
+        "3",
+        "--save-model",
+        model_arg,
+        "--plot-dir",
+        plots_arg,
+    ];
     expect_input_error(&args, &["--save-model", "m.json", "drum.toml", "static_curve"]);
-    assert!(!model.exists(), "nothing written");
+    assert!(!model.exists() && !plots.exists(), "nothing written, no plots either");
 }
 
 /// Class 1: an unknown `--set` path made every design of a study infeasible and exited 0; it is
