@@ -118,37 +118,12 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         a.spec.as_ref().map_or("embedded default".to_string(), |p| p.display().to_string());
     // The brake model is made and checked before anything is written (all or nothing: a refused
     // model leaves no plots behind either).
-    let model = if let Some(path) = &a.save_model {
-        let how = format!(
-            "mrbrake analyze {} (--mesh {} --order {} --points {})",
-            command_word(a.spec.as_deref(), &source),
-            a.mesh,
-            a.order,
-            a.points
-        );
-        let identity = mrbrake::explore::design::analysis_identity(&spec, &options)?;
-        // The model is checked as the simulators will run it: a refusal names the output flag
-        // and the spec it came from.
-        let model =
-            mrbrake::device::brake_model::from_analysis(analysis, &options, Some(identity), &how)
-                .context(format!("--save-model {} (from {source})", path.display()))?;
-        Some((path, model.to_json()))
-    } else {
-        None
+    let model = match &a.save_model {
+        Some(path) => Some((path, saved_model(&a, path, (&spec, &options), analysis, &source)?)),
+        None => None,
     };
     if let (Some(dir), Some(field)) = (&a.plot_dir, &field) {
-        std::fs::create_dir_all(dir).map_err(|e| {
-            InputError(format!("--plot-dir {}: cannot create it: {e}", dir.display()))
-        })?;
-        report::write_plots(plotted, field, dir, a.png)?;
-        if let Some(predicted) = &predicted {
-            let svg = dir.join("hysteresis_loop.svg");
-            mrbrake::report::predicted_loop::save_figure(&svg, predicted)?;
-            if a.png {
-                let png = dir.join("hysteresis_loop.png");
-                mrbrake::report::predicted_loop::save_figure(&png, predicted)?;
-            }
-        }
+        write_plots(&a, dir, plotted, field, predicted.as_ref())?;
     }
     if let Some((path, json)) = &model {
         mrbrake::report::write_atomic(path, json.as_bytes())?;
@@ -164,6 +139,50 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         text.push_str(&mrbrake::report::predicted_loop::text(p));
     }
     print_text(&text)
+}
+
+/// The brake model of `--save-model` as JSON, checked as the simulators will run it: a refusal
+/// names the output flag and the spec it came from.
+fn saved_model(
+    a: &AnalyzeArgs,
+    path: &std::path::Path,
+    (spec, options): (&BrakeSpec, &AnalysisOptions),
+    analysis: &mrbrake::design::analysis::Analysis,
+    source: &str,
+) -> CommandResult<String> {
+    let how = format!(
+        "mrbrake analyze {} (--mesh {} --order {} --points {})",
+        command_word(a.spec.as_deref(), source),
+        a.mesh,
+        a.order,
+        a.points
+    );
+    let identity = mrbrake::explore::design::analysis_identity(spec, options)?;
+    let model =
+        mrbrake::device::brake_model::from_analysis(analysis, options, Some(identity), &how)
+            .context(format!("--save-model {} (from {source})", path.display()))?;
+    Ok(model.to_json())
+}
+
+/// The plots of `--plot-dir`: the analysis's, and the loop's with `--hysteresis`.
+fn write_plots(
+    a: &AnalyzeArgs,
+    dir: &std::path::Path,
+    analysis: &mrbrake::design::analysis::Analysis,
+    field: &mrbrake::design::analysis::FieldAtMaxCurrent,
+    predicted: Option<&mrbrake::design::hysteresis::HysteresisLoop>,
+) -> CommandResult {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| InputError(format!("--plot-dir {}: cannot create it: {e}", dir.display())))?;
+    report::write_plots(analysis, field, dir, a.png)?;
+    if let Some(predicted) = predicted {
+        mrbrake::report::predicted_loop::save_figure(&dir.join("hysteresis_loop.svg"), predicted)?;
+        if a.png {
+            let png = dir.join("hysteresis_loop.png");
+            mrbrake::report::predicted_loop::save_figure(&png, predicted)?;
+        }
+    }
+    Ok(())
 }
 
 /// The predicted hysteresis loop of `--hysteresis`.
