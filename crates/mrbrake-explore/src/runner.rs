@@ -214,7 +214,11 @@ impl<'a> Runner<'a> {
         let stop = AtomicBool::new(false);
         // One copy for the workers and the writer (a study's settings hold its metric list).
         let settings = &self.settings.clone();
-        let (sender, receiver) = mpsc::channel::<(usize, Outcome, f64)>();
+        // A rendezvous channel: a worker hands its result to the writer before it starts another
+        // design, so a stop leaves at most one design per worker in flight (an unbounded queue let
+        // a worker run ahead of a slow durable write: CI saw three designs computed with one
+        // worker after a stop at the first), and finished results never pile up in memory.
+        let (sender, receiver) = mpsc::sync_channel::<(usize, Outcome, f64)>(0);
         let mut first_error: Option<ExploreError> = None;
         std::thread::scope(|scope| {
             let stop = &stop;
