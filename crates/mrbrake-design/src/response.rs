@@ -202,6 +202,11 @@ pub struct Response {
     pub frequency_response: Frd,
     /// −3 dB bandwidth (rad/s), `None` above the highest frequency.
     pub bandwidth_rad_s: Option<f64>,
+    /// The bidirectional brake's direction 2 about the same bias: its own coils driven, the
+    /// torque of its gaps (absent for a one-direction brake; the study metric
+    /// `bandwidth_dir2_rad_s` is its bandwidth).
+    #[serde(rename = "direction_2", skip_serializing_if = "Option::is_none")]
+    pub direction_2: Option<SmallSignal>,
     /// Conductivity of the flux-path steel used (S/m), and where it comes from.
     #[serde(rename = "flux_path_conductivity_S_per_m")]
     pub flux_path_conductivity_s_per_m: f64,
@@ -217,6 +222,19 @@ pub struct Response {
     /// the JSON (a field over the mesh: the map shows it).
     #[serde(skip)]
     pub eddy: Option<EddyField>,
+}
+
+/// One direction's small-signal torque/current response about a bias, as the top level of
+/// [`Response`] gives direction 1's.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SmallSignal {
+    /// `dT/dI` at zero frequency (N·m/A).
+    #[serde(rename = "dc_gain_Nm_per_A")]
+    pub dc_gain_nm_per_a: f64,
+    /// Torque per current normalised by the DC gain.
+    pub frequency_response: Frd,
+    /// −3 dB bandwidth (rad/s), `None` above the highest frequency.
+    pub bandwidth_rad_s: Option<f64>,
 }
 
 /// The induced azimuthal current density `J_φ = −σ ∂A/∂t` over the brake's section at one
@@ -262,7 +280,17 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
     // The frequency response first: a bias without small-signal gain is an input error, found
     // before the (longer) transients.
     let t0 = Instant::now();
-    let (dc_gain, frequency_response) = model.frequency_response(0, bias)?;
+    // The two directions' small-signal responses are independent solves: one thread each.
+    let (first, second) = rayon::join(
+        || model.frequency_response(0, bias),
+        || (model.geometry.units > 1).then(|| model.frequency_response(1, bias)).transpose(),
+    );
+    let (dc_gain, frequency_response) = first?;
+    let direction_2 = second?.map(|(gain, frd)| SmallSignal {
+        dc_gain_nm_per_a: gain,
+        bandwidth_rad_s: frd.bandwidth_rad_s(MINUS_3_DB),
+        frequency_response: frd,
+    });
     let frequency_s = t0.elapsed().as_secs_f64();
     let t0 = Instant::now();
     // The directions' transients are independent: one thread each (on two cores the step
@@ -291,6 +319,7 @@ pub fn response(spec: &BrakeSpec, options: &ResponseOptions) -> Result<Response,
         dc_gain_nm_per_a: dc_gain,
         bandwidth_rad_s: frequency_response.bandwidth_rad_s(MINUS_3_DB),
         frequency_response,
+        direction_2,
         flux_path_conductivity_s_per_m: model.flux_path_sigma.0,
         conductivity_source: model.flux_path_sigma.1.clone(),
         fluid_lag_s: options.fluid_lag_s,

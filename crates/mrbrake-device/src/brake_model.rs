@@ -167,8 +167,9 @@ fn unit_model(analysis: &Analysis, unit: u32, yield_nm: Vec<f64>, how: &str) -> 
 /// [`DYNAMICS_POLES`]-pole, no-zero transfer function fitted to the predicted small-signal
 /// frequency response, which is already normalised by its DC gain (torque per current ÷ dT/dI at
 /// 0 Hz: static torque → brake torque), scaled to a DC gain of exactly 1
-/// ([`mrbrake_sim::brake_model::fit`]). Unit 2 gets unit 1's (only direction 1's frequency
-/// response is predicted; stated in the model). Returns the fit's `fit_percent`.
+/// ([`mrbrake_sim::brake_model::fit`]). Unit 2 gets direction 2's own fit when the response has
+/// it (bidirectional brakes), else unit 1's (stated in the model). Returns the fit's
+/// `fit_percent` (the lower of the two).
 pub fn add_dynamics(
     model: &mut BrakeModel,
     response: &Response,
@@ -180,12 +181,46 @@ pub fn add_dynamics(
             .with_allowed(format!("'{}', the design of the response", response.name))
             .into());
     }
-    add_frequency_response(
-        model,
-        &response.frequency_response,
-        (response.bias_a, response.drive),
-        source,
-    )
+    let operating_point = (response.bias_a, response.drive);
+    let fit = add_frequency_response(model, &response.frequency_response, operating_point, source)?;
+    match (&response.direction_2, model.units.get_mut(1)) {
+        (Some(d2), Some(unit)) => {
+            let (dynamics, fit_2) =
+                dynamics_of(&d2.frequency_response, operating_point, 2, source)?;
+            unit.dynamics = Some(dynamics);
+            model.provenance.assumed.retain(|a| !a.starts_with("unit 2's dynamics"));
+            model.check("(amended with dynamics)")?;
+            Ok(fit.min(fit_2))
+        }
+        _ => Ok(fit),
+    }
+}
+
+/// The [`DYNAMICS_POLES`]-pole fit to direction `direction`'s normalised frequency response and
+/// its `fit_percent`.
+fn dynamics_of(
+    frd: &Frd,
+    (bias_a, drive): (f64, ResponseDrive),
+    direction: usize,
+    source: &str,
+) -> Result<(Dynamics, f64), DeviceError> {
+    let fitted = fit_dynamics(frd)?;
+    let omegas: Vec<f64> = frd.omegas().collect();
+    let dynamics = Dynamics {
+        numerator: fitted.transfer_function.numerator.clone(),
+        denominator: fitted.transfer_function.denominator.clone(),
+        source: format!(
+            "predicted: {DYNAMICS_POLES}-pole tfest fit ({:.2} % fit{}) to the small-signal frequency response of direction {direction} at {} A bias, {} drive, {} points {:.3}–{:.1} rad/s ({source})",
+            fitted.fit_percent,
+            fitted.reflection_note(),
+            bias_a,
+            format!("{drive:?}").to_lowercase(),
+            omegas.len(),
+            omegas.first().copied().unwrap_or(0.0),
+            omegas.last().copied().unwrap_or(0.0),
+        ),
+    };
+    Ok((dynamics, fitted.fit_percent))
 }
 
 /// [`add_dynamics`] from the design's normalised small-signal frequency response `frd` at
@@ -197,22 +232,7 @@ pub fn add_frequency_response(
     (bias_a, drive): (f64, ResponseDrive),
     source: &str,
 ) -> Result<f64, DeviceError> {
-    let fitted = fit_dynamics(frd)?;
-    let omegas: Vec<f64> = frd.omegas().collect();
-    let dynamics = Dynamics {
-        numerator: fitted.transfer_function.numerator.clone(),
-        denominator: fitted.transfer_function.denominator.clone(),
-        source: format!(
-            "predicted: {DYNAMICS_POLES}-pole tfest fit ({:.2} % fit{}) to the small-signal frequency response of direction 1 at {} A bias, {} drive, {} points {:.3}–{:.1} rad/s ({source})",
-            fitted.fit_percent,
-            fitted.reflection_note(),
-            bias_a,
-            format!("{drive:?}").to_lowercase(),
-            omegas.len(),
-            omegas.first().copied().unwrap_or(0.0),
-            omegas.last().copied().unwrap_or(0.0),
-        ),
-    };
+    let (dynamics, fit_percent) = dynamics_of(frd, (bias_a, drive), 1, source)?;
     for unit in &mut model.units {
         unit.dynamics = Some(dynamics.clone());
     }
@@ -224,7 +244,7 @@ pub fn add_frequency_response(
     }
     p.assumed.retain(|a| !a.starts_with("no dynamics"));
     model.check("(amended with dynamics)")?;
-    Ok(fitted.fit_percent)
+    Ok(fit_percent)
 }
 
 /// Adds the hot coil of `thermal` (a thermal analysis of the design called `spec_name`) to every
@@ -301,6 +321,7 @@ mod tests {
             dc_gain_nm_per_a: 1.3,
             frequency_response: Frd::sample(&logspace(0.1, 1000.0, 41), |w| lag.response(w)),
             bandwidth_rad_s: None,
+            direction_2: None,
             flux_path_conductivity_s_per_m: 2e6,
             conductivity_source: "test".into(),
             fluid_lag_s: 0.0,

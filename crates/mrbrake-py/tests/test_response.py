@@ -8,7 +8,8 @@ def test_response_matches_the_cli(cli):
     report = mrbrake.response(mesh="coarse", duration="5ms", step="0A..1A", bias=0.5)
     expected = cli.json("response", "--mesh", "coarse", "--duration", "5ms", "--step", "0A..1A",
                         "--bias", "0.5A")
-    for key in ("step", "frequency_response", "bandwidth_rad_s", "dc_gain_Nm_per_A", "bias_A"):
+    for key in ("step", "frequency_response", "bandwidth_rad_s", "dc_gain_Nm_per_A", "bias_A",
+                "direction_2"):
         assert report[key] == expected[key], key
     assert report["bandwidth_rad_s"] > 0
 

@@ -60,7 +60,16 @@ pub fn text(r: &Response, source: &str) -> String {
         r.dc_gain_nm_per_a,
         r.bandwidth_rad_s.map_or("above the highest frequency".into(), |w| format!("{w:.1} rad/s"))
     );
-    let _ = writeln!(s, "  omega [rad/s]  magnitude [dB]  phase [deg]");
+    if let Some(d2) = &r.direction_2 {
+        let _ = writeln!(
+            s,
+            "direction 2 (its own coils and gaps): DC gain {:.4} N·m/A, bandwidth (-3 dB) {}",
+            d2.dc_gain_nm_per_a,
+            d2.bandwidth_rad_s
+                .map_or("above the highest frequency".into(), |w| format!("{w:.1} rad/s"))
+        );
+    }
+    let _ = writeln!(s, "  omega [rad/s]  magnitude [dB]  phase [deg] (direction 1)");
     for p in r.frequency_response.points.iter().step_by(5) {
         let _ = writeln!(
             s,

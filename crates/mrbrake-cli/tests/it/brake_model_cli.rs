@@ -117,6 +117,11 @@ fn predicted_model_is_recovered_by_the_rig_and_drives_the_haptic_wall() {
         serde_json::from_value(saved["units"][0]["dynamics"]["denominator"].clone())
             .expect("response --save-model added the dynamics");
     assert_eq!(predicted.len(), 3, "{predicted:?}");
+    // The bidirectional brake's unit 2 is fitted to direction 2's own response.
+    let source_2 = saved["units"][1]["dynamics"]["source"].as_str().unwrap();
+    assert!(source_2.contains("response of direction 2"), "{source_2}");
+    let assumed = saved["provenance"]["assumed"].to_string();
+    assert!(!assumed.contains("unit 2's dynamics"), "{assumed}");
     let freq_dir = dir.path().join("freq");
     let out = mrbrake(&[
         "rig",

@@ -74,3 +74,23 @@ fn each_direction_is_analysed_on_its_own_circuit() {
     assert!((w1 - v1).abs() <= 1e-9 * v1, "direction 1 does not see direction 2's coil");
     assert!(w2 < 0.8 * w1 && w2 > 0.45 * w1, "{w1} vs {w2}");
 }
+
+/// `response` (the command's analysis) reports direction 2's small-signal response beside
+/// direction 1's, the same numbers as `ResponseModel::frequency_response_of`.
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release only: frequency sweeps of the whole brake")]
+fn the_response_reports_both_directions() {
+    let spec = default_spec();
+    let options =
+        ResponseOptions { mesh: MeshLevel::Coarse, duration_s: 2e-3, ..ResponseOptions::default() };
+    let response = mrbrake_design::response::response(&spec, &options).unwrap();
+    let second = response.direction_2.as_ref().expect("the bidirectional brake's direction 2");
+    let model = ResponseModel::new(&spec, &options).unwrap();
+    let (gain, frd, bandwidth) = model.frequency_response_of(1, response.bias_a).unwrap();
+    assert!((second.dc_gain_nm_per_a - gain).abs() <= 1e-12 * gain.abs());
+    assert_eq!(second.frequency_response.points.len(), frd.points.len());
+    let (b, expected) = (second.bandwidth_rad_s.unwrap(), bandwidth.unwrap());
+    assert!((b - expected).abs() <= 1e-9 * expected, "{b} vs {expected}");
+    let json = serde_json::to_value(&response).unwrap();
+    assert!(json["direction_2"]["bandwidth_rad_s"].as_f64().is_some(), "{}", json["direction_2"]);
+}
