@@ -82,8 +82,7 @@ pub fn designs(
     let mut planned = Vec::with_capacity(result.front.len());
     for &i in &result.front {
         let record = &result.evaluated[i].record;
-        let x: Vec<f64> =
-            variables.iter().map(|v| record.variable(&v.name).unwrap_or(f64::NAN)).collect();
+        let x: Vec<f64> = variables.iter().map(|v| v.x_in(record).unwrap_or(f64::NAN)).collect();
         let written: Vec<Written> = variables
             .iter()
             .zip(&x)

@@ -288,7 +288,7 @@ impl<'s, 'p> StudyProblem<'s, 'p> {
         let mut designs = Vec::new();
         for record in records {
             let x: Option<Vec<f64>> =
-                self.space.variables().iter().map(|v| record.variable(&v.name)).collect();
+                self.space.variables().iter().map(|v| v.x_in(&record)).collect();
             let Some(x) = x.filter(|x| !x.is_empty()) else { continue };
             if validate_design(&self.bounds, &x, "stored design").is_err()
                 || self.seen.contains_key(&record.key)

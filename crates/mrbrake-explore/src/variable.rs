@@ -192,6 +192,20 @@ impl Variable {
         })
     }
 
+    /// This variable's value in a stored record as the optimisers see it: the number, or for a
+    /// material the index of the level the record names (`None` when the record lacks the
+    /// variable, or names a material that is not one of its levels). The inverse of
+    /// [`Self::value`].
+    pub fn x_in(&self, record: &mrbrake_store::Record) -> Option<f64> {
+        match (&self.kind, record.variable_value(&self.name)?) {
+            (VariableKind::Numeric(_), VariableValue::Number(x)) => Some(*x),
+            (VariableKind::Material { levels, .. }, VariableValue::Level(name)) => {
+                levels.iter().position(|level| level == name).map(|i| i as f64)
+            }
+            _ => None,
+        }
+    }
+
     /// Writes the value `x` (SI, or a level's index) into the spec table.
     pub fn set(&self, spec: &mut toml::Table, x: f64) -> Result<(), ExploreError> {
         match &self.kind {

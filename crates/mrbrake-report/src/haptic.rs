@@ -107,6 +107,11 @@ pub fn wall_metrics_text(m: &WallMetrics, stiffness_nm_per_rad: f64) -> String {
     }
     let _ = writeln!(
         out,
+        "  free-motion torque         {:.4} N·m (peak hand torque off the wall: drag + inertia)",
+        m.free_motion_torque_nm
+    );
+    let _ = writeln!(
+        out,
         "  device energy              {:.5} J (running peak {:.2e} J)",
         m.device_energy_j, m.device_energy_peak_j
     );

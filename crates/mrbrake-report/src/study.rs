@@ -499,8 +499,9 @@ impl OptimizationReport<'_> {
                 .variables
                 .iter()
                 .map(|v| {
-                    let value = e.record.variable(&v.name);
-                    value.map_or_else(|| "base".to_string(), |x| v.display_value(x))
+                    // A material is stored by name (`display` shows it), a number as a number.
+                    let value = e.record.variable_value(&v.name);
+                    value.map_or_else(|| "base".to_string(), |x| v.display(x))
                 })
                 .collect();
             cells.extend(metrics.iter().map(|name| {

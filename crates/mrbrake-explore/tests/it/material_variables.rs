@@ -137,4 +137,15 @@ fn nsga2_varies_a_material_beside_a_number_and_leaves_a_fixed_variable_alone() {
     }
     // The initial population spreads the levels evenly (each of the two twice).
     assert_eq!(seen.len(), 2, "{seen:?}");
+    // The written front designs keep their source's material (a material is stored by name: read
+    // back as its level's index, not lost as a number the record does not have).
+    assert!(!result.front_designs.is_empty());
+    for front in &result.front_designs {
+        let source = &result.evaluated[front.source].record;
+        let level = source.variable_value("materials.bobbin").and_then(VariableValue::as_level);
+        let level = level.expect("a material by name");
+        assert!(front.spec_text.contains(&format!("bobbin = \"{level}\"")), "{}", front.spec_text);
+        let written = front.evaluated.record.variable_value("materials.bobbin");
+        assert_eq!(written.and_then(VariableValue::as_level), Some(level));
+    }
 }
