@@ -836,11 +836,19 @@ fn front_designs_text(problem: &OptimizationProblem, designs: &[FrontDesign]) ->
         .filter(|d| !d.evaluated.evaluation.feasible())
         .map(|d| format!("#{} ({})", d.number, broken_constraints(problem, &d.evaluated.record)))
         .collect();
+    // The table above shows the front as the optimiser found it; the written designs' own
+    // metrics are in their files and front-designs.csv.
+    let how = if problem.manufacturing_resolution <= 0.0 {
+        "values as evaluated, in SI".to_string()
+    } else {
+        format!(
+            "lengths rounded to {} mm, currents to 1 mA",
+            problem.manufacturing_resolution * 1e3
+        )
+    };
     let mut out = format!(
-        "front designs written in the base spec's units: {} ({} changed by the rounding, \
-         evaluated again)",
-        rounding_words(problem.manufacturing_resolution, true).trim_end_matches('.'),
-        rounded
+        "front designs written in the base spec's units ({how}; {rounded} changed by the \
+         rounding, evaluated again: their own metrics are in front-designs.csv and their files)"
     );
     if broken.is_empty() {
         out.push_str("; every one meets the constraints\n");
