@@ -21,7 +21,8 @@
 //! **The chosen pulse.** `R(a)` falls from `R₀` as the reverse field brings the remanent flux down,
 //! reaches its least near the current whose recoil ends at `B ≈ 0` in the gaps (a little above the
 //! coercive current: the recoil from the reverse peak gives back part of the flux), and rises again
-//! as the steel is magnetised the other way. A coarse scan of `a` over `(0, a_max]` finds the
+//! as the steel is magnetised the other way. A coarse scan of `a` over `(0, min(I_p, a_max)]` (a
+//! pulse of at least the peak leaves the mirror image of `R₀`, never less) finds the
 //! bracket of the least value and a golden-section search (Kiefer 1953; Press et al., *Numerical
 //! Recipes*, 3rd ed., §10.2) refines it within the bracket. A check at half the peak current with
 //! half the amplitude tells how well the controller's linear scaling of the amplitude with the peak
@@ -309,15 +310,17 @@ pub fn run(
     let pulse = |runner: &mut Runner, a: f64| {
         runner.candidate(peak, Release::ReversePulse { amplitude_a: a }, without)
     };
-    // Coarse scan, then golden section inside the bracket around its least value.
+    // Coarse scan over (0, min(I_p, a_max)] (a reverse pulse of at least the peak leaves the mirror
+    // image of the remanence: never less), then golden section in the bracket of its least value.
     let n = demag.scan_points;
+    let span = peak.min(limit);
     let mut scan = Vec::with_capacity(n);
     for k in 1..=n {
-        scan.push(pulse(&mut runner, limit * k as f64 / n as f64)?);
+        scan.push(pulse(&mut runner, span * k as f64 / n as f64)?);
     }
     let best = least(&scan);
-    let low = if best == 0 { 0.0 } else { limit * best as f64 / n as f64 };
-    let high = limit * ((best + 2).min(n)) as f64 / n as f64;
+    let low = if best == 0 { 0.0 } else { span * best as f64 / n as f64 };
+    let high = span * ((best + 2).min(n)) as f64 / n as f64;
     candidates.extend(scan);
     let refined = golden_section(low, high, demag.golden_steps, |a| pulse(&mut runner, a))?;
     candidates.extend(refined);

@@ -3,7 +3,7 @@
 //! pulse is its least, and bad options are input errors naming their field.
 
 use mrbrake_design::analysis::AnalysisOptions;
-use mrbrake_design::demag::{DemagOptions, Release, run};
+use mrbrake_design::demag::{Candidate, DemagOptions, Release, run};
 use mrbrake_design::mesh_build::MeshLevel;
 use mrbrake_design::spec::default_spec;
 use mrbrake_error::{ErrorKind, Kind};
@@ -38,14 +38,14 @@ fn the_chosen_pulse_leaves_less_remanence_than_no_release() {
             assert!(c.remanent_torque_nm >= d.chosen_pulse.remanent_torque_nm, "{c:?}");
         }
     }
-    // The largest pulse (the full peak current backwards) magnetises the steel the other way: it
-    // leaves more than the chosen one.
-    let largest = d
-        .candidates
-        .iter()
-        .filter(|c| matches!(c.release, Release::ReversePulse { amplitude_a } if (amplitude_a - d.reverse_limit_a).abs() < 1e-12))
-        .next()
-        .expect("the scan ends at the limit");
+    // The largest pulse (the full peak current backwards: the scan ends at min(I_p, a_max))
+    // magnetises the steel the other way: it leaves more than the chosen one.
+    let end = d.reverse_limit_a.min(d.peak_current_a);
+    let is_end = |c: &&Candidate| match c.release {
+        Release::ReversePulse { amplitude_a } => (amplitude_a - end).abs() < 1e-12,
+        _ => false,
+    };
+    let largest = d.candidates.iter().find(is_end).expect("the scan ends at min(I_p, a_max)");
     assert!(largest.remanent_torque_nm > d.chosen_pulse.remanent_torque_nm);
     // The decaying alternating current also demagnetises.
     assert!(d.decaying_ac.remanent_torque_nm < without, "{:?}", d.decaying_ac);
