@@ -14,7 +14,7 @@
 //!   `I_max`: `T_s ← clamp(T_s, T_rise(i), T_fall(i) + r (1 − i/I_max))`, so a release to 0 A ends
 //!   at `T₀ + r` (the free-motion drag after a wall is left: off-state drag plus remanent torque).
 //! * **Reverse current** (only a demagnetising release drives one). At the excursion's start the
-//!   magnetic part `m = T_s − T₀` is kept; at reverse depth `d` (the largest `|i|` so far) the
+//!   current passes through 0 A and the magnetic part there, `m = T_s − T₀`, is kept; at reverse depth `d` (the largest `|i|` so far) the
 //!   static torque is `T₀ + m·(1 − (1 − ρ) min(d/a_ref, 1))`, where `ρ = R(a*)/R₀` is the fraction the
 //!   FEA predicts the chosen reverse pulse `a*` leaves (`mrbrake analyze --hysteresis --demag`) and
 //!   `a_ref = a* min(1, I_pk/I_ref)` the amplitude the controller scales it to. Back at `i ≥ 0` the
@@ -95,6 +95,10 @@ impl PlantRemanence {
                 // No release model: a reverse current acts as 0 A.
                 return self.apply_current(brake, state, remanence, 0.0);
             };
+            if remanence.excursion.is_none() {
+                // The coil current passes through 0 A on its way to the reverse pulse.
+                self.apply_current(brake, state, remanence, 0.0);
+            }
             let (magnetic, depth) =
                 remanence.excursion.unwrap_or(((state.static_torque_nm - rest_nm).max(0.0), 0.0));
             let depth = depth.max(-current_a);
