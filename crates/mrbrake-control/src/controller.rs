@@ -17,7 +17,12 @@
 //!    iterations): [`InverseModel::compensate`], one per brake.
 //! 4. **Safety.** Non-finite or out-of-range input gives both currents 0 and a [`Fault`]; every
 //!    current is finally clamped to `[0, I_max]`.
+//! 5. **Demagnetising release** (optional, [`DirectionalController::with_demagnetisation`]): when a
+//!    brake's demand is released the [`crate::demag`] waveform drives its coil through zero; its
+//!    current may then be negative, down to the driver's reverse limit. Without it (the default, or
+//!    a reverse limit of 0) the outputs are bit-identical to a controller without the feature.
 
+use crate::demag::{DemagSettings, DemagState, Demagnetiser};
 use crate::error::{ControlError, check_range};
 use crate::inverse::{Branch, CURRENT_LIMIT_A, CompensationState, InverseModel};
 use crate::torque_inverse::{TorqueInverse, TorqueInverseState};
@@ -67,6 +72,7 @@ pub struct DirectionalController {
     radians_per_count: f64,
     limits: InputLimits,
     branch_deadband_nm: f64,
+    demag: Demagnetiser,
 }
 
 /// Mutable controller state carried between ticks: each brake's hysteresis compensation (reference
@@ -75,6 +81,7 @@ pub struct DirectionalController {
 pub struct ControllerState {
     compensation: [TorqueInverseState; 2],
     fault_count: u32,
+    demag: [DemagState; 2],
 }
 
 impl ControllerState {
@@ -91,6 +98,11 @@ impl ControllerState {
     /// The full inverse state of brake 1 and brake 2 (either model's memory).
     pub fn inverse_states(&self) -> &[TorqueInverseState; 2] {
         &self.compensation
+    }
+
+    /// The demagnetising release of brake 1 and brake 2 ([`crate::demag`]).
+    pub fn demag_states(&self) -> &[DemagState; 2] {
+        &self.demag
     }
 }
 
@@ -140,7 +152,8 @@ pub struct Breakdown {
 /// Result of one tick.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ControlOutput {
-    /// Coil currents for brake 1 and brake 2, A, always in `[0, I_max]`.
+    /// Coil currents for brake 1 and brake 2, A, in `[0, I_max]`; with a demagnetising release in
+    /// `[−reverse_limit_a, I_max]`, negative only during a brake's release ([`crate::demag`]).
     pub current_a: [f64; 2],
     /// Set when the input was rejected and the currents forced to zero.
     pub fault: Option<Fault>,
@@ -204,7 +217,25 @@ impl DirectionalController {
             radians_per_count: 2.0 * core::f64::consts::PI / counts_per_revolution as f64,
             limits,
             branch_deadband_nm,
+            demag: Demagnetiser::disabled(),
         })
+    }
+
+    /// This controller with the demagnetising release `settings` ([`crate::demag`]) for a loop of
+    /// tick `control_period_s`; the errors name the field and its range. A reverse limit of 0 (a
+    /// unipolar driver) leaves the controller as it was.
+    pub fn with_demagnetisation(
+        self,
+        settings: &DemagSettings,
+        control_period_s: f64,
+    ) -> Result<Self, ControlError> {
+        let demag = Demagnetiser::new(settings, control_period_s, self.current_max_a)?;
+        Ok(Self { demag, ..self })
+    }
+
+    /// The demagnetising release (disabled unless [`Self::with_demagnetisation`] enabled it).
+    pub fn demagnetiser(&self) -> &Demagnetiser {
+        &self.demag
     }
 
     /// The brake arrangement.
@@ -257,12 +288,13 @@ impl DirectionalController {
         None
     }
 
-    /// One control tick: returns the two coil currents (always in `[0, I_max]`), a fault flag and the
-    /// breakdown. Never panics, never allocates.
+    /// One control tick: returns the two coil currents (in `[0, I_max]`; with a demagnetising release
+    /// in `[−reverse_limit_a, I_max]`), a fault flag and the breakdown. Never panics, never allocates.
     pub fn step(&self, state: &mut ControllerState, input: &ControlInput) -> ControlOutput {
         let angle_rad = input.encoder_counts as f64 * self.radians_per_count;
         if let Some(fault) = self.check(input, angle_rad) {
             state.compensation = [TorqueInverseState::default(); 2];
+            state.demag = [DemagState::default(); 2];
             state.fault_count = state.fault_count.saturating_add(1);
             return ControlOutput {
                 current_a: [0.0; 2],
@@ -280,6 +312,12 @@ impl DirectionalController {
                 self.branch_deadband_nm,
             );
             breakdown.branch[k] = state.compensation[k].branch(&self.brakes[k]);
+            let demag = self.demag.apply(&mut state.demag[k], breakdown.demand_nm[k], current_a[k]);
+            current_a[k] = demag.current_a;
+            if demag.completed {
+                // The loop is back near its demagnetised origin: compensate from rest again.
+                state.compensation[k] = TorqueInverseState::default();
+            }
         }
         if self.layout == BrakeLayout::Conventional {
             current_a[1] = 0.0;

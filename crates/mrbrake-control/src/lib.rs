@@ -4,7 +4,9 @@
 //! brakes' [`InverseModel`]s, `I_max`, encoder resolution, input limits) turns a [`ControlInput`]
 //! (encoder counts, velocity estimate, [`VirtualWall`]) and a [`ControllerState`] into a
 //! [`ControlOutput`]: two coil currents in `[0, I_max]`, a [`Fault`] flag and a [`Breakdown`] of the
-//! step for logging. [`VelocityEstimator`] gives the velocity from successive encoder angles;
+//! step for logging. An optional demagnetising release ([`demag`], [`Demagnetiser`]) drives a
+//! released brake's coil through zero against the steel's remanence (its current may then be
+//! negative, down to the driver's reverse limit). [`VelocityEstimator`] gives the velocity from successive encoder angles;
 //! [`BranchPolynomial`] is one hysteresis branch `T(i)` and its bounded-iteration inverse.
 //!
 //! The crate uses neither `std` nor `alloc` (only `core` and `libm`), has no `unsafe`, and its step
@@ -31,6 +33,7 @@
 #![forbid(unsafe_code)]
 
 pub mod controller;
+pub mod demag;
 pub mod error;
 pub mod inverse;
 pub mod operator;
@@ -42,6 +45,10 @@ pub mod wall;
 pub use controller::{
     BrakeLayout, Breakdown, ControlInput, ControlOutput, ControllerState, DirectionalController,
     Fault, InputLimits,
+};
+pub use demag::{
+    DemagOutput, DemagSettings, DemagState, DemagWaveform, Demagnetiser, MAX_DEMAG_TICKS,
+    MAX_HALF_CYCLES,
 };
 pub use error::ControlError;
 pub use inverse::{Branch, CURRENT_LIMIT_A, CompensationState, InverseModel, InverseModelFile};

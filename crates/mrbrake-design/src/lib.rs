@@ -6,11 +6,14 @@
 //! gaps, coils) on the way; [`mesh_build`] meshes it (or [`geo_export`] writes a Gmsh `.geo`);
 //! [`analysis`] solves the field over a current sweep and reduces it to torques, coil and
 //! mechanics; [`response`] predicts how fast the torque follows the current (eddy currents in
-//! the flux path, the coil circuit); [`formula`] holds the thesis's closed-form models; [`study`] re-runs the thesis's
-//! comparison tables. Errors are one [`DesignError`], whose variants keep their kind (the spec's
-//! invalid fields as a list, the solver's and mesher's errors wrapped typed).
+//! the flux path, the coil circuit); [`hysteresis`] predicts the torque–current loop from the
+//! steel's magnetic hysteresis and [`demag`] the remanent torque that demagnetising release
+//! waveforms leave; [`formula`] holds the thesis's closed-form models; [`study`] re-runs the
+//! thesis's comparison tables. Errors are one [`DesignError`], whose variants keep their kind (the
+//! spec's invalid fields as a list, the solver's and mesher's errors wrapped typed).
 
 pub mod analysis;
+pub mod demag;
 pub mod drag;
 mod error;
 pub mod formula;

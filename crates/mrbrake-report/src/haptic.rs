@@ -101,15 +101,16 @@ pub fn wall_metrics_text(m: &WallMetrics, stiffness_nm_per_rad: f64) -> String {
         "  withdraw energy            {:.5} J over {:.3} s",
         m.withdraw_energy_j, m.withdraw_duration_s
     );
+    let _ = writeln!(
+        out,
+        "  free motion                peak hand torque {:.3} N·m; drag after the run: outward \
+         {:.3} N·m, inward {:.3} N·m",
+        m.free_motion_torque_nm, m.drag_after_nm.outward, m.drag_after_nm.inward
+    );
     match m.release_time_s {
         Some(t) => _ = writeln!(out, "  release time               {t:.3} s"),
         None => _ = writeln!(out, "  release time               not released / no withdrawal"),
     }
-    let _ = writeln!(
-        out,
-        "  free-motion torque         {:.4} N·m (peak hand torque off the wall: drag + inertia)",
-        m.free_motion_torque_nm
-    );
     let _ = writeln!(
         out,
         "  device energy              {:.5} J (running peak {:.2e} J)",

@@ -7,6 +7,7 @@
 //! build on, and [`field_map`] the |B| map with flux lines. The reports:
 //!
 //! * [`analysis`]: a brake analysis (text; torque–current, gap and field-map plots);
+//! * [`demag`]: the demagnetising release waveforms judged on the predicted hysteresis loop;
 //! * [`formula`]: the thesis's closed-form torque and coil models;
 //! * [`geometry`]: a brake geometry exported for Gmsh;
 //! * [`materials`]: the material library (list, curves, provenance);
@@ -32,6 +33,7 @@ pub mod atomic;
 pub mod bode;
 pub mod calibration;
 pub mod chart;
+pub mod demag;
 pub mod fem;
 pub mod field_map;
 pub mod formula;

@@ -68,6 +68,15 @@ pub struct AnalyzeArgs {
     /// Currents per leg of the hysteresis loop's program.
     #[arg(long, requires = "hysteresis", default_value_t = mrbrake::design::hysteresis::DEFAULT_POINTS_PER_LEG)]
     loop_points: usize,
+    /// With --hysteresis, also judge demagnetising releases after the peak on the predicted loop:
+    /// the remanent torque at 0 A without one, after reverse pulses (scan + golden section for the
+    /// least) and after a decaying alternating current; JSON key `hysteresis.demagnetisation`.
+    #[arg(long, requires = "hysteresis")]
+    demag: bool,
+    /// Largest reverse current of the coil driver for --demag (e.g. 1A); default: the coil's
+    /// maximum current.
+    #[arg(long, requires = "demag", allow_hyphen_values = true, value_name = "CURRENT")]
+    demag_reverse_limit: Option<String>,
 }
 
 /// The spec as a word of a printed command: the path quoted for a shell (a path with spaces
@@ -93,6 +102,8 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
             .map_err(|e| InputError(format!("--temperature: {e}")))?,
         order: super::field_flags::order(a.order)?,
     };
+    // The scan's options are checked before any solve (a bad flag costs no FEA time).
+    let demag_options = if a.demag { Some(demag_options(&a, &spec)?) } else { None };
     let mut display = ProgressDisplay::steps("analyze", "currents", a.json);
     let request = AnalysisRequest::of(&spec).options(options).observe(|c: &Count| {
         display.step(c.done, c.total);
@@ -109,6 +120,12 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         eprintln!("warning: {w}");
     }
     let predicted = if a.hysteresis { Some(predict_loop(&a, &spec, &options)?) } else { None };
+    let demag = match &demag_options {
+        Some(d) => {
+            Some(mrbrake::design::demag::run(&spec, &options, d).map_err(field_flags::design)?)
+        }
+        None => None,
+    };
     // What is shown and saved: with the loop's remanent torque when it ran (the plots are the
     // analysis's own).
     let with_loop =
@@ -129,14 +146,19 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         mrbrake::report::write_atomic(path, json.as_bytes())?;
     }
     if a.json {
-        return match &predicted {
-            Some(p) => print_json(&mrbrake::report::predicted_loop::json(analysis, p)?),
-            None => print_json(analysis),
-        };
+        let Some(p) = &predicted else { return print_json(analysis) };
+        let mut value = mrbrake::report::predicted_loop::json(analysis, p)?;
+        if let Some(d) = &demag {
+            mrbrake::report::demag::insert_json(&mut value, d)?;
+        }
+        return print_json(&value);
     }
     let mut text = report::text(analysis, &source);
     if let Some(p) = &predicted {
         text.push_str(&mrbrake::report::predicted_loop::text(p));
+    }
+    if let Some(d) = &demag {
+        text.push_str(&mrbrake::report::demag::text(d));
     }
     print_text(&text)
 }
@@ -185,18 +207,36 @@ fn write_plots(
     Ok(())
 }
 
+/// A current flag's value in A, `None` when not given.
+fn optional_current(flag: &str, text: Option<&str>) -> Result<Option<f64>, InputError> {
+    text.map(|t| parse(t, Dimension::Current).map_err(|e| InputError(format!("{flag}: {e}"))))
+        .transpose()
+}
+
+/// The options of the `--demag` scan (after the loop's peak), checked against the spec's coil.
+fn demag_options(
+    a: &AnalyzeArgs,
+    spec: &BrakeSpec,
+) -> Result<mrbrake::design::demag::DemagOptions, crate::error::CommandError> {
+    let options = mrbrake::design::demag::DemagOptions {
+        peak_current_a: optional_current("--peak", a.peak.as_deref())?,
+        reverse_limit_a: optional_current(
+            "--demag-reverse-limit",
+            a.demag_reverse_limit.as_deref(),
+        )?,
+        ..Default::default()
+    };
+    options.check(spec.coil.max_current.a()).map_err(field_flags::design)?;
+    Ok(options)
+}
+
 /// The predicted hysteresis loop of `--hysteresis`.
 fn predict_loop(
     a: &AnalyzeArgs,
     spec: &BrakeSpec,
     options: &AnalysisOptions,
 ) -> Result<mrbrake::design::hysteresis::HysteresisLoop, crate::error::CommandError> {
-    let peak = match &a.peak {
-        Some(text) => {
-            Some(parse(text, Dimension::Current).map_err(|e| InputError(format!("--peak: {e}")))?)
-        }
-        None => None,
-    };
+    let peak = optional_current("--peak", a.peak.as_deref())?;
     let loop_options = mrbrake::design::hysteresis::LoopOptions {
         peak_current_a: peak,
         points_per_leg: a.loop_points,

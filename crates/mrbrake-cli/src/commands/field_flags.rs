@@ -22,6 +22,7 @@ const FLAGS: &[(&str, &str)] = &[
     // Hysteresis-loop options.
     ("peak", "--peak"),
     ("loop_points", "--loop-points"),
+    ("demag_reverse_limit", "--demag-reverse-limit"),
     // Response options.
     ("duration", "--duration"),
     ("step", "--step"),

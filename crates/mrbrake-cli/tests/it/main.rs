@@ -3,6 +3,7 @@
 
 mod browser;
 mod common;
+mod demag_cli;
 
 mod analyze_cli;
 mod analyze_hysteresis_cli;

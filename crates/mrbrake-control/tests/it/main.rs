@@ -4,6 +4,7 @@
 mod common;
 
 mod controller_properties;
+mod demag_properties;
 mod hysteresis_compensation;
 mod inverse_properties;
 mod model_file;

@@ -18,7 +18,10 @@
 //!   hand exerts on the handle, `|J θ̈ − τ_d|` (Newton's second law of the device's rotating parts,
 //!   inertia `J`, under the grip torque and `τ_d`): the off-state drag (brake viscous + seal
 //!   friction + bearing) plus the rotor's inertia times the motion's acceleration — what makes a
-//!   heavy or draggy device feel heavy where there is no wall.
+//!   heavy or draggy device feel heavy where there is no wall;
+//! - **drag after the run**: the device's free-motion drag against outward and inward motion at the
+//!   end of the run (the brakes' torque capacity at their final current, plus bearing friction):
+//!   after a wall was left, what a remanent brake still resists with ([`super::remanence`]).
 
 use serde::Serialize;
 
@@ -29,6 +32,15 @@ pub struct PeakMean {
     pub peak: f64,
     /// Time-mean, Nm.
     pub mean: f64,
+}
+
+/// The device's free-motion drag against each direction, N·m.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DragAfter {
+    /// Against outward (negative) motion, out of the wall.
+    pub outward: f64,
+    /// Against inward (positive) motion, toward the wall.
+    pub inward: f64,
 }
 
 /// The measures of one run (JSON field names carry their units).
@@ -55,6 +67,9 @@ pub struct WallMetrics {
     /// Peak torque the hand exerts on the handle in free motion, `|J θ̈ − τ_d|` (module docs), Nm.
     #[serde(rename = "free_motion_torque_Nm")]
     pub free_motion_torque_nm: f64,
+    /// The free-motion drag at the end of the run (module docs), N·m.
+    #[serde(rename = "drag_after_Nm")]
+    pub drag_after_nm: DragAfter,
     /// Work the user spends against the device while withdrawing, J.
     #[serde(rename = "withdraw_energy_J")]
     pub withdraw_energy_j: f64,
@@ -185,12 +200,13 @@ impl MetricsAccumulator {
         }
     }
 
-    /// The final measures.
+    /// The final measures; `drag_after` is the free-motion drag at the end of the run.
     pub fn finish(
         &self,
         device: &'static str,
         scenario: &'static str,
         fault_ticks: u32,
+        drag_after: DragAfter,
     ) -> WallMetrics {
         let [n, sx, sy, sxy, sxx] = self.fit;
         let denominator = n * sxx - sx * sx;
@@ -217,6 +233,7 @@ impl MetricsAccumulator {
             },
             outward_drag_nm: self.outward_drag_nm,
             free_motion_torque_nm: self.free_motion_peak_nm,
+            drag_after_nm: drag_after,
             withdraw_energy_j: self.withdraw_energy_j,
             withdraw_duration_s: self.withdraw_time_s,
             release_time_s: self.release_at_s,

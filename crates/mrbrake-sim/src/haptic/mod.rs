@@ -5,7 +5,8 @@
 //! [`Scenario`], virtual wall, [`BrakePlant`]s and the controller's inverse models) is run by
 //! [`simulate()`], which closes the loop around the `no_std` controller of `mrbrake-control` at 1 kHz
 //! with zero-order hold and integrates the plant on a finer step; it returns [`WallMetrics`] and,
-//! optionally, a [`Trace`]. [`zwidth`] sweeps stiffness and damping and classifies each pair as
+//! optionally, a [`Trace`]. [`remanence`] adds the steel's predicted remanent torque to the plant
+//! and the controller's demagnetising release that removes it. [`zwidth`] sweeps stiffness and damping and classifies each pair as
 //! passive, stable or unstable. [`prototype`] holds the built-in prototype-like branches; an
 //! identified model is read with [`mrbrake_sysid::model_file::read_inverse_model`].
 
@@ -15,6 +16,7 @@ pub mod device;
 pub mod hand;
 pub mod metrics;
 pub mod prototype;
+pub mod remanence;
 pub mod scenario;
 pub mod simulate;
 pub mod zwidth;
@@ -22,7 +24,8 @@ pub mod zwidth;
 pub use brake::{BrakePlant, TorqueLag};
 pub use device::{DeviceKind, DeviceParameters};
 pub use hand::HandModel;
-pub use metrics::{PeakMean, WallMetrics};
+pub use metrics::{DragAfter, PeakMean, WallMetrics};
+pub use remanence::{PlantRemanence, ReleaseModel, RemanenceState};
 pub use scenario::Scenario;
 pub use simulate::{HapticConfig, HapticRun, Trace, simulate};
 

@@ -23,8 +23,9 @@ use super::brake::{BrakePlant, BrakeState, DiscreteLag, TorqueLag};
 use super::check_range;
 use super::device::{DeviceKind, DeviceParameters, encoder_counts};
 use super::hand::HandModel;
-use super::metrics::{MetricsAccumulator, Sample, WallMetrics};
+use super::metrics::{DragAfter, MetricsAccumulator, Sample, WallMetrics};
 use super::prototype::prototype_model;
+use super::remanence::{PlantRemanence, RemanenceState};
 use super::scenario::Scenario;
 use crate::SimError;
 
@@ -57,6 +58,9 @@ pub struct HapticConfig {
     pub velocity_cutoff_hz: f64,
     /// Demand change that switches the hysteresis branch, Nm.
     pub branch_deadband_nm: f64,
+    /// The steel's predicted remanence in the plant and the controller's demagnetising release
+    /// ([`super::remanence`]); `None`: the branches alone.
+    pub remanence: Option<PlantRemanence>,
 }
 
 impl HapticConfig {
@@ -81,6 +85,7 @@ impl HapticConfig {
             substeps: 10,
             velocity_cutoff_hz: 200.0,
             branch_deadband_nm: 0.005,
+            remanence: None,
         }
     }
 
@@ -117,6 +122,14 @@ impl HapticConfig {
             check(&format!("brakes[{k}].lag.gain"), brake.lag.gain, 0.0, 10.0)?;
             check(&format!("brakes[{k}].lag.a_s2"), brake.lag.a_s2, 1e-12, 10.0)?;
             check(&format!("brakes[{k}].lag.b_s"), brake.lag.b_s, 0.0, 10.0)?;
+        }
+        if let Some(r) = &self.remanence {
+            check("remanence.remanent_torque_nm", r.remanent_torque_nm, 0.0, 1e3)?;
+            check("remanence.reference_peak_a", r.reference_peak_a, 1e-9, 100.0)?;
+            if let Some(release) = &r.release {
+                let fraction = release.remanence_fraction;
+                check("remanence.release.remanence_fraction", fraction, 0.0, 1.0)?;
+            }
         }
         Ok(())
     }
@@ -213,6 +226,7 @@ pub fn simulate(config: &HapticConfig, record: bool) -> Result<HapticRun, SimErr
             config.device.name(),
             config.scenario.name(),
             control.controller.fault_count(),
+            haptic_loop.drag(&plant),
         ),
         trace,
     })
@@ -268,6 +282,7 @@ struct ControlState {
 #[derive(Clone, Copy)]
 struct PlantState {
     brakes: [BrakeState; 2],
+    remanence: [RemanenceState; 2],
     angle_rad: f64,
     velocity_rad_s: f64,
 }
@@ -297,6 +312,12 @@ impl<'a> HapticLoop<'a> {
             config.branch_deadband_nm,
         )
         .map_err(|source| SimError::Control { what: "haptic controller", source })?;
+        let controller = match config.remanence.as_ref().and_then(|r| r.release.as_ref()) {
+            Some(release) => controller
+                .with_demagnetisation(&release.settings, period)
+                .map_err(|source| SimError::Control { what: "demagnetising release", source })?,
+            None => controller,
+        };
         let estimator =
             VelocityEstimator::new(period, config.velocity_cutoff_hz).ok_or_else(|| {
                 let e = mrbrake_error::FieldError::new(
@@ -329,6 +350,7 @@ impl<'a> HapticLoop<'a> {
         let brakes = &self.config.brakes;
         PlantState {
             brakes: [brakes[0].rest_state(), brakes[1].rest_state()],
+            remanence: [RemanenceState::default(); 2],
             angle_rad: self.config.scenario.start_angle_rad(),
             velocity_rad_s: 0.0,
         }
@@ -343,6 +365,19 @@ impl<'a> HapticLoop<'a> {
                 DeviceKind::Bidirectional => plant.brakes[1].lag[0],
                 DeviceKind::Motor => 0.0,
             }
+    }
+
+    /// Free-motion drag against either direction in the plant's present state (brake capacity and
+    /// bearing friction), N·m.
+    fn drag(&self, plant: &PlantState) -> DragAfter {
+        let capacity = |k: usize| plant.brakes[k].lag[0].max(0.0);
+        let coulomb = self.config.device_parameters.coulomb_nm;
+        let (outward, inward) = match self.config.device {
+            DeviceKind::Conventional => (capacity(0), capacity(0)),
+            DeviceKind::Bidirectional => (capacity(1), capacity(0)),
+            DeviceKind::Motor => (0.0, 0.0),
+        };
+        DragAfter { outward: outward + coulomb, inward: inward + coulomb }
     }
 
     /// The control tick at `t0`: read the encoder, estimate the velocity, run the controller (or the
@@ -376,8 +411,17 @@ impl<'a> HapticLoop<'a> {
             current_a = output.current_a;
         }
         for k in 0..2 {
-            if self.brake_present[k] {
-                config.brakes[k].apply_current(&mut plant.brakes[k], current_a[k]);
+            if !self.brake_present[k] {
+                continue;
+            }
+            match &config.remanence {
+                Some(model) => model.apply_current(
+                    &config.brakes[k],
+                    &mut plant.brakes[k],
+                    &mut plant.remanence[k],
+                    current_a[k],
+                ),
+                None => config.brakes[k].apply_current(&mut plant.brakes[k], current_a[k]),
             }
         }
         Command { wall, current_a, motor_torque_nm }
