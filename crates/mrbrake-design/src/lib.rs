@@ -15,6 +15,7 @@ pub mod drag;
 mod error;
 pub mod formula;
 pub mod geo_export;
+pub mod forc;
 pub mod geometry;
 pub mod hysteresis;
 pub mod material_factors;
