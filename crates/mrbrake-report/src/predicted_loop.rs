@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use mrbrake_design::analysis::Analysis;
+use mrbrake_design::forc::ForcSet;
 use mrbrake_design::hysteresis::HysteresisLoop;
 use serde_json::Value;
 
@@ -97,4 +98,23 @@ pub fn figure(predicted: &HysteresisLoop) -> Figure {
 /// Writes the loop's figure to `path`, atomically.
 pub fn save_figure(path: &Path, predicted: &HysteresisLoop) -> Result<(), ReportError> {
     figure(predicted).save(path)
+}
+
+/// One line on the FORC set behind a saved Preisach model: its size, time and how far the FEA is
+/// from a Preisach system (`(projected weight, largest node change)` of the identification, N·m).
+pub fn forc_line(forcs: &ForcSet, (projected_nm, projection_nm): (f64, f64)) -> String {
+    format!(
+        "brake model hysteresis: Preisach from {} FORCs on {} levels 0–{} A ({} steps per level,          {} field solves in {} chain(s)): {:.1} s wall, {:.1} s summed over the chains;          wiping-out defect {:.2e} N·m, negative weights projected {:.2e} N·m (largest node          change {:.2e} N·m)",
+        forcs.levels_a.len() - 1,
+        forcs.levels_a.len() - 1,
+        forcs.levels_a.last().copied().unwrap_or(0.0),
+        forcs.steps_per_level,
+        forcs.solves,
+        forcs.chains,
+        forcs.timings_s.wall,
+        forcs.timings_s.chains,
+        forcs.wiping_out_defect_nm,
+        projected_nm,
+        projection_nm
+    )
 }

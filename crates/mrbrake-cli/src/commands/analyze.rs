@@ -68,6 +68,13 @@ pub struct AnalyzeArgs {
     /// Currents per leg of the hysteresis loop's program.
     #[arg(long, requires = "hysteresis", default_value_t = mrbrake::design::hysteresis::DEFAULT_POINTS_PER_LEG)]
     loop_points: usize,
+    /// Levels of the first-order reversal curves whose Preisach model `--save-model` writes with
+    /// `--hysteresis` (the FORCs are solved on `[0, I_max]`, in parallel).
+    #[arg(long, requires = "hysteresis", default_value_t = mrbrake::design::forc::DEFAULT_LEVELS)]
+    forc_levels: usize,
+    /// Current steps per level step of the first-order reversal curves.
+    #[arg(long, requires = "hysteresis", default_value_t = mrbrake::design::forc::DEFAULT_STEPS_PER_LEVEL)]
+    forc_steps: usize,
 }
 
 /// The spec as a word of a printed command: the path quoted for a shell (a path with spaces
@@ -158,9 +165,28 @@ fn saved_model(
         a.points
     );
     let identity = mrbrake::explore::design::analysis_identity(spec, options)?;
-    let model =
+    let context = format!("--save-model {} (from {source})", path.display());
+    let mut model =
         mrbrake::device::brake_model::from_analysis(analysis, options, Some(identity), &how)
-            .context(format!("--save-model {} (from {source})", path.display()))?;
+            .context(context.clone())?;
+    if a.hysteresis {
+        let forc_options = mrbrake::design::forc::ForcOptions {
+            levels: a.forc_levels,
+            steps_per_level: a.forc_steps,
+            chains: None,
+        };
+        let forcs = mrbrake::design::forc::run(spec, options, &forc_options)
+            .map_err(field_flags::design)?;
+        let how = format!("{how} --hysteresis --forc-levels {}", a.forc_levels);
+        let identified = mrbrake::device::brake_model::set_predicted_hysteresis(
+            &mut model, &forcs, analysis, &how,
+        )
+        .context(context)?;
+        eprintln!("{}", mrbrake::report::predicted_loop::forc_line(
+            &forcs,
+            (identified.projected_weight_nm, identified.projection_nm),
+        ));
+    }
     Ok(model.to_json())
 }
 

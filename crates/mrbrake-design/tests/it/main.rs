@@ -2,6 +2,7 @@
 //! module is one former `tests/<name>.rs` file (run one with `cargo test -p mrbrake-design --test it <name>::`).
 
 mod analysis;
+mod forc_set;
 mod hostile_geometry;
 mod hysteresis_loop;
 mod material_factors;
