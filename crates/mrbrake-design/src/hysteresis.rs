@@ -209,7 +209,10 @@ pub struct HysteresisLoop {
 }
 
 /// The hysteresis laws of the steel regions of `model` (module docs), set on its solver.
-pub(crate) fn set_steel_laws(spec: &BrakeSpec, model: &mut Model) -> Result<Vec<SteelLaw>, DesignError> {
+pub(crate) fn set_steel_laws(
+    spec: &BrakeSpec,
+    model: &mut Model,
+) -> Result<Vec<SteelLaw>, DesignError> {
     let mut laws: Vec<SteelLaw> = Vec::new();
     let mut regions = Vec::new();
     let mut params_of: Vec<(String, Arc<HysteresisParams>)> = Vec::new();

@@ -13,9 +13,9 @@
 pub mod analysis;
 pub mod drag;
 mod error;
+pub mod forc;
 pub mod formula;
 pub mod geo_export;
-pub mod forc;
 pub mod geometry;
 pub mod hysteresis;
 pub mod material_factors;

@@ -201,7 +201,12 @@ pub fn set_predicted_hysteresis(
         table.levels(),
         analysis.max_current_a,
         forcs.steps_per_level,
-        forcs.steels.iter().map(|s| format!("{} (trust {})", s.material, s.trust)).collect::<Vec<_>>().join(", "),
+        forcs
+            .steels
+            .iter()
+            .map(|s| format!("{} (trust {})", s.material, s.trust))
+            .collect::<Vec<_>>()
+            .join(", "),
         identified.wiping_out_defect_nm,
         identified.projected_weight_nm,
     );
@@ -219,8 +224,9 @@ pub fn set_predicted_hysteresis(
         };
         let o = &mut unit.off_state;
         o.seal_friction_nm = (o.seal_friction_nm - remanent).max(0.0);
-        o.seal_friction_source
-            .push_str("; the remanent term is in the Preisach hysteresis (its torque at 0 A), not here");
+        o.seal_friction_source.push_str(
+            "; the remanent term is in the Preisach hysteresis (its torque at 0 A), not here",
+        );
     }
     let p = &mut model.provenance;
     p.predicted.push(format!("hysteresis: {how}"));

@@ -182,10 +182,13 @@ fn saved_model(
             &mut model, &forcs, analysis, &how,
         )
         .context(context)?;
-        eprintln!("{}", mrbrake::report::predicted_loop::forc_line(
-            &forcs,
-            (identified.projected_weight_nm, identified.projection_nm),
-        ));
+        eprintln!(
+            "{}",
+            mrbrake::report::predicted_loop::forc_line(
+                &forcs,
+                (identified.projected_weight_nm, identified.projection_nm),
+            )
+        );
     }
     Ok(model.to_json())
 }

@@ -37,8 +37,14 @@ fn the_thesis_brakes_forc_major_loop_is_the_predicted_loop() {
         let falling = yield_at(n + (n - k));
         let forc_rising = forcs.rising_nm[a];
         let forc_falling = forcs.forcs_nm[levels][a];
-        assert!((forc_rising - rising).abs() <= tolerance, "rising at level {a}: {forc_rising} vs {rising}");
-        assert!((forc_falling - falling).abs() <= tolerance, "falling at level {a}: {forc_falling} vs {falling}");
+        assert!(
+            (forc_rising - rising).abs() <= tolerance,
+            "rising at level {a}: {forc_rising} vs {rising}"
+        );
+        assert!(
+            (forc_falling - falling).abs() <= tolerance,
+            "falling at level {a}: {forc_falling} vs {falling}"
+        );
     }
     assert!((forcs.rising_nm[0] - predicted.remanent_torque_nm).abs() <= tolerance);
     assert!(forcs.wiping_out_defect_nm <= tolerance, "{}", forcs.wiping_out_defect_nm);

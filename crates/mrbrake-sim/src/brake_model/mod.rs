@@ -559,16 +559,14 @@ impl UnitModel {
                     everett_nm: everett_nm.clone(),
                 };
                 let branch = |torque_nm: Vec<f64>, what: &str| {
-                    let curve = StaticCurve {
-                        current_a: levels_a.clone(),
-                        torque_nm,
-                        source: what.into(),
-                    };
+                    let curve =
+                        StaticCurve { current_a: levels_a.clone(), torque_nm, source: what.into() };
                     curve.fit(self.off_state.seal_friction_nm)
                 };
                 let (rising, fit_up) = branch(rising_nm.clone(), "rising")?;
                 let (falling, fit_down) = branch(table.falling_nm(), "falling")?;
-                let fit = if fit_down.max_error_nm > fit_up.max_error_nm { fit_down } else { fit_up };
+                let fit =
+                    if fit_down.max_error_nm > fit_up.max_error_nm { fit_down } else { fit_up };
                 Ok(UnitBranches { model: model(&rising, &falling)?, fit: Some(fit) })
             }
         }
@@ -809,6 +807,115 @@ mod tests {
         bad.units[1].rotor_inertia_kg_m2 = Some(-1e-6);
         let e = BrakeModel::from_json("m.json", &bad.to_json()).unwrap_err().to_string();
         assert!(e.contains("units[1].rotor_inertia_kg_m2"), "{e}");
+    }
+
+    /// The prototype with a Preisach hysteresis on `levels` levels, identified from the FORCs
+    /// of the rig's branch + prior Preisach model (the prototype-like loop).
+    fn preisach_prototype(levels: usize) -> BrakeModel {
+        use crate::rig::everett::EverettTable;
+        use crate::rig::preisach::{HysteresisConfig, HysteresisKind, PreisachHysteresis};
+        let config = HysteresisConfig { model: HysteresisKind::Preisach, ..Default::default() };
+        let b = crate::rig::config::BrakeConfig::default();
+        let mut p = PreisachHysteresis::new(&config, &b.rising, &b.falling, 2.0).unwrap();
+        let level = |k: usize| 2.0 * k as f64 / levels as f64;
+        let forcs: Vec<Vec<f64>> = (0..=levels)
+            .map(|k| {
+                p.settle(0.0);
+                let mut forc: Vec<f64> = (0..=k).map(|a| p.torque_nm(level(a))).collect();
+                for j in (0..k).rev() {
+                    forc[j] = p.torque_nm(level(j));
+                }
+                forc
+            })
+            .collect();
+        let levels_a: Vec<f64> = (0..=levels).map(level).collect();
+        let t = EverettTable::from_forcs(&levels_a, &forcs).unwrap().table;
+        let mut m = haptic_prototype();
+        for unit in &mut m.units {
+            unit.current_max_a = 2.0;
+            unit.off_state.seal_friction_nm = 0.0;
+            unit.hysteresis = Hysteresis::Preisach {
+                levels_a: t.levels_a.clone(),
+                rising_nm: t.rising_nm.clone(),
+                everett_nm: t.everett_nm.clone(),
+                source: "test".into(),
+            };
+        }
+        m
+    }
+
+    #[test]
+    fn a_preisach_model_round_trips_and_its_branches_are_its_major_loop() {
+        let m = preisach_prototype(12);
+        let back = BrakeModel::from_json("p.json", &m.to_json()).unwrap();
+        // JSON keeps every value to the last bit or so (serde_json's float parsing).
+        let (a, b) =
+            (m.units[0].hysteresis.everett().unwrap(), back.units[0].hysteresis.everett().unwrap());
+        let close = |x: &[f64], y: &[f64]| {
+            x.len() == y.len()
+                && x.iter().zip(y).all(|(p, q)| (p - q).abs() <= 1e-15 * p.abs().max(1.0))
+        };
+        assert!(close(&a.levels_a, &b.levels_a) && close(&a.rising_nm, &b.rising_nm));
+        assert!(a.everett_nm.iter().zip(&b.everett_nm).all(|(x, y)| close(x, y)));
+        assert_eq!(back.units[1].hysteresis.everett().map(|t| t.levels()), Some(12));
+        let unit = &back.units[0];
+        assert!(unit.adds_off_state());
+        let b = unit.branches().unwrap();
+        let table = unit.hysteresis.everett().unwrap();
+        let (up, down) = (table.rising_nm.clone(), table.falling_nm());
+        let span = up[12] - up[0];
+        for (k, i) in table.levels_a.iter().enumerate() {
+            let rising = b.model.torque_nm(Branch::Rising, *i);
+            let falling = b.model.torque_nm(Branch::Falling, *i);
+            assert!((rising - up[k]).abs() <= STATIC_FIT_TOLERANCE * span, "{i} A");
+            assert!((falling - down[k]).abs() <= STATIC_FIT_TOLERANCE * span, "{i} A");
+        }
+        // The rig: the plant runs the table (with the seal friction), the controller the fit.
+        let mut config = crate::rig::RigConfig::default();
+        let notes = apply::apply_to_rig(&back, 1, &mut config).unwrap();
+        assert_eq!(config.brake.everett.as_ref().map(|t| t.levels()), Some(12));
+        assert!(notes.iter().any(|n| n.contains("Preisach hysteresis (12 levels)")), "{notes:?}");
+    }
+
+    #[test]
+    fn bad_preisach_tables_are_refused_naming_the_field() {
+        let field = |m: &BrakeModel| m.validate().unwrap_err().0;
+        let set = |edit: &dyn Fn(&mut Vec<f64>, &mut Vec<Vec<f64>>, &mut Vec<f64>)| {
+            let mut m = preisach_prototype(6);
+            if let Hysteresis::Preisach { levels_a, rising_nm, everett_nm, .. } =
+                &mut m.units[0].hysteresis
+            {
+                edit(rising_nm, everett_nm, levels_a);
+            }
+            m
+        };
+        let nan = set(&|_, e, _| e[3][1] = f64::NAN);
+        assert_eq!(field(&nan), "units[0].hysteresis.everett_Nm[3][1]");
+        let short = set(&|_, e, _| {
+            e[4].pop();
+        });
+        assert_eq!(field(&short), "units[0].hysteresis.everett_Nm[4]");
+        let rows = set(&|_, e, _| {
+            e.pop();
+        });
+        assert_eq!(field(&rows), "units[0].hysteresis.everett_Nm");
+        // E(4, 0) far below E(3, 0): a negative weight, the Everett function not monotone.
+        let dip = set(&|_, e, _| e[4][0] = 0.0);
+        assert!(field(&dip).starts_with("units[0].hysteresis.everett_Nm[4]"), "{}", field(&dip));
+        let uneven = set(&|_, _, l| l[2] = 0.5);
+        assert_eq!(field(&uneven), "units[0].hysteresis.levels_A[2]");
+        let wrong_end = set(&|_, _, l| l.iter_mut().for_each(|v| *v *= 0.5));
+        assert_eq!(field(&wrong_end), "units[0].hysteresis.levels_A");
+        let negative = set(&|r, _, _| r[0] = -1.0);
+        assert_eq!(field(&negative), "units[0].hysteresis.rising_Nm[0]");
+        // Refused on reading too, naming the file; and a version-2 file may not carry the kind.
+        let e = BrakeModel::from_json("p.json", &nan.to_json()).unwrap_err();
+        assert!(mrbrake_error::Kind::is_input_error(&e), "{e}");
+        let old = preisach_prototype(6)
+            .to_json()
+            .replace("\"schema_version\": 3", "\"schema_version\": 2");
+        let e = BrakeModel::from_json("old.json", &old).unwrap_err().to_string();
+        assert!(e.contains("units[0].hysteresis.kind") && e.contains("version-3"), "{e}");
     }
 
     #[test]

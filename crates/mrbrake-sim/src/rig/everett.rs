@@ -137,7 +137,8 @@ impl EverettTable {
             ));
         }
         if self.rising_nm.len() != n + 1 {
-            let msg = format!("{} values for {} levels; need one per level", self.rising_nm.len(), n + 1);
+            let msg =
+                format!("{} values for {} levels; need one per level", self.rising_nm.len(), n + 1);
             return Err(("rising_Nm".into(), msg));
         }
         if let Some(k) = self.rising_nm.iter().position(|v| !v.is_finite() || *v < 0.0) {
@@ -231,11 +232,20 @@ fn check_levels(levels_a: &[f64]) -> Result<(), (String, String)> {
     let n = count - 1;
     let top = levels_a[n];
     if !(top > 0.0) || levels_a[0].abs() > 1e-12 * top {
-        return Err(("levels_A".into(), format!("must run from 0 to a positive current, runs {}..{top}", levels_a[0])));
+        return Err((
+            "levels_A".into(),
+            format!("must run from 0 to a positive current, runs {}..{top}", levels_a[0]),
+        ));
     }
     for (k, v) in levels_a.iter().enumerate() {
         if (v - top * k as f64 / n as f64).abs() > 1e-9 * top {
-            return Err((format!("levels_A[{k}]"), format!("{v} A: the levels must be evenly spaced ({} A)", top * k as f64 / n as f64)));
+            return Err((
+                format!("levels_A[{k}]"),
+                format!(
+                    "{v} A: the levels must be evenly spaced ({} A)",
+                    top * k as f64 / n as f64
+                ),
+            ));
         }
     }
     Ok(())
@@ -244,11 +254,17 @@ fn check_levels(levels_a: &[f64]) -> Result<(), (String, String)> {
 /// Row `a` of a triangular table has `a + 1` finite values.
 fn check_rows(field: &str, rows: &[Vec<f64>], n: usize) -> Result<(), (String, String)> {
     if rows.len() != n + 1 {
-        return Err((field.into(), format!("{} rows for {} levels; need one per level", rows.len(), n + 1)));
+        return Err((
+            field.into(),
+            format!("{} rows for {} levels; need one per level", rows.len(), n + 1),
+        ));
     }
     for (a, row) in rows.iter().enumerate() {
         if row.len() != a + 1 {
-            return Err((format!("{field}[{a}]"), format!("{} values; row {a} has {} (β = α_0 … α_{a})", row.len(), a + 1)));
+            return Err((
+                format!("{field}[{a}]"),
+                format!("{} values; row {a} has {} (β = α_0 … α_{a})", row.len(), a + 1),
+            ));
         }
         if let Some(b) = row.iter().position(|v| !v.is_finite()) {
             return Err((format!("{field}[{a}][{b}]"), "must be a finite torque".into()));
@@ -342,7 +358,8 @@ mod tests {
         let levels: Vec<f64> = (0..=n).map(|k| 2.0 * k as f64 / n as f64).collect();
         let identified = EverettTable::from_forcs(&levels, &forcs).unwrap();
         assert!(identified.wiping_out_defect_nm < 1e-12 && identified.projection_nm < 1e-12);
-        let (mut a, mut b) = (model, PreisachHysteresis::from_everett(&identified.table, 0.0).unwrap());
+        let (mut a, mut b) =
+            (model, PreisachHysteresis::from_everett(&identified.table, 0.0).unwrap());
         a.settle(0.0);
         b.settle(0.0);
         for level in [3u32, 12, 5, 9, 7, 16, 1, 10, 4, 8, 0, 13, 11, 14, 2] {

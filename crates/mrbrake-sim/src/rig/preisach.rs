@@ -232,7 +232,8 @@ impl PreisachHysteresis {
                 everett[a * (n + 1) + b] = *e;
             }
         }
-        let nodes = (0..=n).map(|a| table.rising_nm[a] + offset_nm - everett[a * (n + 1)]).collect();
+        let nodes =
+            (0..=n).map(|a| table.rising_nm[a] + offset_nm - everett[a * (n + 1)]).collect();
         let model = Self {
             levels: n,
             everett,
