@@ -189,14 +189,14 @@ pub fn run(
             let mut model = Model::new(spec, geometry.clone(), Arc::clone(&mesh), options)?;
             let steels = set_steel_laws(spec, &mut model)?;
             let mut walk = Walk::new(model, options, forc_options.steps_per_level);
-            walk.to_level(&levels_a, n)?;
-            let reference_nm = walk.to_level(&levels_a, 0)?;
+            walk.walk_to(&levels_a, n)?;
+            let reference_nm = walk.walk_to(&levels_a, 0)?;
             let mut solved = Vec::with_capacity(forcs.len());
             for k in forcs {
                 let mut forc = vec![0.0; k + 1];
-                forc[k] = walk.to_level(&levels_a, k)?;
+                forc[k] = walk.walk_to(&levels_a, k)?;
                 for j in (0..k).rev() {
-                    forc[j] = walk.to_level(&levels_a, j)?;
+                    forc[j] = walk.walk_to(&levels_a, j)?;
                 }
                 solved.push((k, forc));
             }
@@ -258,7 +258,7 @@ impl<'o> Walk<'o> {
 
     /// Walks from the present level to `target` in level steps of `steps_per_level` current
     /// steps each, committing the material state after each; returns the yield torque there.
-    fn to_level(&mut self, levels_a: &[f64], target: usize) -> Result<f64, DesignError> {
+    fn walk_to(&mut self, levels_a: &[f64], target: usize) -> Result<f64, DesignError> {
         let mut torque = None;
         while self.level != target {
             let next = if target > self.level { self.level + 1 } else { self.level - 1 };

@@ -880,7 +880,9 @@ mod tests {
     #[test]
     fn bad_preisach_tables_are_refused_naming_the_field() {
         let field = |m: &BrakeModel| m.validate().unwrap_err().0;
-        let set = |edit: &dyn Fn(&mut Vec<f64>, &mut Vec<Vec<f64>>, &mut Vec<f64>)| {
+        /// Edits `(rising_Nm, everett_Nm, levels_A)`.
+        type Edit = dyn Fn(&mut Vec<f64>, &mut Vec<Vec<f64>>, &mut Vec<f64>);
+        let set = |edit: &Edit| {
             let mut m = preisach_prototype(6);
             if let Hysteresis::Preisach { levels_a, rising_nm, everett_nm, .. } =
                 &mut m.units[0].hysteresis

@@ -231,7 +231,7 @@ fn check_levels(levels_a: &[f64]) -> Result<(), (String, String)> {
     }
     let n = count - 1;
     let top = levels_a[n];
-    if !(top > 0.0) || levels_a[0].abs() > 1e-12 * top {
+    if top <= 0.0 || levels_a[0].abs() > 1e-12 * top {
         return Err((
             "levels_A".into(),
             format!("must run from 0 to a positive current, runs {}..{top}", levels_a[0]),
