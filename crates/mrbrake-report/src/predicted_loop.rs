@@ -104,7 +104,10 @@ pub fn save_figure(path: &Path, predicted: &HysteresisLoop) -> Result<(), Report
 /// from a Preisach system (`(projected weight, largest node change)` of the identification, N·m).
 pub fn forc_line(forcs: &ForcSet, (projected_nm, projection_nm): (f64, f64)) -> String {
     format!(
-        "brake model hysteresis: Preisach from {} FORCs on {} levels 0–{} A ({} steps per level,          {} field solves in {} chain(s)): {:.1} s wall, {:.1} s summed over the chains;          wiping-out defect {:.2e} N·m, negative weights projected {:.2e} N·m (largest node          change {:.2e} N·m)",
+        "brake model hysteresis: Preisach from {} FORCs on {} levels 0–{} A ({} steps per level, \
+         {} field solves in {} chain(s)): {:.1} s wall, {:.1} s summed over the chains; \
+         wiping-out defect {:.2e} N·m; non-Preisach part projected out: negative weights \
+         {:.2e} N·m, largest node change {:.2e} N·m",
         forcs.levels_a.len() - 1,
         forcs.levels_a.len() - 1,
         forcs.levels_a.last().copied().unwrap_or(0.0),

@@ -29,17 +29,26 @@
 //! `w(a, b) = E(a+1, b) − E(a, b) − E(a+1, b+1) + E(a, b+1)` (`b < a`) and, on the diagonal,
 //! `w(a, a) = E(a+1, a)`; they must not be negative (a negative relay weight makes a minor loop
 //! turn the wrong way and the torque leave the major loop). [`EverettTable::check`] refuses a
-//! table with a weight below `−`[`WEIGHT_TOLERANCE`] × the largest; [`EverettTable::from_forcs`]
-//! projects measured or computed FORCs onto it instead: negative weights are set to zero, the
-//! table is summed again from the weights, and the rising branch follows from the wiping-out
-//! relation `T(α) = T(0) + E(α, 0)` (the change is reported, [`Identified::projection_nm`]).
+//! table with a weight below `−`[`WEIGHT_TOLERANCE`] × the largest. Data that are not exactly
+//! of a Preisach system (a torque that is a non-linear function of a Preisach-like magnetisation
+//! breaks the congruency of minor loops, Mayergoyz 1991, theorem 1.2) give negative weights;
+//! [`EverettTable::from_forcs`] then projects them onto the closest table with non-negative
+//! weights in the least-squares sense over the nodes, `min Σ c_ab (E'(a,b) − E(a,b))²` over
+//! `w' ≥ 0` (non-negative least squares, Lawson & Hanson 1974, ch. 23), with the major loop's
+//! nodes (the rising branch `b = 0` and the falling branch `a = n`) weighted
+//! [`MAJOR_LOOP_WEIGHT`] times the others so that the loop the controller compensates is kept;
+//! the rising branch follows from the wiping-out relation `T(α) = T(0) + E(α, 0)`. The change is
+//! reported ([`Identified::projection_nm`]).
 
 use serde::{Deserialize, Serialize};
 
-/// Most levels `n` of a table (as the rig's Preisach grid).
-pub const MAX_LEVELS: usize = 256;
+/// Most levels `n` of a table (the design's FORC grid; the projection's normal equations have
+/// `(n(n+1)/2)²` entries).
+pub const MAX_LEVELS: usize = 64;
 /// Negative cell weight tolerated, as a fraction of the largest weight (rounding).
 pub const WEIGHT_TOLERANCE: f64 = 1e-9;
+/// Weight of the major loop's nodes in the projection onto a non-negative density (module docs).
+pub const MAJOR_LOOP_WEIGHT: f64 = 100.0;
 
 /// A Preisach model as a tabulated Everett function on a uniform grid of `[0, I_max]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -99,9 +108,13 @@ impl EverettTable {
         let raw = Self { levels_a: levels_a.to_vec(), rising_nm, everett_nm };
         let weights = raw.weights();
         let projected_weight_nm: f64 = weights.iter().flatten().filter(|w| **w < 0.0).sum::<f64>();
-        let clipped: Vec<Vec<f64>> =
-            weights.iter().map(|row| row.iter().map(|w| w.max(0.0)).collect()).collect();
-        let everett_nm = sum_weights(&clipped);
+        let largest = weights.iter().flatten().fold(0.0_f64, |m, w| m.max(*w));
+        let negative = weights.iter().flatten().any(|w| *w < -WEIGHT_TOLERANCE * largest);
+        let everett_nm = if negative {
+            sum_weights(&project(&raw.everett_nm).map_err(|e| ("forcs_Nm".to_string(), e))?)
+        } else {
+            raw.everett_nm.clone()
+        };
         let rising_nm: Vec<f64> = everett_nm.iter().map(|row| reference + row[0]).collect();
         let projection_nm = raw
             .everett_nm
@@ -200,6 +213,45 @@ impl EverettTable {
         t.everett_nm.iter_mut().flatten().for_each(|v| *v *= factor);
         t
     }
+}
+
+/// The non-negative cell weights whose table is closest to `everett` (module docs): NNLS on the
+/// normal equations. Node `(a, b)`, `b < a`, sums the cells `(i, j)` with `b ≤ j ≤ i < a`, so
+/// `G[c, d] = Σ c_ab` over the nodes with `a > max(i_c, i_d)` and `b ≤ min(j_c, j_d)`.
+fn project(everett: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, String> {
+    let n = everett.len() - 1;
+    let cells: Vec<(usize, usize)> = (0..n).flat_map(|i| (0..=i).map(move |j| (i, j))).collect();
+    let weight = |a: usize, b: usize| if b == 0 || a == n { MAJOR_LOOP_WEIGHT } else { 1.0 };
+    // sum_w[a][b] = Σ c_a'b' over a' ≥ a, b' ≤ b (nodes b' < a'), and the same of c·E.
+    let mut sum_w = vec![vec![0.0; n + 1]; n + 2];
+    let mut sum_we = vec![vec![0.0; n + 1]; n + 2];
+    for a in (1..=n).rev() {
+        for b in 0..=n {
+            let (node_w, node_we) =
+                if b < a { (weight(a, b), weight(a, b) * everett[a][b]) } else { (0.0, 0.0) };
+            let left_w = if b > 0 { sum_w[a][b - 1] } else { 0.0 };
+            let left_we = if b > 0 { sum_we[a][b - 1] } else { 0.0 };
+            let below_w = sum_w[a + 1][b] - if b > 0 { sum_w[a + 1][b - 1] } else { 0.0 };
+            let below_we = sum_we[a + 1][b] - if b > 0 { sum_we[a + 1][b - 1] } else { 0.0 };
+            sum_w[a][b] = left_w + below_w + node_w;
+            sum_we[a][b] = left_we + below_we + node_we;
+        }
+    }
+    let m = cells.len();
+    let mut gram = vec![0.0; m * m];
+    for (c, &(ic, jc)) in cells.iter().enumerate() {
+        for (d, &(id, jd)) in cells.iter().enumerate() {
+            gram[c * m + d] = sum_w[ic.max(id) + 1][jc.min(jd)];
+        }
+    }
+    let rhs: Vec<f64> = cells.iter().map(|&(i, j)| sum_we[i + 1][j]).collect();
+    let solution =
+        mrbrake_sysid::operator_fit::nnls_gram(&gram, &rhs, m).map_err(|e| e.to_string())?;
+    let mut out: Vec<Vec<f64>> = (0..n).map(|i| vec![0.0; i + 1]).collect();
+    for (&(i, j), w) in cells.iter().zip(solution) {
+        out[i][j] = w.max(0.0);
+    }
+    Ok(out)
 }
 
 /// The table `E[a][b] = Σ w(i, j)` over the cells with `b ≤ j ≤ i < a`.
@@ -342,6 +394,32 @@ mod tests {
                 prop_assert!((f - g).abs() < 1e-12);
             }
         }
+    }
+
+    /// FORCs that no Preisach model has (a node pushed up makes a cell weight negative) are
+    /// projected onto a valid table, the major loop kept closer than the rest.
+    #[test]
+    fn forcs_of_no_preisach_model_are_projected_onto_a_valid_table() {
+        let w: Vec<Vec<f64>> = (0..6).map(|a| vec![0.05; a + 1]).collect();
+        let table = table_of(&w, 0.1, 2.0);
+        let model = PreisachHysteresis::from_everett(&table, 0.0).unwrap();
+        let mut forcs = forcs_of(&model, 6, 2.0);
+        forcs[4][2] -= 0.2;
+        let identified = EverettTable::from_forcs(&table.levels_a, &forcs).unwrap();
+        identified.table.check(2.0).unwrap();
+        assert!(identified.projected_weight_nm > 0.1, "{identified:?}");
+        assert!(identified.projection_nm > 0.0 && identified.projection_nm < 0.2);
+        let major = |t: &EverettTable| {
+            let mut v: Vec<f64> = t.everett_nm.iter().skip(1).map(|r| r[0]).collect();
+            v.extend(t.everett_nm[6].iter().copied());
+            v
+        };
+        let change = major(&identified.table)
+            .iter()
+            .zip(major(&table))
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(change < 0.01 * identified.projection_nm.max(1e-3) + 2e-3, "{change}");
     }
 
     /// The branch + prior model has a reversible part; identified from its FORCs on a coarser grid
