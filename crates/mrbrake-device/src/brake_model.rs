@@ -196,7 +196,10 @@ pub fn set_predicted_hysteresis(
         .map_err(|(field, message)| FieldError::new(format!("forc.{field}"), message))?;
     let table = &identified.table;
     let how = format!(
-        "predicted: Preisach model identified from {} first-order reversal curves of the          hysteretic FEA on {} levels 0–{} A ({} current steps per level; steel sets: {});          wiping-out defect {:.3e} N·m, negative weights projected {:.3e} N·m ({source})",
+        "predicted: Preisach model identified from {} first-order reversal curves of the \
+         hysteretic FEA on {} levels 0–{} A ({} current steps per level; steel sets: {}); \
+         wiping-out defect {:.3e} N·m; non-Preisach part projected out: negative weights \
+         {:.3e} N·m, largest node change {:.3e} N·m ({source})",
         table.levels(),
         table.levels(),
         analysis.max_current_a,
@@ -209,6 +212,7 @@ pub fn set_predicted_hysteresis(
             .join(", "),
         identified.wiping_out_defect_nm,
         identified.projected_weight_nm,
+        identified.projection_nm,
     );
     let end = |u: &UnitModel| u.static_curve.torque_nm.last().copied().unwrap_or(0.0);
     let unit1_end = model.units.first().map_or(0.0, end);

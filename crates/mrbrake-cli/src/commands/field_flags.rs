@@ -22,6 +22,8 @@ const FLAGS: &[(&str, &str)] = &[
     // Hysteresis-loop options.
     ("peak", "--peak"),
     ("loop_points", "--loop-points"),
+    ("forc_levels", "--forc-levels"),
+    ("forc_steps", "--forc-steps"),
     // Response options.
     ("duration", "--duration"),
     ("step", "--step"),
