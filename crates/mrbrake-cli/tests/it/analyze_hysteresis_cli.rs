@@ -64,19 +64,19 @@ fn the_saved_model_carries_the_predicted_preisach_hysteresis() {
     let path = dir.path().join("brake.json");
     let mut args = QUICK.to_vec();
     let path_text = path.display().to_string();
-    args.extend(["--save-model", &path_text, "--forc-levels", "3", "--forc-steps", "1"]);
+    args.extend(["--save-model", &path_text, "--forc-levels", "4", "--forc-steps", "1"]);
     let out = mrbrake(&args);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("brake model hysteresis: Preisach from 3 FORCs"), "{stderr}");
+    assert!(stderr.contains("brake model hysteresis: Preisach from 4 FORCs"), "{stderr}");
     let model: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
     assert_eq!(model["schema_version"], 3);
     let unit = &model["units"][0];
     let h = &unit["hysteresis"];
     assert_eq!(h["kind"], "preisach");
-    assert_eq!(h["levels_A"].as_array().map(Vec::len), Some(4));
-    assert_eq!(h["everett_Nm"][3].as_array().map(Vec::len), Some(4));
+    assert_eq!(h["levels_A"].as_array().map(Vec::len), Some(5));
+    assert_eq!(h["everett_Nm"][4].as_array().map(Vec::len), Some(5));
     // The remanent torque is the rising branch's start, not in the seal friction as well.
     assert!(h["rising_Nm"][0].as_f64().is_some_and(|t| t > 0.0), "{h}");
     assert!(number(&unit["off_state"], "seal_friction_Nm").abs() < 1e-12);

@@ -79,6 +79,12 @@ pub fn apply_to_haptic(
         let branches = unit.branches()?;
         if k == 0 || model.units.len() == 2 {
             notes.extend(branch_note(unit, &branches));
+            if unit.hysteresis.everett().is_some() {
+                notes.push(format!(
+                    "brake {}: the haptic plant runs the play-type clamp between the Preisach model's major-loop branches (its minor loops are the rig's only)",
+                    k + 1
+                ));
+            }
         }
         config.brakes[k].branches = branches.model;
         config.controller_models[k] = branches.model;
