@@ -121,3 +121,19 @@ pub fn forc_line(forcs: &ForcSet, (projected_nm, projection_nm): (f64, f64)) -> 
         projection_nm
     )
 }
+
+/// The FORC set's summary for `analyze --json` (key `forc`): grid, work, timings and how far the
+/// FEA is from a Preisach system (`(projected weight, largest node change)`, N·m).
+pub fn forc_json(forcs: &ForcSet, (projected_nm, projection_nm): (f64, f64)) -> Value {
+    serde_json::json!({
+        "levels": forcs.levels_a.len() - 1,
+        "levels_A": forcs.levels_a,
+        "steps_per_level": forcs.steps_per_level,
+        "chains": forcs.chains,
+        "solves": forcs.solves,
+        "wiping_out_defect_Nm": forcs.wiping_out_defect_nm,
+        "projected_weight_Nm": projected_nm,
+        "largest_node_change_Nm": projection_nm,
+        "timings_s": forcs.timings_s,
+    })
+}

@@ -132,12 +132,18 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
     if let (Some(dir), Some(field)) = (&a.plot_dir, &field) {
         write_plots(&a, dir, plotted, field, predicted.as_ref())?;
     }
-    if let Some((path, json)) = &model {
+    if let Some((path, (json, _))) = &model {
         mrbrake::report::write_atomic(path, json.as_bytes())?;
     }
     if a.json {
         return match &predicted {
-            Some(p) => print_json(&mrbrake::report::predicted_loop::json(analysis, p)?),
+            Some(p) => {
+                let mut value = mrbrake::report::predicted_loop::json(analysis, p)?;
+                if let Some((_, (_, Some(forc)))) = &model {
+                    value["forc"] = forc.clone();
+                }
+                print_json(&value)
+            }
             None => print_json(analysis),
         };
     }
@@ -149,14 +155,15 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
 }
 
 /// The brake model of `--save-model` as JSON, checked as the simulators will run it: a refusal
-/// names the output flag and the spec it came from.
+/// names the output flag and the spec it came from. With `--hysteresis`, also the summary of the
+/// FORC set its Preisach model comes from (JSON key `forc`).
 fn saved_model(
     a: &AnalyzeArgs,
     path: &std::path::Path,
     (spec, options): (&BrakeSpec, &AnalysisOptions),
     analysis: &mrbrake::design::analysis::Analysis,
     source: &str,
-) -> CommandResult<String> {
+) -> CommandResult<(String, Option<serde_json::Value>)> {
     let how = format!(
         "mrbrake analyze {} (--mesh {} --order {} --points {})",
         command_word(a.spec.as_deref(), source),
@@ -169,6 +176,7 @@ fn saved_model(
     let mut model =
         mrbrake::device::brake_model::from_analysis(analysis, options, Some(identity), &how)
             .context(context.clone())?;
+    let mut summary = None;
     if a.hysteresis {
         let forc_options = mrbrake::design::forc::ForcOptions {
             levels: a.forc_levels,
@@ -182,15 +190,11 @@ fn saved_model(
             &mut model, &forcs, analysis, &how,
         )
         .context(context)?;
-        eprintln!(
-            "{}",
-            mrbrake::report::predicted_loop::forc_line(
-                &forcs,
-                (identified.projected_weight_nm, identified.projection_nm),
-            )
-        );
+        let projection = (identified.projected_weight_nm, identified.projection_nm);
+        eprintln!("{}", mrbrake::report::predicted_loop::forc_line(&forcs, projection));
+        summary = Some(mrbrake::report::predicted_loop::forc_json(&forcs, projection));
     }
-    Ok(model.to_json())
+    Ok((model.to_json(), summary))
 }
 
 /// The plots of `--plot-dir`: the analysis's, and the loop's with `--hysteresis`.

@@ -64,11 +64,20 @@ fn the_saved_model_carries_the_predicted_preisach_hysteresis() {
     let path = dir.path().join("brake.json");
     let mut args = QUICK.to_vec();
     let path_text = path.display().to_string();
-    args.extend(["--save-model", &path_text, "--forc-levels", "4", "--forc-steps", "1"]);
+    args.extend(["--save-model", &path_text, "--forc-levels", "4", "--forc-steps", "1", "--json"]);
     let out = mrbrake(&args);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("brake model hysteresis: Preisach from 4 FORCs"), "{stderr}");
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let forc = &value["forc"];
+    assert_eq!(forc["levels"], 4);
+    // Each chain (one per thread) walks 0 → I_max → 0 (8 steps), the FORCs 2k steps (20).
+    let chains = forc["chains"].as_u64().expect("chains");
+    assert!((1..=4).contains(&chains));
+    assert_eq!(forc["solves"].as_u64(), Some(8 * chains + 20));
+    assert!(number(&forc["timings_s"], "wall") > 0.0);
+    assert!(number(forc, "wiping_out_defect_Nm") >= 0.0);
     let model: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
     assert_eq!(model["schema_version"], 3);
