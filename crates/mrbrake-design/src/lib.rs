@@ -16,6 +16,7 @@ pub mod analysis;
 pub mod demag;
 pub mod drag;
 mod error;
+pub mod forc;
 pub mod formula;
 pub mod geo_export;
 pub mod geometry;

@@ -15,10 +15,13 @@
 //!   shaft in that unit's direction, from the modelled parts' densities: predicted, without
 //!   bearings, seals and bolts, which the spec does not model);
 //! - no hysteresis (anhysteretic B–H curves), no dynamics, no thermal data: stated as such;
+//!   [`set_predicted_hysteresis`] adds the Preisach model of the design's predicted first-order
+//!   reversal curves (`analyze --hysteresis --save-model`);
 //!   `response --save-model` ([`add_dynamics`]) and `thermal --save-model` ([`add_thermal`]) add
 //!   the last two.
 
 use mrbrake_design::analysis::{Analysis, AnalysisOptions};
+use mrbrake_design::forc::ForcSet;
 use mrbrake_design::response::{Response, ResponseDrive};
 use mrbrake_design::thermal::ThermalResult;
 use mrbrake_sim::brake_model::fit::{DYNAMICS_POLES, fit_dynamics};
@@ -26,6 +29,7 @@ use mrbrake_sim::brake_model::{
     BrakeModel, Dynamics, Hysteresis, OffState, Provenance, SCHEMA, SCHEMA_VERSION, StaticCurve,
     Thermal, UnitModel,
 };
+use mrbrake_sim::rig::everett::EverettTable;
 use mrbrake_sysid::frd::Frd;
 
 use crate::DeviceError;
@@ -161,6 +165,86 @@ fn unit_model(analysis: &Analysis, unit: u32, yield_nm: Vec<f64>, how: &str) -> 
         dynamics: None,
         thermal: None,
     }
+}
+
+/// What [`set_predicted_hysteresis`] identified.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PredictedHysteresis {
+    /// Levels of the Everett table.
+    pub levels: usize,
+    /// Largest `|T(α, 0) − T(0)|` of the FORCs, N·m (`mrbrake_sim::rig::everett`).
+    pub wiping_out_defect_nm: f64,
+    /// Sum of the negative Preisach weights set to zero, N·m.
+    pub projected_weight_nm: f64,
+    /// Largest change of a node's torque by that projection, N·m.
+    pub projection_nm: f64,
+}
+
+/// Gives every unit of `model` (predicted from `analysis`) the Preisach hysteresis identified
+/// from the design's first-order reversal curves `forcs` (`mrbrake_design::forc`; the Everett
+/// function `E(α, β) = T(α) − T(α, β)`, `mrbrake_sim::rig::everett`). Unit 2 of a bidirectional
+/// brake gets unit 1's table scaled by the ratio of the two static curves' end torques (as its
+/// curve). The remanent torque is then the model's own (its torque at 0 A), so the remanent term of
+/// the analysis's off-state breakdown leaves the constant friction.
+pub fn set_predicted_hysteresis(
+    model: &mut BrakeModel,
+    forcs: &ForcSet,
+    analysis: &Analysis,
+    source: &str,
+) -> Result<PredictedHysteresis, DeviceError> {
+    let identified = EverettTable::from_forcs(&forcs.levels_a, &forcs.forcs_nm)
+        .map_err(|(field, message)| FieldError::new(format!("forc.{field}"), message))?;
+    let table = &identified.table;
+    let how = format!(
+        "predicted: Preisach model identified from {} first-order reversal curves of the \
+         hysteretic FEA on {} levels 0–{} A ({} current steps per level; steel sets: {}); \
+         wiping-out defect {:.3e} N·m; non-Preisach part projected out: negative weights \
+         {:.3e} N·m, largest node change {:.3e} N·m ({source})",
+        table.levels(),
+        table.levels(),
+        analysis.max_current_a,
+        forcs.steps_per_level,
+        forcs
+            .steels
+            .iter()
+            .map(|s| format!("{} (trust {})", s.material, s.trust))
+            .collect::<Vec<_>>()
+            .join(", "),
+        identified.wiping_out_defect_nm,
+        identified.projected_weight_nm,
+        identified.projection_nm,
+    );
+    let end = |u: &UnitModel| u.static_curve.torque_nm.last().copied().unwrap_or(0.0);
+    let unit1_end = model.units.first().map_or(0.0, end);
+    let remanent = analysis.torque_off.remanent_nm;
+    for unit in &mut model.units {
+        let ratio = if unit1_end > 0.0 { end(unit) / unit1_end } else { 1.0 };
+        let t = table.scaled(ratio);
+        unit.hysteresis = Hysteresis::Preisach {
+            levels_a: t.levels_a,
+            rising_nm: t.rising_nm,
+            everett_nm: t.everett_nm,
+            source: how.clone(),
+        };
+        let o = &mut unit.off_state;
+        o.seal_friction_nm = (o.seal_friction_nm - remanent).max(0.0);
+        o.seal_friction_source.push_str(
+            "; the remanent term is in the Preisach hysteresis (its torque at 0 A), not here",
+        );
+    }
+    let p = &mut model.provenance;
+    p.predicted.push(format!("hysteresis: {how}"));
+    p.assumed.retain(|a| !a.starts_with("no hysteresis"));
+    if model.units.len() > 1 {
+        p.assumed.push("unit 2's hysteresis: unit 1's Preisach table scaled as its curve".into());
+    }
+    model.check("(with the predicted hysteresis)")?;
+    Ok(PredictedHysteresis {
+        levels: table.levels(),
+        wiping_out_defect_nm: identified.wiping_out_defect_nm,
+        projected_weight_nm: identified.projected_weight_nm,
+        projection_nm: identified.projection_nm,
+    })
 }
 
 /// Adds the predicted dynamics of `response` (the same design) to every unit of `model`: a

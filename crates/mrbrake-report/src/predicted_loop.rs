@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use mrbrake_design::analysis::Analysis;
+use mrbrake_design::forc::ForcSet;
 use mrbrake_design::hysteresis::HysteresisLoop;
 use serde_json::Value;
 
@@ -97,4 +98,42 @@ pub fn figure(predicted: &HysteresisLoop) -> Figure {
 /// Writes the loop's figure to `path`, atomically.
 pub fn save_figure(path: &Path, predicted: &HysteresisLoop) -> Result<(), ReportError> {
     figure(predicted).save(path)
+}
+
+/// One line on the FORC set behind a saved Preisach model: its size, time and how far the FEA is
+/// from a Preisach system (`(projected weight, largest node change)` of the identification, N·m).
+pub fn forc_line(forcs: &ForcSet, (projected_nm, projection_nm): (f64, f64)) -> String {
+    format!(
+        "brake model hysteresis: Preisach from {} FORCs on {} levels 0–{} A ({} steps per level, \
+         {} field solves in {} chain(s)): {:.1} s wall, {:.1} s summed over the chains; \
+         wiping-out defect {:.2e} N·m; non-Preisach part projected out: negative weights \
+         {:.2e} N·m, largest node change {:.2e} N·m",
+        forcs.levels_a.len() - 1,
+        forcs.levels_a.len() - 1,
+        forcs.levels_a.last().copied().unwrap_or(0.0),
+        forcs.steps_per_level,
+        forcs.solves,
+        forcs.chains,
+        forcs.timings_s.wall,
+        forcs.timings_s.chains,
+        forcs.wiping_out_defect_nm,
+        projected_nm,
+        projection_nm
+    )
+}
+
+/// The FORC set's summary for `analyze --json` (key `forc`): grid, work, timings and how far the
+/// FEA is from a Preisach system (`(projected weight, largest node change)`, N·m).
+pub fn forc_json(forcs: &ForcSet, (projected_nm, projection_nm): (f64, f64)) -> Value {
+    serde_json::json!({
+        "levels": forcs.levels_a.len() - 1,
+        "levels_A": forcs.levels_a,
+        "steps_per_level": forcs.steps_per_level,
+        "chains": forcs.chains,
+        "solves": forcs.solves,
+        "wiping_out_defect_Nm": forcs.wiping_out_defect_nm,
+        "projected_weight_Nm": projected_nm,
+        "largest_node_change_Nm": projection_nm,
+        "timings_s": forcs.timings_s,
+    })
 }

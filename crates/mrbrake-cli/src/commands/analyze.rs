@@ -77,6 +77,13 @@ pub struct AnalyzeArgs {
     /// maximum current.
     #[arg(long, requires = "demag", allow_hyphen_values = true, value_name = "CURRENT")]
     demag_reverse_limit: Option<String>,
+    /// Levels of the first-order reversal curves whose Preisach model `--save-model` writes with
+    /// `--hysteresis` (the FORCs are solved on `[0, I_max]`, in parallel).
+    #[arg(long, requires = "hysteresis", default_value_t = mrbrake::design::forc::DEFAULT_LEVELS)]
+    forc_levels: usize,
+    /// Current steps per level step of the first-order reversal curves.
+    #[arg(long, requires = "hysteresis", default_value_t = mrbrake::design::forc::DEFAULT_STEPS_PER_LEVEL)]
+    forc_steps: usize,
 }
 
 /// The spec as a word of a printed command: the path quoted for a shell (a path with spaces
@@ -142,7 +149,7 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
     if let (Some(dir), Some(field)) = (&a.plot_dir, &field) {
         write_plots(&a, dir, plotted, field, predicted.as_ref())?;
     }
-    if let Some((path, json)) = &model {
+    if let Some((path, (json, _))) = &model {
         mrbrake::report::write_atomic(path, json.as_bytes())?;
     }
     if a.json {
@@ -150,6 +157,9 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
         let mut value = mrbrake::report::predicted_loop::json(analysis, p)?;
         if let Some(d) = &demag {
             mrbrake::report::demag::insert_json(&mut value, d)?;
+        }
+        if let Some((_, (_, Some(forc)))) = &model {
+            value["forc"] = forc.clone();
         }
         return print_json(&value);
     }
@@ -164,14 +174,15 @@ pub fn run(a: AnalyzeArgs) -> CommandResult {
 }
 
 /// The brake model of `--save-model` as JSON, checked as the simulators will run it: a refusal
-/// names the output flag and the spec it came from.
+/// names the output flag and the spec it came from. With `--hysteresis`, also the summary of the
+/// FORC set its Preisach model comes from (JSON key `forc`).
 fn saved_model(
     a: &AnalyzeArgs,
     path: &std::path::Path,
     (spec, options): (&BrakeSpec, &AnalysisOptions),
     analysis: &mrbrake::design::analysis::Analysis,
     source: &str,
-) -> CommandResult<String> {
+) -> CommandResult<(String, Option<serde_json::Value>)> {
     let how = format!(
         "mrbrake analyze {} (--mesh {} --order {} --points {})",
         command_word(a.spec.as_deref(), source),
@@ -180,10 +191,29 @@ fn saved_model(
         a.points
     );
     let identity = mrbrake::explore::design::analysis_identity(spec, options)?;
-    let model =
+    let context = format!("--save-model {} (from {source})", path.display());
+    let mut model =
         mrbrake::device::brake_model::from_analysis(analysis, options, Some(identity), &how)
-            .context(format!("--save-model {} (from {source})", path.display()))?;
-    Ok(model.to_json())
+            .context(context.clone())?;
+    let mut summary = None;
+    if a.hysteresis {
+        let forc_options = mrbrake::design::forc::ForcOptions {
+            levels: a.forc_levels,
+            steps_per_level: a.forc_steps,
+            chains: None,
+        };
+        let forcs = mrbrake::design::forc::run(spec, options, &forc_options)
+            .map_err(field_flags::design)?;
+        let how = format!("{how} --hysteresis --forc-levels {}", a.forc_levels);
+        let identified = mrbrake::device::brake_model::set_predicted_hysteresis(
+            &mut model, &forcs, analysis, &how,
+        )
+        .context(context)?;
+        let projection = (identified.projected_weight_nm, identified.projection_nm);
+        eprintln!("{}", mrbrake::report::predicted_loop::forc_line(&forcs, projection));
+        summary = Some(mrbrake::report::predicted_loop::forc_json(&forcs, projection));
+    }
+    Ok((model.to_json(), summary))
 }
 
 /// The plots of `--plot-dir`: the analysis's, and the loop's with `--hysteresis`.

@@ -23,6 +23,8 @@ const FLAGS: &[(&str, &str)] = &[
     ("peak", "--peak"),
     ("loop_points", "--loop-points"),
     ("demag_reverse_limit", "--demag-reverse-limit"),
+    ("forc_levels", "--forc-levels"),
+    ("forc_steps", "--forc-steps"),
     // Response options.
     ("duration", "--duration"),
     ("step", "--step"),

@@ -254,7 +254,7 @@ fn bad_model_files_are_refused_naming_the_file_and_the_field() {
         (
             "old.json",
             Box::new(|v| v["schema_version"] = 0.into()),
-            &["schema_version", "reads versions [1, 2]"],
+            &["schema_version", "reads versions [1, 2, 3]"],
         ),
         (
             "missing.json",

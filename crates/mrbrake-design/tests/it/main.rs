@@ -3,6 +3,7 @@
 
 mod analysis;
 mod demag_release;
+mod forc_set;
 mod hostile_geometry;
 mod hysteresis_loop;
 mod material_factors;

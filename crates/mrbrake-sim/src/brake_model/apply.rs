@@ -18,6 +18,16 @@ pub const DEMAND_RANGE_FRACTIONS: (f64, f64) = (0.1, 0.9);
 /// A note on how unit `k`'s branches were obtained.
 fn branch_note(unit: &UnitModel, branches: &UnitBranches) -> Option<String> {
     let fit = branches.fit?;
+    if let Some(table) = unit.hysteresis.everett() {
+        return Some(format!(
+            "unit {}: Preisach hysteresis ({} levels); the controller's branches are its major loop fitted by degree-{} polynomials + {} N·m seal friction (largest error {:.4} N·m)",
+            unit.unit,
+            table.levels(),
+            fit.degree,
+            unit.off_state.seal_friction_nm,
+            fit.max_error_nm
+        ));
+    }
     let t = &unit.static_curve.torque_nm;
     let span = t[t.len() - 1] - t[0];
     Some(format!(
@@ -69,6 +79,12 @@ pub fn apply_to_haptic(
         let branches = unit.branches()?;
         if k == 0 || model.units.len() == 2 {
             notes.extend(branch_note(unit, &branches));
+            if unit.hysteresis.everett().is_some() {
+                notes.push(format!(
+                    "brake {}: the haptic plant runs the play-type clamp between the Preisach model's major-loop branches (its minor loops are the rig's only)",
+                    k + 1
+                ));
+            }
         }
         config.brakes[k].branches = branches.model;
         config.controller_models[k] = branches.model;
@@ -116,7 +132,9 @@ pub fn rotor_inertia(model: &BrakeModel) -> Option<(f64, Option<String>)> {
     Some((largest, note))
 }
 
-/// Puts unit `unit` of `model` on the virtual rig: its branches, maximum current, dynamics (else the
+/// Puts unit `unit` of `model` on the virtual rig: its branches (and, for a `preisach` hysteresis,
+/// the Preisach model the plant runs, [`crate::rig::config::BrakeConfig::everett`]), maximum
+/// current, dynamics (else the
 /// configured ones, thesis (5.5) by default) and, for an anhysteretic model, its viscous
 /// coefficient. When the configured frequency-response demand leaves the range both branches
 /// reach, it is moved to [`DEMAND_RANGE_FRACTIONS`] of that range (with a note).
@@ -138,6 +156,9 @@ pub fn apply_to_rig(
     config.brake.current_max_a = u.current_max_a;
     config.brake.viscous_nm_s_per_rad =
         if u.adds_off_state() { u.off_state.viscous_nm_s_per_rad } else { 0.0 };
+    // The plant runs the Preisach model itself (with the seal friction), the controller the fit.
+    config.brake.everett =
+        u.hysteresis.everett().map(|t| t.with_offset(u.off_state.seal_friction_nm));
     match &u.dynamics {
         Some(d) => {
             let tf = d.transfer_function()?;

@@ -12,11 +12,11 @@
 //! haptic plant's [`crate::haptic::BrakePlant`]).
 //! The built-in prototype-like brakes are shipped as model files in `examples/brake-models/`.
 //!
-//! # Schema (version 2)
+//! # Schema (version 3)
 //!
 //! ```json
 //! {
-//!   "schema": "mrbrake-brake-model", "schema_version": 2, "name": "…",
+//!   "schema": "mrbrake-brake-model", "schema_version": 3, "name": "…",
 //!   "provenance": { "mrbrake_version": "0.1.0", "source": "…", "spec_sha256": "…" | null,
 //!                   "model_revision": 3 | null, "predicted": ["…"], "assumed": ["…"] },
 //!   "units": [ {
@@ -26,7 +26,9 @@
 //!                    "seal_friction_Nm": 0.0, "seal_friction_source": "…" },
 //!     "hysteresis": { "kind": "none", "note": "…" }
 //!                 | { "kind": "polynomial_branches", "rising": [c0, c1, …], "falling": […],
-//!                     "source": "…" },
+//!                     "source": "…" }
+//!                 | { "kind": "preisach", "levels_A": [0, …, I_max], "rising_Nm": […],
+//!                     "everett_Nm": [[0], [E10, 0], …], "source": "…" },
 //!     "dynamics": { "numerator": […], "denominator": […], "source": "…" } | null,
 //!     "thermal": { "hot_temperature_C": …, "hot_resistance_ohm": …, "continuous_current_A": …,
 //!                  "source": "…" } | null
@@ -48,7 +50,15 @@
 //! that turn with the shaft when the unit resists (its direction's rotor, `mechanics` of `mrbrake
 //! analyze`), `null` when unknown.
 //!
-//! Version 2 added `rotor_inertia_kg_m2`; version-1 files are still read, their units without a
+//! A `preisach` hysteresis is a Preisach model as a tabulated Everett function
+//! ([`crate::rig::everett::EverettTable`]: evenly spaced levels from 0 to `current_max_A`, the
+//! rising branch from the reference state at 0 A, `everett_Nm[a][b] = E(α_a, α_b)` for `b ≤ a`,
+//! a non-negative density), e.g. identified from the design's predicted first-order reversal
+//! curves (`analyze --hysteresis --save-model`). Its torques are the field-dependent (yield)
+//! torque like the static curve's, so the off-state terms are added as for `none`.
+//!
+//! Version 3 added the `preisach` kind (a version-1 or -2 file with it is refused); version 2
+//! added `rotor_inertia_kg_m2`; version-1 files are still read, their units without a
 //! rotor inertia (`None`), and the haptic device then keeps its own inertia (54.8 kg·mm², the
 //! thesis prototype's, see [`crate::haptic::device`]) and says so. A version-1 file that carries
 //! the version-2 field is refused (it is neither).
@@ -62,7 +72,10 @@
 //! [`StaticFit`]), moved to pass through the curve's value at 0 A exactly: the anhysteretic FEA
 //! curve, no loop; for `polynomial_branches` the identified
 //! branches, used as measured (they already contain the off-state torque the rig saw, so neither
-//! the seal friction nor the viscous term is added again). Where the model gives no dynamics the
+//! the seal friction nor the viscous term is added again); for `preisach` the branches are the
+//! model's major loop (rising branch and the falling one from `current_max_A`), each fitted as the
+//! static curve is, plus the seal friction: the controller's inverse compensates the predicted
+//! loop while the simulators' plants run the Preisach model itself ([`apply`]). Where the model gives no dynamics the
 //! simulators keep the thesis prototype's measured lags (5.5)/(5.6) and say so.
 //! The haptic brake is a Coulomb element of the branch torque; its viscous coefficient is added to
 //! the device's viscous friction (one rotor turns with the shaft in each direction, thesis §4.3).
@@ -84,9 +97,9 @@ use crate::SimError;
 /// The schema name every brake model file carries.
 pub const SCHEMA: &str = "mrbrake-brake-model";
 /// The schema version this build writes.
-pub const SCHEMA_VERSION: u32 = 2;
+pub const SCHEMA_VERSION: u32 = 3;
 /// The older schema versions this build still reads (module docs: what they lack).
-pub const READABLE_VERSIONS: [u32; 2] = [1, 2];
+pub const READABLE_VERSIONS: [u32; 3] = [1, 2, 3];
 /// Largest rotor inertia a model may declare, kg·m² (a brake rotor of 1 kg·m² is a flywheel).
 pub const ROTOR_INERTIA_LIMIT_KG_M2: f64 = 1.0;
 /// Largest error of the polynomial through an anhysteretic static curve, as a fraction of the
@@ -209,6 +222,36 @@ pub enum Hysteresis {
         /// Identified from which log, or "assumed: …".
         source: String,
     },
+    /// A Preisach model as a tabulated Everett function (module docs).
+    Preisach {
+        /// Evenly spaced levels from 0 to `current_max_A`, A.
+        #[serde(rename = "levels_A")]
+        levels_a: Vec<f64>,
+        /// The rising branch from the reference state at each level, N·m.
+        #[serde(rename = "rising_Nm")]
+        rising_nm: Vec<f64>,
+        /// `E(α_a, α_b)` for `b ≤ a`, N·m.
+        #[serde(rename = "everett_Nm")]
+        everett_nm: Vec<Vec<f64>>,
+        /// Where the table comes from.
+        source: String,
+    },
+}
+
+impl Hysteresis {
+    /// The Preisach model's table, for the `preisach` kind.
+    pub fn everett(&self) -> Option<crate::rig::everett::EverettTable> {
+        match self {
+            Self::Preisach { levels_a, rising_nm, everett_nm, .. } => {
+                Some(crate::rig::everett::EverettTable {
+                    levels_a: levels_a.clone(),
+                    rising_nm: rising_nm.clone(),
+                    everett_nm: everett_nm.clone(),
+                })
+            }
+            _ => None,
+        }
+    }
 }
 
 /// A low-order continuous transfer function from the static torque to the brake torque.
@@ -306,6 +349,9 @@ impl BrakeModel {
         if version == Some(1) {
             refuse_version2_fields(&value).map_err(|(field, msg)| bad(&field, msg))?;
         }
+        if version.is_some_and(|v| v < 3) {
+            refuse_version3_fields(&value).map_err(|(field, msg)| bad(&field, msg))?;
+        }
         let model: Self = serde_path_to_error::deserialize(value).map_err(|e| {
             let field = e.path().to_string();
             bad(&field, e.into_inner().to_string())
@@ -350,7 +396,7 @@ impl BrakeModel {
             // is read: a curve no branch polynomial fits is refused here, naming the file and
             // the field, not later by a simulator that names neither (issue 33).
             if let Err(e) = unit.branches() {
-                let (field, points) = if unit.adds_off_state() {
+                let (field, points) = if matches!(unit.hysteresis, Hysteresis::None { .. }) {
                     ("static_curve", unit.static_curve.current_a.len())
                 } else {
                     ("hysteresis", 0)
@@ -385,6 +431,21 @@ fn refuse_version2_fields(value: &serde_json::Value) -> Result<(), (String, Stri
             return Err((
                 format!("units[{k}].rotor_inertia_kg_m2"),
                 "is a version-2 field in a version-1 file: set schema_version to 2".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A version-1 or -2 document must not carry what version 3 added (the `preisach` hysteresis).
+fn refuse_version3_fields(value: &serde_json::Value) -> Result<(), (String, String)> {
+    let units = value.get("units").and_then(serde_json::Value::as_array);
+    for (k, unit) in units.into_iter().flatten().enumerate() {
+        let kind = unit.get("hysteresis").and_then(|h| h.get("kind"));
+        if kind.and_then(serde_json::Value::as_str) == Some("preisach") {
+            return Err((
+                format!("units[{k}].hysteresis.kind"),
+                "'preisach' is a version-3 kind in an older file: set schema_version to 3".into(),
             ));
         }
     }
@@ -463,6 +524,9 @@ impl UnitModel {
                 )
             })?;
         }
+        if let Some(table) = self.hysteresis.everett() {
+            table.check(self.current_max_a).map_err(|(f, m)| (format!("hysteresis.{f}"), m))?;
+        }
         if let Some(d) = &self.dynamics {
             d.transfer_function().map_err(|e| ("dynamics".into(), e.to_string()))?;
         }
@@ -488,13 +552,30 @@ impl UnitModel {
                 let (coefficients, fit) = self.static_curve.fit(self.off_state.seal_friction_nm)?;
                 Ok(UnitBranches { model: model(&coefficients, &coefficients)?, fit: Some(fit) })
             }
+            Hysteresis::Preisach { levels_a, rising_nm, everett_nm, .. } => {
+                let table = crate::rig::everett::EverettTable {
+                    levels_a: levels_a.clone(),
+                    rising_nm: rising_nm.clone(),
+                    everett_nm: everett_nm.clone(),
+                };
+                let branch = |torque_nm: Vec<f64>, what: &str| {
+                    let curve =
+                        StaticCurve { current_a: levels_a.clone(), torque_nm, source: what.into() };
+                    curve.fit(self.off_state.seal_friction_nm)
+                };
+                let (rising, fit_up) = branch(rising_nm.clone(), "rising")?;
+                let (falling, fit_down) = branch(table.falling_nm(), "falling")?;
+                let fit =
+                    if fit_down.max_error_nm > fit_up.max_error_nm { fit_down } else { fit_up };
+                Ok(UnitBranches { model: model(&rising, &falling)?, fit: Some(fit) })
+            }
         }
     }
 
-    /// Whether the off-state terms are added to the branches (only for an anhysteretic curve:
-    /// identified branches already contain them).
+    /// Whether the off-state terms are added to the branches (for an anhysteretic curve and a
+    /// Preisach table of yield torques: identified branches already contain them).
     pub fn adds_off_state(&self) -> bool {
-        matches!(self.hysteresis, Hysteresis::None { .. })
+        matches!(self.hysteresis, Hysteresis::None { .. } | Hysteresis::Preisach { .. })
     }
 }
 
@@ -657,7 +738,7 @@ mod tests {
         let err = |text: &str| BrakeModel::from_json("m.json", text).unwrap_err().to_string();
         let foreign = good.replace("\"mrbrake-brake-model\"", "\"other\"");
         assert!(err(&foreign).contains("foreign schema 'other'"), "{}", err(&foreign));
-        let newer = good.replace("\"schema_version\": 2", "\"schema_version\": 3");
+        let newer = good.replace("\"schema_version\": 3", "\"schema_version\": 4");
         assert!(err(&newer).contains("schema_version"));
         let units = good.replacen("\"torque_Nm\"", "\"torque_kNm\"", 1);
         assert!(err(&units).contains("torque_kNm"), "{}", err(&units));
@@ -726,6 +807,117 @@ mod tests {
         bad.units[1].rotor_inertia_kg_m2 = Some(-1e-6);
         let e = BrakeModel::from_json("m.json", &bad.to_json()).unwrap_err().to_string();
         assert!(e.contains("units[1].rotor_inertia_kg_m2"), "{e}");
+    }
+
+    /// The prototype with a Preisach hysteresis on `levels` levels, identified from the FORCs
+    /// of the rig's branch + prior Preisach model (the prototype-like loop).
+    fn preisach_prototype(levels: usize) -> BrakeModel {
+        use crate::rig::everett::EverettTable;
+        use crate::rig::preisach::{HysteresisConfig, HysteresisKind, PreisachHysteresis};
+        let config = HysteresisConfig { model: HysteresisKind::Preisach, ..Default::default() };
+        let b = crate::rig::config::BrakeConfig::default();
+        let mut p = PreisachHysteresis::new(&config, &b.rising, &b.falling, 2.0).unwrap();
+        let level = |k: usize| 2.0 * k as f64 / levels as f64;
+        let forcs: Vec<Vec<f64>> = (0..=levels)
+            .map(|k| {
+                p.settle(0.0);
+                let mut forc: Vec<f64> = (0..=k).map(|a| p.torque_nm(level(a))).collect();
+                for j in (0..k).rev() {
+                    forc[j] = p.torque_nm(level(j));
+                }
+                forc
+            })
+            .collect();
+        let levels_a: Vec<f64> = (0..=levels).map(level).collect();
+        let t = EverettTable::from_forcs(&levels_a, &forcs).unwrap().table;
+        let mut m = haptic_prototype();
+        for unit in &mut m.units {
+            unit.current_max_a = 2.0;
+            unit.off_state.seal_friction_nm = 0.0;
+            unit.hysteresis = Hysteresis::Preisach {
+                levels_a: t.levels_a.clone(),
+                rising_nm: t.rising_nm.clone(),
+                everett_nm: t.everett_nm.clone(),
+                source: "test".into(),
+            };
+        }
+        m
+    }
+
+    #[test]
+    fn a_preisach_model_round_trips_and_its_branches_are_its_major_loop() {
+        let m = preisach_prototype(12);
+        let back = BrakeModel::from_json("p.json", &m.to_json()).unwrap();
+        // JSON keeps every value to the last bit or so (serde_json's float parsing).
+        let (a, b) =
+            (m.units[0].hysteresis.everett().unwrap(), back.units[0].hysteresis.everett().unwrap());
+        let close = |x: &[f64], y: &[f64]| {
+            x.len() == y.len()
+                && x.iter().zip(y).all(|(p, q)| (p - q).abs() <= 1e-15 * p.abs().max(1.0))
+        };
+        assert!(close(&a.levels_a, &b.levels_a) && close(&a.rising_nm, &b.rising_nm));
+        assert!(a.everett_nm.iter().zip(&b.everett_nm).all(|(x, y)| close(x, y)));
+        assert_eq!(back.units[1].hysteresis.everett().map(|t| t.levels()), Some(12));
+        let unit = &back.units[0];
+        assert!(unit.adds_off_state());
+        let b = unit.branches().unwrap();
+        let table = unit.hysteresis.everett().unwrap();
+        let (up, down) = (table.rising_nm.clone(), table.falling_nm());
+        let span = up[12] - up[0];
+        for (k, i) in table.levels_a.iter().enumerate() {
+            let rising = b.model.torque_nm(Branch::Rising, *i);
+            let falling = b.model.torque_nm(Branch::Falling, *i);
+            assert!((rising - up[k]).abs() <= STATIC_FIT_TOLERANCE * span, "{i} A");
+            assert!((falling - down[k]).abs() <= STATIC_FIT_TOLERANCE * span, "{i} A");
+        }
+        // The rig: the plant runs the table (with the seal friction), the controller the fit.
+        let mut config = crate::rig::RigConfig::default();
+        let notes = apply::apply_to_rig(&back, 1, &mut config).unwrap();
+        assert_eq!(config.brake.everett.as_ref().map(|t| t.levels()), Some(12));
+        assert!(notes.iter().any(|n| n.contains("Preisach hysteresis (12 levels)")), "{notes:?}");
+    }
+
+    #[test]
+    fn bad_preisach_tables_are_refused_naming_the_field() {
+        let field = |m: &BrakeModel| m.validate().unwrap_err().0;
+        /// Edits `(rising_Nm, everett_Nm, levels_A)`.
+        type Edit = dyn Fn(&mut Vec<f64>, &mut Vec<Vec<f64>>, &mut Vec<f64>);
+        let set = |edit: &Edit| {
+            let mut m = preisach_prototype(6);
+            if let Hysteresis::Preisach { levels_a, rising_nm, everett_nm, .. } =
+                &mut m.units[0].hysteresis
+            {
+                edit(rising_nm, everett_nm, levels_a);
+            }
+            m
+        };
+        let nan = set(&|_, e, _| e[3][1] = f64::NAN);
+        assert_eq!(field(&nan), "units[0].hysteresis.everett_Nm[3][1]");
+        let short = set(&|_, e, _| {
+            e[4].pop();
+        });
+        assert_eq!(field(&short), "units[0].hysteresis.everett_Nm[4]");
+        let rows = set(&|_, e, _| {
+            e.pop();
+        });
+        assert_eq!(field(&rows), "units[0].hysteresis.everett_Nm");
+        // E(4, 0) far below E(3, 0): a negative weight, the Everett function not monotone.
+        let dip = set(&|_, e, _| e[4][0] = 0.0);
+        assert!(field(&dip).starts_with("units[0].hysteresis.everett_Nm[4]"), "{}", field(&dip));
+        let uneven = set(&|_, _, l| l[2] = 0.5);
+        assert_eq!(field(&uneven), "units[0].hysteresis.levels_A[2]");
+        let wrong_end = set(&|_, _, l| l.iter_mut().for_each(|v| *v *= 0.5));
+        assert_eq!(field(&wrong_end), "units[0].hysteresis.levels_A");
+        let negative = set(&|r, _, _| r[0] = -1.0);
+        assert_eq!(field(&negative), "units[0].hysteresis.rising_Nm[0]");
+        // Refused on reading too, naming the file; and a version-2 file may not carry the kind.
+        let e = BrakeModel::from_json("p.json", &nan.to_json()).unwrap_err();
+        assert!(mrbrake_error::Kind::is_input_error(&e), "{e}");
+        let old = preisach_prototype(6)
+            .to_json()
+            .replace("\"schema_version\": 3", "\"schema_version\": 2");
+        let e = BrakeModel::from_json("old.json", &old).unwrap_err().to_string();
+        assert!(e.contains("units[0].hysteresis.kind") && e.contains("version-3"), "{e}");
     }
 
     #[test]

@@ -52,6 +52,11 @@ pub struct BrakeConfig {
     /// Viscous torque per unit shaft speed, N·m·s/rad.
     #[serde(rename = "viscous_Nm_s_per_rad")]
     pub viscous_nm_s_per_rad: f64,
+    /// A tabulated Preisach model of the static torque (a brake model's `preisach` hysteresis,
+    /// set by `brake_model::apply::apply_to_rig`; not a key of the TOML file). When set the plant
+    /// runs it instead of `[hysteresis]`; the branches stay the controller's inverse.
+    #[serde(skip)]
+    pub everett: Option<super::everett::EverettTable>,
 }
 
 impl Default for BrakeConfig {
@@ -65,6 +70,7 @@ impl Default for BrakeConfig {
             dynamics_numerator: vec![1.0],
             dynamics_denominator: vec![1.791e-5, 0.01702, 1.0],
             viscous_nm_s_per_rad: 0.0,
+            everett: None,
         }
     }
 }
@@ -266,10 +272,13 @@ impl RigConfig {
     /// The Preisach model is built once here, so that a loop and prior it cannot represent are
     /// refused naming the file (found by the fuzzer: the run named only the field).
     fn check_preisach(&self) -> Result<(), SimError> {
+        let b = &self.brake;
+        if let Some(table) = &b.everett {
+            return super::preisach::PreisachHysteresis::from_everett(table, 0.0).map(|_| ());
+        }
         if self.hysteresis.model != super::preisach::HysteresisKind::Preisach {
             return Ok(());
         }
-        let b = &self.brake;
         super::preisach::PreisachHysteresis::new(
             &self.hysteresis,
             &b.rising,

@@ -24,6 +24,7 @@
 //! exactly as the controller would.
 
 pub mod config;
+pub mod everett;
 pub mod minor_loops;
 pub mod noise;
 pub mod preisach;
@@ -96,9 +97,10 @@ impl Plant {
             full_scale_v: s.full_scale_v,
             stiffness: s.stiffness_nm_per_rad,
             noise: GaussianNoise::new(seed),
-            preisach: match config.hysteresis.model {
-                HysteresisKind::Clamp => None,
-                HysteresisKind::Preisach => Some(PreisachHysteresis::new(
+            preisach: match (&b.everett, config.hysteresis.model) {
+                (Some(table), _) => Some(PreisachHysteresis::from_everett(table, 0.0)?),
+                (None, HysteresisKind::Clamp) => None,
+                (None, HysteresisKind::Preisach) => Some(PreisachHysteresis::new(
                     &config.hysteresis,
                     &b.rising,
                     &b.falling,

@@ -36,6 +36,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::everett::EverettTable;
 use crate::SimError;
 use mrbrake_error::FieldError;
 use mrbrake_sysid::polynomial::Polynomial;
@@ -157,13 +158,22 @@ impl HysteresisConfig {
 /// it the conditions' rows are numerically zero and the profile that meets them is unbounded.
 const MIN_PRIOR_PEAK: f64 = 1e-12;
 
-/// The Preisach brake hysteresis: Everett table, rising branch, turning-point memory.
+/// The reversible part `T_rev(u) = T_up(u) − E(u, 0)` of a model.
+#[derive(Debug, Clone)]
+enum Reversible {
+    /// From the rising branch polynomial (the branch + prior model).
+    Rising(Polynomial),
+    /// Tabulated at the grid's nodes, interpolated linearly (the Everett-table model).
+    Nodes(Vec<f64>),
+}
+
+/// The Preisach brake hysteresis: Everett table, reversible part, turning-point memory.
 #[derive(Debug, Clone)]
 pub struct PreisachHysteresis {
     levels: usize,
     /// `E` at grid nodes `(a, b)`, index `a·(n+1) + b`; zero for `b ≥ a`.
     everett: Vec<f64>,
-    rising: Polynomial,
+    reversible: Reversible,
     current_max_a: f64,
     /// Alternating turning points of the normalised input, starting with `m₀ = 0`.
     points: Vec<f64>,
@@ -187,7 +197,7 @@ impl PreisachHysteresis {
         let model = Self {
             levels: n,
             everett: everett_table(&weight, n),
-            rising: up,
+            reversible: Reversible::Rising(up),
             current_max_a,
             points: vec![0.0],
             input: 0.0,
@@ -207,15 +217,53 @@ impl PreisachHysteresis {
         Ok(model)
     }
 
+    /// The model of a tabulated Everett function (e.g. identified from first-order reversal
+    /// curves, [`super::everett`]), with `offset_nm` (a constant friction) added to its torque.
+    /// Its reversible part is `T_rev(α_a) = T_up(α_a) − E(α_a, 0)` at the nodes, linear between.
+    pub fn from_everett(table: &EverettTable, offset_nm: f64) -> Result<Self, SimError> {
+        let current_max_a = table.levels_a.last().copied().unwrap_or(0.0);
+        table
+            .check(current_max_a)
+            .map_err(|(field, message)| SimError::from(FieldError::new(field, message)))?;
+        let n = table.levels();
+        let mut everett = vec![0.0; (n + 1) * (n + 1)];
+        for (a, row) in table.everett_nm.iter().enumerate() {
+            for (b, e) in row.iter().enumerate().take(a) {
+                everett[a * (n + 1) + b] = *e;
+            }
+        }
+        let nodes =
+            (0..=n).map(|a| table.rising_nm[a] + offset_nm - everett[a * (n + 1)]).collect();
+        let model = Self {
+            levels: n,
+            everett,
+            reversible: Reversible::Nodes(nodes),
+            current_max_a,
+            points: vec![0.0],
+            input: 0.0,
+        };
+        model.check_reversible_part()?;
+        Ok(model)
+    }
+
+    /// `T_rev(u)` at the normalised input `u ∈ [0, 1]`.
+    fn reversible_at(&self, u: f64) -> f64 {
+        match &self.reversible {
+            Reversible::Rising(p) => p.eval(u * self.current_max_a) - self.everett_at(u, 0.0),
+            Reversible::Nodes(v) => {
+                let s = (u * self.levels as f64).clamp(0.0, self.levels as f64);
+                let k = (s.floor() as usize).min(self.levels - 1);
+                v[k] + (s - k as f64) * (v[k + 1] - v[k])
+            }
+        }
+    }
+
     /// The reversible part `T_rev(u) = T_up(u) − E(u, 0)` must not decrease: otherwise the torque would
     /// rise right after the current turns down. It decreases when the relays are too narrow for the
     /// loop width (the relay mass per unit `α`, about `w/h₀`, exceeds the rising branch's slope).
     fn check_reversible_part(&self) -> Result<(), SimError> {
         let samples = 8 * self.levels;
-        let reversible = |k: usize| {
-            let u = k as f64 / samples as f64;
-            self.rising.eval(u * self.current_max_a) - self.everett_at(u, 0.0)
-        };
+        let reversible = |k: usize| self.reversible_at(k as f64 / samples as f64);
         let scale = reversible(samples).abs().max(1e-300);
         for k in 1..=samples {
             if reversible(k) < reversible(k - 1) - 1e-9 * scale {
@@ -247,8 +295,7 @@ impl PreisachHysteresis {
         let u = (current_a / self.current_max_a).clamp(0.0, 1.0);
         let u = if u.is_nan() { 0.0 } else { u };
         self.advance(u);
-        let u_a = u * self.current_max_a;
-        self.rising.eval(u_a) - self.everett_at(u, 0.0) + self.relay_sum()
+        self.reversible_at(u) + self.relay_sum()
     }
 
     /// The turning points remembered (normalised input), oldest first.
@@ -312,6 +359,11 @@ impl PreisachHysteresis {
         };
         let ((a, ta), (b, tb)) = (locate(alpha), locate(beta));
         let e = |i: usize, j: usize| self.everett[i * (n + 1) + j];
+        if a == b {
+            // A diagonal cell: linear on its triangle below the diagonal, whose corners are
+            // E(a, a) = 0, E(a+1, a) and E(a+1, a+1) = 0 (so E(u, u) = 0 inside the cell too).
+            return (ta - tb).max(0.0) * e(a + 1, a);
+        }
         (1.0 - ta) * ((1.0 - tb) * e(a, b) + tb * e(a, b + 1))
             + ta * ((1.0 - tb) * e(a + 1, b) + tb * e(a + 1, b + 1))
     }
