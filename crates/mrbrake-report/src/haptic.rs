@@ -445,7 +445,7 @@ mod tests {
         let text = wall_metrics_text(&run.metrics, 30.0);
         assert!(text.starts_with("device bidirectional, scenario press-withdraw\n"), "{text}");
         assert!(text.contains("  passive                    true"), "{text}");
-        assert_eq!(text.lines().count(), 9);
+        assert_eq!(text.lines().count(), 10);
         let trace = run.trace.as_ref().unwrap();
         let history = TimeHistory::from_trace("bidirectional", DeviceKind::Bidirectional, trace);
         assert_eq!(history.coils, 2);
