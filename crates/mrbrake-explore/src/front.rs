@@ -17,7 +17,8 @@
 //!    its record says so, and the reports show it;
 //! 3. writes the spec text with `toml_edit` from the base file's text: the `[set]` overrides of the
 //!    problem and the variables are set in place, every other line, comment and blank of the base
-//!    file stays as it was, a replaced value keeps its trailing comment; `name` names the design.
+//!    file stays as it was, a replaced value keeps its trailing comment, which then names the base
+//!    value it was written for; `name` names the design.
 //!    The text is read back and its design key compared with the evaluated record's: on the (not
 //!    expected) mismatch the design is written as evaluated, in SI, and [`FrontDesign::note`]
 //!    says why.
@@ -295,7 +296,7 @@ fn get_value<'d>(document: &'d DocumentMut, path: &str) -> Option<&'d Value> {
 }
 
 /// Sets (`Some`) or removes (`None`) the value at a dotted path, creating missing tables; a
-/// replaced value keeps its comments (decor).
+/// replaced value keeps its comments (decor; see [`replaced_decor`]).
 pub(crate) fn set_value(
     document: &mut DocumentMut,
     path: &str,
@@ -321,12 +322,35 @@ pub(crate) fn set_value(
         }
         Some(mut value) => {
             if let Some(old) = table.get(last).and_then(Item::as_value) {
-                *value.decor_mut() = old.decor().clone();
+                *value.decor_mut() = replaced_decor(old, &value);
             }
             table.insert(last, Item::Value(value));
         }
     }
     Ok(())
+}
+
+/// The decor (spacing, comments) of `old` for its replacement `new`. A trailing comment described
+/// the old value (`outer_radius = "40mm"  # 80 mm diameter`): when the value changes, the comment
+/// names the value it was written for (`# base "40mm": 80 mm diameter`), so that it cannot be read
+/// as describing the new one.
+fn replaced_decor(old: &Value, new: &Value) -> toml_edit::Decor {
+    let mut decor = old.decor().clone();
+    let bare = |v: &Value| {
+        let mut v = v.clone();
+        v.decor_mut().clear();
+        v.to_string()
+    };
+    let was = bare(old);
+    if was == bare(new) {
+        return decor;
+    }
+    let suffix = decor.suffix().and_then(|s| s.as_str()).unwrap_or_default().to_string();
+    if let Some(hash) = suffix.find('#') {
+        let comment = suffix[hash + 1..].trim_start();
+        decor.set_suffix(format!("{}# base {was}: {comment}", &suffix[..hash]));
+    }
+    decor
 }
 
 /// The unit written after the number of a quantity (`"25mm"` → `mm`, `"0.025"` → ``).
@@ -388,7 +412,8 @@ mod tests {
         set_value(&mut document, "drum.r0", Some(Value::from("15.72mm"))).unwrap();
         set_value(&mut document, "spacer.thickness", Some(Value::from("4mm"))).unwrap();
         let text = document.to_string();
-        assert!(text.contains("r0 = \"15.72mm\"   # 4.4.2"), "{text}");
+        // The comment stays, naming the value it was written for.
+        assert!(text.contains("r0 = \"15.72mm\"   # base \"25mm\": 4.4.2"), "{text}");
         assert!(text.contains("# the drum") && text.contains("[spacer]"), "{text}");
     }
 }
