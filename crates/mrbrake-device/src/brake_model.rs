@@ -265,19 +265,9 @@ pub fn add_dynamics(
             .with_allowed(format!("'{}', the design of the response", response.name))
             .into());
     }
+    let direction_2 = response.direction_2.as_ref().map(|d| &d.frequency_response);
     let operating_point = (response.bias_a, response.drive);
-    let fit = add_frequency_response(model, &response.frequency_response, operating_point, source)?;
-    match (&response.direction_2, model.units.get_mut(1)) {
-        (Some(d2), Some(unit)) => {
-            let (dynamics, fit_2) =
-                dynamics_of(&d2.frequency_response, operating_point, 2, source)?;
-            unit.dynamics = Some(dynamics);
-            model.provenance.assumed.retain(|a| !a.starts_with("unit 2's dynamics"));
-            model.check("(amended with dynamics)")?;
-            Ok(fit.min(fit_2))
-        }
-        _ => Ok(fit),
-    }
+    set_dynamics(model, &response.frequency_response, direction_2, operating_point, source)
 }
 
 /// The [`DYNAMICS_POLES`]-pole fit to direction `direction`'s normalised frequency response and
@@ -309,20 +299,40 @@ fn dynamics_of(
 
 /// [`add_dynamics`] from the design's normalised small-signal frequency response `frd` at
 /// `(bias_a, drive)` (what `ResponseModel::frequency_response` gives a study), without the name
-/// check: the caller knows the model and the response are of the same design.
+/// check: the caller knows the model and the response are of the same design. Unit 2 gets unit
+/// 1's (stated in the model).
 pub fn add_frequency_response(
     model: &mut BrakeModel,
     frd: &Frd,
-    (bias_a, drive): (f64, ResponseDrive),
+    operating_point: (f64, ResponseDrive),
     source: &str,
 ) -> Result<f64, DeviceError> {
-    let (dynamics, fit_percent) = dynamics_of(frd, (bias_a, drive), 1, source)?;
-    for unit in &mut model.units {
-        unit.dynamics = Some(dynamics.clone());
+    set_dynamics(model, frd, None, operating_point, source)
+}
+
+/// Sets every unit's dynamics to the fit of direction 1's response, unit 2's to the fit of
+/// `direction_2`'s own when given, and records where they come from; returns the lowest
+/// `fit_percent` of the fits made.
+fn set_dynamics(
+    model: &mut BrakeModel,
+    direction_1: &Frd,
+    direction_2: Option<&Frd>,
+    operating_point: (f64, ResponseDrive),
+    source: &str,
+) -> Result<f64, DeviceError> {
+    let (first, fit_1) = dynamics_of(direction_1, operating_point, 1, source)?;
+    let second = match direction_2.filter(|_| model.units.len() > 1) {
+        Some(frd) => Some(dynamics_of(frd, operating_point, 2, source)?),
+        None => None,
+    };
+    let fit_percent = second.as_ref().map_or(fit_1, |(_, fit_2)| fit_1.min(*fit_2));
+    for (k, unit) in model.units.iter_mut().enumerate() {
+        let own = second.as_ref().filter(|_| k == 1).map(|(d, _)| d);
+        unit.dynamics = Some(own.unwrap_or(&first).clone());
     }
     let p = &mut model.provenance;
     p.amended.push(format!("dynamics: {source}"));
-    if model.units.len() > 1 {
+    if model.units.len() > 1 && second.is_none() {
         p.assumed
             .push("unit 2's dynamics: unit 1's (direction 1's frequency response only)".into());
     }
