@@ -668,7 +668,14 @@ impl NewtonSolver {
             }
             let remaining = options.tail_cg_max_iterations - iteration;
             if remaining == 0
-                || cg_cannot_reach(initial_norm, previous_norm, r_norm, iteration, remaining, target)
+                || cg_cannot_reach(
+                    initial_norm,
+                    previous_norm,
+                    r_norm,
+                    iteration,
+                    remaining,
+                    target,
+                )
             {
                 break;
             }
