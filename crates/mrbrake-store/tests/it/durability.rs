@@ -177,7 +177,9 @@ fn check_store(path: &Path) -> Vec<u32> {
 #[test]
 fn sigkill_at_random_moments_loses_and_duplicates_nothing() {
     let directory = tempfile::tempdir().expect("temporary directory");
-    let path = directory.path().join("study.mrbrake");
+    let store_path = |attempt: usize| directory.path().join(format!("study-{attempt}.mrbrake"));
+    let mut attempt = 0;
+    let mut path = store_path(attempt);
     drop(Store::create(&path).expect("create"));
     let mut random = Random::from_env_or_clock();
     // How long a whole uninterrupted run takes on this machine (a fast disk stores all designs
@@ -192,11 +194,15 @@ fn sigkill_at_random_moments_loses_and_duplicates_nothing() {
         (start.elapsed().as_micros() as u64).max(2)
     };
 
+    // A machine whose load drops after the timing run can let a writer finish before its kill:
+    // then the window halves, and a store completed without any kill starts again empty, so the
+    // test always ends with writers killed while running (bounded: 40 rounds).
+    let mut window_us = (full_run_us * 3 / 4).max(1);
     let mut killed_while_running = 0;
     let mut stored_after_kills = Vec::new();
-    for _round in 0..6 {
+    for _round in 0..40 {
         let mut child = spawn_writer(&path, "forward");
-        std::thread::sleep(Duration::from_micros(random.below(full_run_us * 3 / 4).max(1)));
+        std::thread::sleep(Duration::from_micros(random.below(window_us).max(1)));
         child.kill().expect("SIGKILL the writer");
         let status = child.wait().expect("reap child");
         // The writer may finish between the sleep and the kill: only a child the signal ended
@@ -205,14 +211,21 @@ fn sigkill_at_random_moments_loses_and_duplicates_nothing() {
             killed_while_running += 1;
         } else {
             assert!(status.success(), "the writer failed on its own: {status}");
+            window_us = (window_us / 2).max(1);
         }
         let indices = check_store(&path);
         // A forward writer that skips stored keys always leaves a prefix of the design list.
         let prefix: Vec<u32> = (0..indices.len() as u32).collect();
         assert_eq!(indices, prefix, "the store is not a prefix of the insertion order");
         stored_after_kills.push(indices.len());
-        if indices.len() == TOTAL as usize {
+        let complete = indices.len() == TOTAL as usize;
+        if killed_while_running > 0 && (complete || stored_after_kills.len() >= 6) {
             break;
+        }
+        if complete {
+            attempt += 1;
+            path = store_path(attempt);
+            drop(Store::create(&path).expect("create"));
         }
     }
     eprintln!("records stored after each SIGKILL: {stored_after_kills:?} of {TOTAL}");
