@@ -773,8 +773,19 @@ impl Model {
         previous: Option<&Solution>,
         options: &AnalysisOptions,
     ) -> Result<(CurvePoint, Vec<GapResult>, Solution), DesignError> {
+        self.direction1_point_from(current, previous.map(|s| s.a_phi()), options)
+    }
+
+    /// [`Model::direction1_point`] with Newton started from the potential `initial` (one value per
+    /// DOF, e.g. a prediction from earlier steps).
+    pub(crate) fn direction1_point_from(
+        &mut self,
+        current: f64,
+        initial: Option<&[f64]>,
+        options: &AnalysisOptions,
+    ) -> Result<(CurvePoint, Vec<GapResult>, Solution), DesignError> {
         self.energise(current, 0.0)?;
-        let solution = self.solver.solve(previous.map(|s| s.a_phi())).map_err(numerical)?;
+        let solution = self.solver.solve(initial).map_err(numerical)?;
         let dir1_gaps = self.unit_gaps(0);
         let speed = options.speed_rad_s;
         let gaps = gap_results(&self.solver, &solution, &dir1_gaps, &self.fluid, speed)?;
