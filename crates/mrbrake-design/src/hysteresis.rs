@@ -365,7 +365,8 @@ fn solve_program(
 /// The quasi-static steps of one current history on one model: each step one Newton solve, the
 /// material states committed after it.
 ///
-/// Newton starts from a prediction of the step's potential: the last two solutions extrapolated
+/// Each solve is [`mrbrake_magnetics::Solver::solve_quasi_static`] (its first Newton step by CG with
+/// the last step's factor). Newton starts from a prediction of the step's potential: the last two solutions extrapolated
 /// linearly in the current when the step goes on in the last step's direction (along a leg `A(I)`
 /// is piecewise smooth, so the start misses by the path's curvature, O(ΔI²), instead of by the
 /// step, O(ΔI)); after a reversal (or with one solution only) the last solution, as the law's
@@ -394,8 +395,11 @@ impl QuasiStatic {
         current: f64,
         options: &AnalysisOptions,
     ) -> Result<(CurvePoint, HysteresisCommit), DesignError> {
+        model.energise(current, 0.0)?;
         let initial = self.prediction(current);
-        let (point, _, solution) = model.direction1_point_from(current, initial, options)?;
+        let solution =
+            model.solver.solve_quasi_static(initial).map_err(crate::analysis::numerical)?;
+        let (point, _) = model.direction1_torque(current, &solution, options)?;
         let commit = model.solver.commit_hysteresis(&solution);
         let before = self.last.take().map(|(i, s)| (i, s.a_phi().to_vec()));
         self.before = before;

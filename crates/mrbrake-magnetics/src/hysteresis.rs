@@ -42,11 +42,13 @@
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
 
 use mrbrake_fem::by_order;
 use mrbrake_fem::discretisation::basis::{Basis, Element};
 use mrbrake_fem::discretisation::element::TriangleBasis;
 use mrbrake_fem::workflow::assemble::{MAX_PACKED_LEN, packed_len};
+use mrbrake_fem::workflow::newton::{AssembledSystem, NewtonOptions};
 use mrbrake_materials::MU_0;
 use mrbrake_materials::hysteresis::{HysteresisParams, HysteresisState, Response};
 
@@ -143,8 +145,6 @@ impl Clone for LastEvaluations {
 pub struct HysteresisCommit {
     /// Energy dissipated by the step in the hysteretic regions, J (over the full 2π ring).
     pub dissipated_j: f64,
-    /// Free energy stored in the hysteretic regions after the step, J.
-    pub stored_j: f64,
     /// Largest `|B⊥|` over the magnetised points, T (0: every point's field along its axis).
     pub max_perpendicular_b_t: f64,
     /// Most B-driven root iterations of one point in the commit.
@@ -272,6 +272,26 @@ impl HysteresisField {
         }
     }
 
+    /// Free energy stored in the committed states, J (over the full 2π ring).
+    fn stored_energy(&self, basis: &Basis) -> f64 {
+        by_order!(basis.order(), Self::stored_energy_order(self, basis))
+    }
+
+    fn stored_energy_order<E: TriangleBasis<N>, const N: usize>(&self, basis: &Basis) -> f64 {
+        let mut stored = 0.0;
+        for t in 0..self.element_law.len() {
+            let Some(params) = self.law(t) else { continue };
+            let element = basis.element::<E, N>(t);
+            let geometry = element.geometry();
+            let first = self.element_offset[t] as usize;
+            for (k, q) in element.points(&geometry).enumerate() {
+                let volume = 2.0 * std::f64::consts::PI * q.weight;
+                stored += volume * self.points[first + k].state.free_energy(params);
+            }
+        }
+        stored
+    }
+
     /// Commits the states at the potential `a` (one value per DOF) of a converged step.
     pub(crate) fn commit(&mut self, basis: &Basis, a: &[f64]) -> HysteresisCommit {
         by_order!(basis.order(), Self::commit_order(self, basis, a))
@@ -299,7 +319,6 @@ impl HysteresisField {
                 let volume = 2.0 * std::f64::consts::PI * q.weight;
                 let step = commit_point(&params, point, b, &self.last, first + k);
                 summary.dissipated_j += volume * step.dissipated;
-                summary.stored_j += volume * point.state.free_energy(&params);
                 summary.max_perpendicular_b_t =
                     summary.max_perpendicular_b_t.max(step.perpendicular);
                 summary.max_point_iterations = summary.max_point_iterations.max(step.iterations);
@@ -467,12 +486,56 @@ impl crate::Solver {
         }
     }
 
-    /// One quasi-static step: a solve warm-started from `initial`, then its commit.
+    /// Free energy stored in the hysteretic regions' committed states, J (over the full 2π ring;
+    /// 0 without hysteretic regions): `2π Σ_q w_q (μ0 H²/2 + Σ_k U_k(h_k))` (the stored part of the
+    /// energy balance of [`mrbrake_materials::hysteresis`]).
+    pub fn stored_hysteresis_energy_j(&self) -> f64 {
+        self.form
+            .hysteresis
+            .as_ref()
+            .map_or(0.0, |field| field.stored_energy(self.assembly.basis()))
+    }
+
+    /// [`crate::Solver::solve`] for one step of a quasi-static history (from `initial`, e.g. the
+    /// last step's solution or a prediction from it): Newton's first step is solved by conjugate
+    /// gradients preconditioned with the factor the previous solve left, the core's warm start
+    /// ([`NewtonOptions::reuse_factor`]; a factorisation when CG does not reach the warm start's
+    /// forcing tolerance within its few iterations). A step's Jacobian differs from the last one's
+    /// by the change of the material states over one step, so the old factor usually suffices.
+    /// The stopping rule is that of [`crate::Solver::solve`]: the converged steps agree to the
+    /// solver's tolerance, only the work differs.
+    pub fn solve_quasi_static(
+        &mut self,
+        initial: Option<&[f64]>,
+    ) -> Result<Solution, MagneticsError> {
+        let start = Instant::now();
+        let n_dofs = self.dof_count();
+        let mut a = match initial {
+            Some(init) if init.len() == n_dofs => init.to_vec(),
+            Some(init) => {
+                let message = format!("warm start has {} values, the solver {n_dofs}", init.len());
+                return Err(MagneticsError::field("init", message));
+            }
+            None => vec![0.0; n_dofs],
+        };
+        let mut scale = self.residual_scale().max(f64::MIN_POSITIVE);
+        if let Some(field) = &mut self.form.hysteresis {
+            scale = field.history_scale(scale);
+        }
+        let options = NewtonOptions { reuse_factor: true, ..self.options.newton() };
+        let mut system = AssembledSystem { assembly: &mut self.assembly, form: &self.form };
+        let mut report = self.newton.solve(&mut system, &mut a, scale, &options)?;
+        report.timings.total_s = start.elapsed().as_secs_f64();
+        Ok(Solution::new(a, self.basis().dofs().n_vertices(), report))
+    }
+
+    /// One quasi-static step: a solve warm-started from `initial`
+    /// ([`crate::Solver::solve_quasi_static`]), then its commit.
     pub fn solve_step(
         &mut self,
         initial: Option<&[f64]>,
     ) -> Result<(Solution, HysteresisCommit), MagneticsError> {
-        let solution = self.solve(initial)?;
+        let solution = self.solve_quasi_static(initial)?;
         let commit = self.commit_hysteresis(&solution);
         Ok((solution, commit))
     }
