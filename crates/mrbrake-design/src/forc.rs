@@ -24,8 +24,8 @@
 //! [`ForcSet::wiping_out_defect_nm`]. With `chains = n` every FORC starts from a freshly
 //! demagnetised model (no shared path).
 //!
-//! Each level step is split into [`ForcOptions::steps_per_level`] current steps (Newton warm
-//! started from the previous solution, material states committed after each, as in
+//! Each level step is split into [`ForcOptions::steps_per_level`] current steps (Newton started
+//! from a prediction of the previous solutions, material states committed after each, as in
 //! [`crate::hysteresis`]). Torques are the gaps' yield torques (the field-dependent part; viscous
 //! and constant friction are the brake model's off-state terms).
 

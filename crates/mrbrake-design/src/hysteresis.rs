@@ -10,8 +10,9 @@
 //!
 //! `0 → I_p → 0 → I_p → 0 → −I_p → 0 → I_p`
 //!
-//! with [`LoopOptions::points_per_leg`] currents per leg, one Newton solve per current warm-started
-//! from the previous one and the material states committed after each. Its branches on the grid
+//! with [`LoopOptions::points_per_leg`] currents per leg, one Newton solve per current started from
+//! a prediction of the previous ones (`QuasiStatic`) and the material states committed after each.
+//! Its branches on the grid
 //! `0 … I_p`:
 //! * `initial`: the first magnetisation (legs 1), the anhysteretic analysis's curve up to the model's
 //!   normal curve;
