@@ -726,7 +726,7 @@ impl Model {
     }
 
     /// Drives unit 1's coils with `i1` and unit 2's with `i2`.
-    fn energise(&mut self, i1: f64, i2: f64) -> Result<(), DesignError> {
+    pub(crate) fn energise(&mut self, i1: f64, i2: f64) -> Result<(), DesignError> {
         let [unit1, unit2] = &self.unit_coils;
         set_coils(&mut self.solver, &self.geometry, unit1, unit2, i1, i2, self.turns)
     }
@@ -775,20 +775,24 @@ impl Model {
     ) -> Result<(CurvePoint, Vec<GapResult>, Solution), DesignError> {
         self.energise(current, 0.0)?;
         let solution = self.solver.solve(previous.map(|s| s.a_phi())).map_err(numerical)?;
+        let (point, gaps) = self.direction1_torque(current, &solution, options)?;
+        Ok((point, gaps, solution))
+    }
+
+    /// The curve point and unit 1's gaps of direction 1 at `current` from its field `solution`.
+    pub(crate) fn direction1_torque(
+        &self,
+        current: f64,
+        solution: &Solution,
+        options: &AnalysisOptions,
+    ) -> Result<(CurvePoint, Vec<GapResult>), DesignError> {
         let dir1_gaps = self.unit_gaps(0);
         let speed = options.speed_rad_s;
-        let gaps = gap_results(&self.solver, &solution, &dir1_gaps, &self.fluid, speed)?;
+        let gaps = gap_results(&self.solver, solution, &dir1_gaps, &self.fluid, speed)?;
         let friction = self.off_state.constant_friction_nm();
-        let point = curve_point(
-            &self.solver,
-            &solution,
-            &gaps,
-            &dir1_gaps,
-            &self.fluid,
-            current,
-            friction,
-        )?;
-        Ok((point, gaps, solution))
+        let point =
+            curve_point(&self.solver, solution, &gaps, &dir1_gaps, &self.fluid, current, friction)?;
+        Ok((point, gaps))
     }
 
     /// Cross-coupling into the idle unit, and direction 2 with its own coil (bidirectional brakes);

@@ -32,12 +32,11 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use mrbrake_error::FieldError;
-use mrbrake_magnetics::Solution;
 use serde::Serialize;
 
 use crate::DesignError;
 use crate::analysis::{AnalysisOptions, Model};
-use crate::hysteresis::set_steel_laws;
+use crate::hysteresis::{QuasiStatic, set_steel_laws};
 use crate::mesh_build;
 use crate::spec::BrakeSpec;
 
@@ -232,7 +231,7 @@ impl Runner<'_> {
     /// solves). Starts from the demagnetised steel.
     fn history(&mut self, peak: f64, release: &Release) -> Result<(f64, f64, usize), DesignError> {
         self.model.solver.demagnetise();
-        let mut previous: Option<Solution> = None;
+        let mut history = QuasiStatic::default();
         let mut current = 0.0;
         let mut solves = 0;
         let mut targets = vec![peak, 0.0];
@@ -255,12 +254,7 @@ impl Runner<'_> {
                     current_a: i,
                     source: Box::new(e),
                 };
-                let (point, _, solution) = self
-                    .model
-                    .direction1_point(i, previous.as_ref(), self.options)
-                    .map_err(step)?;
-                self.model.solver.commit_hysteresis(&solution);
-                previous = Some(solution);
+                let (point, _) = history.step(&mut self.model, i, self.options).map_err(step)?;
                 last = point.yield_torque_nm;
             }
             current = target;

@@ -24,8 +24,8 @@
 //! [`ForcSet::wiping_out_defect_nm`]. With `chains = n` every FORC starts from a freshly
 //! demagnetised model (no shared path).
 //!
-//! Each level step is split into [`ForcOptions::steps_per_level`] current steps (Newton warm
-//! started from the previous solution, material states committed after each, as in
+//! Each level step is split into [`ForcOptions::steps_per_level`] current steps (Newton started
+//! from a prediction of the previous solutions, material states committed after each, as in
 //! [`crate::hysteresis`]). Torques are the gaps' yield torques (the field-dependent part; viscous
 //! and constant friction are the brake model's off-state terms).
 
@@ -38,7 +38,7 @@ use serde::Serialize;
 
 use crate::DesignError;
 use crate::analysis::{AnalysisOptions, Model};
-use crate::hysteresis::{SteelLaw, set_steel_laws};
+use crate::hysteresis::{QuasiStatic, SteelLaw, set_steel_laws};
 use crate::mesh_build;
 use crate::spec::BrakeSpec;
 
@@ -245,15 +245,15 @@ struct Walk<'o> {
     model: Model,
     options: &'o AnalysisOptions,
     steps_per_level: usize,
-    /// The present level and the last solution (`None`: demagnetised at 0 A).
+    /// The present level and the steps so far (none: demagnetised at 0 A).
     level: usize,
-    previous: Option<mrbrake_magnetics::Solution>,
+    steps: QuasiStatic,
     solves: usize,
 }
 
 impl<'o> Walk<'o> {
     fn new(model: Model, options: &'o AnalysisOptions, steps_per_level: usize) -> Self {
-        Self { model, options, steps_per_level, level: 0, previous: None, solves: 0 }
+        Self { model, options, steps_per_level, level: 0, steps: QuasiStatic::default(), solves: 0 }
     }
 
     /// Walks from the present level to `target` in level steps of `steps_per_level` current
@@ -270,12 +270,8 @@ impl<'o> Walk<'o> {
                     current_a: current,
                     source: Box::new(e),
                 };
-                let (point, _, solution) = self
-                    .model
-                    .direction1_point(current, self.previous.as_ref(), self.options)
-                    .map_err(step)?;
-                self.model.solver.commit_hysteresis(&solution);
-                self.previous = Some(solution);
+                let (point, _) =
+                    self.steps.step(&mut self.model, current, self.options).map_err(step)?;
                 self.solves += 1;
                 torque = Some(point.yield_torque_nm);
             }

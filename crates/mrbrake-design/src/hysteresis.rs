@@ -10,8 +10,9 @@
 //!
 //! `0 → I_p → 0 → I_p → 0 → −I_p → 0 → I_p`
 //!
-//! with [`LoopOptions::points_per_leg`] currents per leg, one Newton solve per current warm-started
-//! from the previous one and the material states committed after each. Its branches on the grid
+//! with [`LoopOptions::points_per_leg`] currents per leg, one Newton solve per current started from
+//! a prediction of the previous ones (`QuasiStatic`) and the material states committed after each.
+//! Its branches on the grid
 //! `0 … I_p`:
 //! * `initial`: the first magnetisation (legs 1), the anhysteretic analysis's curve up to the model's
 //!   normal curve;
@@ -30,12 +31,14 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use mrbrake_error::FieldError;
+use mrbrake_magnetics::Solution;
+use mrbrake_magnetics::hysteresis::HysteresisCommit;
 use mrbrake_materials::hysteresis::{HysteresisParams, Term, library};
 use mrbrake_materials::{MaterialKind, library as materials};
 use serde::Serialize;
 
 use crate::DesignError;
-use crate::analysis::{AnalysisOptions, Model};
+use crate::analysis::{AnalysisOptions, CurvePoint, Model};
 use crate::drag::OffStateTorque;
 use crate::mesh_build;
 use crate::spec::BrakeSpec;
@@ -327,7 +330,7 @@ fn solve_program(
 ) -> Result<(Vec<LoopPoint>, f64), DesignError> {
     let currents = program(peak, loop_options.points_per_leg);
     let mut path = Vec::with_capacity(currents.len() + 1);
-    let mut previous = None;
+    let mut steps = QuasiStatic::default();
     let mut max_perpendicular: f64 = 0.0;
     // The demagnetised start at 0 A (no solve needed: A = 0).
     path.push(LoopPoint {
@@ -345,9 +348,7 @@ fn solve_program(
             current_a: current,
             source: Box::new(e),
         };
-        let (point, _, solution) =
-            model.direction1_point(current, previous.as_ref(), options).map_err(step)?;
-        let commit = model.solver.commit_hysteresis(&solution);
+        let (point, commit) = steps.step(model, current, options).map_err(step)?;
         max_perpendicular = max_perpendicular.max(commit.max_perpendicular_b_t);
         path.push(LoopPoint {
             leg,
@@ -358,9 +359,68 @@ fn solve_program(
             newton_iterations: point.newton_iterations,
             dissipated_j: commit.dissipated_j,
         });
-        previous = Some(solution);
     }
     Ok((path, max_perpendicular))
+}
+
+/// The quasi-static steps of one current history on one model: each step one Newton solve, the
+/// material states committed after it.
+///
+/// Each solve is [`mrbrake_magnetics::Solver::solve_quasi_static`] (its first Newton step by CG with
+/// the last step's factor). Newton starts from a prediction of the step's potential: the last two solutions extrapolated
+/// linearly in the current when the step goes on in the last step's direction (along a leg `A(I)`
+/// is piecewise smooth, so the start misses by the path's curvature, O(ΔI²), instead of by the
+/// step, O(ΔI)); after a reversal (or with one solution only) the last solution, as the law's
+/// slope changes there. Only Newton's start changes: its stopping rule, and so the accuracy of the
+/// converged step, are those of the plain warm start.
+#[derive(Debug, Default)]
+pub(crate) struct QuasiStatic {
+    /// The last step's current and solution.
+    last: Option<(f64, Solution)>,
+    /// The current and potential of the step before it.
+    before: Option<(f64, Vec<f64>)>,
+    /// The predicted start (reused storage).
+    start: Vec<f64>,
+}
+
+/// Largest ratio of the new step to the last one that is extrapolated (a longer step starts from
+/// the last solution).
+const MAX_EXTRAPOLATION: f64 = 2.0;
+
+impl QuasiStatic {
+    /// Solves direction 1 at `current` from the prediction and commits the material states: the
+    /// curve point and the commit's summary.
+    pub(crate) fn step(
+        &mut self,
+        model: &mut Model,
+        current: f64,
+        options: &AnalysisOptions,
+    ) -> Result<(CurvePoint, HysteresisCommit), DesignError> {
+        model.energise(current, 0.0)?;
+        let initial = self.prediction(current);
+        let solution =
+            model.solver.solve_quasi_static(initial).map_err(crate::analysis::numerical)?;
+        let (point, _) = model.direction1_torque(current, &solution, options)?;
+        let commit = model.solver.commit_hysteresis(&solution);
+        let before = self.last.take().map(|(i, s)| (i, s.a_phi().to_vec()));
+        self.before = before;
+        self.last = Some((current, solution));
+        Ok((point, commit))
+    }
+
+    /// Newton's start for a step to `current` (type docs); `None` before the first step (A = 0).
+    fn prediction(&mut self, current: f64) -> Option<&[f64]> {
+        let (i1, last) = self.last.as_ref()?;
+        let a1 = last.a_phi();
+        let Some((i0, a0)) = &self.before else { return Some(a1) };
+        let ratio = (current - i1) / (i1 - i0);
+        if !(ratio.is_finite() && ratio > 0.0 && ratio <= MAX_EXTRAPOLATION) {
+            return Some(a1);
+        }
+        self.start.clear();
+        self.start.extend(a1.iter().zip(a0).map(|(x1, x0)| x1 + ratio * (x1 - x0)));
+        Some(&self.start)
+    }
 }
 
 /// The branches, widths and timings of a solved program (`path[0]` is the start at 0 A; leg `k`

@@ -41,13 +41,16 @@
 //! `∮ I dλ` equals its sum (the stored energy returns), which the validation tests check.
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
 
 use mrbrake_fem::by_order;
 use mrbrake_fem::discretisation::basis::{Basis, Element};
 use mrbrake_fem::discretisation::element::TriangleBasis;
 use mrbrake_fem::workflow::assemble::{MAX_PACKED_LEN, packed_len};
+use mrbrake_fem::workflow::newton::{AssembledSystem, NewtonOptions};
 use mrbrake_materials::MU_0;
-use mrbrake_materials::hysteresis::{HysteresisParams, HysteresisState};
+use mrbrake_materials::hysteresis::{HysteresisParams, HysteresisState, Response};
 
 use crate::form::{curls, flux_density};
 use crate::{MagneticsError, Solution};
@@ -75,8 +78,66 @@ pub(crate) struct HysteresisField {
     element_offset: Vec<u32>,
     points_per_element: usize,
     points: Vec<PointState>,
+    /// The last evaluation of every point (the start of its next root search).
+    last: LastEvaluations,
     /// The largest residual scale of the history since the last demagnetisation.
     largest_scale: f64,
+}
+
+/// The last evaluation of the law at every point: the flux density along its axis (or `|B|` before
+/// it has one), `H` and `dH/dB` there, each an `f64` in an atomic (NaN: none yet).
+///
+/// Successive evaluations at a point (the Newton iterations and line-search trials of a step, then
+/// its commit) differ by a small change of B, so the root search of the B-driven step map starts
+/// from the first-order prediction `H + (b − b_last) dH/dB` instead of the committed state's
+/// tangent ([`HysteresisState::trial_near`]: the same root, up to the model's root tolerance, in
+/// fewer iterations). The elements are evaluated in parallel; each point belongs to one element, so
+/// a slot is only ever written by the evaluation of its own element (relaxed ordering suffices) and
+/// the results do not depend on the schedule.
+#[derive(Debug, Default)]
+struct LastEvaluations(Vec<[AtomicU64; 3]>);
+
+impl LastEvaluations {
+    fn new(points: usize) -> Self {
+        let nan = f64::NAN.to_bits();
+        Self((0..points).map(|_| [nan, nan, nan].map(AtomicU64::new)).collect())
+    }
+
+    /// Forgets every evaluation (the states changed other than by a small step).
+    fn clear(&mut self) {
+        for slot in &mut self.0 {
+            for value in slot.iter_mut() {
+                *value.get_mut() = f64::NAN.to_bits();
+            }
+        }
+    }
+
+    /// The start of the root search at point `k` for `b`: the first-order prediction from the last
+    /// evaluation, `NaN` when there is none.
+    #[inline]
+    fn guess(&self, k: usize, b: f64) -> f64 {
+        let [b_last, h, dh_db] =
+            self.0[k].each_ref().map(|v| f64::from_bits(v.load(Ordering::Relaxed)));
+        h + (b - b_last) * dh_db
+    }
+
+    #[inline]
+    fn record(&self, k: usize, b: f64, h: f64, dh_db: f64) {
+        for (slot, value) in self.0[k].iter().zip([b, h, dh_db]) {
+            slot.store(value.to_bits(), Ordering::Relaxed);
+        }
+    }
+}
+
+impl Clone for LastEvaluations {
+    fn clone(&self) -> Self {
+        Self(
+            self.0
+                .iter()
+                .map(|slot| slot.each_ref().map(|v| AtomicU64::new(v.load(Ordering::Relaxed))))
+                .collect(),
+        )
+    }
 }
 
 /// What committing a converged step did.
@@ -84,8 +145,6 @@ pub(crate) struct HysteresisField {
 pub struct HysteresisCommit {
     /// Energy dissipated by the step in the hysteretic regions, J (over the full 2π ring).
     pub dissipated_j: f64,
-    /// Free energy stored in the hysteretic regions after the step, J.
-    pub stored_j: f64,
     /// Largest `|B⊥|` over the magnetised points, T (0: every point's field along its axis).
     pub max_perpendicular_b_t: f64,
     /// Most B-driven root iterations of one point in the commit.
@@ -117,15 +176,17 @@ impl HysteresisField {
                 count += 1;
             }
         }
-        let points = (0..count * points_per_element)
+        let points: Vec<PointState> = (0..count * points_per_element)
             .map(|_| PointState { nu_perpendicular: f64::NAN, ..PointState::default() })
             .collect();
+        let last = LastEvaluations::new(points.len());
         let mut field = Self {
             laws,
             element_law,
             element_offset,
             points_per_element,
             points,
+            last,
             largest_scale: 0.0,
         };
         field.reset_perpendicular();
@@ -145,6 +206,7 @@ impl HysteresisField {
         for p in &mut self.points {
             *p = PointState::default();
         }
+        self.last.clear();
         self.reset_perpendicular();
     }
 
@@ -186,8 +248,7 @@ impl HysteresisField {
         for (k, q) in element.points(&geometry).enumerate() {
             let curl = curls(&q);
             let b = flux_density(&curl, a);
-            let point = &self.points[first + k];
-            let law = point_law(params, point, b);
+            let law = point_law(params, &self.points[first + k], b, &self.last, first + k);
             for i in 0..N {
                 let h_dot_curl = law.h[0] * curl[i][0] + law.h[1] * curl[i][1];
                 res[i] += q.weight * (h_dot_curl - current_density * q.phi[i]);
@@ -209,6 +270,26 @@ impl HysteresisField {
         if let Some(out) = jacobian {
             out.copy_from_slice(&jac[..packed_len(N)]);
         }
+    }
+
+    /// Free energy stored in the committed states, J (over the full 2π ring).
+    fn stored_energy(&self, basis: &Basis) -> f64 {
+        by_order!(basis.order(), Self::stored_energy_order(self, basis))
+    }
+
+    fn stored_energy_order<E: TriangleBasis<N>, const N: usize>(&self, basis: &Basis) -> f64 {
+        let mut stored = 0.0;
+        for t in 0..self.element_law.len() {
+            let Some(params) = self.law(t) else { continue };
+            let element = basis.element::<E, N>(t);
+            let geometry = element.geometry();
+            let first = self.element_offset[t] as usize;
+            for (k, q) in element.points(&geometry).enumerate() {
+                let volume = 2.0 * std::f64::consts::PI * q.weight;
+                stored += volume * self.points[first + k].state.free_energy(params);
+            }
+        }
+        stored
     }
 
     /// Commits the states at the potential `a` (one value per DOF) of a converged step.
@@ -236,9 +317,8 @@ impl HysteresisField {
                 let b = flux_density(&curls(&q), local);
                 let point = &mut self.points[first + k];
                 let volume = 2.0 * std::f64::consts::PI * q.weight;
-                let step = commit_point(&params, point, b);
+                let step = commit_point(&params, point, b, &self.last, first + k);
                 summary.dissipated_j += volume * step.dissipated;
-                summary.stored_j += volume * point.state.free_energy(&params);
                 summary.max_perpendicular_b_t =
                     summary.max_perpendicular_b_t.max(step.perpendicular);
                 summary.max_point_iterations = summary.max_point_iterations.max(step.iterations);
@@ -255,8 +335,15 @@ struct PointCommit {
     iterations: u32,
 }
 
-/// Commits one point at flux density `b` (module docs: the axis is fixed at the first commit).
-fn commit_point(params: &HysteresisParams, point: &mut PointState, b: [f64; 2]) -> PointCommit {
+/// Commits one point (slot `k` of `last`) at flux density `b` (module docs: the axis is fixed at
+/// the first commit).
+fn commit_point(
+    params: &HysteresisParams,
+    point: &mut PointState,
+    b: [f64; 2],
+    last: &LastEvaluations,
+    k: usize,
+) -> PointCommit {
     let magnitude = b[0].hypot(b[1]);
     let (axis, perpendicular) = match point.axis {
         Some(e) => {
@@ -270,32 +357,54 @@ fn commit_point(params: &HysteresisParams, point: &mut PointState, b: [f64; 2]) 
         return PointCommit { dissipated: 0.0, perpendicular: 0.0, iterations: 0 };
     };
     let along = b[0] * e[0] + b[1] * e[1];
-    let (response, next) = point.state.trial(params, along);
+    let (response, next) = trial_from(&point.state, params, along, last, k);
     let dissipated = point.state.dissipation_to(params, &next);
     point.state = next;
     point.axis = Some(e);
-    point.nu_perpendicular = normal_secant(params, along.abs());
+    point.nu_perpendicular = normal_secant(params, along.abs(), point.nu_perpendicular);
     PointCommit { dissipated, perpendicular, iterations: response.iterations }
 }
 
+/// The B-driven trial step of `state` to `b` at point `k`, its root search started from the
+/// point's last evaluation ([`LastEvaluations`]), which it then replaces.
+#[inline]
+fn trial_from(
+    state: &HysteresisState,
+    params: &HysteresisParams,
+    b: f64,
+    last: &LastEvaluations,
+    k: usize,
+) -> (Response, HysteresisState) {
+    let (response, next) = state.trial_near(params, b, last.guess(k, b));
+    last.record(k, response.b, response.h, response.dh_db);
+    (response, next)
+}
+
 /// The secant reluctivity `H/B` of the model's normal curve at `|b|`, at least its initial slope
-/// (the frozen `ν⊥` of the next step).
-fn normal_secant(params: &HysteresisParams, b_abs: f64) -> f64 {
+/// (the frozen `ν⊥` of the next step). `previous`, the secant at the point's last commit (NaN: none),
+/// starts the root search: the same root, fewer iterations when `|b|` moved little.
+fn normal_secant(params: &HysteresisParams, b_abs: f64, previous: f64) -> f64 {
     let demagnetised = HysteresisState::demagnetised();
     let initial = demagnetised.tangent(params).dh_db;
     if b_abs <= AXIS_MIN_B_T {
         return initial;
     }
-    let (response, _) = demagnetised.trial(params, b_abs);
+    let (response, _) = demagnetised.trial_near(params, b_abs, previous * b_abs);
     (response.h / b_abs).max(initial).min(1.0 / MU_0)
 }
 
-/// `H` and `∂H/∂B` of a point at trial flux density `b` (module docs).
+/// `H` and `∂H/∂B` of a point (slot `k` of `last`) at trial flux density `b` (module docs).
 #[inline]
-fn point_law(params: &HysteresisParams, point: &PointState, b: [f64; 2]) -> PointLaw {
+fn point_law(
+    params: &HysteresisParams,
+    point: &PointState,
+    b: [f64; 2],
+    last: &LastEvaluations,
+    k: usize,
+) -> PointLaw {
     if let Some(e) = point.axis {
         let along = b[0] * e[0] + b[1] * e[1];
-        let (response, _) = point.state.trial(params, along);
+        let (response, _) = trial_from(&point.state, params, along, last, k);
         let perpendicular = [b[0] - along * e[0], b[1] - along * e[1]];
         let nu = point.nu_perpendicular;
         let h =
@@ -308,7 +417,7 @@ fn point_law(params: &HysteresisParams, point: &PointState, b: [f64; 2]) -> Poin
         return PointLaw { h: [initial * b[0], initial * b[1]], tangent: [initial, 0.0, initial] };
     }
     let e = [b[0] / magnitude, b[1] / magnitude];
-    let (response, _) = point.state.trial(params, magnitude);
+    let (response, _) = trial_from(&point.state, params, magnitude, last, k);
     let h = [response.h * e[0], response.h * e[1]];
     PointLaw { h, tangent: axial_tangent(e, response.dh_db, response.h / magnitude) }
 }
@@ -377,12 +486,56 @@ impl crate::Solver {
         }
     }
 
-    /// One quasi-static step: a solve warm-started from `initial`, then its commit.
+    /// Free energy stored in the hysteretic regions' committed states, J (over the full 2π ring;
+    /// 0 without hysteretic regions): `2π Σ_q w_q (μ0 H²/2 + Σ_k U_k(h_k))` (the stored part of the
+    /// energy balance of [`mrbrake_materials::hysteresis`]).
+    pub fn stored_hysteresis_energy_j(&self) -> f64 {
+        self.form
+            .hysteresis
+            .as_ref()
+            .map_or(0.0, |field| field.stored_energy(self.assembly.basis()))
+    }
+
+    /// [`crate::Solver::solve`] for one step of a quasi-static history (from `initial`, e.g. the
+    /// last step's solution or a prediction from it): Newton's first step is solved by conjugate
+    /// gradients preconditioned with the factor the previous solve left, the core's warm start
+    /// ([`NewtonOptions::reuse_factor`]; a factorisation when CG does not reach the warm start's
+    /// forcing tolerance within its few iterations). A step's Jacobian differs from the last one's
+    /// by the change of the material states over one step, so the old factor usually suffices.
+    /// The stopping rule is that of [`crate::Solver::solve`]: the converged steps agree to the
+    /// solver's tolerance, only the work differs.
+    pub fn solve_quasi_static(
+        &mut self,
+        initial: Option<&[f64]>,
+    ) -> Result<Solution, MagneticsError> {
+        let start = Instant::now();
+        let n_dofs = self.dof_count();
+        let mut a = match initial {
+            Some(init) if init.len() == n_dofs => init.to_vec(),
+            Some(init) => {
+                let message = format!("warm start has {} values, the solver {n_dofs}", init.len());
+                return Err(MagneticsError::field("init", message));
+            }
+            None => vec![0.0; n_dofs],
+        };
+        let mut scale = self.residual_scale().max(f64::MIN_POSITIVE);
+        if let Some(field) = &mut self.form.hysteresis {
+            scale = field.history_scale(scale);
+        }
+        let options = NewtonOptions { reuse_factor: true, ..self.options.newton() };
+        let mut system = AssembledSystem { assembly: &mut self.assembly, form: &self.form };
+        let mut report = self.newton.solve(&mut system, &mut a, scale, &options)?;
+        report.timings.total_s = start.elapsed().as_secs_f64();
+        Ok(Solution::new(a, self.basis().dofs().n_vertices(), report))
+    }
+
+    /// One quasi-static step: a solve warm-started from `initial`
+    /// ([`crate::Solver::solve_quasi_static`]), then its commit.
     pub fn solve_step(
         &mut self,
         initial: Option<&[f64]>,
     ) -> Result<(Solution, HysteresisCommit), MagneticsError> {
-        let solution = self.solve(initial)?;
+        let solution = self.solve_quasi_static(initial)?;
         let commit = self.commit_hysteresis(&solution);
         Ok((solution, commit))
     }
@@ -402,21 +555,25 @@ mod tests {
     #[test]
     fn tangent_matches_finite_differences() {
         let params = steel();
+        let last = LastEvaluations::new(1);
         let mut magnetised = PointState::default();
-        commit_point(&params, &mut magnetised, [0.3, 1.2]);
-        commit_point(&params, &mut magnetised, [0.1, 0.5]);
-        let demagnetised =
-            PointState { nu_perpendicular: normal_secant(&params, 0.0), ..PointState::default() };
+        commit_point(&params, &mut magnetised, [0.3, 1.2], &last, 0);
+        commit_point(&params, &mut magnetised, [0.1, 0.5], &last, 0);
+        let nu0 = normal_secant(&params, 0.0, f64::NAN);
+        let demagnetised = PointState { nu_perpendicular: nu0, ..PointState::default() };
+        // Each evaluation from a fresh start: the derivative of the law itself.
+        let evaluate =
+            |point: &PointState, b| point_law(&params, point, b, &LastEvaluations::new(1), 0);
         for (point, b) in [(magnetised, [0.12, 0.35]), (demagnetised, [0.4, 0.9])] {
-            let law = point_law(&params, &point, b);
+            let law = evaluate(&point, b);
             let full = [[law.tangent[0], law.tangent[1]], [law.tangent[1], law.tangent[2]]];
             for j in 0..2 {
                 let step = 1e-7;
                 let (mut bp, mut bm) = (b, b);
                 bp[j] += step;
                 bm[j] -= step;
-                let hp = point_law(&params, &point, bp).h;
-                let hm = point_law(&params, &point, bm).h;
+                let hp = evaluate(&point, bp).h;
+                let hm = evaluate(&point, bm).h;
                 for i in 0..2 {
                     let fd = (hp[i] - hm[i]) / (2.0 * step);
                     let scale = full[0][0].abs() + full[1][1].abs();
@@ -437,8 +594,9 @@ mod tests {
         let mut point = PointState::default();
         let mut model = HysteresisState::demagnetised();
         let e = [0.6, 0.8];
+        let last = LastEvaluations::new(1);
         for b in [0.5, 1.4, 0.7, 0.0, -1.0] {
-            commit_point(&params, &mut point, [b * e[0], b * e[1]]);
+            commit_point(&params, &mut point, [b * e[0], b * e[1]], &last, 0);
             let expected = model.step(&params, b).h;
             assert!((point.state.h() - expected).abs() <= 1e-9 * (1.0 + expected.abs()));
         }

@@ -229,4 +229,8 @@ fn newton_iterations_per_step_stay_few() {
     let total: usize = steps.iter().map(|s| s.1.report.iterations).sum();
     eprintln!("Newton iterations over {} steps: {total}, at most {most} per step", steps.len());
     assert!(most <= 12, "a step took {most} Newton iterations");
+    // The history ends at its peak: energy is stored in the core; none once demagnetised.
+    assert!(solver.stored_hysteresis_energy_j() > 0.0);
+    solver.demagnetise();
+    assert!(solver.stored_hysteresis_energy_j().abs() < 1e-30);
 }

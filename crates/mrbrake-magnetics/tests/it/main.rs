@@ -3,6 +3,7 @@
 
 mod dynamics;
 mod forces;
+mod hysteresis_convergence;
 mod hysteresis_solve;
 mod problem_file;
 mod problem_file_dynamics;

@@ -191,10 +191,14 @@ impl HysteresisParams {
         (j, dj, d2j)
     }
 
+    /// The terms of cell `cell` (stored together, in their order).
+    fn cell_terms(&self, cell: usize) -> std::ops::Range<usize> {
+        self.cell_start[cell]..self.cell_start[cell + 1]
+    }
+
     /// Polarisation of cell `cell` alone at reversible field `h`, T.
     pub(crate) fn cell_polarisation(&self, cell: usize, h: f64) -> f64 {
-        (0..self.terms)
-            .filter(|&t| self.term_cell[t] == cell)
+        self.cell_terms(cell)
             .map(|t| {
                 let x = h * self.term_inv_a[t];
                 self.term_js[t] * x / (1.0 + x.abs())
@@ -205,8 +209,7 @@ impl HysteresisParams {
     /// Free energy of cell `cell` at reversible field `h`: `U_k = h J_k(h) − ∫_0^h J_k`, J/m³, with
     /// `∫_0^h J_t g(s/a) ds = J_t a (|x| − ln(1 + |x|))`, `x = h/a`. Convex in `J_k`.
     pub(crate) fn cell_free_energy(&self, cell: usize, h: f64) -> f64 {
-        (0..self.terms)
-            .filter(|&t| self.term_cell[t] == cell)
+        self.cell_terms(cell)
             .map(|t| {
                 let a = 1.0 / self.term_inv_a[t];
                 let x = (h * self.term_inv_a[t]).abs();
