@@ -42,13 +42,11 @@
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Instant;
 
 use mrbrake_fem::by_order;
 use mrbrake_fem::discretisation::basis::{Basis, Element};
 use mrbrake_fem::discretisation::element::TriangleBasis;
 use mrbrake_fem::workflow::assemble::{MAX_PACKED_LEN, packed_len};
-use mrbrake_fem::workflow::newton::{AssembledSystem, NewtonOptions};
 use mrbrake_materials::MU_0;
 use mrbrake_materials::hysteresis::{HysteresisParams, HysteresisState, Response};
 
@@ -499,7 +497,7 @@ impl crate::Solver {
     /// [`crate::Solver::solve`] for one step of a quasi-static history (from `initial`, e.g. the
     /// last step's solution or a prediction from it): Newton's first step is solved by conjugate
     /// gradients preconditioned with the factor the previous solve left, the core's warm start
-    /// ([`NewtonOptions::reuse_factor`]; a factorisation when CG does not reach the warm start's
+    /// ([`mrbrake_fem::workflow::newton::NewtonOptions::reuse_factor`]; a factorisation when CG does not reach the warm start's
     /// forcing tolerance within its few iterations). A step's Jacobian differs from the last one's
     /// by the change of the material states over one step, so the old factor usually suffices.
     /// The stopping rule is that of [`crate::Solver::solve`]: the converged steps agree to the
@@ -508,25 +506,7 @@ impl crate::Solver {
         &mut self,
         initial: Option<&[f64]>,
     ) -> Result<Solution, MagneticsError> {
-        let start = Instant::now();
-        let n_dofs = self.dof_count();
-        let mut a = match initial {
-            Some(init) if init.len() == n_dofs => init.to_vec(),
-            Some(init) => {
-                let message = format!("warm start has {} values, the solver {n_dofs}", init.len());
-                return Err(MagneticsError::field("init", message));
-            }
-            None => vec![0.0; n_dofs],
-        };
-        let mut scale = self.residual_scale().max(f64::MIN_POSITIVE);
-        if let Some(field) = &mut self.form.hysteresis {
-            scale = field.history_scale(scale);
-        }
-        let options = NewtonOptions { reuse_factor: true, ..self.options.newton() };
-        let mut system = AssembledSystem { assembly: &mut self.assembly, form: &self.form };
-        let mut report = self.newton.solve(&mut system, &mut a, scale, &options)?;
-        report.timings.total_s = start.elapsed().as_secs_f64();
-        Ok(Solution::new(a, self.basis().dofs().n_vertices(), report))
+        self.solve_with(initial, true)
     }
 
     /// One quasi-static step: a solve warm-started from `initial`

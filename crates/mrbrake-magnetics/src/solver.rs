@@ -279,6 +279,17 @@ impl Solver {
     /// one value per DOF as in [`Solution::a_phi`]). Prescribed boundary values are imposed on
     /// the start vector.
     pub fn solve(&mut self, initial: Option<&[f64]>) -> Result<Solution, MagneticsError> {
+        self.solve_with(initial, false)
+    }
+
+    /// [`Self::solve`], with `reuse_factor` passed to Newton ([`NewtonOptions::reuse_factor`]:
+    /// the first step tries CG with the last factor before factorising; the stopping rule is the
+    /// same). Shared by [`Self::solve`] and the quasi-static hysteresis steps.
+    pub(crate) fn solve_with(
+        &mut self,
+        initial: Option<&[f64]>,
+        reuse_factor: bool,
+    ) -> Result<Solution, MagneticsError> {
         let start = Instant::now();
         let n_dofs = self.dof_count();
         let mut a = match initial {
@@ -303,8 +314,9 @@ impl Solver {
             scale = field.history_scale(scale);
         }
         let scale_s = t.elapsed().as_secs_f64();
+        let options = NewtonOptions { reuse_factor, ..self.options.newton() };
         let mut system = AssembledSystem { assembly: &mut self.assembly, form: &self.form };
-        let mut report = self.newton.solve(&mut system, &mut a, scale, &self.options.newton())?;
+        let mut report = self.newton.solve(&mut system, &mut a, scale, &options)?;
         report.timings.assemble_s += scale_s;
         report.timings.total_s = start.elapsed().as_secs_f64();
         Ok(Solution::new(a, self.basis().dofs().n_vertices(), report))
