@@ -367,18 +367,18 @@ fn solve_program(
 /// material states committed after it.
 ///
 /// Each solve is [`mrbrake_magnetics::Solver::solve_quasi_static`] (its first Newton step by CG with
-/// the last step's factor). Newton starts from a prediction of the step's potential: the last two solutions extrapolated
-/// linearly in the current when the step goes on in the last step's direction (along a leg `A(I)`
-/// is piecewise smooth, so the start misses by the path's curvature, O(ΔI²), instead of by the
-/// step, O(ΔI)); after a reversal (or with one solution only) the last solution, as the law's
-/// slope changes there. Only Newton's start changes: its stopping rule, and so the accuracy of the
+/// the last step's factor). Newton starts from a prediction of the step's potential: the last two
+/// solutions extrapolated linearly in the current when the step goes on in the last step's
+/// direction (along a leg `A(I)` is piecewise smooth, so the start misses by the path's curvature,
+/// O(ΔI²), instead of by the step, O(ΔI)); after a reversal (or with one solution only) the last
+/// solution, as the law's slope changes there. Only Newton's start changes: its stopping rule, and so the accuracy of the
 /// converged step, are those of the plain warm start.
 #[derive(Debug, Default)]
 pub(crate) struct QuasiStatic {
     /// The last step's current and solution.
     last: Option<(f64, Solution)>,
-    /// The current and potential of the step before it.
-    before: Option<(f64, Vec<f64>)>,
+    /// The current and solution of the step before it.
+    before: Option<(f64, Solution)>,
     /// The predicted start (reused storage).
     start: Vec<f64>,
 }
@@ -402,9 +402,7 @@ impl QuasiStatic {
             model.solver.solve_quasi_static(initial).map_err(crate::analysis::numerical)?;
         let (point, _) = model.direction1_torque(current, &solution, options)?;
         let commit = model.solver.commit_hysteresis(&solution);
-        let before = self.last.take().map(|(i, s)| (i, s.a_phi().to_vec()));
-        self.before = before;
-        self.last = Some((current, solution));
+        self.before = self.last.replace((current, solution));
         Ok((point, commit))
     }
 
@@ -412,7 +410,8 @@ impl QuasiStatic {
     fn prediction(&mut self, current: f64) -> Option<&[f64]> {
         let (i1, last) = self.last.as_ref()?;
         let a1 = last.a_phi();
-        let Some((i0, a0)) = &self.before else { return Some(a1) };
+        let Some((i0, before)) = &self.before else { return Some(a1) };
+        let a0 = before.a_phi();
         let ratio = (current - i1) / (i1 - i0);
         if !(ratio.is_finite() && ratio > 0.0 && ratio <= MAX_EXTRAPOLATION) {
             return Some(a1);

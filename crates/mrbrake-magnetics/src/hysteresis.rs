@@ -497,8 +497,8 @@ impl crate::Solver {
     /// [`crate::Solver::solve`] for one step of a quasi-static history (from `initial`, e.g. the
     /// last step's solution or a prediction from it): Newton's first step is solved by conjugate
     /// gradients preconditioned with the factor the previous solve left, the core's warm start
-    /// ([`mrbrake_fem::workflow::newton::NewtonOptions::reuse_factor`]; a factorisation when CG does not reach the warm start's
-    /// forcing tolerance within its few iterations). A step's Jacobian differs from the last one's
+    /// ([`mrbrake_fem::workflow::newton::NewtonOptions::reuse_factor`]; a factorisation when CG
+    /// does not reach the warm start's forcing tolerance within its few iterations). A step's Jacobian differs from the last one's
     /// by the change of the material states over one step, so the old factor usually suffices.
     /// The stopping rule is that of [`crate::Solver::solve`]: the converged steps agree to the
     /// solver's tolerance, only the work differs.
