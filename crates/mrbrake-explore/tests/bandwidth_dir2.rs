@@ -28,7 +28,7 @@ fn the_metric_is_listed_with_its_unit() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: two frequency sweeps of the whole brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: two frequency sweeps of the whole brake")]
 fn direction_2_has_its_own_bandwidth_equal_to_direction_1_on_the_mirror_symmetric_brake() {
     let p = problem(r#""bandwidth_rad_s", "bandwidth_dir2_rad_s""#, "[response]\nbias = \"1A\"\n");
     let spec = default_spec();
@@ -54,7 +54,7 @@ fn direction_2_has_its_own_bandwidth_equal_to_direction_1_on_the_mirror_symmetri
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: a static analysis of a drum brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: a static analysis of a drum brake")]
 fn a_brake_with_one_direction_has_no_direction_2_bandwidth() {
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/specs/drum.toml");

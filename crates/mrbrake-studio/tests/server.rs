@@ -316,7 +316,7 @@ fn analyses_on_request_are_cancelled_by_a_cancel_or_an_edit() {
 /// The thermal analysis on request answers `mrbrake thermal --json`'s numbers (the library call
 /// with the command's defaults: the spec's maximum current, what heat does to the brake).
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: a two-hour warm-up on the default mesh")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: a two-hour warm-up on the default mesh")]
 fn the_thermal_analysis_on_request_is_the_commands() {
     use mrbrake_design::thermal::{ThermalOptions, analyze_thermal};
     let r = start(config(1));

@@ -35,7 +35,7 @@ fn eval(c: &[f64], x: f64) -> f64 {
 
 /// The thesis design's predicted model recovered by the virtual rig's identification chain.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: a field analysis and two rig sessions")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: a field analysis and two rig sessions")]
 fn predicted_model_is_recovered_by_the_rig_and_drives_the_haptic_wall() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let model = dir.path().join("brake.json");
@@ -199,7 +199,7 @@ fn predicted_model_is_recovered_by_the_rig_and_drives_the_haptic_wall() {
 
 /// The shipped prototypes are the built-in brakes: same output as without the flag.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: two full rig sessions")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: two full rig sessions")]
 fn shipped_prototypes_reproduce_the_default_outputs_exactly() {
     let proto = example("prototype.json");
     for device in ["conventional", "bidirectional"] {

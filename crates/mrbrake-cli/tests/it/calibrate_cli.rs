@@ -61,7 +61,7 @@ fn rig_log(spec: &Path, dir: &Path) -> std::path::PathBuf {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: tens of FEA analyses")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: tens of FEA analyses")]
 fn known_parameters_come_back_and_an_unidentifiable_pair_is_named() {
     let dir = tempfile::tempdir().unwrap();
     let log = rig_log(&perturbed_spec(dir.path()), dir.path());
@@ -178,7 +178,7 @@ fn prototype_data(dir: &Path) -> (std::path::PathBuf, std::path::PathBuf) {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: frequency responses of a brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: frequency responses of a brake")]
 fn a_frequency_response_is_fitted_with_the_loop() {
     let dir = tempfile::tempdir().unwrap();
     let (log, frd) = prototype_data(dir.path());

@@ -19,7 +19,7 @@ const QUICK: [&str; 9] = [
 ];
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: ~250 non-linear solves of the thesis brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: ~250 non-linear solves of the thesis brake")]
 fn the_scan_feeds_the_haptic_release() {
     let mut args = QUICK.to_vec();
     args.push("--json");

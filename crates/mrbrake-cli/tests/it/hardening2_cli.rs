@@ -20,7 +20,7 @@ fn has_non_finite(text: &str) -> bool {
 /// (it reported 63 s): the first step is bounded by the brake's own time scales, and a rise time
 /// is reported only when the steps resolve it.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: transients of a brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: transients of a brake")]
 fn a_long_duration_keeps_the_rise_time_of_a_few_milliseconds() {
     let v = json(&["response", SPEC, "--mesh", "coarse", "--duration", "1e6s", "--json"]);
     for step in v["step"].as_array().expect("step responses") {
@@ -44,7 +44,7 @@ fn a_long_duration_keeps_the_rise_time_of_a_few_milliseconds() {
 /// error naming the flag, not a table of NaN magnitudes; `--frd` then writes nothing. A bias above
 /// the coil's maximum current is refused too.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: a frequency response of a brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: a frequency response of a brake")]
 fn a_bias_without_gain_or_above_the_rating_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let frd = dir.path().join("frd.csv");
@@ -252,7 +252,7 @@ fn absurd_physical_values_are_refused_before_the_solve() {
 /// Class 5: a response whose last output fails (a brake model that is not there) writes nothing:
 /// neither the FRD nor the plots it used to leave behind.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: transients of a brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: transients of a brake")]
 fn a_failing_response_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let (frd, plots) = (dir.path().join("frd.csv"), dir.path().join("plots"));
@@ -277,7 +277,7 @@ fn a_failing_response_writes_nothing() {
 /// Class 6: `analyze --save-model` with a 5-point curve wrote a model the rig then refused
 /// without naming it; the model is checked as the simulators use it when it is written.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: an analysis of a brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: an analysis of a brake")]
 fn a_saved_model_is_checked_as_the_simulators_use_it() {
     let dir = tempfile::tempdir().unwrap();
     let model = dir.path().join("m5.json");
@@ -332,7 +332,7 @@ fn a_bare_gap_in_metres_is_named_at_the_gap() {
 /// Found by the fuzzer's `cli-analyze` target: a brake model the simulators cannot run (three
 /// currents of the drum example) was refused without naming the output, the flag or the spec.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: an analysis of a brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: an analysis of a brake")]
 fn an_unrunnable_saved_model_names_the_flag_and_the_spec() {
     let dir = tempfile::tempdir().unwrap();
     let model = dir.path().join("m.json");

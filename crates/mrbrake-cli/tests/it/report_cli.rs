@@ -86,7 +86,7 @@ fn design_report_matches_analyze_json_and_renders() {
 /// response, Bode diagram, eddy-current map), the numbers of `response --json`, and the page still loads cleanly (release only: a non-linear
 /// transient of the whole brake).
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: the brake's transient and frequency sweep")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: the brake's transient and frequency sweep")]
 fn design_report_with_the_predicted_dynamics() {
     let dir = tempfile::tempdir().unwrap();
     let page =

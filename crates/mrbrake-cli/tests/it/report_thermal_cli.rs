@@ -18,7 +18,7 @@ fn svg_count(page: &str) -> usize {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: the brake's thermal and magnetic analyses")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: the brake's thermal and magnetic analyses")]
 fn design_report_with_the_heat_section() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("heat.html");

@@ -28,7 +28,7 @@ fn bad_response_input_is_exit_code_2() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: two transients of the thesis brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: two transients of the thesis brake")]
 fn plots_include_the_eddy_current_map_at_the_instant_asked_for() {
     let dir = tempfile::tempdir().unwrap();
     let out = common::mrbrake(&[

@@ -61,7 +61,7 @@ fn unknown_or_impossible_metrics_exit_2_before_any_analysis() {
 /// `sweep --record t63_fall_s` stores the release's t63 of `mrbrake response --step 2A..0A` (the
 /// thesis brake's maximum current is 2 A), and the fall time of direction 2.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: two step responses per direction")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: two step responses per direction")]
 fn a_recorded_fall_time_equals_the_response_command() {
     let dir = tempfile::tempdir().unwrap();
     let store = dir.path().join("s.sqlite");

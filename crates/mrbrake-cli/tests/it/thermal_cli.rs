@@ -84,7 +84,7 @@ fn thermal_json_keys_and_plots() {
 /// less current and torque; radiation (emissivity 0.9) cools it markedly; the text names every
 /// part.
 #[test]
-#[cfg_attr(debug_assertions, ignore)]
+#[cfg_attr(not(heavy_tests), ignore)]
 fn thermal_natural_convection_and_hot_behaviour() {
     let v = json(&["thermal", "--h", "natural", "--time", "30min", "--json"]);
     let h = number(&v["cooling"], "h_W_per_m2_K");

@@ -1079,7 +1079,7 @@ mod tests {
 /// The thesis brake on the default mesh, 2 h warm-up at 10 s steps (slow in debug builds).
 #[cfg(test)]
 #[test]
-#[cfg_attr(debug_assertions, ignore)]
+#[cfg_attr(not(heavy_tests), ignore)]
 fn thesis_brake_default_mesh_two_hours() {
     let spec = crate::spec::default_spec();
     let result = analyze_thermal(&spec, &ThermalOptions::default()).unwrap();

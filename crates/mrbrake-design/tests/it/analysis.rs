@@ -111,7 +111,7 @@ fn a_stop_ends_the_sweep_after_the_observed_current() {
 /// Mesh convergence of the torque at the maximum current: default → fine changes it by < 1 %
 /// (issue 4). Release only: the fine mesh takes a while in a debug build.
 #[test]
-#[cfg_attr(debug_assertions, ignore)]
+#[cfg_attr(not(heavy_tests), ignore)]
 fn torque_converges_under_mesh_refinement() {
     let at = |mesh| {
         let options = AnalysisOptions { mesh, points: 2, ..AnalysisOptions::default() };
@@ -136,7 +136,7 @@ fn torque_converges_under_mesh_refinement() {
 /// for any magnetic circuit: a narrower gap raises B (Table 4.2) and disc thickness barely matters
 /// (Table 4.1). Release only (13 analyses).
 #[test]
-#[cfg_attr(debug_assertions, ignore)]
+#[cfg_attr(not(heavy_tests), ignore)]
 fn thesis_table_study_trends() {
     let options = AnalysisOptions { mesh: MeshLevel::Coarse, ..AnalysisOptions::default() };
     let tables = mrbrake_design::study::thesis_tables(&options).unwrap();

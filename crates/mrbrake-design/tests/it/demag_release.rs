@@ -13,7 +13,7 @@ fn options() -> AnalysisOptions {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: ~300 non-linear solves of the thesis brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: ~300 non-linear solves of the thesis brake")]
 fn the_chosen_pulse_leaves_less_remanence_than_no_release() {
     let spec = default_spec();
     let demag = DemagOptions {

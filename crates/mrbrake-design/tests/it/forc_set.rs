@@ -15,7 +15,7 @@ fn options() -> AnalysisOptions {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: 260 non-linear solves of the thesis brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: 260 non-linear solves of the thesis brake")]
 fn the_thesis_brakes_forc_major_loop_is_the_predicted_loop() {
     let spec = default_spec();
     let levels = 10;

@@ -15,7 +15,7 @@ fn options() -> AnalysisOptions {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: 70 non-linear solves of the thesis brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: 70 non-linear solves of the thesis brake")]
 fn the_thesis_brake_has_a_closed_loop_with_remanence() {
     let spec = default_spec();
     let loop_options = LoopOptions { peak_current_a: None, points_per_leg: 10 };

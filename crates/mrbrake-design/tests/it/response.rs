@@ -7,7 +7,7 @@ use mrbrake_design::response::{ResponseOptions, response};
 use mrbrake_design::spec::default_spec;
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: whole-brake transient and frequency sweep")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: whole-brake transient and frequency sweep")]
 fn thesis_brake_response_is_predicted_and_consistent() {
     let spec = default_spec();
     let mut bandwidths = Vec::new();

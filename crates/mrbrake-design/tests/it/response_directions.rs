@@ -36,7 +36,7 @@ fn both_directions(
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: frequency sweeps of the whole brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: frequency sweeps of the whole brake")]
 fn each_direction_is_analysed_on_its_own_circuit() {
     let spec = default_spec();
     let current = ResponseOptions { mesh: MeshLevel::Coarse, ..ResponseOptions::default() };
@@ -78,7 +78,7 @@ fn each_direction_is_analysed_on_its_own_circuit() {
 /// `response` (the command's analysis) reports direction 2's small-signal response beside
 /// direction 1's, the same numbers as `ResponseModel::frequency_response_of`.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: frequency sweeps of the whole brake")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: frequency sweeps of the whole brake")]
 fn the_response_reports_both_directions() {
     let spec = default_spec();
     let options =

@@ -39,7 +39,7 @@ fn assert_close(name: &str, study: f64, command: f64, rtol: f64) {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: two step responses per direction")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: two step responses per direction")]
 fn dynamics_metrics_equal_the_response_command() {
     let record = r#""bandwidth_rad_s", "t63_s", "t90_s", "t63_dir2_s", "t90_dir2_s",
         "t63_fall_s", "t90_fall_s", "t63_fall_dir2_s", "t90_fall_dir2_s""#;
@@ -78,7 +78,7 @@ fn dynamics_metrics_equal_the_response_command() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: a warm-up and a continuous-current search")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: a warm-up and a continuous-current search")]
 fn heat_metrics_equal_the_thermal_command() {
     let record = r#""coil_max_T_C", "continuous_current_A", "max_duty_at_max_current",
         "time_to_limit_s", "continuous_torque_Nm""#;

@@ -39,7 +39,7 @@ fn the_full_example_parses_and_asks_for_every_level() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: four designs through the whole cascade")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: four designs through the whole cascade")]
 fn the_quick_example_runs_through_the_cascade() {
     let problem = OptimizationProblem::from_toml_str(&quick_text(), &example()).unwrap();
     let dir = tempfile::tempdir().unwrap();

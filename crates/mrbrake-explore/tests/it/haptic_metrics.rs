@@ -77,7 +77,7 @@ fn analysed_model(seal_friction_nm: f64) -> BrakeModel {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: a 5-point sweep and a haptic run")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: a 5-point sweep and a haptic run")]
 fn haptic_metrics_equal_the_wall_command_with_the_thesis_lags() {
     let extra = "[haptic]\npoints = 5\ndynamics = \"thesis\"\n\
                  device = \"conventional\"\nstiffness = \"40N·m/rad\"\n";
@@ -97,7 +97,7 @@ fn haptic_metrics_equal_the_wall_command_with_the_thesis_lags() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: a sweep, the response and a haptic run")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: a sweep, the response and a haptic run")]
 fn haptic_metrics_equal_the_wall_command_with_the_predicted_lag() {
     let extra = "[response]\nduration = \"20ms\"\n[haptic]\npoints = 5\n";
     let p = problem(HAPTIC, extra);

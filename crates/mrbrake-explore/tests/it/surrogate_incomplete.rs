@@ -29,7 +29,7 @@ fn problem(dir: &Path, name: &str, objective: &str, extra: &str) -> Optimization
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: eight analyses and four thermal solves")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: eight analyses and four thermal solves")]
 fn stored_designs_lacking_a_needed_metric_are_skipped_and_counted() {
     let dir = tempfile::tempdir().unwrap();
     let mut store = Store::open_or_create(&dir.path().join("s.sqlite"), false).unwrap();

@@ -565,7 +565,7 @@ fn reduced_sweep_matches_the_direct_sweep() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: a 16 k-node sweep")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: a 16 k-node sweep")]
 fn reduced_sweep_of_the_pot_core_matches_the_direct_sweep() {
     use mrbrake_magnetics::dynamics::harmonic::HarmonicMethod;
     let mut dynamics = mrbrake_magnetics::benchmark::conducting_pot_core(16_000).unwrap();

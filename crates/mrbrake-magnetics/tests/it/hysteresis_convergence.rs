@@ -49,7 +49,7 @@ fn differences(levels: &[f64]) -> (f64, f64, f64) {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: 224 non-linear solves up to 16 k nodes")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: 224 non-linear solves up to 16 k nodes")]
 fn remanent_flux_converges_with_the_mesh_and_the_current_steps() {
     let per_leg = 16;
     // 3 900 nodes give 1 cell per mm in the steel; the cells per mm scale as √nodes.

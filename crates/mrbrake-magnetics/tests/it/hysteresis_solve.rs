@@ -173,7 +173,7 @@ fn first_step_and_switched_off_solves_are_the_anhysteretic_solve() {
 /// dissipated, and per unit core volume the material's own loop area `∮ H dB`; on a non-uniform
 /// field (the core in air) too, where it also checks that the field barely turns.
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: 1600 non-linear solves")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: 1600 non-linear solves")]
 fn cycle_work_equals_dissipated_energy() {
     let params = steel();
     for (name, mut solver, peak) in [

@@ -265,7 +265,7 @@ fn finite_thick_coil_axis_field_and_convergence() {
 /// is least accurate there. Release only (the loop-integral reference at every quadrature point
 /// takes a while in a debug build).
 #[test]
-#[cfg_attr(debug_assertions, ignore)]
+#[cfg_attr(not(heavy_tests), ignore)]
 fn p2_finite_thick_coil_converges_at_third_order() {
     let study = thick_coil_study(ElementOrder::P2, 4, true);
     let p1 = thick_coil_study(ElementOrder::P1, 2, true);
@@ -1022,7 +1022,7 @@ fn pot_core_with_gap(
 /// singular there, so neither order reaches its smooth-field rate; P2 is still more accurate at
 /// every size. Release only (the reference takes about 10 s and 1.3 GB).
 #[test]
-#[cfg_attr(debug_assertions, ignore)]
+#[cfg_attr(not(heavy_tests), ignore)]
 fn p2_pays_in_the_gap_and_on_the_axis_at_equal_unknowns() {
     let current = 2.0;
     // Axis probes off the mesh lines of every density used (z lines at multiples of 1/6 and 1/8 mm).

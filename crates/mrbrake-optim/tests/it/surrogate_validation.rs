@@ -189,7 +189,7 @@ fn six_unit_variables() -> Vec<Bounds> {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: 150-evaluation Bayesian optimisation runs")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: 150-evaluation Bayesian optimisation runs")]
 fn zdt1_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
     let front = true_front(|t| Some(1.0 - t.sqrt()), (0.0, 1.0));
     let outcome = compare("ZDT1", 1, six_unit_variables(), zdt1, &front);
@@ -197,7 +197,7 @@ fn zdt1_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: 150-evaluation Bayesian optimisation runs")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: 150-evaluation Bayesian optimisation runs")]
 fn zdt2_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
     let front = true_front(|t| Some(1.0 - t * t), (0.0, 1.0));
     let outcome = compare("ZDT2", 1, six_unit_variables(), zdt2, &front);
@@ -205,7 +205,7 @@ fn zdt2_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: 150-evaluation Bayesian optimisation runs")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: 150-evaluation Bayesian optimisation runs")]
 fn zdt3_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
     let f2 = |t: f64| 1.0 - t.sqrt() - t * (10.0 * std::f64::consts::PI * t).sin();
     let front = true_front(|t| Some(f2(t)), (0.0, 1.0));
@@ -214,7 +214,7 @@ fn zdt3_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: 150-evaluation Bayesian optimisation runs")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: 150-evaluation Bayesian optimisation runs")]
 fn batches_of_four_still_reach_95_percent_on_zdt1_and_tnk() {
     // Four designs per iteration (a study on four cores or a Slurm array): the kriging believer
     // spreads them, at some cost in evaluations.
@@ -228,7 +228,7 @@ fn batches_of_four_still_reach_95_percent_on_zdt1_and_tnk() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: 150-evaluation Bayesian optimisation runs")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: 150-evaluation Bayesian optimisation runs")]
 fn constrained_tnk_reaches_95_percent_of_the_true_hypervolume_in_150_evaluations() {
     let front = true_front(tnk_lowest, (0.0, 1.2));
     let bounds = vec![Bounds::continuous(0.0, std::f64::consts::PI); 2];

@@ -70,7 +70,7 @@ fn rig_characterize_recovers_branches_three_repetitions() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore)]
+#[cfg_attr(not(heavy_tests), ignore)]
 fn rig_characterize_recovers_branches_full_protocol() {
     check_characterization(&RigConfig::default());
 }
@@ -107,7 +107,7 @@ fn identify(config: &RigConfig, delay_s: f64) -> (TransferFunction, Vec<f64>) {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore)]
+#[cfg_attr(not(heavy_tests), ignore)]
 fn rig_freqresp_tfest_recovers_dynamics() {
     let truth = TransferFunction::new(vec![1.0], vec![1.791e-5, 0.01702, 1.0]).unwrap();
     let true_corners = truth.corner_frequencies_rad_s().unwrap();

@@ -84,7 +84,7 @@ fn ishigami_indices_within_0_02_at_256_samples() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "release only: a degree-12 basis on 1024 samples")]
+#[cfg_attr(not(heavy_tests), ignore = "release only: a degree-12 basis on 1024 samples")]
 fn ishigami_indices_converge_at_1024_samples() {
     // With four times the samples the selected basis reaches degree 12 and the indices are within
     // 0.002 (observed ~1e-5), the LOO error below 1e-4.
