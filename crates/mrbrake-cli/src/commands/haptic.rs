@@ -251,8 +251,9 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> CommandResult<HapticConfi
         let duration = parse(&args.demag_duration, Dimension::Time).context("--demag-duration")?;
         let text = std::fs::read_to_string(path)
             .map_err(|e| InputError(format!("--remanence {}: {e}", path.display())))?;
-        let remanence = PlantRemanence::from_analysis_json(&text, args.demag_release.then_some(duration))
-            .map_err(|e| InputError(format!("--remanence {}: {e}", path.display())))?;
+        let remanence =
+            PlantRemanence::from_analysis_json(&text, args.demag_release.then_some(duration))
+                .map_err(|e| InputError(format!("--remanence {}: {e}", path.display())))?;
         config.remanence = Some(remanence);
         // With a Preisach brake model the table magnetises; a remanence without its release is
         // refused (it would count the remanence twice): the library's "remanence" is this flag.

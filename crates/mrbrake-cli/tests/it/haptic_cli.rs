@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use common::{json, mrbrake, number};
+use common::{expect_input_error, json, mrbrake, number, path_str};
 
 fn wall(device: &str) -> serde_json::Value {
     let v = json(&["haptic", "wall", "--device", device, "--json"]);
@@ -151,10 +151,21 @@ fn preisach_model_file(
 fn a_preisach_brake_model_runs_and_its_remanence_is_felt_after_the_wall() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let wall = |path: &std::path::Path| {
-        json(&["haptic", "wall", "--device", "bidirectional", "--brake-model", path_str(path), "--json"])
+        json(&[
+            "haptic",
+            "wall",
+            "--device",
+            "bidirectional",
+            "--brake-model",
+            path_str(path),
+            "--json",
+        ])
     };
     let (low, high) = (0.1, 0.3);
-    let (a, b) = (wall(&preisach_model_file(dir.path(), low, |_| {})), wall(&preisach_model_file(dir.path(), high, |_| {})));
+    let (a, b) = (
+        wall(&preisach_model_file(dir.path(), low, |_| {})),
+        wall(&preisach_model_file(dir.path(), high, |_| {})),
+    );
     for v in [&a, &b] {
         assert!(number(v, "current_peak_A") > 0.5, "{v}");
         assert_eq!(v["passive"], true, "{v}");
@@ -177,7 +188,8 @@ fn a_bad_preisach_table_or_a_doubled_remanence_is_exit_2_naming_the_field() {
     // NaN is not JSON: a table with it is refused where it stands.
     let text = std::fs::read_to_string(preisach_model_file(dir.path(), 0.2, |_| {})).unwrap();
     let nan = dir.path().join("nan.json");
-    std::fs::write(&nan, text.replacen("\"everett_Nm\":[[0.0]", "\"everett_Nm\":[[NaN]", 1)).unwrap();
+    std::fs::write(&nan, text.replacen("\"everett_Nm\":[[0.0]", "\"everett_Nm\":[[NaN]", 1))
+        .unwrap();
     let args = ["haptic", "wall", "--device", "bidirectional", "--brake-model", path_str(&nan)];
     expect_input_error(&args, &["nan.json"]);
     // The table holds the remanence: --remanence without its release would add it twice.
@@ -186,8 +198,14 @@ fn a_bad_preisach_table_or_a_doubled_remanence_is_exit_2_naming_the_field() {
     std::fs::write(&demag, r#"{"hysteresis": {"remanent_torque_Nm": 0.1, "peak_current_A": 2.0}}"#)
         .unwrap();
     let args = [
-        "haptic", "wall", "--device", "bidirectional", "--brake-model", path_str(&good),
-        "--remanence", path_str(&demag),
+        "haptic",
+        "wall",
+        "--device",
+        "bidirectional",
+        "--brake-model",
+        path_str(&good),
+        "--remanence",
+        path_str(&demag),
     ];
     expect_input_error(&args, &["--remanence", "twice"]);
 }

@@ -128,7 +128,11 @@ impl PreisachBrake {
     /// switched on, `E(i, 0) / E(I_max, 0)` in `[0, 1]` (1 for a table without relays).
     pub fn rising_share(&self, current_a: f64) -> f64 {
         let full = self.model.everett_nm(self.model.current_max_a(), 0.0);
-        if full > 0.0 { (self.model.everett_nm(current_a, 0.0) / full).clamp(0.0, 1.0) } else { 1.0 }
+        if full > 0.0 {
+            (self.model.everett_nm(current_a, 0.0) / full).clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
     }
 }
 
