@@ -102,10 +102,10 @@ impl PlantRemanence {
             .map_err(|e| FieldError::new("", format!("not JSON: {e}")))?;
         let number = |pointer: &str| {
             value.pointer(pointer).and_then(serde_json::Value::as_f64).ok_or_else(|| {
-                FieldError::new(
+                SimError::from(FieldError::new(
                     pointer,
                     "no number here (the JSON of `mrbrake analyze --hysteresis --demag --json`)",
-                )
+                ))
             })
         };
         let remanent_torque_nm = number("/hysteresis/remanent_torque_Nm")?;

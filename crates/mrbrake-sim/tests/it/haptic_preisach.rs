@@ -4,14 +4,14 @@
 //! remanence that would count the table's twice and a bad table are refused, and a model without
 //! a table keeps the clamp plant.
 
-use mrbrake_control::{Branch, DemagSettings, DemagWaveform};
+use crate::haptic_demag::remanence as release;
+use mrbrake_control::Branch;
 use mrbrake_sim::brake_model::apply::{apply_to_haptic, apply_to_rig};
 use mrbrake_sim::brake_model::prototype::haptic_prototype;
 use mrbrake_sim::brake_model::{BrakeModel, Hysteresis};
 use mrbrake_sim::haptic::brake::{BrakeState, PreisachBrake};
 use mrbrake_sim::haptic::{
-    BrakePlant, DeviceKind, HapticConfig, PlantRemanence, ReleaseModel, RemanenceState, Scenario,
-    simulate,
+    BrakePlant, DeviceKind, HapticConfig, RemanenceState, Scenario, simulate,
 };
 use mrbrake_sim::rig::RigConfig;
 use mrbrake_sim::rig::everett::EverettTable;
@@ -167,41 +167,24 @@ fn a_minor_loop_closes_and_is_wiped_out() {
     assert_eq!(s.preisach.as_ref().unwrap().turning_points().len(), 2);
 }
 
-/// The remanence of the demag tests: `R₀` after 2 A, a 0.4 A reverse pulse leaving `ρ`.
-fn release(fraction: f64) -> PlantRemanence {
-    PlantRemanence {
-        remanent_torque_nm: 0.5,
-        reference_peak_a: 2.0,
-        release: Some(ReleaseModel {
-            settings: DemagSettings {
-                waveform: DemagWaveform::ReversePulse { amplitude_a: 0.4, duration_s: 5e-3 },
-                reverse_limit_a: 1.0,
-                arm_above_nm: 0.5,
-                release_below_nm: 0.0,
-                reference_peak_a: 2.0,
-            },
-            remanence_fraction: fraction,
-        }),
-    }
-}
-
 #[test]
 fn the_release_removes_its_share_of_the_tables_remanence_until_a_full_peak() {
     let config = haptic(&preisach_model(), DeviceKind::Conventional);
     let brake = &config.brakes[0];
     let preisach = brake.preisach.as_ref().unwrap();
-    let remanence = release(0.25);
+    // R₀ = 0.175 N·m after 2 A, a 0.3 A reverse pulse leaving ρ = 1/4.
+    let remanence = release(Some(0.25));
     let (mut s, mut r) = (brake.rest_state(), RemanenceState::default());
     let apply = |i: f64, s: &mut BrakeState, r: &mut RemanenceState| {
         remanence.apply_current(brake, s, r, i);
         s.static_torque_nm
     };
-    // Magnetising comes from the table: R₀ = 0.5 N·m of the remanence file is not added.
+    // Magnetising comes from the table: R₀ of the remanence file is not added.
     apply(2.0, &mut s, &mut r);
     let at_zero = apply(0.0, &mut s, &mut r);
     assert!((at_zero - (REMANENT_NM + SEAL_NM)).abs() < 1e-12, "{at_zero}");
-    // The full pulse (0.4 A after the 2 A reference peak) leaves ρ of the table's remanence.
-    apply(-0.4, &mut s, &mut r);
+    // The full pulse (0.3 A after the 2 A reference peak) leaves ρ of the table's remanence.
+    apply(-0.3, &mut s, &mut r);
     let left = apply(0.0, &mut s, &mut r);
     assert!((left - (SEAL_NM + 0.25 * REMANENT_NM)).abs() < 1e-12, "{left}");
     assert!((r.remanent_nm() - 0.25 * REMANENT_NM).abs() < 1e-12);
@@ -226,10 +209,10 @@ fn the_release_removes_its_share_of_the_tables_remanence_until_a_full_peak() {
 #[test]
 fn a_remanence_without_release_on_a_preisach_brake_is_refused() {
     let mut config = haptic(&preisach_model(), DeviceKind::Bidirectional);
-    config.remanence = Some(PlantRemanence { release: None, ..release(0.1) });
+    config.remanence = Some(release(None));
     let e = config.validate().unwrap_err().to_string();
     assert!(e.starts_with("remanence: ") && e.contains("twice"), "{e}");
-    config.remanence = Some(release(0.1));
+    config.remanence = Some(release(Some(0.1)));
     config.validate().unwrap();
 }
 
