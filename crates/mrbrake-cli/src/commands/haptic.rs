@@ -5,7 +5,6 @@ use std::path::PathBuf;
 
 use crate::error::{Context, InputError};
 use clap::{Args, Subcommand, ValueEnum};
-use mrbrake::control::{DemagSettings, DemagWaveform};
 use mrbrake::observe::{Count, Flow};
 use mrbrake::report::haptic::{
     save_zwidth_plot, trace_csv, wall_metrics_text, wall_plot_title, wall_runs_figure,
@@ -15,7 +14,7 @@ use mrbrake::sim::brake_model::BrakeModel;
 use mrbrake::sim::brake_model::apply::apply_to_haptic;
 use mrbrake::sim::haptic::zwidth::{ZWidthConfig, sweep};
 use mrbrake::sim::haptic::{
-    DeviceKind, HapticConfig, HapticRun, PlantRemanence, ReleaseModel, Scenario, simulate,
+    DeviceKind, HapticConfig, HapticRun, PlantRemanence, Scenario, simulate,
 };
 use mrbrake::sysid::model_file::read_inverse_model;
 use mrbrake::units::{Dimension, parse};
@@ -118,6 +117,8 @@ pub struct WallArgs {
     /// The steel's predicted remanence in the plant: the JSON of `mrbrake analyze --hysteresis
     /// --demag --json` (its remanent torque after the peak; with --demag-release, the chosen
     /// reverse pulse and the share of the remanence it leaves). See `mrbrake::sim::haptic::remanence`.
+    /// With a --brake-model that has a Preisach table, the table holds the remanence: only
+    /// --remanence with --demag-release is accepted (the release's part).
     #[arg(long, value_name = "ANALYSIS.json")]
     remanence: Option<PathBuf>,
     /// With --remanence: the controller drives each released brake through the predicted reverse
@@ -250,51 +251,15 @@ fn wall_config(args: &WallArgs, device: DeviceKind) -> CommandResult<HapticConfi
         let duration = parse(&args.demag_duration, Dimension::Time).context("--demag-duration")?;
         let text = std::fs::read_to_string(path)
             .map_err(|e| InputError(format!("--remanence {}: {e}", path.display())))?;
-        let remanence = plant_remanence(&text, args.demag_release.then_some(duration))
-            .map_err(|e| InputError(format!("--remanence {}: {e}", path.display())))?;
+        let remanence =
+            PlantRemanence::from_analysis_json(&text, args.demag_release.then_some(duration))
+                .map_err(|e| InputError(format!("--remanence {}: {e}", path.display())))?;
         config.remanence = Some(remanence);
-        config.validate()?;
+        // With a Preisach brake model the table magnetises; a remanence without its release is
+        // refused (it would count the remanence twice): the library's "remanence" is this flag.
+        config.validate().map_err(|e| e.with_field_names(&[("remanence", "--remanence")]))?;
     }
     Ok(config)
-}
-
-/// A number of the analysis JSON at `pointer`, or what is missing.
-fn number_at(value: &serde_json::Value, pointer: &str) -> Result<f64, String> {
-    value.pointer(pointer).and_then(serde_json::Value::as_f64).ok_or_else(|| {
-        format!(
-            "no number at {pointer} (the JSON of `mrbrake analyze --hysteresis --demag --json`)"
-        )
-    })
-}
-
-/// The plant's remanence from `analyze --hysteresis --demag --json` output `text`; with
-/// `pulse_duration_s`, the chosen reverse pulse as the controller's release (armed above the
-/// remanent torque: a smaller demand leaves less than the remanence it would remove).
-fn plant_remanence(text: &str, pulse_duration_s: Option<f64>) -> Result<PlantRemanence, String> {
-    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
-    let remanent_torque_nm = number_at(&value, "/hysteresis/remanent_torque_Nm")?;
-    let reference_peak_a = number_at(&value, "/hysteresis/peak_current_A")?;
-    let release = match pulse_duration_s {
-        Some(duration_s) => {
-            let chosen = "/hysteresis/demagnetisation/chosen_pulse";
-            let amplitude_a = number_at(&value, &format!("{chosen}/release/amplitude_A"))?;
-            Some(ReleaseModel {
-                settings: DemagSettings {
-                    waveform: DemagWaveform::ReversePulse { amplitude_a, duration_s },
-                    reverse_limit_a: number_at(
-                        &value,
-                        "/hysteresis/demagnetisation/reverse_limit_A",
-                    )?,
-                    arm_above_nm: remanent_torque_nm.max(1e-6),
-                    release_below_nm: 0.0,
-                    reference_peak_a,
-                },
-                remanence_fraction: number_at(&value, &format!("{chosen}/remanence_fraction"))?,
-            })
-        }
-        None => None,
-    };
-    Ok(PlantRemanence { remanent_torque_nm, reference_peak_a, release })
 }
 
 fn wall(args: WallArgs) -> CommandResult {

@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use common::{json, mrbrake, number};
+use common::{expect_input_error, json, mrbrake, number, path_str};
 
 fn wall(device: &str) -> serde_json::Value {
     let v = json(&["haptic", "wall", "--device", device, "--json"]);
@@ -114,4 +114,98 @@ fn bad_duration_exits_2() {
         assert!(err.contains("--duration") && err.contains(duration), "{err}");
         assert!(!err.contains("panicked"), "{err}");
     }
+}
+
+/// The prototype brake model with a Preisach table on both units: a uniform density
+/// (`E(α, β) = ½ c (α − β)²`) on 8 levels of `[0, 2]` A whose reference state keeps
+/// `remanent_nm` at 0 A; `edit` changes its `everett_Nm` (as JSON) before it is written.
+fn preisach_model_file(
+    dir: &std::path::Path,
+    remanent_nm: f64,
+    edit: impl Fn(&mut serde_json::Value),
+) -> std::path::PathBuf {
+    let mut model = serde_json::to_value(mrbrake::sim::brake_model::prototype::haptic_prototype())
+        .expect("the model serialises");
+    let levels: Vec<f64> = (0..=8).map(|k| 0.25 * f64::from(k)).collect();
+    let everett = |a: f64, b: f64| 0.25 * (a - b) * (a - b);
+    let mut hysteresis = serde_json::json!({
+        "kind": "preisach",
+        "levels_A": levels,
+        "rising_Nm": levels.iter().map(|a| remanent_nm + 1.5 * a + everett(*a, 0.0)).collect::<Vec<_>>(),
+        "everett_Nm": levels.iter().enumerate()
+            .map(|(k, a)| levels[..=k].iter().map(|b| everett(*a, *b)).collect::<Vec<_>>())
+            .collect::<Vec<_>>(),
+        "source": "test: uniform density",
+    });
+    edit(&mut hysteresis["everett_Nm"]);
+    for unit in model["units"].as_array_mut().expect("units") {
+        unit["current_max_A"] = 2.0.into();
+        unit["hysteresis"] = hysteresis.clone();
+    }
+    let path = dir.join(format!("preisach-{remanent_nm}.json"));
+    std::fs::write(&path, model.to_string()).expect("the model is written");
+    path
+}
+
+#[test]
+fn a_preisach_brake_model_runs_and_its_remanence_is_felt_after_the_wall() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let wall = |path: &std::path::Path| {
+        json(&[
+            "haptic",
+            "wall",
+            "--device",
+            "bidirectional",
+            "--brake-model",
+            path_str(path),
+            "--json",
+        ])
+    };
+    let (low, high) = (0.1, 0.3);
+    let (a, b) = (
+        wall(&preisach_model_file(dir.path(), low, |_| {})),
+        wall(&preisach_model_file(dir.path(), high, |_| {})),
+    );
+    for v in [&a, &b] {
+        assert!(number(v, "current_peak_A") > 0.5, "{v}");
+        assert_eq!(v["passive"], true, "{v}");
+    }
+    // After the wall brake 1 (toward the wall, lag gain 1) is back at 0 A: its drag is the
+    // table's remanent torque at 0 A, so the two tables differ by their remanence there.
+    let inward = |v: &serde_json::Value| number(&v["drag_after_Nm"], "inward");
+    let difference = inward(&b) - inward(&a);
+    assert!((difference - (high - low)).abs() < 1e-6, "{difference}: {a}\n{b}");
+    assert!(inward(&a) >= low, "{a}");
+}
+
+#[test]
+fn a_bad_preisach_table_or_a_doubled_remanence_is_exit_2_naming_the_field() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    // A dip in E(α, β) along α: a negative Preisach weight.
+    let bad = preisach_model_file(dir.path(), 0.2, |e| e[5][1] = 2.0.into());
+    let args = ["haptic", "wall", "--device", "bidirectional", "--brake-model", path_str(&bad)];
+    expect_input_error(&args, &["units[0].hysteresis.everett_Nm["]);
+    // NaN is not JSON: a table with it is refused where it stands.
+    let text = std::fs::read_to_string(preisach_model_file(dir.path(), 0.2, |_| {})).unwrap();
+    let nan = dir.path().join("nan.json");
+    std::fs::write(&nan, text.replacen("\"everett_Nm\":[[0.0]", "\"everett_Nm\":[[NaN]", 1))
+        .unwrap();
+    let args = ["haptic", "wall", "--device", "bidirectional", "--brake-model", path_str(&nan)];
+    expect_input_error(&args, &["nan.json"]);
+    // The table holds the remanence: --remanence without its release would add it twice.
+    let good = preisach_model_file(dir.path(), 0.2, |_| {});
+    let demag = dir.path().join("demag.json");
+    std::fs::write(&demag, r#"{"hysteresis": {"remanent_torque_Nm": 0.1, "peak_current_A": 2.0}}"#)
+        .unwrap();
+    let args = [
+        "haptic",
+        "wall",
+        "--device",
+        "bidirectional",
+        "--brake-model",
+        path_str(&good),
+        "--remanence",
+        path_str(&demag),
+    ];
+    expect_input_error(&args, &["--remanence", "twice"]);
 }

@@ -7,6 +7,7 @@ use mrbrake_control::{Branch, InverseModel};
 
 use super::{BrakeModel, UnitBranches, UnitModel};
 use crate::SimError;
+use crate::haptic::brake::PreisachBrake;
 use crate::haptic::{HapticConfig, TorqueLag};
 use crate::rig::RigConfig;
 
@@ -59,7 +60,9 @@ fn torque_lag(unit: &UnitModel) -> Result<Option<TorqueLag>, SimError> {
 }
 
 /// Runs the haptic device on `model`: brake 1 on unit 1, brake 2 on unit 2 (a single-unit model
-/// drives both), in the plant and in the controller; the units' lags where the model has dynamics
+/// drives both), in the plant and in the controller (a unit with a `preisach` table: the plant
+/// runs the Preisach model itself, the controller its major loop's fitted branches,
+/// [`crate::haptic::brake`]); the units' lags where the model has dynamics
 /// (else the thesis's (5.5)/(5.6) stay), the viscous coefficient of unit 1 added to the device's
 /// viscous friction for an anhysteretic model, and the device's inertia `J` the model's rotor
 /// inertia ([`rotor_inertia`]).
@@ -79,14 +82,21 @@ pub fn apply_to_haptic(
         let branches = unit.branches()?;
         if k == 0 || model.units.len() == 2 {
             notes.extend(branch_note(unit, &branches));
-            if unit.hysteresis.everett().is_some() {
-                notes.push(format!(
-                    "brake {}: the haptic plant runs the play-type clamp between the Preisach model's major-loop branches (its minor loops are the rig's only)",
-                    k + 1
-                ));
-            }
         }
         config.brakes[k].branches = branches.model;
+        config.brakes[k].preisach = match unit.hysteresis.everett() {
+            Some(table) => {
+                let friction_nm = unit.off_state.seal_friction_nm;
+                let plant = PreisachBrake::from_table(&table, friction_nm).map_err(|e| {
+                    mrbrake_error::FieldError::new(
+                        format!("units[{}].hysteresis", unit.unit - 1),
+                        e.to_string(),
+                    )
+                })?;
+                Some(plant)
+            }
+            None => None,
+        };
         config.controller_models[k] = branches.model;
         match torque_lag(unit)? {
             Some(lag) => config.brakes[k].lag = lag,

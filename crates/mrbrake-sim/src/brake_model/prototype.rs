@@ -161,7 +161,7 @@ mod tests {
     fn the_prototype_files_configure_the_simulators_exactly_as_the_defaults() {
         for device in DeviceKind::ALL {
             let default = HapticConfig::new(device, Scenario::PressWithdraw);
-            let mut from_file = default;
+            let mut from_file = default.clone();
             let notes = apply_to_haptic(&haptic_prototype(), &mut from_file).unwrap();
             assert_eq!(from_file, default);
             assert!(notes.is_empty(), "{notes:?}");

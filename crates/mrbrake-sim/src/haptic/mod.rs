@@ -5,9 +5,11 @@
 //! [`Scenario`], virtual wall, [`BrakePlant`]s and the controller's inverse models) is run by
 //! [`simulate()`], which closes the loop around the `no_std` controller of `mrbrake-control` at 1 kHz
 //! with zero-order hold and integrates the plant on a finer step; it returns [`WallMetrics`] and,
-//! optionally, a [`Trace`]. [`remanence`] adds the steel's predicted remanent torque to the plant
-//! and the controller's demagnetising release that removes it. [`zwidth`] sweeps stiffness and damping and classifies each pair as
-//! passive, stable or unstable. [`prototype`] holds the built-in prototype-like branches; an
+//! optionally, a [`Trace`]. A brake whose model carries a Preisach table runs it
+//! ([`PreisachBrake`], the rig's Preisach operator), any other the clamp between its branches.
+//! [`remanence`] adds the steel's predicted remanent torque to the plant and the controller's
+//! demagnetising release that removes it. [`zwidth`] sweeps stiffness and damping and classifies
+//! each pair as passive, stable or unstable. [`prototype`] holds the built-in prototype-like branches; an
 //! identified model is read with [`mrbrake_sysid::model_file::read_inverse_model`].
 
 pub mod bearing;
@@ -21,7 +23,7 @@ pub mod scenario;
 pub mod simulate;
 pub mod zwidth;
 
-pub use brake::{BrakePlant, TorqueLag};
+pub use brake::{BrakePlant, PreisachBrake, TorqueLag};
 pub use device::{DeviceKind, DeviceParameters};
 pub use hand::HandModel;
 pub use metrics::{DragAfter, PeakMean, WallMetrics};

@@ -27,11 +27,30 @@
 //! controller never goes beyond `a_ref`); the release model is calibrated for a reverse pulse, a
 //! decaying alternating current's positive half cycles are treated as ordinary current.
 //!
+//! **With a Preisach brake** ([`super::brake::PreisachBrake`]) the table already holds the
+//! magnetising part: its reference state keeps `R = T(0)` (yield) at 0 A after any peak. So `R₀`
+//! and the linear-in-peak rule are not used (adding them would count the remanence twice; a
+//! remanence without a release is refused by [`super::HapticConfig::validate`]); only the release
+//! is, on the Preisach torque `T_P(i)` (the current clamped to `[0, I_max]`, friction `f`):
+//!
+//! * **Reverse current**: as above, with the magnetic part `m = T_s − f` at 0 A (the demagnetised
+//!   brake's torque at 0 A is its friction) and `T_s = f + m·(1 − (1 − ρ) min(d/a_ref, 1))`.
+//! * **After the release** the steel lies below the table's reference state by the deficit
+//!   `D = R − (T_s − f)`: in a bipolar Preisach picture the pulse switched off relays with
+//!   thresholds `β ∈ [−a, 0)`, which the unipolar table does not resolve. They switch on again as
+//!   the current rises past their `α`; the plant assumes them distributed over `α` as the table's
+//!   relays switched on along its rising branch, so a peak `I_pk` since the release restores the
+//!   share `g(I_pk) = E(I_pk, 0)/E(I_max, 0)` of `D`:
+//!   `T_s = max(f, T_P(i) − D (1 − g(I_pk)))`. A peak at `I_max` restores the reference state.
+//!
 //! Without a [`PlantRemanence`] the plant is exactly [`super::brake::BrakePlant::apply_current`].
 
 use mrbrake_control::{Branch, DemagSettings, DemagWaveform};
 
-use super::brake::{BrakePlant, BrakeState};
+use mrbrake_error::FieldError;
+
+use super::brake::{BrakePlant, BrakeState, PreisachBrake};
+use crate::SimError;
 
 /// The demagnetising release of a run: the controller's settings and what the FEA predicts it leaves.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -62,6 +81,8 @@ pub struct RemanenceState {
     remanent_nm: f64,
     /// During a reverse excursion: the magnetic part at its start and the depth so far.
     excursion: Option<(f64, f64)>,
+    /// Preisach brake: the remanence the last release removed from the reference state, N·m.
+    deficit_nm: f64,
 }
 
 impl RemanenceState {
@@ -72,6 +93,43 @@ impl RemanenceState {
 }
 
 impl PlantRemanence {
+    /// The plant's remanence from the JSON `text` of `mrbrake analyze --hysteresis --demag --json`
+    /// (its remanent torque after the peak); with `pulse_duration_s`, the chosen reverse pulse as
+    /// the controller's release (armed above the remanent torque: a smaller demand leaves less than
+    /// the remanence it would remove). An error names the missing JSON pointer.
+    pub fn from_analysis_json(text: &str, pulse_duration_s: Option<f64>) -> Result<Self, SimError> {
+        let value: serde_json::Value = serde_json::from_str(text)
+            .map_err(|e| FieldError::new("", format!("not JSON: {e}")))?;
+        let number = |pointer: &str| {
+            value.pointer(pointer).and_then(serde_json::Value::as_f64).ok_or_else(|| {
+                SimError::from(FieldError::new(
+                    pointer,
+                    "no number here (the JSON of `mrbrake analyze --hysteresis --demag --json`)",
+                ))
+            })
+        };
+        let remanent_torque_nm = number("/hysteresis/remanent_torque_Nm")?;
+        let reference_peak_a = number("/hysteresis/peak_current_A")?;
+        let release = match pulse_duration_s {
+            Some(duration_s) => {
+                let chosen = "/hysteresis/demagnetisation/chosen_pulse";
+                let amplitude_a = number(&format!("{chosen}/release/amplitude_A"))?;
+                Some(ReleaseModel {
+                    settings: DemagSettings {
+                        waveform: DemagWaveform::ReversePulse { amplitude_a, duration_s },
+                        reverse_limit_a: number("/hysteresis/demagnetisation/reverse_limit_A")?,
+                        arm_above_nm: remanent_torque_nm.max(1e-6),
+                        release_below_nm: 0.0,
+                        reference_peak_a,
+                    },
+                    remanence_fraction: number(&format!("{chosen}/remanence_fraction"))?,
+                })
+            }
+            None => None,
+        };
+        Ok(Self { remanent_torque_nm, reference_peak_a, release })
+    }
+
     /// The amplitude `a*` of the release's waveform (its first reverse amplitude), A.
     fn release_amplitude_a(release: &ReleaseModel) -> f64 {
         match release.settings.waveform {
@@ -89,6 +147,9 @@ impl PlantRemanence {
         remanence: &mut RemanenceState,
         current_a: f64,
     ) {
+        if let Some(preisach) = &brake.preisach {
+            return self.apply_preisach(preisach, state, remanence, current_a);
+        }
         let rest_nm = brake.branches.torque_nm(Branch::Rising, brake.branches.current_min_a());
         if current_a < 0.0 {
             let Some(release) = &self.release else {
@@ -99,15 +160,7 @@ impl PlantRemanence {
                 // The coil current passes through 0 A on its way to the reverse pulse.
                 self.apply_current(brake, state, remanence, 0.0);
             }
-            let (magnetic, depth) =
-                remanence.excursion.unwrap_or(((state.static_torque_nm - rest_nm).max(0.0), 0.0));
-            let depth = depth.max(-current_a);
-            remanence.excursion = Some((magnetic, depth));
-            let scale = (remanence.peak_current_a / self.reference_peak_a).clamp(0.0, 1.0);
-            let reference = Self::release_amplitude_a(release) * scale;
-            let reached = if reference > 0.0 { (depth / reference).min(1.0) } else { 1.0 };
-            let fraction = 1.0 - (1.0 - release.remanence_fraction) * reached;
-            state.static_torque_nm = rest_nm + magnetic * fraction;
+            self.reverse_excursion(release, state, remanence, rest_nm, current_a);
             return;
         }
         if remanence.excursion.take().is_some() {
@@ -126,6 +179,64 @@ impl PlantRemanence {
             brake.branches.torque_nm(Branch::Falling, current_a) + remanence.remanent_nm * fade;
         state.static_torque_nm = state.static_torque_nm.max(lower).min(upper.max(lower));
     }
+
+    /// A reverse current `current_a < 0` during a release (module docs): the static torque recoils
+    /// from `floor_nm` plus the magnetic part at the excursion's start towards `ρ` of it.
+    fn reverse_excursion(
+        &self,
+        release: &ReleaseModel,
+        state: &mut BrakeState,
+        remanence: &mut RemanenceState,
+        floor_nm: f64,
+        current_a: f64,
+    ) {
+        let (magnetic, depth) =
+            remanence.excursion.unwrap_or(((state.static_torque_nm - floor_nm).max(0.0), 0.0));
+        let depth = depth.max(-current_a);
+        remanence.excursion = Some((magnetic, depth));
+        let scale = (remanence.peak_current_a / self.reference_peak_a).clamp(0.0, 1.0);
+        let reference = Self::release_amplitude_a(release) * scale;
+        let reached = if reference > 0.0 { (depth / reference).min(1.0) } else { 1.0 };
+        let fraction = 1.0 - (1.0 - release.remanence_fraction) * reached;
+        state.static_torque_nm = floor_nm + magnetic * fraction;
+    }
+
+    /// [`Self::apply_current`] on a Preisach brake (module docs: the table magnetises, the
+    /// release model demagnetises).
+    fn apply_preisach(
+        &self,
+        preisach: &PreisachBrake,
+        state: &mut BrakeState,
+        remanence: &mut RemanenceState,
+        current_a: f64,
+    ) {
+        let floor_nm = preisach.friction_nm;
+        if let (true, Some(release)) = (current_a < 0.0, &self.release) {
+            if remanence.excursion.is_none() {
+                self.apply_preisach(preisach, state, remanence, 0.0);
+            }
+            self.reverse_excursion(release, state, remanence, floor_nm, current_a);
+            return;
+        }
+        if remanence.excursion.take().is_some() {
+            let left = (state.static_torque_nm - floor_nm).max(0.0);
+            remanence.deficit_nm = (preisach.remanent_nm - left).max(0.0);
+            remanence.peak_current_a = 0.0;
+        }
+        let current_a = current_a.max(0.0);
+        remanence.peak_current_a = remanence.peak_current_a.max(current_a);
+        let missing = if remanence.deficit_nm > 0.0 {
+            remanence.deficit_nm * (1.0 - preisach.rising_share(remanence.peak_current_a))
+        } else {
+            0.0
+        };
+        remanence.remanent_nm = (preisach.remanent_nm - missing).max(0.0);
+        let Some(memory) = state.preisach.as_mut() else {
+            // A state not made by this brake's `rest_state`: nothing to run.
+            return;
+        };
+        state.static_torque_nm = (memory.torque_nm(current_a) - missing).max(floor_nm);
+    }
 }
 
 #[cfg(test)]
@@ -135,7 +246,7 @@ mod tests {
     use crate::haptic::prototype::prototype_model;
 
     fn brake() -> BrakePlant {
-        BrakePlant { branches: prototype_model(), lag: TorqueLag::BRAKE_1 }
+        BrakePlant::clamp(prototype_model(), TorqueLag::BRAKE_1)
     }
 
     fn pulse(fraction: f64) -> ReleaseModel {

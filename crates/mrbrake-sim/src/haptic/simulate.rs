@@ -28,9 +28,10 @@ use super::prototype::prototype_model;
 use super::remanence::{PlantRemanence, RemanenceState};
 use super::scenario::Scenario;
 use crate::SimError;
+use mrbrake_error::FieldError;
 
 /// Everything that defines one haptic run.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct HapticConfig {
     /// The actuator.
     pub device: DeviceKind,
@@ -46,7 +47,8 @@ pub struct HapticConfig {
     pub wall_stiffness_nm_per_rad: f64,
     /// Virtual wall damping `B`, Nm·s/rad.
     pub wall_damping_nms_per_rad: f64,
-    /// The plant's brakes (brake 1 resists positive motion, brake 2 negative).
+    /// The plant's brakes (brake 1 resists positive motion, brake 2 negative; a brake with a
+    /// Preisach model runs it, [`super::brake`]).
     pub brakes: [BrakePlant; 2],
     /// The inverse models the controller uses (normally the same branches as the plant).
     pub controller_models: [InverseModel; 2],
@@ -77,8 +79,8 @@ impl HapticConfig {
             wall_stiffness_nm_per_rad: 30.0,
             wall_damping_nms_per_rad: 0.02,
             brakes: [
-                BrakePlant { branches: model, lag: TorqueLag::BRAKE_1 },
-                BrakePlant { branches: model, lag: TorqueLag::BRAKE_2 },
+                BrakePlant::clamp(model, TorqueLag::BRAKE_1),
+                BrakePlant::clamp(model, TorqueLag::BRAKE_2),
             ],
             controller_models: [model, model],
             control_period_s: 1e-3,
@@ -89,11 +91,13 @@ impl HapticConfig {
         }
     }
 
-    /// Uses `model` (a characterisation's inverse model) for both brakes, in the plant and in the
-    /// controller, instead of the built-in prototype-like branches.
+    /// Uses `model` (a characterisation's inverse model) for both brakes, in the plant (the clamp
+    /// between its branches) and in the controller, instead of the built-in prototype-like branches.
     pub fn use_inverse_model(&mut self, model: InverseModel) {
-        self.brakes[0].branches = model;
-        self.brakes[1].branches = model;
+        for brake in &mut self.brakes {
+            brake.branches = model;
+            brake.preisach = None;
+        }
         self.controller_models = [model, model];
     }
 
@@ -129,6 +133,15 @@ impl HapticConfig {
             if let Some(release) = &r.release {
                 let fraction = release.remanence_fraction;
                 check("remanence.release.remanence_fraction", fraction, 0.0, 1.0)?;
+            } else if self.brakes.iter().any(|b| b.preisach.is_some()) {
+                return Err(FieldError::new(
+                    "remanence",
+                    "the brake's Preisach table already holds the remanence (its torque at 0 A \
+                     after a peak); a predicted remanence without a demagnetising release would \
+                     add it twice",
+                )
+                .with_allowed("no remanence, or a remanence with its release (the table magnetises, the release model demagnetises)")
+                .into());
             }
         }
         Ok(())
@@ -279,7 +292,7 @@ struct ControlState {
 }
 
 /// The state of the brakes and the shaft.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 struct PlantState {
     brakes: [BrakeState; 2],
     remanence: [RemanenceState; 2],

@@ -318,8 +318,8 @@ pub fn sweep(
     check_config(config)?;
     let model = prototype_model();
     let brakes = [
-        BrakePlant { branches: model, lag: super::brake::TorqueLag::BRAKE_1 },
-        BrakePlant { branches: model, lag: super::brake::TorqueLag::BRAKE_2 },
+        BrakePlant::clamp(model, super::brake::TorqueLag::BRAKE_1),
+        BrakePlant::clamp(model, super::brake::TorqueLag::BRAKE_2),
     ];
     let mut cells = Vec::with_capacity(config.stiffness_points * config.damping_points);
     let total = config.stiffness_points;

@@ -159,7 +159,7 @@ impl HysteresisConfig {
 const MIN_PRIOR_PEAK: f64 = 1e-12;
 
 /// The reversible part `T_rev(u) = T_up(u) − E(u, 0)` of a model.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 enum Reversible {
     /// From the rising branch polynomial (the branch + prior model).
     Rising(Polynomial),
@@ -167,8 +167,15 @@ enum Reversible {
     Nodes(Vec<f64>),
 }
 
-/// The Preisach brake hysteresis: Everett table, reversible part, turning-point memory.
-#[derive(Debug, Clone)]
+/// The Preisach brake hysteresis: Everett table, reversible part, turning-point memory (the one
+/// Preisach operator of the simulators: the virtual rig's plant and the haptic plant,
+/// [`crate::haptic::brake`], run it).
+///
+/// **Cost.** The memory is the staircase of alternating, nested turning points; each
+/// [`Self::torque_nm`] sums the Everett function over it, `O(k)` for `k` remembered points, and
+/// `k ≤` [`MAX_TURNING_POINTS`] whatever the history's length (beyond it the smallest inner loop
+/// is forgotten), so a step's cost is bounded.
+#[derive(Debug, Clone, PartialEq)]
 pub struct PreisachHysteresis {
     levels: usize,
     /// `E` at grid nodes `(a, b)`, index `a·(n+1) + b`; zero for `b ≥ a`.
@@ -301,6 +308,20 @@ impl PreisachHysteresis {
     /// The turning points remembered (normalised input), oldest first.
     pub fn turning_points(&self) -> &[f64] {
         &self.points
+    }
+
+    /// The largest current of the model's range `[0, I_max]`, A.
+    pub fn current_max_a(&self) -> f64 {
+        self.current_max_a
+    }
+
+    /// The Everett function `E(α, β)` at currents `α ≥ β` (each clamped to `[0, I_max]`), N·m:
+    /// the weight of the relays with thresholds `β ≤ β' < α' ≤ α` (module docs), interpolated as
+    /// the torque is.
+    pub fn everett_nm(&self, alpha_a: f64, beta_a: f64) -> f64 {
+        let u = |i: f64| (i / self.current_max_a).clamp(0.0, 1.0);
+        let (alpha, beta) = (u(alpha_a), u(beta_a));
+        if alpha > beta { self.everett_at(alpha, beta) } else { 0.0 }
     }
 
     /// Updates the turning-point stack for the new input `u` (wiping-out included).

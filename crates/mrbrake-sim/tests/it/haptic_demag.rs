@@ -10,7 +10,7 @@ use mrbrake_sim::haptic::*;
 
 /// A remanence like the thesis brake's predicted one (0.175 N·m after 2 A) and, with `fraction`,
 /// a 5 ms reverse pulse of 0.3 A that leaves that share of it.
-fn remanence(fraction: Option<f64>) -> PlantRemanence {
+pub(crate) fn remanence(fraction: Option<f64>) -> PlantRemanence {
     PlantRemanence {
         remanent_torque_nm: 0.175,
         reference_peak_a: 2.0,

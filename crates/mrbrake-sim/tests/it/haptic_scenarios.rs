@@ -53,7 +53,7 @@ fn sliding_inside_the_wall_is_sticky_only_with_the_conventional_brake() {
 fn plant_step_is_converged() {
     for device in [DeviceKind::Conventional, DeviceKind::Bidirectional, DeviceKind::Motor] {
         let coarse = HapticConfig::new(device, Scenario::PressWithdraw);
-        let fine = HapticConfig { substeps: 40, ..coarse };
+        let fine = HapticConfig { substeps: 40, ..coarse.clone() };
         let a = simulate(&coarse, false).unwrap().metrics;
         let b = simulate(&fine, false).unwrap().metrics;
         let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(1e-9);
