@@ -38,7 +38,7 @@ use serde::Serialize;
 
 use crate::DesignError;
 use crate::analysis::{AnalysisOptions, Model};
-use crate::hysteresis::{QuasiStatic, SteelLaw, set_steel_laws};
+use crate::hysteresis::{QuasiStatic, SolveTotals, SteelLaw, set_steel_laws};
 use crate::mesh_build;
 use crate::spec::BrakeSpec;
 
@@ -137,6 +137,8 @@ pub struct ForcSet {
     pub chains: usize,
     /// Field solves in all.
     pub solves: usize,
+    /// Newton iterations and factorisations of the solves, over every chain.
+    pub work: SolveTotals,
     /// Seconds spent.
     pub timings_s: ForcTimings,
 }
@@ -149,6 +151,7 @@ struct ChainResult {
     reference_nm: f64,
     steels: Vec<SteelLaw>,
     solves: usize,
+    work: SolveTotals,
     seconds: f64,
 }
 
@@ -201,7 +204,15 @@ pub fn run(
                 solved.push((k, forc));
             }
             let seconds = chain_start.elapsed().as_secs_f64();
-            Ok(ChainResult { forcs: solved, reference_nm, steels, solves: walk.solves, seconds })
+            let work = walk.steps.totals;
+            Ok(ChainResult {
+                forcs: solved,
+                reference_nm,
+                steels,
+                solves: walk.solves,
+                work,
+                seconds,
+            })
         })
         .collect::<Result<_, DesignError>>()?;
     Ok(gather(levels_a, results, forc_options.steps_per_level, start))
@@ -233,6 +244,11 @@ fn gather(
         steps_per_level,
         chains: results.len(),
         solves: results.iter().map(|r| r.solves).sum(),
+        work: SolveTotals {
+            newton_iterations: results.iter().map(|r| r.work.newton_iterations).sum(),
+            factorizations: results.iter().map(|r| r.work.factorizations).sum(),
+            ..SolveTotals::default()
+        },
         timings_s: ForcTimings {
             wall: start.elapsed().as_secs_f64(),
             chains: results.iter().map(|r| r.seconds).sum(),

@@ -119,6 +119,9 @@ pub struct LoopPoint {
     pub mean_b_t: f64,
     /// Newton iterations of the step.
     pub newton_iterations: usize,
+    /// Numeric Cholesky factorisations of the step (the other Newton steps were solved by
+    /// conjugate gradients preconditioned with an earlier factor).
+    pub factorizations: usize,
     /// Energy the step dissipated in the steel, J.
     #[serde(rename = "dissipated_J")]
     pub dissipated_j: f64,
@@ -340,6 +343,7 @@ fn solve_program(
         yield_torque_nm: 0.0,
         mean_b_t: 0.0,
         newton_iterations: 0,
+        factorizations: 0,
         dissipated_j: 0.0,
     });
     for (k, &(leg, current)) in currents.iter().enumerate() {
@@ -357,6 +361,7 @@ fn solve_program(
             yield_torque_nm: point.yield_torque_nm,
             mean_b_t: point.mean_b_t,
             newton_iterations: point.newton_iterations,
+            factorizations: steps.last_factorizations(),
             dissipated_j: commit.dissipated_j,
         });
     }
@@ -381,6 +386,21 @@ pub(crate) struct QuasiStatic {
     before: Option<(f64, Solution)>,
     /// The predicted start (reused storage).
     start: Vec<f64>,
+    /// Newton iterations and numeric factorisations of every step so far.
+    pub(crate) totals: SolveTotals,
+}
+
+/// Newton iterations and numeric factorisations of a sequence of solves (the work measure of the
+/// quasi-static histories: [`LoopPoint::factorizations`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct SolveTotals {
+    /// Newton iterations.
+    pub newton_iterations: usize,
+    /// Numeric Cholesky factorisations.
+    pub factorizations: usize,
+    /// Factorisations of the last solve.
+    #[serde(skip)]
+    pub(crate) last_factorizations: usize,
 }
 
 /// Largest ratio of the new step to the last one that is extrapolated (a longer step starts from
@@ -402,8 +422,17 @@ impl QuasiStatic {
             model.solver.solve_quasi_static(initial).map_err(crate::analysis::numerical)?;
         let (point, _) = model.direction1_torque(current, &solution, options)?;
         let commit = model.solver.commit_hysteresis(&solution);
+        let report = &solution.report;
+        self.totals.newton_iterations += report.iterations;
+        self.totals.factorizations += report.factorizations;
+        self.totals.last_factorizations = report.factorizations;
         self.before = self.last.replace((current, solution));
         Ok((point, commit))
+    }
+
+    /// Numeric factorisations of the last step.
+    pub(crate) fn last_factorizations(&self) -> usize {
+        self.totals.last_factorizations
     }
 
     /// Newton's start for a step to `current` (type docs); `None` before the first step (A = 0).

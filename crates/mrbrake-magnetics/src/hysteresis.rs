@@ -342,14 +342,16 @@ fn commit_point(
     last: &LastEvaluations,
     k: usize,
 ) -> PointCommit {
-    let magnitude = b[0].hypot(b[1]);
     let (axis, perpendicular) = match point.axis {
         Some(e) => {
-            let along = b[0] * e[0] + b[1] * e[1];
-            (Some(e), (b[0] - along * e[0]).hypot(b[1] - along * e[1]))
+            // |B − (B·e) e| = |B × e| for the unit axis e.
+            (Some(e), (b[1] * e[0] - b[0] * e[1]).abs())
         }
-        None if magnitude > AXIS_MIN_B_T => (Some([b[0] / magnitude, b[1] / magnitude]), 0.0),
-        None => (None, 0.0),
+        None => {
+            let magnitude = b[0].hypot(b[1]);
+            let axis = (magnitude > AXIS_MIN_B_T).then(|| [b[0] / magnitude, b[1] / magnitude]);
+            (axis, 0.0)
+        }
     };
     let Some(e) = axis else {
         return PointCommit { dissipated: 0.0, perpendicular: 0.0, iterations: 0 };
@@ -378,6 +380,20 @@ fn trial_from(
     (response, next)
 }
 
+/// [`trial_from`] for an evaluation whose state is discarded: the response alone.
+#[inline]
+fn response_from(
+    state: &HysteresisState,
+    params: &HysteresisParams,
+    b: f64,
+    last: &LastEvaluations,
+    k: usize,
+) -> Response {
+    let response = state.response_near(params, b, last.guess(k, b));
+    last.record(k, response.b, response.h, response.dh_db);
+    response
+}
+
 /// The secant reluctivity `H/B` of the model's normal curve at `|b|`, at least its initial slope
 /// (the frozen `ν⊥` of the next step). `previous`, the secant at the point's last commit (NaN: none),
 /// starts the root search: the same root, fewer iterations when `|b|` moved little.
@@ -387,7 +403,7 @@ fn normal_secant(params: &HysteresisParams, b_abs: f64, previous: f64) -> f64 {
     if b_abs <= AXIS_MIN_B_T {
         return initial;
     }
-    let (response, _) = demagnetised.trial_near(params, b_abs, previous * b_abs);
+    let response = demagnetised.response_near(params, b_abs, previous * b_abs);
     (response.h / b_abs).max(initial).min(1.0 / MU_0)
 }
 
@@ -402,7 +418,7 @@ fn point_law(
 ) -> PointLaw {
     if let Some(e) = point.axis {
         let along = b[0] * e[0] + b[1] * e[1];
-        let (response, _) = trial_from(&point.state, params, along, last, k);
+        let response = response_from(&point.state, params, along, last, k);
         let perpendicular = [b[0] - along * e[0], b[1] - along * e[1]];
         let nu = point.nu_perpendicular;
         let h =
@@ -415,7 +431,7 @@ fn point_law(
         return PointLaw { h: [initial * b[0], initial * b[1]], tangent: [initial, 0.0, initial] };
     }
     let e = [b[0] / magnitude, b[1] / magnitude];
-    let (response, _) = trial_from(&point.state, params, magnitude, last, k);
+    let response = response_from(&point.state, params, magnitude, last, k);
     let h = [response.h * e[0], response.h * e[1]];
     PointLaw { h, tangent: axial_tangent(e, response.dh_db, response.h / magnitude) }
 }

@@ -191,12 +191,59 @@ impl HysteresisParams {
         (j, dj, d2j)
     }
 
+    /// The polarisation of every cell, `J_k(h_k)` (T), with `dJ/dH` of the cells flagged in
+    /// `moving` and its second derivative (as [`Self::polarisation_and_curvature`]); a cell flagged
+    /// in `known` (and not in `moving`) takes its polarisation from `cached[k]` instead of its
+    /// terms: a cell whose reversible field did not change since `cached` was evaluated costs
+    /// nothing. The total `J` is the sum of the cells'.
+    #[inline]
+    pub(crate) fn cell_polarisations(
+        &self,
+        reversible: &[f64; MAX_CELLS],
+        moving: u32,
+        known: u32,
+        cached: &[f64; MAX_CELLS],
+    ) -> ([f64; MAX_CELLS], f64, f64) {
+        let mut cells = [0.0; MAX_CELLS];
+        let (mut dj, mut d2j) = (0.0, 0.0);
+        for (k, &h) in reversible.iter().enumerate().take(self.cells) {
+            let bit = 1 << k;
+            if moving & bit == 0 && known & bit != 0 {
+                cells[k] = cached[k];
+                continue;
+            }
+            let terms = self.cell_terms(k);
+            let js = &self.term_js[terms.clone()];
+            let inv_a = &self.term_inv_a[terms];
+            let mut j = 0.0;
+            if moving & bit == 0 {
+                for (&js, &inv_a) in js.iter().zip(inv_a) {
+                    let x = h * inv_a;
+                    j += js * x / (1.0 + x.abs());
+                }
+            } else {
+                for (&js, &inv_a) in js.iter().zip(inv_a) {
+                    let x = h * inv_a;
+                    let inv = 1.0 / (1.0 + x.abs());
+                    j += js * x * inv;
+                    let slope = js * inv_a * inv * inv;
+                    dj += slope;
+                    d2j -= 2.0 * slope * inv_a * inv * x.signum();
+                }
+            }
+            cells[k] = j;
+        }
+        (cells, dj, d2j)
+    }
+
     /// The terms of cell `cell` (stored together, in their order).
     fn cell_terms(&self, cell: usize) -> std::ops::Range<usize> {
         self.cell_start[cell]..self.cell_start[cell + 1]
     }
 
-    /// Polarisation of cell `cell` alone at reversible field `h`, T.
+    /// Polarisation of cell `cell` alone at reversible field `h`, T (states keep theirs:
+    /// [`Self::cell_polarisations`]).
+    #[cfg(test)]
     pub(crate) fn cell_polarisation(&self, cell: usize, h: f64) -> f64 {
         self.cell_terms(cell)
             .map(|t| {

@@ -63,6 +63,9 @@ pub struct HysteresisState {
     direction: f64,
     /// `dH/dB` of the last step (0 before any): the start of the next root search.
     tangent_dh_db: f64,
+    /// `J_k(h_k)` of every cell at its reversible field, T (zero when demagnetised): the cells a
+    /// step does not move keep it, so an evaluation computes the terms of the moving cells only.
+    cell_polarisation: [f64; MAX_CELLS],
 }
 
 impl HysteresisState {
@@ -129,6 +132,27 @@ impl HysteresisState {
         (response, next)
     }
 
+    /// The response of [`HysteresisState::trial_near`] alone, without building the state the step
+    /// would leave: for evaluations whose state is discarded (the Newton iterations of a field
+    /// solve). The same response.
+    pub fn response_near(&self, params: &HysteresisParams, b_new: f64, h_guess: f64) -> Response {
+        let delta = b_new - self.b;
+        if !(b_new.is_finite() && b_new.abs() <= MAX_FLUX_DENSITY_T)
+            || delta == 0.0
+            || !h_guess.is_finite()
+        {
+            return self.trial(params, b_new).0;
+        }
+        let solved = self.solve_field(params, b_new, delta.signum(), Some(h_guess));
+        Response {
+            h: solved.h,
+            b: b_new,
+            dh_db: 1.0 / (MU_0 + solved.dj),
+            iterations: solved.iterations,
+            accepted: true,
+        }
+    }
+
     /// H-driven step to `h_new` (A/m): the forward form of the model. Returns B and `dH/dB` (the
     /// inverse of `dB/dH` of the step). A non-finite `h_new` is rejected like a bad B.
     pub fn step_h(&mut self, params: &HysteresisParams, h_new: f64) -> Response {
@@ -139,8 +163,14 @@ impl HysteresisState {
             return self.without_step(params, delta == 0.0);
         }
         let s = delta.signum();
-        let moving = self.advance(params, h_new, s);
-        let (j, dj) = params.polarisation(&self.reversible, moving);
+        let (reversible, moving, changed) = played(params, &self.reversible, h_new, s);
+        let (cells, dj, _) =
+            params.cell_polarisations(&reversible, moving, !changed, &self.cell_polarisation);
+        self.reversible = reversible;
+        self.cell_polarisation = cells;
+        self.h = h_new;
+        self.direction = s;
+        let j: f64 = cells.iter().sum();
         self.b = MU_0 * h_new + j;
         self.tangent_dh_db = 1.0 / (MU_0 + dj);
         Response { h: h_new, b: self.b, dh_db: self.tangent_dh_db, iterations: 0, accepted: true }
@@ -155,7 +185,8 @@ impl HysteresisState {
     /// state: only cells without pinning move).
     pub fn tangent(&self, params: &HysteresisParams) -> Response {
         let moving = moving_cells(params, &self.reversible, self.h, self.direction);
-        let (_, dj) = params.polarisation(&self.reversible, moving);
+        let (_, dj, _) =
+            params.cell_polarisations(&self.reversible, moving, !0, &self.cell_polarisation);
         Response { h: self.h, b: self.b, dh_db: 1.0 / (MU_0 + dj), iterations: 0, accepted: true }
     }
 
@@ -163,9 +194,8 @@ impl HysteresisState {
     pub fn dissipation_to(&self, params: &HysteresisParams, next: &Self) -> f64 {
         (0..params.cells())
             .map(|k| {
-                let before = params.cell_polarisation(k, self.reversible[k]);
-                let after = params.cell_polarisation(k, next.reversible[k]);
-                params.pinning_a_per_m()[k] * (after - before).abs()
+                let change = next.cell_polarisation[k] - self.cell_polarisation[k];
+                params.pinning_a_per_m()[k] * change.abs()
             })
             .sum()
     }
@@ -176,15 +206,6 @@ impl HysteresisState {
             + (0..params.cells())
                 .map(|k| params.cell_free_energy(k, self.reversible[k]))
                 .sum::<f64>()
-    }
-
-    /// Moves every cell to the applied field `h` (direction `s`) and returns the moving cells.
-    fn advance(&mut self, params: &HysteresisParams, h: f64, s: f64) -> u32 {
-        let (reversible, moving) = played(params, &self.reversible, h, s);
-        self.reversible = reversible;
-        self.h = h;
-        self.direction = s;
-        moving
     }
 
     /// Solves `B(H) = b_new` along the step from this state in direction `s` (safeguarded Newton,
@@ -198,9 +219,11 @@ impl HysteresisState {
         guess: Option<f64>,
     ) -> Solved {
         let evaluate = |h: f64| {
-            let (reversible, moving) = played(params, &self.reversible, h, s);
-            let (j, dj, d2j) = params.polarisation_and_curvature(&reversible, moving);
-            (reversible, MU_0 * h + j - b_new, dj, d2j)
+            let (reversible, moving, changed) = played(params, &self.reversible, h, s);
+            let (cells, dj, d2j) =
+                params.cell_polarisations(&reversible, moving, !changed, &self.cell_polarisation);
+            let j: f64 = cells.iter().sum();
+            (Cells { reversible, polarisation: cells }, MU_0 * h + j - b_new, dj, d2j)
         };
         // The root lies between H₀ (residual B₀ − b_new) and H₀ + ΔB/μ0 (slope ≥ μ0).
         let far = self.h + (b_new - self.b) / MU_0;
@@ -211,10 +234,10 @@ impl HysteresisState {
         let mut iterations = 0;
         loop {
             iterations += 1;
-            let (reversible, r, dj, d2j) = evaluate(h);
+            let (cells, r, dj, d2j) = evaluate(h);
             let narrow = hi - lo <= f64::EPSILON * hi.abs().max(lo.abs());
             if r.abs() <= tolerance || narrow || iterations >= MAX_ITERATIONS {
-                return Solved { h, reversible, dj, iterations };
+                return Solved { h, cells, dj, iterations };
             }
             if r > 0.0 {
                 hi = h
@@ -227,7 +250,8 @@ impl HysteresisState {
 
     /// Commits a solved B-driven step and returns its response.
     fn commit(&mut self, solved: Solved, b_new: f64, s: f64) -> Response {
-        self.reversible = solved.reversible;
+        self.reversible = solved.cells.reversible;
+        self.cell_polarisation = solved.cells.polarisation;
         self.h = solved.h;
         self.b = b_new;
         self.direction = s;
@@ -256,34 +280,44 @@ fn next_iterate(h: f64, r: f64, slope: f64, curvature: f64, lo: f64, hi: f64) ->
     if inside(newton) { newton } else { 0.5 * (lo + hi) }
 }
 
+/// The reversible fields of the cells and their polarisations, T.
+struct Cells {
+    reversible: [f64; MAX_CELLS],
+    polarisation: [f64; MAX_CELLS],
+}
+
 /// A solved B-driven step: the field, the cells there, and `dJ/dH` of the moving cells.
 struct Solved {
     h: f64,
-    reversible: [f64; MAX_CELLS],
+    cells: Cells,
     dj: f64,
     iterations: u32,
 }
 
-/// The reversible fields after the applied field moves to `h` (the play rule of each cell) and the
-/// cells then on the leading edge of their band for a motion in direction `s` (bit `k` set): they
-/// follow a further change of the applied field with slope 1. One pass over the cells.
+/// The reversible fields after the applied field moves to `h` (the play rule of each cell), the
+/// cells then on the leading edge of their band for a motion in direction `s` (bit `k` set: they
+/// follow a further change of the applied field with slope 1) and the cells whose reversible field
+/// changed (bit `k` set). One pass over the cells.
 #[inline]
 fn played(
     params: &HysteresisParams,
     reversible: &[f64; MAX_CELLS],
     h: f64,
     s: f64,
-) -> ([f64; MAX_CELLS], u32) {
+) -> ([f64; MAX_CELLS], u32, u32) {
     let mut next = *reversible;
-    let mut moving = 0u32;
+    let (mut moving, mut changed) = (0u32, 0u32);
     for (k, &kappa) in params.pinning_a_per_m().iter().enumerate() {
         // max/min rather than clamp: no check that the bounds are ordered (they are, κ ≥ 0).
         next[k] = next[k].max(h - kappa).min(h + kappa);
         if leads(next[k], h, kappa, s) {
             moving |= 1 << k;
         }
+        if next[k].to_bits() != reversible[k].to_bits() {
+            changed |= 1 << k;
+        }
     }
-    (next, moving)
+    (next, moving, changed)
 }
 
 /// The cells on the leading edge of their band for a motion in direction `s` (bit `k` set).
