@@ -172,21 +172,8 @@ impl HysteresisParams {
             let terms = self.cell_start[k]..self.cell_start[k + 1];
             let js = &self.term_js[terms.clone()];
             let inv_a = &self.term_inv_a[terms];
-            if moving & (1 << k) == 0 {
-                for (&js, &inv_a) in js.iter().zip(inv_a) {
-                    let x = h * inv_a;
-                    j += js * x / (1.0 + x.abs());
-                }
-                continue;
-            }
-            for (&js, &inv_a) in js.iter().zip(inv_a) {
-                let x = h * inv_a;
-                let inv = 1.0 / (1.0 + x.abs());
-                j += js * x * inv;
-                let slope = js * inv_a * inv * inv;
-                dj += slope;
-                d2j -= 2.0 * slope * inv_a * inv * x.signum();
-            }
+            let slopes = (moving & (1 << k) != 0).then_some((&mut dj, &mut d2j));
+            add_cell_terms(js, inv_a, h, &mut j, slopes);
         }
         (j, dj, d2j)
     }
@@ -216,21 +203,8 @@ impl HysteresisParams {
             let js = &self.term_js[terms.clone()];
             let inv_a = &self.term_inv_a[terms];
             let mut j = 0.0;
-            if moving & bit == 0 {
-                for (&js, &inv_a) in js.iter().zip(inv_a) {
-                    let x = h * inv_a;
-                    j += js * x / (1.0 + x.abs());
-                }
-            } else {
-                for (&js, &inv_a) in js.iter().zip(inv_a) {
-                    let x = h * inv_a;
-                    let inv = 1.0 / (1.0 + x.abs());
-                    j += js * x * inv;
-                    let slope = js * inv_a * inv * inv;
-                    dj += slope;
-                    d2j -= 2.0 * slope * inv_a * inv * x.signum();
-                }
-            }
+            let slopes = (moving & bit != 0).then_some((&mut dj, &mut d2j));
+            add_cell_terms(js, inv_a, h, &mut j, slopes);
             cells[k] = j;
         }
         (cells, dj, d2j)
@@ -305,6 +279,38 @@ fn check_term(t: usize, term: &Term, cells: usize) -> Result<(), MaterialError> 
         return Err(out_of_range("field_A_per_m", a, "finite, 0 < a <= 1e7 A/m".into()));
     }
     Ok(())
+}
+
+/// Adds one cell's terms at its reversible field `h` (A/m) to `j`: `Σ J_s x/(1 + |x|)` with
+/// `x = h/a` (T); with `slopes`, also their first and second derivatives in `h` (the cell is
+/// moving). One loop for [`HysteresisParams::polarisation_and_curvature`] and
+/// [`HysteresisParams::cell_polarisations`], the same operations in the same order as before.
+#[inline]
+fn add_cell_terms(
+    js: &[f64],
+    inv_a: &[f64],
+    h: f64,
+    j: &mut f64,
+    slopes: Option<(&mut f64, &mut f64)>,
+) {
+    match slopes {
+        None => {
+            for (&js, &inv_a) in js.iter().zip(inv_a) {
+                let x = h * inv_a;
+                *j += js * x / (1.0 + x.abs());
+            }
+        }
+        Some((dj, d2j)) => {
+            for (&js, &inv_a) in js.iter().zip(inv_a) {
+                let x = h * inv_a;
+                let inv = 1.0 / (1.0 + x.abs());
+                *j += js * x * inv;
+                let slope = js * inv_a * inv * inv;
+                *dj += slope;
+                *d2j -= 2.0 * slope * inv_a * inv * x.signum();
+            }
+        }
+    }
 }
 
 #[cfg(test)]
