@@ -247,7 +247,6 @@ fn gather(
         work: SolveTotals {
             newton_iterations: results.iter().map(|r| r.work.newton_iterations).sum(),
             factorizations: results.iter().map(|r| r.work.factorizations).sum(),
-            ..SolveTotals::default()
         },
         timings_s: ForcTimings {
             wall: start.elapsed().as_secs_f64(),

@@ -388,6 +388,8 @@ pub(crate) struct QuasiStatic {
     start: Vec<f64>,
     /// Newton iterations and numeric factorisations of every step so far.
     pub(crate) totals: SolveTotals,
+    /// Numeric factorisations of the last step.
+    last_factorizations: usize,
 }
 
 /// Newton iterations and numeric factorisations of a sequence of solves (the work measure of the
@@ -398,9 +400,6 @@ pub struct SolveTotals {
     pub newton_iterations: usize,
     /// Numeric Cholesky factorisations.
     pub factorizations: usize,
-    /// Factorisations of the last solve.
-    #[serde(skip)]
-    pub(crate) last_factorizations: usize,
 }
 
 /// Largest ratio of the new step to the last one that is extrapolated (a longer step starts from
@@ -425,14 +424,14 @@ impl QuasiStatic {
         let report = &solution.report;
         self.totals.newton_iterations += report.iterations;
         self.totals.factorizations += report.factorizations;
-        self.totals.last_factorizations = report.factorizations;
+        self.last_factorizations = report.factorizations;
         self.before = self.last.replace((current, solution));
         Ok((point, commit))
     }
 
     /// Numeric factorisations of the last step.
     pub(crate) fn last_factorizations(&self) -> usize {
-        self.totals.last_factorizations
+        self.last_factorizations
     }
 
     /// Newton's start for a step to `current` (type docs); `None` before the first step (A = 0).

@@ -118,17 +118,10 @@ impl HysteresisState {
         h_guess: f64,
     ) -> (Response, Self) {
         let mut next = *self;
-        let delta = b_new - self.b;
-        if !(b_new.is_finite() && b_new.abs() <= MAX_FLUX_DENSITY_T)
-            || delta == 0.0
-            || !h_guess.is_finite()
-        {
-            let response = next.step(params, b_new);
-            return (response, next);
-        }
-        let s = delta.signum();
-        let solved = self.solve_field(params, b_new, s, Some(h_guess));
-        let response = next.commit(solved, b_new, s);
+        let response = match self.solve_near(params, b_new, h_guess) {
+            Some((solved, s)) => next.commit(solved, b_new, s),
+            None => next.step(params, b_new),
+        };
         (response, next)
     }
 
@@ -136,21 +129,29 @@ impl HysteresisState {
     /// would leave: for evaluations whose state is discarded (the Newton iterations of a field
     /// solve). The same response.
     pub fn response_near(&self, params: &HysteresisParams, b_new: f64, h_guess: f64) -> Response {
+        match self.solve_near(params, b_new, h_guess) {
+            Some((solved, _)) => solved.response(b_new),
+            None => self.trial(params, b_new).0,
+        }
+    }
+
+    /// The root search of the B-driven step to `b_new` started at `h_guess`, with the step's
+    /// direction; `None` where the plain step applies (a bad or unchanged B, a non-finite guess).
+    fn solve_near(
+        &self,
+        params: &HysteresisParams,
+        b_new: f64,
+        h_guess: f64,
+    ) -> Option<(Solved, f64)> {
         let delta = b_new - self.b;
         if !(b_new.is_finite() && b_new.abs() <= MAX_FLUX_DENSITY_T)
             || delta == 0.0
             || !h_guess.is_finite()
         {
-            return self.trial(params, b_new).0;
+            return None;
         }
-        let solved = self.solve_field(params, b_new, delta.signum(), Some(h_guess));
-        Response {
-            h: solved.h,
-            b: b_new,
-            dh_db: 1.0 / (MU_0 + solved.dj),
-            iterations: solved.iterations,
-            accepted: true,
-        }
+        let s = delta.signum();
+        Some((self.solve_field(params, b_new, s, Some(h_guess)), s))
     }
 
     /// H-driven step to `h_new` (A/m): the forward form of the model. Returns B and `dH/dB` (the
@@ -250,19 +251,14 @@ impl HysteresisState {
 
     /// Commits a solved B-driven step and returns its response.
     fn commit(&mut self, solved: Solved, b_new: f64, s: f64) -> Response {
+        let response = solved.response(b_new);
         self.reversible = solved.cells.reversible;
         self.cell_polarisation = solved.cells.polarisation;
         self.h = solved.h;
         self.b = b_new;
         self.direction = s;
-        self.tangent_dh_db = 1.0 / (MU_0 + solved.dj);
-        Response {
-            h: solved.h,
-            b: b_new,
-            dh_db: self.tangent_dh_db,
-            iterations: solved.iterations,
-            accepted: true,
-        }
+        self.tangent_dh_db = response.dh_db;
+        response
     }
 }
 
@@ -292,6 +288,19 @@ struct Solved {
     cells: Cells,
     dj: f64,
     iterations: u32,
+}
+
+impl Solved {
+    /// The response of the step to `b_new` this root solves.
+    fn response(&self, b_new: f64) -> Response {
+        Response {
+            h: self.h,
+            b: b_new,
+            dh_db: 1.0 / (MU_0 + self.dj),
+            iterations: self.iterations,
+            accepted: true,
+        }
+    }
 }
 
 /// The reversible fields after the applied field moves to `h` (the play rule of each cell), the
